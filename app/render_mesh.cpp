@@ -1,0 +1,39 @@
+#include "render_mesh.h"
+
+namespace galsculpt {
+
+std::vector<Vec3> vertexNormals(const TriMesh& mesh) {
+  std::vector<Vec3> normals(mesh.vertices.size(), Vec3::Zero());
+  for (const Tri& f : mesh.faces) {
+    // The cross product's length is twice the area: area weighting for free.
+    const Vec3 n = (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
+    for (int k = 0; k < 3; ++k) normals[f[k]] += n;
+  }
+  for (Vec3& n : normals) {
+    const double len = n.norm();
+    if (len > 0.0) n /= len;
+  }
+  return normals;
+}
+
+RenderMesh makeRenderMesh(const TriMesh& mesh, const Vec3& color) {
+  RenderMesh r;
+  const std::vector<Vec3> normals = vertexNormals(mesh);
+  r.positions.reserve(mesh.vertices.size() * 3);
+  r.normals.reserve(mesh.vertices.size() * 3);
+  r.colors.reserve(mesh.vertices.size() * 3);
+  for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      r.positions.push_back(static_cast<float>(mesh.vertices[i][k]));
+      r.normals.push_back(static_cast<float>(normals[i][k]));
+      r.colors.push_back(static_cast<float>(color[k]));
+    }
+  }
+  r.indices.reserve(mesh.faces.size() * 3);
+  for (const Tri& f : mesh.faces) {
+    for (int k = 0; k < 3; ++k) r.indices.push_back(static_cast<unsigned>(f[k]));
+  }
+  return r;
+}
+
+}  // namespace galsculpt

@@ -1,0 +1,9 @@
+// Shader sources from shaders/, embedded at build time so the binary runs from anywhere.
+#pragma once
+
+namespace galsculpt::shaders {
+extern const char* const kMeshVert;
+extern const char* const kMeshFrag;
+extern const char* const kBackgroundVert;
+extern const char* const kBackgroundFrag;
+}  // namespace galsculpt::shaders

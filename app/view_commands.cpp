@@ -1,0 +1,153 @@
+// `galsculpt open`, `galsculpt render` and `galsculpt scene check`.
+#include <cstdlib>
+#include <filesystem>
+
+#include "app/camera.h"
+#include "app/cli.h"
+#include "app/cli_args.h"
+#include "app/offscreen_context.h"
+#include "app/render_mesh.h"
+#include "app/renderer.h"
+#include "app/view_content.h"
+#include "engine/mesh_files.h"
+#include "engine/scene.h"
+#include "engine/scene_mesh.h"
+#include "engine/surface_io.h"
+#include "solver/input_error.h"
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const Vec3 kSurfaceColor(0.80, 0.55, 0.42);
+
+bool haveDisplay() {
+  const char* x = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  return (x && *x) || (wayland && *wayland);
+}
+
+std::string describeMaterial(const MaterialDesc& m) {
+  std::ostringstream s;
+  s << "material: " << m.preset << " (" << m.model << ", E " << m.youngsModulus << " Pa, nu " << m.poissonRatio
+    << ", " << m.density << " kg/m^3)";
+  return s.str();
+}
+
+}  // namespace
+
+ViewContent loadViewContent(const fs::path& file, std::ostream& log) {
+  ViewContent c;
+  c.title = file.filename().string();
+  std::string ext = file.extension().string();
+  if (ext == ".json") {
+    const SceneDescription scene = loadScene(file);
+    const TetMesh mesh = loadSceneMesh(scene, [&log](const std::string& line) { log << line << '\n'; });
+    c.title = scene.name;
+    c.surface = boundarySurface(mesh);
+    c.facts.push_back(std::to_string(mesh.numVertices()) + " vertices, " + std::to_string(mesh.numTets()) + " tets");
+    c.facts.push_back(describeMaterial(scene.material));
+    c.facts.push_back("solver: " + scene.solver.type + " " + scene.solver.grid);
+    return c;
+  }
+  if (meshFileKind(file) == MeshFileKind::Surface) {
+    c.surface = readSurface(file);
+    c.facts.push_back(std::to_string(c.surface.numVertices()) + " vertices, " + std::to_string(c.surface.numFaces()) +
+                      " faces (surface)");
+    return c;
+  }
+  const TetMesh mesh = readTetMesh(file);
+  c.surface = boundarySurface(mesh);
+  c.facts.push_back(std::to_string(mesh.numVertices()) + " vertices, " + std::to_string(mesh.numTets()) + " tets");
+  return c;
+}
+
+std::vector<std::string> renderViewsOffscreen(const ViewContent& content, const fs::path& outDir, int width,
+                                              int height) {
+  std::string error;
+  auto context = OffscreenContext::create(width, height, &error);
+  if (!context) throw std::runtime_error("offscreen rendering unavailable: " + error);
+  Renderer renderer;
+  if (!renderer.init(&error)) throw std::runtime_error(error);
+  renderer.setMesh(makeRenderMesh(content.surface, kSurfaceColor));
+  std::error_code ec;
+  fs::create_directories(outDir, ec);
+  if (ec) throw OutputError("cannot create " + outDir.string() + ": " + ec.message());
+
+  OrbitCamera camera;
+  camera.frame(boundingBox(content.surface.vertices));
+  struct View {
+    const char* name;
+    double yaw, pitch;
+  };
+  const View views[] = {{"perspective", 0.6, 0.35}, {"front", 0.0, 0.0}, {"side", 1.5707963, 0.0}, {"top", 0.0, 1.55}};
+  std::vector<std::string> written;
+  for (const View& v : views) {
+    camera.yaw = v.yaw;
+    camera.pitch = v.pitch;
+    context->bind();
+    renderer.draw(camera, width, height);
+    const fs::path file = outDir / (std::string("view_") + v.name + ".png");
+    writePng(file.string(), width, height, context->readPixels());
+    written.push_back(file.string());
+  }
+  return written;
+}
+
+int renderCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  const CliArgs a(args, {"--out", "--size"}, {});
+  a.expectPositional(1, 1, "galsculpt render FILE --out DIR [--size WxH]");
+  if (!a.has("--out")) throw UsageError("render needs --out DIR");
+  const auto [w, h] = a.sizeValue("--size", {1280, 800});
+  const ViewContent content = loadViewContent(a.positional()[0], err);
+  for (const std::string& f : renderViewsOffscreen(content, *a.value("--out"), w, h)) out << "wrote " << f << '\n';
+  return kExitOk;
+}
+
+int openCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  const CliArgs a(args, {"--out", "--size"}, {"--headless"});
+  a.expectPositional(1, 1, "galsculpt open FILE [--headless] [--out DIR] [--size WxH]");
+  const fs::path file = a.positional()[0];
+  const ViewContent content = loadViewContent(file, err);
+  bool headless = a.has("--headless");
+  if (!headless && !haveDisplay()) {
+    out << "no display found (DISPLAY and WAYLAND_DISPLAY are unset): running headless\n";
+    headless = true;
+  }
+  if (!headless) {
+    std::string error;
+    if (runViewerWindow(content, &error)) return kExitOk;
+    out << "cannot open a window (" << error << "): running headless\n";
+  }
+  const fs::path outDir = a.value("--out").value_or("galsculpt-out");
+  const auto [w, h] = a.sizeValue("--size", {1280, 800});
+  const auto files = renderViewsOffscreen(content, outDir, w, h);
+  out << content.title << ": wrote " << files.size() << " images to " << fs::absolute(outDir).lexically_normal().string()
+      << "/\n";
+  for (const std::string& f : files) out << "  " << f << '\n';
+  return kExitOk;
+}
+
+int sceneCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  if (args.empty() || args[0] != "check") throw UsageError("usage: galsculpt scene check SCENE [--load-mesh]");
+  const CliArgs a(std::vector<std::string>(args.begin() + 1, args.end()), {}, {"--load-mesh"});
+  a.expectPositional(1, 1, "galsculpt scene check SCENE [--load-mesh]");
+  const SceneDescription s = loadScene(a.positional()[0]);
+  out << "scene: " << s.name << '\n';
+  out << describeMaterial(s.material) << '\n';
+  out << "anchors: " << s.anchors.size() << "\ncolliders: " << s.colliders.size() << '\n';
+  out << "fracture: " << (s.fracture.enabled ? "on" : "off") << '\n';
+  out << "solver: " << s.solver.type << " " << s.solver.grid << " (" << s.solver.fineSweeps << " sweeps, "
+      << s.solver.coarseIterations << " coarse iterations)\n";
+  out << "time_step: " << s.timeStep << " s x " << s.substeps << " substep(s)\n";
+  if (a.has("--load-mesh")) {
+    const TetMesh mesh = loadSceneMesh(s, [&err](const std::string& line) { err << line << '\n'; });
+    out << "mesh: " << mesh.numVertices() << " vertices, " << mesh.numTets() << " tets\n";
+  }
+  out << "ok\n";
+  return kExitOk;
+}
+
+}  // namespace galsculpt

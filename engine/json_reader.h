@@ -1,0 +1,51 @@
+// Strict, path-aware reading of JSON documents (scenes, scripts, projects).
+//
+// Every error names the file and the JSON path of the offending value, e.g.
+// `scenes/x.json: $.material.poisson_ratio: must be below 0.5, got 0.7`. Unknown keys are errors:
+// a typo must not silently fall back to a default.
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace galsculpt {
+
+// Parses a file; syntax errors become InputError "file:line: JSON syntax error: ...".
+nlohmann::json parseJsonFile(const std::filesystem::path& path);
+
+class JsonObject {
+ public:
+  JsonObject(const nlohmann::json& value, std::string path, std::string file);
+
+  bool has(const std::string& key) const { return value_.contains(key); }
+  double number(const std::string& key, double fallback, double min, double max);
+  double requiredNumber(const std::string& key, double min, double max);
+  int integer(const std::string& key, int fallback, int min, int max);
+  bool boolean(const std::string& key, bool fallback);
+  std::string string(const std::string& key, const std::string& fallback,
+                     const std::vector<std::string>& allowed = {});
+  Eigen::Vector3d vec3(const std::string& key, const Eigen::Vector3d& fallback);
+  JsonObject object(const std::string& key);
+  // Elements of an array member (empty when absent).
+  std::vector<nlohmann::json> array(const std::string& key);
+  std::string childPath(const std::string& key) const { return path_ + "." + key; }
+  const std::string& path() const { return path_; }
+  const std::string& file() const { return file_; }
+  const nlohmann::json& raw(const std::string& key);
+
+  // Throws for every key that was never asked for.
+  void rejectUnknownKeys() const;
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const;
+
+ private:
+  const nlohmann::json& value_;
+  std::string path_;
+  std::string file_;
+  std::set<std::string> seen_;
+};
+
+}  // namespace galsculpt

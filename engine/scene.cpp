@@ -1,0 +1,289 @@
+#include "scene.h"
+
+#include <limits>
+#include <stdexcept>
+
+#include "engine/json_reader.h"
+#include "solver/input_error.h"
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+const std::vector<std::string> kPresets = {"clay", "rubber", "flesh", "steel"};
+const std::vector<std::string> kModels = {"corotational", "stvk", "stable_neo_hookean"};
+
+// "50/1000/all": coarse to fine, counts strictly increasing, ending in "all".
+void checkGrid(JsonObject& o, const std::string& key, const std::string& grid) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  while (true) {
+    const size_t slash = grid.find('/', start);
+    parts.push_back(grid.substr(start, slash - start));
+    if (slash == std::string::npos) break;
+    start = slash + 1;
+  }
+  if (parts.size() < 2 || parts.back() != "all") {
+    o.fail(key, "grid '" + grid + "' must list coarse vertex counts and end in 'all', e.g. 50/all or 50/1000/all");
+  }
+  long long previous = 0;
+  for (size_t i = 0; i + 1 < parts.size(); ++i) {
+    long long n = 0;
+    try {
+      size_t used = 0;
+      n = std::stoll(parts[i], &used);
+      if (used != parts[i].size()) throw std::invalid_argument("trailing");
+    } catch (const std::exception&) {
+      o.fail(key, "grid level '" + parts[i] + "' is not a vertex count");
+    }
+    if (n < 1 || n <= previous) {
+      o.fail(key, "grid levels must be positive and increase from coarse to fine, got '" + grid + "'");
+    }
+    previous = n;
+  }
+}
+
+MeshSource readMesh(JsonObject o, const fs::path& sceneDir) {
+  MeshSource m;
+  const int kinds = o.has("file") + o.has("generate") + o.has("import");
+  if (kinds != 1) o.fail("", "give exactly one of 'file', 'generate' or 'import'");
+  if (o.has("file")) {
+    m.kind = MeshSource::Kind::File;
+    const std::string f = o.string("file", "");
+    if (f.empty()) o.fail("file", "must not be empty");
+    m.path = fs::absolute(sceneDir / f).lexically_normal();
+  } else if (o.has("generate")) {
+    m.kind = MeshSource::Kind::Generate;
+    m.generator = o.string("generate", "", {"sphere", "charpy", "steak"});
+    m.tets = o.integer("tets", 0, 100, 5000000);
+    if (m.tets == 0) o.fail("tets", "is required with 'generate'");
+    m.radius = o.number("radius", 0.1, 1e-6, 1e3);
+  } else {
+    m.kind = MeshSource::Kind::Import;
+    const std::string source = o.string("import", "");
+    if (source.rfind("cgal:", 0) == 0) {
+      m.cgalMesh = source.substr(5);
+      if (m.cgalMesh.empty()) o.fail("import", "name the CGAL mesh, e.g. cgal:armadillo");
+    } else {
+      if (source.empty()) o.fail("import", "must not be empty");
+      m.path = fs::absolute(sceneDir / source).lexically_normal();
+    }
+    m.tets = o.integer("tets", 0, 100, 5000000);
+    if (m.tets == 0) o.fail("tets", "is required with 'import'");
+  }
+  m.scale = o.number("scale", 1.0, 1e-12, 1e12);
+  m.translate = o.vec3("translate", Eigen::Vector3d::Zero());
+  o.rejectUnknownKeys();
+  return m;
+}
+
+MaterialDesc readMaterial(JsonObject o) {
+  const std::string preset = o.string("preset", "rubber", kPresets);
+  MaterialDesc m = materialPreset(preset);
+  m.model = o.string("model", m.model, kModels);
+  m.youngsModulus = o.number("youngs_modulus", m.youngsModulus, 1e-3, 1e13);
+  m.poissonRatio = o.number("poisson_ratio", m.poissonRatio, -0.99, 0.4999);
+  m.density = o.number("density", m.density, 1e-3, 1e6);
+  m.yieldStress = o.number("yield_stress", m.yieldStress, 0.0, 1e13);
+  m.hardening = o.number("hardening", m.hardening, 0.0, 1e13);
+  o.rejectUnknownKeys();
+  return m;
+}
+
+std::vector<PathKey> readPath(JsonObject& o, const std::string& key) {
+  std::vector<PathKey> keys;
+  const auto items = o.array(key);
+  for (size_t i = 0; i < items.size(); ++i) {
+    JsonObject k(items[i], o.childPath(key) + "[" + std::to_string(i) + "]", o.file());
+    PathKey p;
+    p.time = k.requiredNumber("t", 0.0, 1e9);
+    p.offset = k.vec3("offset", Eigen::Vector3d::Zero());
+    if (!keys.empty() && p.time <= keys.back().time) k.fail("t", "path times must increase");
+    k.rejectUnknownKeys();
+    keys.push_back(p);
+  }
+  return keys;
+}
+
+AnchorDesc readAnchor(JsonObject o) {
+  AnchorDesc a;
+  const int shapes = o.has("box") + o.has("sphere") + o.has("vertices");
+  if (shapes != 1) o.fail("", "give exactly one of 'box', 'sphere' or 'vertices'");
+  if (o.has("box")) {
+    a.shape = AnchorDesc::Shape::Box;
+    JsonObject b = o.object("box");
+    a.min = b.vec3("min", Eigen::Vector3d::Constant(-kInf));
+    a.max = b.vec3("max", Eigen::Vector3d::Constant(kInf));
+    if (!b.has("min") && !b.has("max")) b.fail("", "give 'min' and/or 'max'");
+    if ((a.min.array() > a.max.array()).any()) b.fail("", "'min' must not exceed 'max'");
+    b.rejectUnknownKeys();
+  } else if (o.has("sphere")) {
+    a.shape = AnchorDesc::Shape::Sphere;
+    JsonObject s = o.object("sphere");
+    a.center = s.vec3("center", Eigen::Vector3d::Zero());
+    a.radius = s.requiredNumber("radius", 0.0, kInf);
+    s.rejectUnknownKeys();
+  } else {
+    a.shape = AnchorDesc::Shape::Vertices;
+    const auto items = o.array("vertices");
+    for (size_t i = 0; i < items.size(); ++i) {
+      if (!items[i].is_number_integer() || items[i].get<long long>() < 0 ||
+          items[i].get<long long>() > std::numeric_limits<int>::max()) {
+        o.fail("vertices", "element " + std::to_string(i) + " is not a vertex index");
+      }
+      a.vertices.push_back(items[i].get<int>());
+    }
+    if (a.vertices.empty()) o.fail("vertices", "must not be empty");
+  }
+  a.path = readPath(o, "path");
+  o.rejectUnknownKeys();
+  return a;
+}
+
+MotionDesc readMotion(JsonObject o) {
+  MotionDesc m;
+  const std::string type = o.string("type", "static", {"static", "linear", "pendulum"});
+  if (type == "linear") {
+    m.type = MotionDesc::Type::Linear;
+    m.velocity = o.vec3("velocity", Eigen::Vector3d::Zero());
+  } else if (type == "pendulum") {
+    m.type = MotionDesc::Type::Pendulum;
+    m.pivot = o.vec3("pivot", Eigen::Vector3d::Zero());
+    m.axis = o.vec3("axis", Eigen::Vector3d::UnitZ());
+    if (m.axis.norm() < 1e-12) o.fail("axis", "must not be zero");
+    m.axis.normalize();
+    m.angularVelocity = o.requiredNumber("angular_velocity", -1e6, 1e6);
+  }
+  o.rejectUnknownKeys();
+  return m;
+}
+
+ColliderDesc readCollider(JsonObject o) {
+  ColliderDesc c;
+  const std::string type = o.string("type", "", {"plane", "sphere", "box"});
+  if (type.empty()) o.fail("type", "is required (plane, sphere or box)");
+  if (type == "plane") {
+    c.type = ColliderDesc::Type::Plane;
+    c.point = o.vec3("point", Eigen::Vector3d::Zero());
+    c.normal = o.vec3("normal", Eigen::Vector3d::UnitY());
+    if (c.normal.norm() < 1e-12) o.fail("normal", "must not be zero");
+    c.normal.normalize();
+  } else if (type == "sphere") {
+    c.type = ColliderDesc::Type::Sphere;
+    c.center = o.vec3("center", Eigen::Vector3d::Zero());
+    c.radius = o.requiredNumber("radius", 1e-9, kInf);
+  } else {
+    c.type = ColliderDesc::Type::Box;
+    c.center = o.vec3("center", Eigen::Vector3d::Zero());
+    if (!o.has("half_extents")) o.fail("half_extents", "is required for a box");
+    c.halfExtents = o.vec3("half_extents", Eigen::Vector3d::Zero());
+    if ((c.halfExtents.array() <= 0.0).any()) o.fail("half_extents", "must be positive");
+  }
+  c.friction = o.number("friction", 0.0, 0.0, 10.0);
+  if (o.has("motion")) c.motion = readMotion(o.object("motion"));
+  o.rejectUnknownKeys();
+  return c;
+}
+
+FractureDesc readFracture(JsonObject o) {
+  FractureDesc f;
+  f.enabled = o.boolean("enabled", true);
+  f.threshold = o.number("threshold", 0.0, 0.0, 1e13);
+  if (f.enabled && f.threshold <= 0.0) o.fail("threshold", "must be positive when fracture is enabled");
+  f.kernelRadius = o.number("kernel_radius", 0.0, 0.0, 1e6);
+  f.thresholdJitter = o.number("threshold_jitter", 0.0, 0.0, 0.99);
+  f.seed = static_cast<unsigned>(o.integer("seed", 1, 0, std::numeric_limits<int>::max()));
+  f.compressionResists = o.boolean("compression_resists", true);
+  o.rejectUnknownKeys();
+  return f;
+}
+
+SolverDesc readSolver(JsonObject o) {
+  SolverDesc s;
+  s.type = o.string("type", s.type, {"multigrid", "reference"});
+  s.grid = o.string("grid", s.grid);
+  checkGrid(o, "grid", s.grid);
+  s.fineSweeps = o.integer("fine_sweeps", s.fineSweeps, 0, 10000);
+  s.coarseIterations = o.integer("coarse_iters", s.coarseIterations, 0, 100000);
+  s.smoother = o.string("smoother", s.smoother, {"gauss_seidel", "jacobi"});
+  s.coarseSolver = o.string("coarse_solver", s.coarseSolver, {"cg", "cholesky"});
+  s.newtonIterations = o.integer("newton_iters", s.newtonIterations, 1, 100);
+  s.backend = o.string("backend", s.backend, {"auto", "cpu", "cuda"});
+  o.rejectUnknownKeys();
+  return s;
+}
+
+}  // namespace
+
+MaterialDesc materialPreset(const std::string& name) {
+  MaterialDesc m;
+  m.preset = name;
+  if (name == "clay") {  // modelling clay: soft, nearly incompressible, yields early
+    m.model = "stvk";
+    m.youngsModulus = 2.0e5;
+    m.poissonRatio = 0.45;
+    m.density = 1800.0;
+    m.yieldStress = 5.0e3;
+    m.hardening = 1.0e4;
+  } else if (name == "rubber") {
+    m.model = "stable_neo_hookean";
+    m.youngsModulus = 1.0e6;
+    m.poissonRatio = 0.48;
+    m.density = 1100.0;
+  } else if (name == "flesh") {  // soft tissue; plastic before it tears (ductile)
+    m.model = "stable_neo_hookean";
+    m.youngsModulus = 5.0e4;
+    m.poissonRatio = 0.45;
+    m.density = 1060.0;
+    m.yieldStress = 2.0e4;
+    m.hardening = 1.0e4;
+  } else if (name == "steel") {  // structural steel, brittle fracture preset
+    m.model = "corotational";
+    m.youngsModulus = 2.0e11;
+    m.poissonRatio = 0.3;
+    m.density = 7850.0;
+  } else {
+    throw std::invalid_argument("unknown material preset '" + name + "'");
+  }
+  return m;
+}
+
+SceneDescription loadScene(const fs::path& file) {
+  const nlohmann::json root = parseJsonFile(file);
+  JsonObject o(root, "$", file.string());
+  SceneDescription s;
+  s.file = fs::absolute(file);
+  const fs::path dir = s.file.parent_path();
+  s.name = o.string("name", file.stem().string());
+  if (!o.has("mesh")) o.fail("mesh", "is required");
+  s.mesh = readMesh(o.object("mesh"), dir);
+  if (o.has("material")) s.material = readMaterial(o.object("material"));
+  else s.material = materialPreset("rubber");
+  s.gravity = o.vec3("gravity", s.gravity);
+  s.timeStep = o.number("time_step", s.timeStep, 1e-7, 1.0);
+  s.substeps = o.integer("substeps", s.substeps, 1, 1000);
+  if (o.has("damping")) {
+    JsonObject d = o.object("damping");
+    s.dampingMass = d.number("mass", 0.0, 0.0, 1e6);
+    s.dampingStiffness = d.number("stiffness", 0.0, 0.0, 1e6);
+    d.rejectUnknownKeys();
+  }
+  const auto anchors = o.array("anchors");
+  for (size_t i = 0; i < anchors.size(); ++i) {
+    s.anchors.push_back(readAnchor(JsonObject(anchors[i], "$.anchors[" + std::to_string(i) + "]", file.string())));
+  }
+  const auto colliders = o.array("colliders");
+  for (size_t i = 0; i < colliders.size(); ++i) {
+    s.colliders.push_back(readCollider(JsonObject(colliders[i], "$.colliders[" + std::to_string(i) + "]", file.string())));
+  }
+  if (o.has("fracture")) s.fracture = readFracture(o.object("fracture"));
+  if (o.has("solver")) s.solver = readSolver(o.object("solver"));
+  o.rejectUnknownKeys();
+  return s;
+}
+
+}  // namespace galsculpt

@@ -1,0 +1,115 @@
+// Scene files: what to simulate (mesh, material, anchors, colliders, gravity, fracture, solver).
+//
+// A scene is JSON, documented in docs/scenes.md. Loading validates every value and names the
+// JSON path of the first bad one. The description is plain data: the engine turns it into a
+// solver model; nothing here runs physics.
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace galsculpt {
+
+struct MeshSource {
+  enum class Kind { File, Generate, Import };
+  Kind kind = Kind::File;
+  std::filesystem::path path;  // File: tet mesh; Import: surface (absolute, resolved)
+  std::string generator;       // Generate: sphere | charpy | steak
+  std::string cgalMesh;        // Import from Debian's libcgal-demo data (e.g. "armadillo")
+  int tets = 0;                // Generate / Import: target tet count
+  double radius = 0.1;         // sphere
+  double scale = 1.0;          // applied to the surface before meshing (Import)
+  Eigen::Vector3d translate = Eigen::Vector3d::Zero();
+};
+
+struct MaterialDesc {
+  std::string preset = "rubber";                 // clay | rubber | flesh | steel
+  std::string model = "stable_neo_hookean";      // corotational | stvk | stable_neo_hookean
+  double youngsModulus = 0.0;  // Pa
+  double poissonRatio = 0.0;
+  double density = 0.0;        // kg/m^3
+  double yieldStress = 0.0;    // Pa, 0 = elastic
+  double hardening = 0.0;      // Pa (linear isotropic hardening modulus)
+};
+
+// Default values of a named preset; throws std::invalid_argument for an unknown name.
+MaterialDesc materialPreset(const std::string& name);
+
+struct PathKey {
+  double time = 0.0;  // s
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // m, from the rest position
+};
+
+struct AnchorDesc {
+  enum class Shape { Box, Sphere, Vertices };
+  Shape shape = Shape::Box;
+  Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero();  // Box
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();                              // Sphere
+  double radius = 0.0;
+  std::vector<int> vertices;  // Vertices
+  std::vector<PathKey> path;  // empty: fixed; else offsets, linearly interpolated in time
+};
+
+struct MotionDesc {
+  enum class Type { Static, Linear, Pendulum };
+  Type type = Type::Static;
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // Linear, m/s
+  Eigen::Vector3d pivot = Eigen::Vector3d::Zero();     // Pendulum
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  double angularVelocity = 0.0;  // rad/s
+};
+
+struct ColliderDesc {
+  enum class Type { Plane, Sphere, Box };
+  Type type = Type::Plane;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // Plane
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  // Sphere, Box
+  double radius = 0.0;
+  Eigen::Vector3d halfExtents = Eigen::Vector3d::Zero();
+  double friction = 0.0;
+  MotionDesc motion;
+};
+
+struct FractureDesc {
+  bool enabled = false;
+  double threshold = 0.0;       // Pa, edge normal stress that damages an edge
+  double kernelRadius = 0.0;    // m, non-local averaging radius (0 = local)
+  double thresholdJitter = 0.0; // relative spread of random thresholds (0 = uniform)
+  unsigned seed = 1;
+  bool compressionResists = true;  // damaged edges still resist compression
+};
+
+struct SolverDesc {
+  std::string type = "multigrid";  // multigrid | reference
+  std::string grid = "50/all";
+  int fineSweeps = 3;
+  int coarseIterations = 20;
+  std::string smoother = "gauss_seidel";  // gauss_seidel | jacobi
+  std::string coarseSolver = "cg";        // cg | cholesky
+  int newtonIterations = 1;
+  std::string backend = "auto";           // auto | cpu | cuda
+};
+
+struct SceneDescription {
+  std::filesystem::path file;
+  std::string name;
+  MeshSource mesh;
+  MaterialDesc material;
+  Eigen::Vector3d gravity = Eigen::Vector3d(0.0, -9.81, 0.0);
+  double timeStep = 1.0 / 60.0;
+  int substeps = 1;
+  double dampingMass = 0.0;
+  double dampingStiffness = 0.0;
+  std::vector<AnchorDesc> anchors;
+  std::vector<ColliderDesc> colliders;
+  FractureDesc fracture;
+  SolverDesc solver;
+};
+
+// Reads and validates a scene; throws InputError naming file and JSON path.
+SceneDescription loadScene(const std::filesystem::path& file);
+
+}  // namespace galsculpt

@@ -1,0 +1,176 @@
+#include "surface_io.h"
+
+#include <stdlib.h>
+
+#include <algorithm>
+#include <assimp/Exporter.hpp>
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include "solver/input_error.h"
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lowerExtension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+const char* exportFormatFor(const std::string& ext) {
+  if (ext == ".obj") return "objnomtl";
+  if (ext == ".ply") return "plyb";
+  if (ext == ".stl") return "stlb";
+  if (ext == ".gltf") return "gltf2";
+  if (ext == ".glb") return "glb2";
+  return nullptr;
+}
+
+void appendNode(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent,
+                std::vector<Vec3>& positions, std::vector<Tri>& faces) {
+  const aiMatrix4x4 transform = parent * node->mTransformation;
+  for (unsigned m = 0; m < node->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[node->mMeshes[m]];
+    const int offset = static_cast<int>(positions.size());
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+      const aiVector3D p = transform * mesh->mVertices[v];
+      positions.push_back(Vec3(p.x, p.y, p.z));
+    }
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines are not part of a surface
+      faces.push_back({offset + static_cast<int>(face.mIndices[0]),
+                       offset + static_cast<int>(face.mIndices[1]),
+                       offset + static_cast<int>(face.mIndices[2])});
+    }
+  }
+  for (unsigned c = 0; c < node->mNumChildren; ++c) {
+    appendNode(scene, node->mChildren[c], transform, positions, faces);
+  }
+}
+
+}  // namespace
+
+bool isSurfaceFile(const fs::path& path) {
+  const std::string ext = lowerExtension(path);
+  return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".off" || ext == ".gltf" ||
+         ext == ".glb";
+}
+
+TriMesh readSurface(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw InputError(path.string(), 0, "file not found");
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(
+      path.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  if (!scene || !scene->mRootNode) {
+    throw InputError(path.string(), 0, std::string("cannot read surface: ") + importer.GetErrorString());
+  }
+  std::vector<Vec3> positions;
+  std::vector<Tri> faces;
+  appendNode(scene, scene->mRootNode, aiMatrix4x4(), positions, faces);
+  if (faces.empty()) throw InputError(path.string(), 0, "the file holds no triangles");
+  for (const Vec3& p : positions) {
+    if (!p.allFinite()) throw InputError(path.string(), 0, "non-finite vertex coordinate");
+  }
+
+  // Weld vertices at exactly the same position (across meshes, and for STL corners).
+  TriMesh out;
+  std::map<std::array<double, 3>, int> index;
+  std::vector<int> remap(positions.size());
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const std::array<double, 3> key{positions[i].x(), positions[i].y(), positions[i].z()};
+    const auto [it, inserted] = index.emplace(key, out.numVertices());
+    if (inserted) out.vertices.push_back(positions[i]);
+    remap[i] = it->second;
+  }
+  out.faces.reserve(faces.size());
+  for (Tri f : faces) {
+    for (int& v : f) v = remap[v];
+    out.faces.push_back(f);
+  }
+  return out;
+}
+
+void writeSurface(const fs::path& path, const TriMesh& mesh, const std::vector<Vec3>* normals) {
+  const std::string ext = lowerExtension(path);
+  const char* format = exportFormatFor(ext);
+  if (!format) {
+    throw OutputError("cannot write " + path.string() + ": unknown surface format '" + ext +
+                      "' (use .obj, .ply, .stl, .gltf or .glb)");
+  }
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) {
+    throw OutputError("cannot write " + path.string() + ": directory " + dir.string() + " does not exist");
+  }
+
+  // The aiScene owns and frees everything attached below.
+  auto scene = std::make_unique<aiScene>();
+  scene->mRootNode = new aiNode();
+  scene->mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene->mNumMaterials = 1;
+  auto* out = new aiMesh();
+  scene->mMeshes = new aiMesh*[1]{out};
+  scene->mNumMeshes = 1;
+  scene->mRootNode->mMeshes = new unsigned[1]{0};
+  scene->mRootNode->mNumMeshes = 1;
+  out->mMaterialIndex = 0;
+  out->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
+  out->mNumVertices = static_cast<unsigned>(mesh.vertices.size());
+  out->mVertices = new aiVector3D[out->mNumVertices];
+  for (unsigned i = 0; i < out->mNumVertices; ++i) {
+    const Vec3& p = mesh.vertices[i];
+    out->mVertices[i] = aiVector3D(static_cast<ai_real>(p.x()), static_cast<ai_real>(p.y()),
+                                   static_cast<ai_real>(p.z()));
+  }
+  if (normals && normals->size() == mesh.vertices.size()) {
+    out->mNormals = new aiVector3D[out->mNumVertices];
+    for (unsigned i = 0; i < out->mNumVertices; ++i) {
+      const Vec3& n = (*normals)[i];
+      out->mNormals[i] = aiVector3D(static_cast<ai_real>(n.x()), static_cast<ai_real>(n.y()),
+                                    static_cast<ai_real>(n.z()));
+    }
+  }
+  out->mNumFaces = static_cast<unsigned>(mesh.faces.size());
+  out->mFaces = new aiFace[out->mNumFaces];
+  for (unsigned f = 0; f < out->mNumFaces; ++f) {
+    out->mFaces[f].mNumIndices = 3;
+    out->mFaces[f].mIndices = new unsigned[3];
+    for (int k = 0; k < 3; ++k) out->mFaces[f].mIndices[k] = static_cast<unsigned>(mesh.faces[f][k]);
+  }
+
+  // Export into a private folder beside the target (same file system), then rename every file
+  // it produced (glTF writes a .bin next to the .gltf) into place.
+  std::string pattern = (dir / ".galsculpt-export-XXXXXX").string();
+  if (!mkdtemp(pattern.data())) {
+    throw OutputError("cannot write " + path.string() + ": cannot create a temporary folder in " + dir.string());
+  }
+  const fs::path tmpDir = pattern;
+  Assimp::Exporter exporter;
+  const aiReturn status = exporter.Export(scene.get(), format, (tmpDir / path.filename()).string());
+  if (status != aiReturn_SUCCESS) {
+    const std::string reason = exporter.GetErrorString();
+    fs::remove_all(tmpDir, ec);
+    throw OutputError("cannot write " + path.string() + ": " + reason);
+  }
+  for (const auto& entry : fs::directory_iterator(tmpDir)) {
+    fs::rename(entry.path(), dir / entry.path().filename(), ec);
+    if (ec) {
+      const std::string reason = ec.message();
+      fs::remove_all(tmpDir, ec);
+      throw OutputError("cannot write " + path.string() + ": " + reason);
+    }
+  }
+  fs::remove_all(tmpDir, ec);
+}
+
+}  // namespace galsculpt

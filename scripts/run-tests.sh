@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# One command on a fresh Debian 12 machine: install dependencies, build, and run every test
+# (CTest labels: unit, render, slow). Extra arguments go to ctest (e.g. -L unit).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+bash scripts/build.sh
+cd build
+# Generated meshes are cached inside the build tree, never in the user's cache.
+export GALSCULPT_CACHE_DIR="$PWD/test-cache"
+ctest --output-on-failure -j "$(nproc 2>/dev/null || echo 2)" "$@"

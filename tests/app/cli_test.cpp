@@ -1,0 +1,112 @@
+#include "app/cli.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "solver/shape_generators.h"
+#include "engine/surface_io.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code;
+  std::string out, err;
+};
+
+CliRun run(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  const int code = runCli(args, out, err);
+  return {code, out.str(), err.str()};
+}
+
+TEST(Cli, HelpAndVersion) {
+  EXPECT_EQ(run({"--help"}).code, kExitOk);
+  EXPECT_NE(run({"help"}).out.find("mesh import SURFACE OUT --tets N"), std::string::npos);
+  EXPECT_NE(run({"--version"}).out.find("galsculpt "), std::string::npos);
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  EXPECT_EQ(run({"frobnicate"}).code, kExitUsage);
+  EXPECT_EQ(run({"mesh"}).code, kExitUsage);
+  EXPECT_EQ(run({"mesh", "info"}).code, kExitUsage);
+  EXPECT_EQ(run({"mesh", "info", "a.node", "--bogus"}).code, kExitUsage);
+  const CliRun r = run({"mesh", "import", "a.obj", "b.node"});
+  EXPECT_EQ(r.code, kExitUsage);
+  EXPECT_NE(r.err.find("needs --tets N"), std::string::npos);
+  EXPECT_EQ(run({"mesh", "import", "a.obj", "b.node", "--tets", "ten"}).code, kExitUsage);
+  EXPECT_EQ(run({"mesh", "convert", "a.node", "b.docx"}).code, kExitUsage);
+}
+
+TEST(Cli, BadInputExitsThreeWithFileAndLine) {
+  const fs::path broken = fs::path(GALSCULPT_TEST_DATA) / "broken" / "nan_coordinate.node";
+  const CliRun r = run({"mesh", "info", broken.string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("nan_coordinate.node:3: coordinate is not finite"), std::string::npos) << r.err;
+  EXPECT_EQ(run({"mesh", "info", "/nonexistent/x.obj"}).code, kExitBadInput);
+}
+
+TEST(Cli, InfoOfTetMeshAndSurface) {
+  test::TempDir dir;
+  writeSurface(dir / "s.ply", makeIcosphere(1.0, 2));
+  const CliRun surface = run({"mesh", "info", (dir / "s.ply").string()});
+  ASSERT_EQ(surface.code, kExitOk) << surface.err;
+  EXPECT_NE(surface.out.find("kind: surface"), std::string::npos);
+  EXPECT_NE(surface.out.find("faces: 320"), std::string::npos);
+  EXPECT_NE(surface.out.find("watertight: yes"), std::string::npos);
+  EXPECT_NE(surface.out.find("pieces: 1"), std::string::npos);
+
+  const fs::path tricky = fs::path(GALSCULPT_TEST_DATA) / "valid" / "tricky.node";
+  const CliRun tet = run({"mesh", "info", tricky.string(), "--json"});
+  ASSERT_EQ(tet.code, kExitOk) << tet.err;
+  const auto j = nlohmann::json::parse(tet.out);
+  EXPECT_EQ(j["tets"], 2);
+  EXPECT_EQ(j["reoriented_tets"], 1);
+  EXPECT_EQ(j["pieces"], 1);
+  EXPECT_EQ(j["quality_histogram"].size(), 10u);
+}
+
+TEST(Cli, ConvertBetweenFormats) {
+  test::TempDir dir;
+  const CliRun gen = run({"mesh", "generate", "sphere", (dir / "s.node").string(), "--tets", "2000", "--radius", "0.5"});
+  ASSERT_EQ(gen.code, kExitOk) << gen.err;
+  for (const char* out : {"s.msh", "s.vtk", "s.obj", "s.stl", "s.glb"}) {
+    const CliRun r = run({"mesh", "convert", (dir / "s.node").string(), (dir / out).string()});
+    EXPECT_EQ(r.code, kExitOk) << out << ": " << r.err;
+    EXPECT_TRUE(fs::exists(dir / out)) << out;
+  }
+  const CliRun back = run({"mesh", "convert", (dir / "s.msh").string(), (dir / "t.node").string()});
+  ASSERT_EQ(back.code, kExitOk) << back.err;
+  EXPECT_EQ(test::readText(dir / "t.ele"), test::readText(dir / "s.ele"));
+  const CliRun surf = run({"mesh", "convert", (dir / "s.obj").string(), (dir / "s2.ply").string()});
+  EXPECT_EQ(surf.code, kExitOk) << surf.err;
+  const CliRun vol = run({"mesh", "convert", (dir / "s.obj").string(), (dir / "s3.node").string()});
+  EXPECT_EQ(vol.code, kExitUsage) << "surface to tets needs --tets";
+}
+
+TEST(Cli, ImportRejectsAnOpenSurfaceWithExitThree) {
+  test::TempDir dir;
+  TriMesh open = makeIcosphere(1.0, 2);
+  open.faces.resize(open.faces.size() - 4);
+  writeSurface(dir / "open.obj", open);
+  const CliRun r = run({"mesh", "import", (dir / "open.obj").string(), (dir / "o.node").string(), "--tets", "500"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("the surface is open"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "o.node"));
+}
+
+TEST(Cli, SceneCheck) {
+  const fs::path scene = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
+  const CliRun r = run({"scene", "check", scene.string(), "--load-mesh"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("material: clay"), std::string::npos);
+  EXPECT_NE(r.out.find("tets\n"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace galsculpt

@@ -1,0 +1,73 @@
+// Shared helpers for the tests: temporary folders, small meshes, error-message assertions.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "solver/tet_mesh.h"
+
+namespace galsculpt::test {
+
+// A fresh folder under the system temp dir, removed with the object.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "galsculpt-test-XXXXXX").string();
+    path_ = mkdtemp(pattern.data());
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+inline void writeText(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+inline std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// The unit cube split into 6 positively oriented tets (Kuhn subdivision), scaled and shifted.
+inline TetMesh unitCubeTets(double size = 1.0, const Vec3& origin = Vec3::Zero()) {
+  TetMesh m;
+  for (int i = 0; i < 8; ++i) {
+    m.vertices.push_back(origin + size * Vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1));
+  }
+  // Paths from corner 0 to corner 7 along the axes, one tet per permutation.
+  const int perms[6][3] = {{1, 2, 4}, {1, 4, 2}, {2, 1, 4}, {2, 4, 1}, {4, 1, 2}, {4, 2, 1}};
+  for (const auto& p : perms) {
+    Tet t{0, p[0], p[0] | p[1], 7};
+    if (tetSixVolume(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]) < 0) {
+      std::swap(t[2], t[3]);
+    }
+    m.tets.push_back(t);
+  }
+  return m;
+}
+
+}  // namespace galsculpt::test
+
+// Expects `statement` to throw `type` whose what() contains `substring`.
+#define EXPECT_THROW_WITH(statement, type, substring)                                   \
+  do {                                                                                  \
+    try {                                                                               \
+      statement;                                                                        \
+      ADD_FAILURE() << "expected " #type " containing '" << (substring) << "'";       \
+    } catch (const type& e) {                                                           \
+      EXPECT_NE(std::string(e.what()).find(substring), std::string::npos)             \
+          << "message: " << e.what() << "\nexpected to contain: " << (substring);      \
+    }                                                                                   \
+  } while (0)
