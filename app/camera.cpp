@@ -1,13 +1,14 @@
 #include "camera.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <Eigen/Geometry>
 
 namespace galsculpt {
 
 Eigen::Vector3d OrbitCamera::eye() const {
-  const Eigen::Vector3d dir(std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw));
+  const Eigen::Vector3d dir(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
+                            std::cos(pitch) * std::cos(yaw));
   return target + distance * dir;
 }
 
@@ -60,6 +61,8 @@ void OrbitCamera::pan(double dx, double dy) {
   target += (-dx * s + dy * u) * h;
 }
 
-void OrbitCamera::zoom(double factor) { distance = std::max(1e-9, distance * factor); }
+void OrbitCamera::zoom(double factor) {
+  distance = std::max(1e-9, distance * factor);
+}
 
 }  // namespace galsculpt

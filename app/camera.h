@@ -24,9 +24,18 @@ struct OrbitCamera {
   void zoom(double factor);
 
   // Standard views.
-  void viewFront() { yaw = 0.0; pitch = 0.0; }
-  void viewSide() { yaw = 1.5707963267948966; pitch = 0.0; }
-  void viewTop() { yaw = 0.0; pitch = 1.5607963267948966; }
+  void viewFront() {
+    yaw = 0.0;
+    pitch = 0.0;
+  }
+  void viewSide() {
+    yaw = 1.5707963267948966;
+    pitch = 0.0;
+  }
+  void viewTop() {
+    yaw = 0.0;
+    pitch = 1.5607963267948966;
+  }
 };
 
 }  // namespace galsculpt

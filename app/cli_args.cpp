@@ -46,14 +46,17 @@ int CliArgs::intValue(const std::string& flag, int fallback, int min, int max) c
   if (!v) return fallback;
   long long x = 0;
   const auto [ptr, ec] = std::from_chars(v->data(), v->data() + v->size(), x);
-  if (ec != std::errc() || ptr != v->data() + v->size()) throw UsageError(flag + " expects an integer, got '" + *v + "'");
+  if (ec != std::errc() || ptr != v->data() + v->size())
+    throw UsageError(flag + " expects an integer, got '" + *v + "'");
   if (x < min || x > max) {
-    throw UsageError(flag + " must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + *v);
+    throw UsageError(flag + " must be in [" + std::to_string(min) + ", " + std::to_string(max) +
+                     "], got " + *v);
   }
   return static_cast<int>(x);
 }
 
-double CliArgs::doubleValue(const std::string& flag, double fallback, double min, double max) const {
+double CliArgs::doubleValue(const std::string& flag, double fallback, double min,
+                            double max) const {
   const auto v = value(flag);
   if (!v) return fallback;
   double x = 0;
@@ -65,7 +68,8 @@ double CliArgs::doubleValue(const std::string& flag, double fallback, double min
   return x;
 }
 
-std::pair<int, int> CliArgs::sizeValue(const std::string& flag, std::pair<int, int> fallback) const {
+std::pair<int, int> CliArgs::sizeValue(const std::string& flag,
+                                       std::pair<int, int> fallback) const {
   const auto v = value(flag);
   if (!v) return fallback;
   const size_t x = v->find('x');

@@ -26,7 +26,9 @@ std::string vec(const Vec3& v) {
   return s.str();
 }
 
-nlohmann::json toJson(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json toJson(const Vec3& v) {
+  return {v.x(), v.y(), v.z()};
+}
 
 int infoTet(const fs::path& file, bool json, std::ostream& out) {
   MeshReadReport report;
@@ -61,11 +63,13 @@ int infoTet(const fs::path& file, bool json, std::ostream& out) {
   out << "volume: " << s.volume << '\n';
   out << "quality_min: " << s.minQuality << "\nquality_mean: " << s.meanQuality << '\n';
   out << "quality_histogram:";
-  for (int b = 0; b < 10; ++b) out << ' ' << std::fixed << std::setprecision(1) << b / 10.0 << ':' << s.qualityHistogram[b];
+  for (int b = 0; b < 10; ++b)
+    out << ' ' << std::fixed << std::setprecision(1) << b / 10.0 << ':' << s.qualityHistogram[b];
   out << std::defaultfloat << std::setprecision(9) << '\n';
   out << "watertight: " << (s.watertight ? "yes" : "no (" + s.boundaryProblem + ")") << '\n';
   out << "pieces: " << s.pieces << '\n';
-  out << "reoriented_tets: " << report.reorientedTets << "\nunused_vertices: " << report.unusedVertices << '\n';
+  out << "reoriented_tets: " << report.reorientedTets
+      << "\nunused_vertices: " << report.unusedVertices << '\n';
   return kExitOk;
 }
 
@@ -77,8 +81,8 @@ int infoSurface(const fs::path& file, bool json, std::ostream& out) {
   const bool watertight = topo.closedManifold() && crossings.empty();
   std::string problem = topo.describeProblem();
   if (problem.empty() && !crossings.empty()) {
-    problem = "self-intersecting: " + std::to_string(crossings.size()) + (crossings.size() >= 1000 ? "+" : "") +
-              " crossing face pair(s)";
+    problem = "self-intersecting: " + std::to_string(crossings.size()) +
+              (crossings.size() >= 1000 ? "+" : "") + " crossing face pair(s)";
   }
   if (json) {
     nlohmann::json j;
@@ -108,7 +112,8 @@ int infoSurface(const fs::path& file, bool json, std::ostream& out) {
   return kExitOk;
 }
 
-TetMesh meshSurface(const TriMesh& surface, const std::string& name, const CliArgs& a, std::ostream& err) {
+TetMesh meshSurface(const TriMesh& surface, const std::string& name, const CliArgs& a,
+                    std::ostream& err) {
   TetrahedralizeOptions options;
   options.targetTets = a.intValue("--tets", 0, 1, 50000000);
   options.timeoutSeconds = a.doubleValue("--timeout", 300.0, 1.0, 86400.0);
@@ -123,12 +128,13 @@ void writeAny(const fs::path& path, const TetMesh& mesh, std::ostream& out) {
   if (meshFileKind(path) == MeshFileKind::Surface) {
     const TriMesh surface = boundarySurface(mesh);
     writeSurface(path, surface);
-    out << "wrote " << path.string() << " (" << surface.numVertices() << " vertices, " << surface.numFaces()
-        << " faces: the tet mesh's boundary)\n";
+    out << "wrote " << path.string() << " (" << surface.numVertices() << " vertices, "
+        << surface.numFaces() << " faces: the tet mesh's boundary)\n";
     return;
   }
   writeTetMesh(path, mesh);
-  out << "wrote " << path.string() << " (" << mesh.numVertices() << " vertices, " << mesh.numTets() << " tets)\n";
+  out << "wrote " << path.string() << " (" << mesh.numVertices() << " vertices, " << mesh.numTets()
+      << " tets)\n";
 }
 
 void checkOutputKind(const fs::path& path) {
@@ -152,7 +158,8 @@ int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::os
     const fs::path file = a.positional()[0];
     const MeshFileKind kind = meshFileKind(file);
     if (kind == MeshFileKind::Surface) return infoSurface(file, a.has("--json"), out);
-    if (kind == MeshFileKind::Vtk) throw InputError(file.string(), 0, "legacy VTK is an output format");
+    if (kind == MeshFileKind::Vtk)
+      throw InputError(file.string(), 0, "legacy VTK is an output format");
     if (kind == MeshFileKind::Unknown) throw InputError(file.string(), 0, "unknown mesh format");
     return infoTet(file, a.has("--json"), out);
   }
@@ -167,8 +174,8 @@ int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::os
       const TriMesh surface = readSurface(in);
       if (outSurface) {
         writeSurface(outPath, surface);
-        out << "wrote " << outPath.string() << " (" << surface.numVertices() << " vertices, " << surface.numFaces()
-            << " faces)\n";
+        out << "wrote " << outPath.string() << " (" << surface.numVertices() << " vertices, "
+            << surface.numFaces() << " faces)\n";
         return kExitOk;
       }
       if (!a.has("--tets")) throw UsageError("converting a surface to a tet mesh needs --tets N");
@@ -189,9 +196,11 @@ int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::os
     a.intValue("--tets", 0, 1, 50000000);  // a malformed count is a usage error before any I/O
     const fs::path in = a.positional()[0], outPath = a.positional()[1];
     checkOutputKind(outPath);
-    if (meshFileKind(outPath) == MeshFileKind::Surface) throw UsageError("mesh import writes a tet mesh: use .node, .msh or .vtk");
+    if (meshFileKind(outPath) == MeshFileKind::Surface)
+      throw UsageError("mesh import writes a tet mesh: use .node, .msh or .vtk");
     if (meshFileKind(in) != MeshFileKind::Surface) {
-      throw InputError(in.string(), 0, "not a surface mesh (expected .obj, .ply, .stl, .off, .gltf or .glb)");
+      throw InputError(in.string(), 0,
+                       "not a surface mesh (expected .obj, .ply, .stl, .off, .gltf or .glb)");
     }
     const TriMesh surface = readSurface(in);
     writeAny(outPath, meshSurface(surface, in.string(), a, err), out);
@@ -200,7 +209,8 @@ int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::os
 
   if (sub == "generate") {
     const CliArgs a(rest, {"--tets", "--radius", "--timeout"}, {});
-    a.expectPositional(2, 2, "galsculpt mesh generate sphere|charpy|steak OUT [--tets N] [--radius R]");
+    a.expectPositional(2, 2,
+                       "galsculpt mesh generate sphere|charpy|steak OUT [--tets N] [--radius R]");
     const std::string name = a.positional()[0];
     if (name != "sphere" && name != "charpy" && name != "steak") {
       throw UsageError("unknown shape '" + name + "' (sphere, charpy or steak)");
@@ -212,8 +222,8 @@ int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::os
     const TriMesh surface = generatorSurface(name, a.doubleValue("--radius", 0.1, 1e-6, 1e6), tets);
     if (meshFileKind(outPath) == MeshFileKind::Surface) {
       writeSurface(outPath, surface);
-      out << "wrote " << outPath.string() << " (" << surface.numVertices() << " vertices, " << surface.numFaces()
-          << " faces)\n";
+      out << "wrote " << outPath.string() << " (" << surface.numVertices() << " vertices, "
+          << surface.numFaces() << " faces)\n";
       return kExitOk;
     }
     if (!a.has("--tets")) throw UsageError("a tet mesh output needs --tets N");

@@ -3,13 +3,12 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
-#include <cstring>
 #include <stb/stb_image_write.h>
+#include <cstring>
 
 #include "app/gl.h"
 #include "solver/atomic_file.h"
 #include "solver/input_error.h"
-
 
 namespace galsculpt {
 
@@ -27,28 +26,34 @@ EGLDisplay surfacelessDisplay() {
 }
 }  // namespace
 
-std::unique_ptr<OffscreenContext> OffscreenContext::create(int width, int height, std::string* error) {
+std::unique_ptr<OffscreenContext> OffscreenContext::create(int width, int height,
+                                                           std::string* error) {
   auto fail = [&](const std::string& why) -> std::unique_ptr<OffscreenContext> {
     if (error) *error = why;
     return nullptr;
   };
-  if (width <= 0 || height <= 0 || width > 16384 || height > 16384) return fail("invalid image size");
+  if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
+    return fail("invalid image size");
   EGLDisplay display = surfacelessDisplay();
   if (display == EGL_NO_DISPLAY) return fail("no EGL display");
   EGLint major = 0, minor = 0;
   if (!eglInitialize(display, &major, &minor)) return fail("eglInitialize failed");
   if (!eglBindAPI(EGL_OPENGL_API)) return fail("EGL has no desktop OpenGL");
   // The default surface type is "window", which a surfaceless display has none of.
-  const EGLint configAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                                  EGL_NONE};
+  const EGLint configAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
+                                  EGL_OPENGL_BIT, EGL_NONE};
   EGLConfig config;
   EGLint count = 0;
   if (!eglChooseConfig(display, configAttribs, &config, 1, &count) || count == 0) {
     return fail("no EGL config for OpenGL");
   }
-  const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+  const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                   3,
+                                   EGL_CONTEXT_MINOR_VERSION,
+                                   3,
                                    EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                   EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+                                   EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                   EGL_NONE};
   EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttribs);
   if (context == EGL_NO_CONTEXT) return fail("cannot create an OpenGL 3.3 core context");
   if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
@@ -117,7 +122,8 @@ std::vector<std::uint8_t> OffscreenContext::readPixels() {
   const size_t row = static_cast<size_t>(width_) * 4;
   std::vector<std::uint8_t> flipped(pixels.size());
   for (int y = 0; y < height_; ++y) {
-    std::memcpy(&flipped[static_cast<size_t>(y) * row], &pixels[static_cast<size_t>(height_ - 1 - y) * row], row);
+    std::memcpy(&flipped[static_cast<size_t>(y) * row],
+                &pixels[static_cast<size_t>(height_ - 1 - y) * row], row);
   }
   return flipped;
 }
@@ -128,7 +134,8 @@ std::string OffscreenContext::rendererName() const {
   return std::string(name ? name : "?") + ", OpenGL " + (version ? version : "?");
 }
 
-void writePng(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgba) {
+void writePng(const std::string& path, int width, int height,
+              const std::vector<std::uint8_t>& rgba) {
   writeFileAtomically(path, [&](std::ostream& out) {
     auto sink = [](void* context, void* data, int size) {
       static_cast<std::ostream*>(context)->write(static_cast<const char*>(data), size);

@@ -32,6 +32,7 @@ class OffscreenContext {
 };
 
 // Writes RGBA pixels as PNG, atomically. Throws OutputError.
-void writePng(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgba);
+void writePng(const std::string& path, int width, int height,
+              const std::vector<std::uint8_t>& rgba);
 
 }  // namespace galsculpt

@@ -8,10 +8,10 @@
 namespace galsculpt {
 
 struct RenderMesh {
-  std::vector<float> positions;  // (3 nVerts)
-  std::vector<float> normals;    // (3 nVerts)
-  std::vector<float> colors;     // (3 nVerts), linear RGB
-  std::vector<unsigned> indices; // (3 nTris)
+  std::vector<float> positions;   // (3 nVerts)
+  std::vector<float> normals;     // (3 nVerts)
+  std::vector<float> colors;      // (3 nVerts), linear RGB
+  std::vector<unsigned> indices;  // (3 nTris)
 };
 
 // Area-weighted vertex normals of a surface (zero for unused vertices).

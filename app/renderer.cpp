@@ -86,13 +86,15 @@ void Renderer::setMesh(const RenderMesh& mesh) {
     glVertexAttribPointer(a, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
   }
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers_[3]);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(unsigned)),
-               mesh.indices.data(), GL_DYNAMIC_DRAW);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+               static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(unsigned)), mesh.indices.data(),
+               GL_DYNAMIC_DRAW);
   glBindVertexArray(0);
   indexCount_ = static_cast<int>(mesh.indices.size());
 }
 
-void Renderer::draw(const OrbitCamera& camera, int width, int height, const RenderOptions& options) {
+void Renderer::draw(const OrbitCamera& camera, int width, int height,
+                    const RenderOptions& options) {
   glViewport(0, 0, width, height);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -111,9 +113,11 @@ void Renderer::draw(const OrbitCamera& camera, int width, int height, const Rend
   if (indexCount_ == 0) return;
   glUseProgram(meshProgram_);
   const Eigen::Matrix4f view = camera.view();
-  const Eigen::Matrix4f projection = camera.projection(static_cast<double>(width) / std::max(height, 1));
+  const Eigen::Matrix4f projection =
+      camera.projection(static_cast<double>(width) / std::max(height, 1));
   glUniformMatrix4fv(glGetUniformLocation(meshProgram_, "uView"), 1, GL_FALSE, view.data());
-  glUniformMatrix4fv(glGetUniformLocation(meshProgram_, "uProjection"), 1, GL_FALSE, projection.data());
+  glUniformMatrix4fv(glGetUniformLocation(meshProgram_, "uProjection"), 1, GL_FALSE,
+                     projection.data());
   glUniform3f(glGetUniformLocation(meshProgram_, "uKeyLightDir"), 0.4f, 0.7f, 0.6f);
   glUniform3f(glGetUniformLocation(meshProgram_, "uFillLightDir"), -0.6f, 0.2f, 0.4f);
   glUniform1f(glGetUniformLocation(meshProgram_, "uWireframe"), 0.0f);

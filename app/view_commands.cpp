@@ -31,8 +31,8 @@ bool haveDisplay() {
 
 std::string describeMaterial(const MaterialDesc& m) {
   std::ostringstream s;
-  s << "material: " << m.preset << " (" << m.model << ", E " << m.youngsModulus << " Pa, nu " << m.poissonRatio
-    << ", " << m.density << " kg/m^3)";
+  s << "material: " << m.preset << " (" << m.model << ", E " << m.youngsModulus << " Pa, nu "
+    << m.poissonRatio << ", " << m.density << " kg/m^3)";
   return s.str();
 }
 
@@ -44,28 +44,31 @@ ViewContent loadViewContent(const fs::path& file, std::ostream& log) {
   std::string ext = file.extension().string();
   if (ext == ".json") {
     const SceneDescription scene = loadScene(file);
-    const TetMesh mesh = loadSceneMesh(scene, [&log](const std::string& line) { log << line << '\n'; });
+    const TetMesh mesh =
+        loadSceneMesh(scene, [&log](const std::string& line) { log << line << '\n'; });
     c.title = scene.name;
     c.surface = boundarySurface(mesh);
-    c.facts.push_back(std::to_string(mesh.numVertices()) + " vertices, " + std::to_string(mesh.numTets()) + " tets");
+    c.facts.push_back(std::to_string(mesh.numVertices()) + " vertices, " +
+                      std::to_string(mesh.numTets()) + " tets");
     c.facts.push_back(describeMaterial(scene.material));
     c.facts.push_back("solver: " + scene.solver.type + " " + scene.solver.grid);
     return c;
   }
   if (meshFileKind(file) == MeshFileKind::Surface) {
     c.surface = readSurface(file);
-    c.facts.push_back(std::to_string(c.surface.numVertices()) + " vertices, " + std::to_string(c.surface.numFaces()) +
-                      " faces (surface)");
+    c.facts.push_back(std::to_string(c.surface.numVertices()) + " vertices, " +
+                      std::to_string(c.surface.numFaces()) + " faces (surface)");
     return c;
   }
   const TetMesh mesh = readTetMesh(file);
   c.surface = boundarySurface(mesh);
-  c.facts.push_back(std::to_string(mesh.numVertices()) + " vertices, " + std::to_string(mesh.numTets()) + " tets");
+  c.facts.push_back(std::to_string(mesh.numVertices()) + " vertices, " +
+                    std::to_string(mesh.numTets()) + " tets");
   return c;
 }
 
-std::vector<std::string> renderViewsOffscreen(const ViewContent& content, const fs::path& outDir, int width,
-                                              int height) {
+std::vector<std::string> renderViewsOffscreen(const ViewContent& content, const fs::path& outDir,
+                                              int width, int height) {
   std::string error;
   auto context = OffscreenContext::create(width, height, &error);
   if (!context) throw std::runtime_error("offscreen rendering unavailable: " + error);
@@ -82,7 +85,10 @@ std::vector<std::string> renderViewsOffscreen(const ViewContent& content, const 
     const char* name;
     double yaw, pitch;
   };
-  const View views[] = {{"perspective", 0.6, 0.35}, {"front", 0.0, 0.0}, {"side", 1.5707963, 0.0}, {"top", 0.0, 1.55}};
+  const View views[] = {{"perspective", 0.6, 0.35},
+                        {"front", 0.0, 0.0},
+                        {"side", 1.5707963, 0.0},
+                        {"top", 0.0, 1.55}};
   std::vector<std::string> written;
   for (const View& v : views) {
     camera.yaw = v.yaw;
@@ -102,7 +108,8 @@ int renderCommand(const std::vector<std::string>& args, std::ostream& out, std::
   if (!a.has("--out")) throw UsageError("render needs --out DIR");
   const auto [w, h] = a.sizeValue("--size", {1280, 800});
   const ViewContent content = loadViewContent(a.positional()[0], err);
-  for (const std::string& f : renderViewsOffscreen(content, *a.value("--out"), w, h)) out << "wrote " << f << '\n';
+  for (const std::string& f : renderViewsOffscreen(content, *a.value("--out"), w, h))
+    out << "wrote " << f << '\n';
   return kExitOk;
 }
 
@@ -124,14 +131,15 @@ int openCommand(const std::vector<std::string>& args, std::ostream& out, std::os
   const fs::path outDir = a.value("--out").value_or("galsculpt-out");
   const auto [w, h] = a.sizeValue("--size", {1280, 800});
   const auto files = renderViewsOffscreen(content, outDir, w, h);
-  out << content.title << ": wrote " << files.size() << " images to " << fs::absolute(outDir).lexically_normal().string()
-      << "/\n";
+  out << content.title << ": wrote " << files.size() << " images to "
+      << fs::absolute(outDir).lexically_normal().string() << "/\n";
   for (const std::string& f : files) out << "  " << f << '\n';
   return kExitOk;
 }
 
 int sceneCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  if (args.empty() || args[0] != "check") throw UsageError("usage: galsculpt scene check SCENE [--load-mesh]");
+  if (args.empty() || args[0] != "check")
+    throw UsageError("usage: galsculpt scene check SCENE [--load-mesh]");
   const CliArgs a(std::vector<std::string>(args.begin() + 1, args.end()), {}, {"--load-mesh"});
   a.expectPositional(1, 1, "galsculpt scene check SCENE [--load-mesh]");
   const SceneDescription s = loadScene(a.positional()[0]);
@@ -139,8 +147,8 @@ int sceneCommand(const std::vector<std::string>& args, std::ostream& out, std::o
   out << describeMaterial(s.material) << '\n';
   out << "anchors: " << s.anchors.size() << "\ncolliders: " << s.colliders.size() << '\n';
   out << "fracture: " << (s.fracture.enabled ? "on" : "off") << '\n';
-  out << "solver: " << s.solver.type << " " << s.solver.grid << " (" << s.solver.fineSweeps << " sweeps, "
-      << s.solver.coarseIterations << " coarse iterations)\n";
+  out << "solver: " << s.solver.type << " " << s.solver.grid << " (" << s.solver.fineSweeps
+      << " sweeps, " << s.solver.coarseIterations << " coarse iterations)\n";
   out << "time_step: " << s.timeStep << " s x " << s.substeps << " substep(s)\n";
   if (a.has("--load-mesh")) {
     const TetMesh mesh = loadSceneMesh(s, [&err](const std::string& line) { err << line << '\n'; });

@@ -20,8 +20,9 @@ struct ViewContent {
 ViewContent loadViewContent(const std::filesystem::path& file, std::ostream& log);
 
 // Renders standard views offscreen into `outDir`; returns the files written.
-std::vector<std::string> renderViewsOffscreen(const ViewContent& content, const std::filesystem::path& outDir,
-                                              int width, int height);
+std::vector<std::string> renderViewsOffscreen(const ViewContent& content,
+                                              const std::filesystem::path& outDir, int width,
+                                              int height);
 
 // Opens a window; returns false (with a reason) when no window can be opened.
 bool runViewerWindow(const ViewContent& content, std::string* error);

@@ -4,9 +4,9 @@
 // F frames the object, 1 / 3 / 7 give the front, side and top views (as in Blender).
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
 
 #include "app/camera.h"
 #include "app/gl.h"
@@ -43,7 +43,8 @@ void handleInput(GLFWwindow* window, WindowState& s) {
   if (right || (left && shift)) s.camera.pan(dx / height, dy / height);
   if (io.MouseWheel != 0.0f) s.camera.zoom(std::pow(0.9, io.MouseWheel));
   if (!io.WantCaptureKeyboard) {
-    if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) glfwSetWindowShouldClose(window, 1);
+    if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
+      glfwSetWindowShouldClose(window, 1);
     if (ImGui::IsKeyPressed('F')) s.camera.frame(s.box);
     if (ImGui::IsKeyPressed('1')) s.camera.viewFront();
     if (ImGui::IsKeyPressed('3')) s.camera.viewSide();

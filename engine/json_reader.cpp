@@ -15,7 +15,8 @@ nlohmann::json parseJsonFile(const std::filesystem::path& path) {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     const size_t offset = std::min<size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
-    const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(offset), '\n'));
+    const int line = 1 + static_cast<int>(std::count(
+                             text.begin(), text.begin() + static_cast<long>(offset), '\n'));
     std::string what = e.what();
     const size_t colon = what.find("parse error");
     if (colon != std::string::npos) what = what.substr(colon);
@@ -26,7 +27,8 @@ nlohmann::json parseJsonFile(const std::filesystem::path& path) {
 JsonObject::JsonObject(const nlohmann::json& value, std::string path, std::string file)
     : value_(value), path_(std::move(path)), file_(std::move(file)) {
   if (!value_.is_object()) {
-    throw InputError(file_, 0, path_ + ": expected an object, got " + std::string(value_.type_name()));
+    throw InputError(file_, 0,
+                     path_ + ": expected an object, got " + std::string(value_.type_name()));
   }
 }
 

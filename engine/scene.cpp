@@ -28,7 +28,9 @@ void checkGrid(JsonObject& o, const std::string& key, const std::string& grid) {
     start = slash + 1;
   }
   if (parts.size() < 2 || parts.back() != "all") {
-    o.fail(key, "grid '" + grid + "' must list coarse vertex counts and end in 'all', e.g. 50/all or 50/1000/all");
+    o.fail(key,
+           "grid '" + grid +
+               "' must list coarse vertex counts and end in 'all', e.g. 50/all or 50/1000/all");
   }
   long long previous = 0;
   for (size_t i = 0; i + 1 < parts.size(); ++i) {
@@ -41,7 +43,8 @@ void checkGrid(JsonObject& o, const std::string& key, const std::string& grid) {
       o.fail(key, "grid level '" + parts[i] + "' is not a vertex count");
     }
     if (n < 1 || n <= previous) {
-      o.fail(key, "grid levels must be positive and increase from coarse to fine, got '" + grid + "'");
+      o.fail(key,
+             "grid levels must be positive and increase from coarse to fine, got '" + grid + "'");
     }
     previous = n;
   }
@@ -193,7 +196,8 @@ FractureDesc readFracture(JsonObject o) {
   FractureDesc f;
   f.enabled = o.boolean("enabled", true);
   f.threshold = o.number("threshold", 0.0, 0.0, 1e13);
-  if (f.enabled && f.threshold <= 0.0) o.fail("threshold", "must be positive when fracture is enabled");
+  if (f.enabled && f.threshold <= 0.0)
+    o.fail("threshold", "must be positive when fracture is enabled");
   f.kernelRadius = o.number("kernel_radius", 0.0, 0.0, 1e6);
   f.thresholdJitter = o.number("threshold_jitter", 0.0, 0.0, 0.99);
   f.seed = static_cast<unsigned>(o.integer("seed", 1, 0, std::numeric_limits<int>::max()));
@@ -261,8 +265,10 @@ SceneDescription loadScene(const fs::path& file) {
   s.name = o.string("name", file.stem().string());
   if (!o.has("mesh")) o.fail("mesh", "is required");
   s.mesh = readMesh(o.object("mesh"), dir);
-  if (o.has("material")) s.material = readMaterial(o.object("material"));
-  else s.material = materialPreset("rubber");
+  if (o.has("material"))
+    s.material = readMaterial(o.object("material"));
+  else
+    s.material = materialPreset("rubber");
   s.gravity = o.vec3("gravity", s.gravity);
   s.timeStep = o.number("time_step", s.timeStep, 1e-7, 1.0);
   s.substeps = o.integer("substeps", s.substeps, 1, 1000);
@@ -274,11 +280,13 @@ SceneDescription loadScene(const fs::path& file) {
   }
   const auto anchors = o.array("anchors");
   for (size_t i = 0; i < anchors.size(); ++i) {
-    s.anchors.push_back(readAnchor(JsonObject(anchors[i], "$.anchors[" + std::to_string(i) + "]", file.string())));
+    s.anchors.push_back(
+        readAnchor(JsonObject(anchors[i], "$.anchors[" + std::to_string(i) + "]", file.string())));
   }
   const auto colliders = o.array("colliders");
   for (size_t i = 0; i < colliders.size(); ++i) {
-    s.colliders.push_back(readCollider(JsonObject(colliders[i], "$.colliders[" + std::to_string(i) + "]", file.string())));
+    s.colliders.push_back(readCollider(
+        JsonObject(colliders[i], "$.colliders[" + std::to_string(i) + "]", file.string())));
   }
   if (o.has("fracture")) s.fracture = readFracture(o.object("fracture"));
   if (o.has("solver")) s.solver = readSolver(o.object("solver"));

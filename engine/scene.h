@@ -25,20 +25,20 @@ struct MeshSource {
 };
 
 struct MaterialDesc {
-  std::string preset = "rubber";                 // clay | rubber | flesh | steel
-  std::string model = "stable_neo_hookean";      // corotational | stvk | stable_neo_hookean
-  double youngsModulus = 0.0;  // Pa
+  std::string preset = "rubber";             // clay | rubber | flesh | steel
+  std::string model = "stable_neo_hookean";  // corotational | stvk | stable_neo_hookean
+  double youngsModulus = 0.0;                // Pa
   double poissonRatio = 0.0;
-  double density = 0.0;        // kg/m^3
-  double yieldStress = 0.0;    // Pa, 0 = elastic
-  double hardening = 0.0;      // Pa (linear isotropic hardening modulus)
+  double density = 0.0;      // kg/m^3
+  double yieldStress = 0.0;  // Pa, 0 = elastic
+  double hardening = 0.0;    // Pa (linear isotropic hardening modulus)
 };
 
 // Default values of a named preset; throws std::invalid_argument for an unknown name.
 MaterialDesc materialPreset(const std::string& name);
 
 struct PathKey {
-  double time = 0.0;  // s
+  double time = 0.0;                                 // s
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // m, from the rest position
 };
 
@@ -75,9 +75,9 @@ struct ColliderDesc {
 
 struct FractureDesc {
   bool enabled = false;
-  double threshold = 0.0;       // Pa, edge normal stress that damages an edge
-  double kernelRadius = 0.0;    // m, non-local averaging radius (0 = local)
-  double thresholdJitter = 0.0; // relative spread of random thresholds (0 = uniform)
+  double threshold = 0.0;        // Pa, edge normal stress that damages an edge
+  double kernelRadius = 0.0;     // m, non-local averaging radius (0 = local)
+  double thresholdJitter = 0.0;  // relative spread of random thresholds (0 = uniform)
   unsigned seed = 1;
   bool compressionResists = true;  // damaged edges still resist compression
 };
@@ -90,7 +90,7 @@ struct SolverDesc {
   std::string smoother = "gauss_seidel";  // gauss_seidel | jacobi
   std::string coarseSolver = "cg";        // cg | cholesky
   int newtonIterations = 1;
-  std::string backend = "auto";           // auto | cpu | cuda
+  std::string backend = "auto";  // auto | cpu | cuda
 };
 
 struct SceneDescription {

@@ -17,8 +17,10 @@ namespace fs = std::filesystem;
 
 fs::path cacheDirectory() {
   if (const char* dir = std::getenv("GALSCULPT_CACHE_DIR"); dir && *dir) return dir;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "galsculpt";
-  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "galsculpt";
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    return fs::path(xdg) / "galsculpt";
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return fs::path(home) / ".cache" / "galsculpt";
   return fs::temp_directory_path() / "galsculpt-cache";
 }
 
@@ -56,12 +58,14 @@ TetMesh cachedTetrahedralization(const TriMesh& surface, const std::string& key,
   const fs::path dir = cacheDirectory() / "meshes";
   const fs::path stem = dir / key;
   std::error_code ec;
-  if (fs::exists(fs::path(stem).concat(".node"), ec) && fs::exists(fs::path(stem).concat(".ele"), ec)) {
+  if (fs::exists(fs::path(stem).concat(".node"), ec) &&
+      fs::exists(fs::path(stem).concat(".ele"), ec)) {
     return readTetGen(stem);
   }
   fs::create_directories(dir, ec);
   if (ec) throw OutputError("cannot create the mesh cache " + dir.string() + ": " + ec.message());
-  if (progress) progress("meshing " + name + " (" + std::to_string(tets) + " tets), cached in " + dir.string());
+  if (progress)
+    progress("meshing " + name + " (" + std::to_string(tets) + " tets), cached in " + dir.string());
   TetrahedralizeOptions options;
   options.targetTets = tets;
   options.surfaceName = name;
@@ -91,9 +95,11 @@ TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress)
       std::ostringstream key;
       key << m.generator << "-" << m.tets;
       if (m.generator == "sphere") key << "-r" << m.radius;
-      if (m.scale != 1.0 || !m.translate.isZero()) key << "-s" << m.scale << "-t" << m.translate.transpose();
+      if (m.scale != 1.0 || !m.translate.isZero())
+        key << "-s" << m.scale << "-t" << m.translate.transpose();
       std::string k = key.str();
-      for (char& c : k) if (c == ' ') c = '_';
+      for (char& c : k)
+        if (c == ' ') c = '_';
       return cachedTetrahedralization(surface, k, m.generator, m.tets, progress);
     }
     case MeshSource::Kind::Import: {

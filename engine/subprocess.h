@@ -16,7 +16,7 @@ struct SubprocessResult {
   int exitCode = -1;      // when it exited normally
   int signal = 0;         // when a signal ended it (SIGABRT for a TetGen assertion)
   double seconds = 0.0;
-  std::string logTail;    // the last lines it printed
+  std::string logTail;  // the last lines it printed
 
   bool succeeded() const { return started && !timedOut && signal == 0 && exitCode == 0; }
   // "exited with status 3", "crashed with signal 6 (Aborted)", "timed out after 60 s", ...

@@ -2,11 +2,11 @@
 
 #include <stdlib.h>
 
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 #include <algorithm>
 #include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -21,7 +21,8 @@ namespace {
 
 std::string lowerExtension(const fs::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -69,10 +70,12 @@ TriMesh readSurface(const fs::path& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw InputError(path.string(), 0, "file not found");
   Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(
-      path.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  const aiScene* scene =
+      importer.ReadFile(path.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                           aiProcess_SortByPType);
   if (!scene || !scene->mRootNode) {
-    throw InputError(path.string(), 0, std::string("cannot read surface: ") + importer.GetErrorString());
+    throw InputError(path.string(), 0,
+                     std::string("cannot read surface: ") + importer.GetErrorString());
   }
   std::vector<Vec3> positions;
   std::vector<Tri> faces;
@@ -110,16 +113,17 @@ void writeSurface(const fs::path& path, const TriMesh& mesh, const std::vector<V
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) {
-    throw OutputError("cannot write " + path.string() + ": directory " + dir.string() + " does not exist");
+    throw OutputError("cannot write " + path.string() + ": directory " + dir.string() +
+                      " does not exist");
   }
 
   // The aiScene owns and frees everything attached below.
   auto scene = std::make_unique<aiScene>();
   scene->mRootNode = new aiNode();
-  scene->mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene->mMaterials = new aiMaterial* [1] { new aiMaterial() };
   scene->mNumMaterials = 1;
   auto* out = new aiMesh();
-  scene->mMeshes = new aiMesh*[1]{out};
+  scene->mMeshes = new aiMesh* [1] { out };
   scene->mNumMeshes = 1;
   scene->mRootNode->mMeshes = new unsigned[1]{0};
   scene->mRootNode->mNumMeshes = 1;
@@ -145,14 +149,16 @@ void writeSurface(const fs::path& path, const TriMesh& mesh, const std::vector<V
   for (unsigned f = 0; f < out->mNumFaces; ++f) {
     out->mFaces[f].mNumIndices = 3;
     out->mFaces[f].mIndices = new unsigned[3];
-    for (int k = 0; k < 3; ++k) out->mFaces[f].mIndices[k] = static_cast<unsigned>(mesh.faces[f][k]);
+    for (int k = 0; k < 3; ++k)
+      out->mFaces[f].mIndices[k] = static_cast<unsigned>(mesh.faces[f][k]);
   }
 
   // Export into a private folder beside the target (same file system), then rename every file
   // it produced (glTF writes a .bin next to the .gltf) into place.
   std::string pattern = (dir / ".galsculpt-export-XXXXXX").string();
   if (!mkdtemp(pattern.data())) {
-    throw OutputError("cannot write " + path.string() + ": cannot create a temporary folder in " + dir.string());
+    throw OutputError("cannot write " + path.string() + ": cannot create a temporary folder in " +
+                      dir.string());
   }
   const fs::path tmpDir = pattern;
   Assimp::Exporter exporter;

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -90,8 +90,8 @@ void checkMeshableSurface(const TriMesh& surface, const std::string& name) {
                      "cannot tetrahedralize: the surface is self-intersecting: faces " +
                          std::to_string(crossings[0].first) + " and " +
                          std::to_string(crossings[0].second) + " cross (" +
-                         std::to_string(crossings.size()) +
-                         (crossings.size() >= 1000 ? "+" : "") + " crossing pair(s))");
+                         std::to_string(crossings.size()) + (crossings.size() >= 1000 ? "+" : "") +
+                         " crossing pair(s))");
   }
 }
 
@@ -126,8 +126,9 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
                                "': is TetGen installed? (scripts/install-deps.sh installs it)");
     }
     if (!r.succeeded()) {
-      throw std::runtime_error("tetgen " + r.describe() + " on " + options.surfaceName + " (switches " + sw +
-                               ")" + (r.logTail.empty() ? "" : ":\n" + r.logTail));
+      throw std::runtime_error("tetgen " + r.describe() + " on " + options.surfaceName +
+                               " (switches " + sw + ")" +
+                               (r.logTail.empty() ? "" : ":\n" + r.logTail));
     }
     const long long count = countTets(dir.path() / "input.1.ele");
     if (count <= 0) throw std::runtime_error("tetgen wrote no tets for " + options.surfaceName);
@@ -165,7 +166,7 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
 
     TetQuality q = level;
     int nudges = 0;
-    double bound = 1.5 * volume / target;  // a quality mesh has ~1.5x volume / bound tets
+    double bound = 1.5 * volume / target;     // a quality mesh has ~1.5x volume / bound tets
     double lowBound = 0.0, lowCount = 0.0;    // gave too many tets
     double highBound = 0.0, highCount = 0.0;  // gave too few tets
     while (attempts < options.maxAttempts) {
@@ -186,7 +187,8 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
       }
       if (lowBound > 0.0 && highBound > 0.0) {
         // Interpolate log(count) linearly in log(bound) between the bracket ends.
-        const double t = std::clamp(std::log(lowCount / target) / std::log(lowCount / highCount), 0.2, 0.8);
+        const double t =
+            std::clamp(std::log(lowCount / target) / std::log(lowCount / highCount), 0.2, 0.8);
         bound = std::exp(std::log(lowBound) + t * (std::log(highBound) - std::log(lowBound)));
       } else {
         bound *= std::clamp(count / target, 1.0 / 64.0, 64.0);
@@ -195,10 +197,11 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
     break;
   }
   std::ostringstream msg;
-  msg << "could not reach " << options.targetTets << " tets within " << static_cast<int>(tolerance * 100)
-      << " % for " << options.surfaceName << " in " << attempts << " TetGen runs: closest was " << bestCount
-      << " tets (" << bestSwitches << ")";
-  if (bestCount > target) msg << "; the surface is finer than " << options.targetTets << " tets allow";
+  msg << "could not reach " << options.targetTets << " tets within "
+      << static_cast<int>(tolerance * 100) << " % for " << options.surfaceName << " in " << attempts
+      << " TetGen runs: closest was " << bestCount << " tets (" << bestSwitches << ")";
+  if (bestCount > target)
+    msg << "; the surface is finer than " << options.targetTets << " tets allow";
   throw std::runtime_error(msg.str());
 }
 

@@ -21,12 +21,12 @@ namespace galsculpt {
 
 struct TetrahedralizeOptions {
   int targetTets = 10000;
-  double tolerance = 0.15;        // accept counts within +-15 % of targetTets
-  double radiusEdgeRatio = 1.414; // TetGen -q quality bound
-  double timeoutSeconds = 300.0;  // per TetGen run
+  double tolerance = 0.15;         // accept counts within +-15 % of targetTets
+  double radiusEdgeRatio = 1.414;  // TetGen -q quality bound
+  double timeoutSeconds = 300.0;   // per TetGen run
   int maxAttempts = 30;
   std::string program = "tetgen";
-  std::string surfaceName = "surface";  // used in messages
+  std::string surfaceName = "surface";               // used in messages
   std::function<void(const std::string&)> progress;  // one line per attempt, optional
 };
 

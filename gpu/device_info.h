@@ -7,10 +7,10 @@ namespace galsculpt::gpu {
 
 struct DeviceInfo {
   bool available = false;
-  std::string name;         // e.g. "NVIDIA H100 80GB HBM3"
+  std::string name;  // e.g. "NVIDIA H100 80GB HBM3"
   int computeMajor = 0, computeMinor = 0;
   std::size_t memoryBytes = 0;
-  std::string reason;       // why none is available ("no CUDA device", driver error text)
+  std::string reason;  // why none is available ("no CUDA device", driver error text)
 };
 
 // Never throws: any CUDA error (no driver, no device) means "not available", with the reason.

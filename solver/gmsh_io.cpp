@@ -19,18 +19,30 @@ constexpr int kTet10 = 11;
 int nodesOfElementType(int type) {
   // Linear and common quadratic types, enough to skip blocks we do not read.
   switch (type) {
-    case 1: return 2;    // line
-    case 2: return 3;    // triangle
-    case 3: return 4;    // quad
-    case 4: return 4;    // tet
-    case 5: return 8;    // hex
-    case 6: return 6;    // prism
-    case 7: return 5;    // pyramid
-    case 8: return 3;    // line3
-    case 9: return 6;    // triangle6
-    case 11: return 10;  // tet10
-    case 15: return 1;   // point
-    default: return -1;
+    case 1:
+      return 2;  // line
+    case 2:
+      return 3;  // triangle
+    case 3:
+      return 4;  // quad
+    case 4:
+      return 4;  // tet
+    case 5:
+      return 8;  // hex
+    case 6:
+      return 6;  // prism
+    case 7:
+      return 5;  // pyramid
+    case 8:
+      return 3;  // line3
+    case 9:
+      return 6;  // triangle6
+    case 11:
+      return 10;  // tet10
+    case 15:
+      return 1;  // point
+    default:
+      return -1;
   }
 }
 
@@ -62,13 +74,15 @@ TetMesh readGmsh(const fs::path& path, MeshReadReport* reportOut) {
       if (f.tokens[0] != "4.1") {
         lines.fail(f.number, "unsupported MSH version " + std::string(f.tokens[0]) + " (need 4.1)");
       }
-      if (lines.parseInt(f, 1, "file type") != 0) lines.fail(f.number, "binary MSH is not supported; save as ASCII");
+      if (lines.parseInt(f, 1, "file type") != 0)
+        lines.fail(f.number, "binary MSH is not supported; save as ASCII");
       expectSectionEnd(lines, "MeshFormat");
       sawFormat = true;
     } else if (tag == "$Nodes") {
       if (!sawFormat) lines.fail(line.number, "$Nodes before $MeshFormat");
       const TextLine& h = lines.next("the $Nodes header");
-      if (h.tokens.size() != 4) lines.fail(h.number, "expected '<blocks> <nodes> <minTag> <maxTag>'");
+      if (h.tokens.size() != 4)
+        lines.fail(h.number, "expected '<blocks> <nodes> <minTag> <maxTag>'");
       const long long blocks = lines.parseInt(h, 0, "block count");
       const long long total = lines.parseInt(h, 1, "node count");
       if (blocks < 0 || blocks > maxCount || total < 0 || total > maxCount) {
@@ -77,7 +91,8 @@ TetMesh readGmsh(const fs::path& path, MeshReadReport* reportOut) {
       mesh.vertices.reserve(total);
       for (long long b = 0; b < blocks; ++b) {
         const TextLine& bh = lines.next("a node block header");
-        if (bh.tokens.size() != 4) lines.fail(bh.number, "expected '<dim> <tag> <parametric> <count>'");
+        if (bh.tokens.size() != 4)
+          lines.fail(bh.number, "expected '<dim> <tag> <parametric> <count>'");
         const long long parametric = lines.parseInt(bh, 2, "parametric flag");
         const long long n = lines.parseInt(bh, 3, "node count");
         if (parametric != 0) lines.fail(bh.number, "parametric nodes are not supported");
@@ -108,30 +123,36 @@ TetMesh readGmsh(const fs::path& path, MeshReadReport* reportOut) {
     } else if (tag == "$Elements") {
       if (!sawNodes) lines.fail(line.number, "$Elements before $Nodes");
       const TextLine& h = lines.next("the $Elements header");
-      if (h.tokens.size() != 4) lines.fail(h.number, "expected '<blocks> <elements> <minTag> <maxTag>'");
+      if (h.tokens.size() != 4)
+        lines.fail(h.number, "expected '<blocks> <elements> <minTag> <maxTag>'");
       const long long blocks = lines.parseInt(h, 0, "block count");
-      if (blocks < 0 || blocks > maxCount) lines.fail(h.number, "block count exceeds the size of the file");
+      if (blocks < 0 || blocks > maxCount)
+        lines.fail(h.number, "block count exceeds the size of the file");
       for (long long b = 0; b < blocks; ++b) {
         const TextLine& bh = lines.next("an element block header");
         if (bh.tokens.size() != 4) lines.fail(bh.number, "expected '<dim> <tag> <type> <count>'");
         const int type = static_cast<int>(lines.parseInt(bh, 2, "element type"));
         const long long n = lines.parseInt(bh, 3, "element count");
-        if (n < 0 || n > maxCount) lines.fail(bh.number, "element count exceeds the size of the file");
+        if (n < 0 || n > maxCount)
+          lines.fail(bh.number, "element count exceeds the size of the file");
         const int perElement = nodesOfElementType(type);
-        if (perElement < 0) lines.fail(bh.number, "unsupported element type " + std::to_string(type));
+        if (perElement < 0)
+          lines.fail(bh.number, "unsupported element type " + std::to_string(type));
         if (type == kTet10) report.notes.push_back(path.string() + ": 10-node tets, corners kept");
         for (long long i = 0; i < n; ++i) {
           const TextLine& e = lines.next("an element");
           if (e.tokens.size() != static_cast<size_t>(1 + perElement)) {
-            lines.fail(e.number, "expected " + std::to_string(1 + perElement) + " values for an element of type " +
-                                     std::to_string(type) + ", got " + std::to_string(e.tokens.size()));
+            lines.fail(e.number, "expected " + std::to_string(1 + perElement) +
+                                     " values for an element of type " + std::to_string(type) +
+                                     ", got " + std::to_string(e.tokens.size()));
           }
           if (type != kTet4 && type != kTet10) continue;
           Tet t;
           for (int k = 0; k < 4; ++k) {
             const long long nodeTag = lines.parseInt(e, 1 + k, "node tag");
             const auto it = nodeIndex.find(nodeTag);
-            if (it == nodeIndex.end()) lines.fail(e.number, "unknown node tag " + std::to_string(nodeTag));
+            if (it == nodeIndex.end())
+              lines.fail(e.number, "unknown node tag " + std::to_string(nodeTag));
             t[k] = it->second;
           }
           mesh.tets.push_back(t);
@@ -153,7 +174,8 @@ TetMesh readGmsh(const fs::path& path, MeshReadReport* reportOut) {
     }
   }
   if (!sawFormat) throw InputError(path.string(), 0, "not a Gmsh file: no $MeshFormat section");
-  if (!sawElements || mesh.tets.empty()) throw InputError(path.string(), 0, "no tetrahedra in the file");
+  if (!sawElements || mesh.tets.empty())
+    throw InputError(path.string(), 0, "no tetrahedra in the file");
   validateTets(mesh, path.string(), tetLines, report);
   if (reportOut) *reportOut = std::move(report);
   return mesh;
@@ -175,7 +197,8 @@ void writeGmsh(const fs::path& path, const TetMesh& mesh) {
     out << "$Elements\n1 " << m << " 1 " << m << "\n3 1 4 " << m << '\n';
     for (int i = 0; i < m; ++i) {
       const Tet& t = mesh.tets[i];
-      out << i + 1 << ' ' << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << ' ' << t[3] + 1 << '\n';
+      out << i + 1 << ' ' << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << ' ' << t[3] + 1
+          << '\n';
     }
     out << "$EndElements\n";
   });

@@ -64,9 +64,9 @@ void validateTets(TetMesh& mesh, const std::string& file, const std::vector<int>
     if (keyed[i].first == keyed[i - 1].first) {
       const int a = std::min(keyed[i].second, keyed[i - 1].second);
       const int b = std::max(keyed[i].second, keyed[i - 1].second);
-      throw InputError(file, tetLines[b],
-                       "duplicate tet: same vertices as the tet on line " +
-                           std::to_string(tetLines[a]));
+      throw InputError(
+          file, tetLines[b],
+          "duplicate tet: same vertices as the tet on line " + std::to_string(tetLines[a]));
     }
   }
 

@@ -13,9 +13,9 @@
 namespace galsculpt {
 
 struct MeshReadReport {
-  int indexBase = 0;          // 0 or 1, as found in the file
-  int reorientedTets = 0;     // inverted tets that were flipped
-  int unusedVertices = 0;     // vertices no tet references
+  int indexBase = 0;               // 0 or 1, as found in the file
+  int reorientedTets = 0;          // inverted tets that were flipped
+  int unusedVertices = 0;          // vertices no tet references
   std::vector<std::string> notes;  // human-readable remarks (reorientation, ignored data)
 };
 

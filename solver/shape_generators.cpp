@@ -9,7 +9,9 @@ namespace galsculpt {
 
 namespace {
 
-double unitFromBits(std::mt19937& gen) { return static_cast<double>(gen()) / 4294967296.0; }
+double unitFromBits(std::mt19937& gen) {
+  return static_cast<double>(gen()) / 4294967296.0;
+}
 
 // Ear clipping for a simple counter-clockwise polygon; enough for the Charpy profile.
 std::vector<Tri> triangulatePolygon(const std::vector<Eigen::Vector2d>& poly) {
@@ -22,7 +24,8 @@ std::vector<Tri> triangulatePolygon(const std::vector<Eigen::Vector2d>& poly) {
   while (idx.size() > 3) {
     bool clipped = false;
     for (size_t i = 0; i < idx.size() && !clipped; ++i) {
-      const int a = idx[(i + idx.size() - 1) % idx.size()], b = idx[i], c = idx[(i + 1) % idx.size()];
+      const int a = idx[(i + idx.size() - 1) % idx.size()], b = idx[i],
+                c = idx[(i + 1) % idx.size()];
       if (cross(poly[a], poly[b], poly[c]) <= 0) continue;
       bool inside = false;
       for (int k : idx) {
@@ -49,12 +52,12 @@ std::vector<Tri> triangulatePolygon(const std::vector<Eigen::Vector2d>& poly) {
 TriMesh makeIcosphere(double radius, int subdivisions) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   TriMesh m;
-  m.vertices = {Vec3(-1, t, 0), Vec3(1, t, 0),   Vec3(-1, -t, 0), Vec3(1, -t, 0),
-                Vec3(0, -1, t), Vec3(0, 1, t),   Vec3(0, -1, -t), Vec3(0, 1, -t),
-                Vec3(t, 0, -1), Vec3(t, 0, 1),   Vec3(-t, 0, -1), Vec3(-t, 0, 1)};
-  m.faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+  m.vertices = {Vec3(-1, t, 0), Vec3(1, t, 0), Vec3(-1, -t, 0), Vec3(1, -t, 0),
+                Vec3(0, -1, t), Vec3(0, 1, t), Vec3(0, -1, -t), Vec3(0, 1, -t),
+                Vec3(t, 0, -1), Vec3(t, 0, 1), Vec3(-t, 0, -1), Vec3(-t, 0, 1)};
+  m.faces = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
              {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-             {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+             {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   for (Vec3& v : m.vertices) v.normalize();
   for (int s = 0; s < subdivisions; ++s) {
     std::map<std::pair<int, int>, int> midpoint;
@@ -86,9 +89,13 @@ TriMesh makeCharpyBar() {
   const double length = 0.055, height = 0.010, width = 0.010, depth = 0.002;
   const double halfOpening = depth * std::tan(22.5 * M_PI / 180.0);  // 45-degree included angle
   const double c = 0.5 * length;
-  const std::vector<Eigen::Vector2d> profile = {
-      {0, 0}, {length, 0}, {length, height}, {c + halfOpening, height},
-      {c, height - depth}, {c - halfOpening, height}, {0, height}};
+  const std::vector<Eigen::Vector2d> profile = {{0, 0},
+                                                {length, 0},
+                                                {length, height},
+                                                {c + halfOpening, height},
+                                                {c, height - depth},
+                                                {c - halfOpening, height},
+                                                {0, height}};
   const int n = static_cast<int>(profile.size());
   TriMesh m;
   for (double z : {0.0, width}) {
@@ -154,7 +161,9 @@ TriMesh makeSteakSlab(double edgeLength, std::uint32_t seed) {
     for (int m = 0; m <= segments; ++m) {
       const double target = length[fine] * m / segments;
       while (k < fine && length[k + 1] < target) ++k;
-      const double t = (k < fine && length[k + 1] > length[k]) ? (target - length[k]) / (length[k + 1] - length[k]) : 0.0;
+      const double t = (k < fine && length[k + 1] > length[k])
+                           ? (target - length[k]) / (length[k + 1] - length[k])
+                           : 0.0;
       meridian.push_back(dense[k] + t * (dense[std::min(k + 1, fine)] - dense[k]));
     }
     meridian.front() = Eigen::Vector2d(0.0, 1.0);
@@ -176,7 +185,10 @@ TriMesh makeSteakSlab(double edgeLength, std::uint32_t seed) {
     const double rho = meridian[i].x(), h = meridian[i].y();
     ringStart.push_back(m.numVertices());
     const bool pole = (i == 0 || i + 1 == meridian.size());
-    const int n = pole ? 1 : std::max(6, static_cast<int>(std::round(2.0 * M_PI * rho * meanRadius / edgeLength)));
+    const int n =
+        pole
+            ? 1
+            : std::max(6, static_cast<int>(std::round(2.0 * M_PI * rho * meanRadius / edgeLength)));
     ringSize.push_back(n);
     for (int j = 0; j < n; ++j) m.vertices.push_back(position(rho, h, 2.0 * M_PI * j / n));
   }
@@ -200,7 +212,8 @@ TriMesh makeSteakSlab(double edgeLength, std::uint32_t seed) {
     }
   }
   double volume = 0.0;
-  for (const Tri& f : m.faces) volume += m.vertices[f[0]].dot(m.vertices[f[1]].cross(m.vertices[f[2]]));
+  for (const Tri& f : m.faces)
+    volume += m.vertices[f[0]].dot(m.vertices[f[1]].cross(m.vertices[f[2]]));
   if (volume < 0.0) {
     for (Tri& f : m.faces) std::swap(f[1], f[2]);
   }

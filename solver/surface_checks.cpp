@@ -12,8 +12,8 @@ namespace galsculpt {
 namespace {
 
 struct DirectedEdge {
-  Edge key;     // sorted
-  bool forward; // traversed from key[0] to key[1]
+  Edge key;      // sorted
+  bool forward;  // traversed from key[0] to key[1]
 };
 
 // Orientation of d against the plane (a, b, c), with a relative dead zone so that touching and
@@ -38,8 +38,10 @@ bool segmentCrossesTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const V
 bool trianglesCross(const TriMesh& m, const Tri& f, const Tri& g, double scale) {
   const auto& v = m.vertices;
   for (int i = 0; i < 3; ++i) {
-    if (segmentCrossesTriangle(v[f[i]], v[f[(i + 1) % 3]], v[g[0]], v[g[1]], v[g[2]], scale)) return true;
-    if (segmentCrossesTriangle(v[g[i]], v[g[(i + 1) % 3]], v[f[0]], v[f[1]], v[f[2]], scale)) return true;
+    if (segmentCrossesTriangle(v[f[i]], v[f[(i + 1) % 3]], v[g[0]], v[g[1]], v[g[2]], scale))
+      return true;
+    if (segmentCrossesTriangle(v[g[i]], v[g[(i + 1) % 3]], v[f[0]], v[f[1]], v[f[2]], scale))
+      return true;
   }
   return false;
 }
@@ -53,7 +55,8 @@ std::string SurfaceTopology::describeProblem() const {
     return s.str();
   };
   if (degenerateFaces > 0) {
-    return "degenerate: " + std::to_string(degenerateFaces) + " face(s) with zero area or a repeated vertex";
+    return "degenerate: " + std::to_string(degenerateFaces) +
+           " face(s) with zero area or a repeated vertex";
   }
   if (nonManifoldEdges > 0) {
     return "non-manifold: " + std::to_string(nonManifoldEdges) +
@@ -97,9 +100,8 @@ SurfaceTopology analyzeSurface(const TriMesh& mesh) {
       edges.push_back({Edge{std::min(a, b), std::max(a, b)}, a < b});
     }
   }
-  std::sort(edges.begin(), edges.end(), [](const DirectedEdge& x, const DirectedEdge& y) {
-    return x.key < y.key;
-  });
+  std::sort(edges.begin(), edges.end(),
+            [](const DirectedEdge& x, const DirectedEdge& y) { return x.key < y.key; });
   for (size_t i = 0; i < edges.size();) {
     size_t j = i;
     int forward = 0;
@@ -215,7 +217,8 @@ std::vector<std::pair<int, int>> findSelfIntersections(const TriMesh& mesh, size
     size_t j = i;
     while (j < entries.size() && entries[j].first == entries[i].first) ++j;
     for (size_t a = i; a < j; ++a) {
-      for (size_t b = a + 1; b < j; ++b) candidates.push_back({entries[a].second, entries[b].second});
+      for (size_t b = a + 1; b < j; ++b)
+        candidates.push_back({entries[a].second, entries[b].second});
     }
     i = j;
   }

@@ -48,9 +48,11 @@ int readNodes(const fs::path& path, TetMesh& mesh) {
   }
   const long long count = lines.parseInt(header, 0, "point count");
   const long long dim = header.tokens.size() > 1 ? lines.parseInt(header, 1, "dimension") : 3;
-  const long long nAttr = header.tokens.size() > 2 ? lines.parseInt(header, 2, "attribute count") : 0;
+  const long long nAttr =
+      header.tokens.size() > 2 ? lines.parseInt(header, 2, "attribute count") : 0;
   const long long nMark = header.tokens.size() > 3 ? lines.parseInt(header, 3, "marker flag") : 0;
-  if (count == 0) lines.fail(header.number, "point count is 0 (points in a .poly file are not supported)");
+  if (count == 0)
+    lines.fail(header.number, "point count is 0 (points in a .poly file are not supported)");
   checkCount(lines, header, count, "point", lines.lastLineNumber());
   if (dim != 3) lines.fail(header.number, "dimension must be 3, got " + std::to_string(dim));
   if (nAttr < 0 || nAttr > 1000) lines.fail(header.number, "invalid attribute count");
@@ -61,27 +63,31 @@ int readNodes(const fs::path& path, TetMesh& mesh) {
   if (nMark) mesh.vertexMarkers.reserve(count);
   int base = 0;
   for (long long i = 0; i < count; ++i) {
-    const TextLine& line = lines.next("point " + std::to_string(i + 1) + " of " + std::to_string(count));
+    const TextLine& line =
+        lines.next("point " + std::to_string(i + 1) + " of " + std::to_string(count));
     expectTokens(lines, line, perLine, "a point");
     const long long index = lines.parseInt(line, 0, "point number");
     if (i == 0) {
       if (index != 0 && index != 1) lines.fail(line.number, "first point must be numbered 0 or 1");
       base = static_cast<int>(index);
     } else if (index != base + i) {
-      lines.fail(line.number, "point number " + std::to_string(index) + " out of sequence (expected " +
-                                  std::to_string(base + i) + ")");
+      lines.fail(line.number, "point number " + std::to_string(index) +
+                                  " out of sequence (expected " + std::to_string(base + i) + ")");
     }
     Vec3 p;
     for (int k = 0; k < 3; ++k) p[k] = lines.parseDouble(line, 1 + k, "coordinate");
     for (long long a = 0; a < nAttr; ++a) lines.parseDouble(line, 4 + a, "attribute");
-    if (nMark) mesh.vertexMarkers.push_back(static_cast<int>(lines.parseInt(line, perLine - 1, "boundary marker")));
+    if (nMark)
+      mesh.vertexMarkers.push_back(
+          static_cast<int>(lines.parseInt(line, perLine - 1, "boundary marker")));
     mesh.vertices.push_back(p);
   }
   expectEnd(lines, count, "points");
   return base;
 }
 
-std::vector<int> readElements(const fs::path& path, int base, TetMesh& mesh, MeshReadReport& report) {
+std::vector<int> readElements(const fs::path& path, int base, TetMesh& mesh,
+                              MeshReadReport& report) {
   const std::string text = readWholeFile(path);
   TextLines lines(path.string(), text);
   const TextLine& header = lines.next("the .ele header '<tets> <4|10> <attributes>'");
@@ -89,8 +95,10 @@ std::vector<int> readElements(const fs::path& path, int base, TetMesh& mesh, Mes
     lines.fail(header.number, "expected the .ele header '<tets> <4|10> <attributes>'");
   }
   const long long count = lines.parseInt(header, 0, "tet count");
-  const long long perTet = header.tokens.size() > 1 ? lines.parseInt(header, 1, "nodes per tet") : 4;
-  const long long nAttr = header.tokens.size() > 2 ? lines.parseInt(header, 2, "attribute count") : 0;
+  const long long perTet =
+      header.tokens.size() > 1 ? lines.parseInt(header, 1, "nodes per tet") : 4;
+  const long long nAttr =
+      header.tokens.size() > 2 ? lines.parseInt(header, 2, "attribute count") : 0;
   checkCount(lines, header, count, "tet", lines.lastLineNumber());
   if (count == 0) lines.fail(header.number, "the mesh has no tets");
   if (perTet != 4 && perTet != 10) {
@@ -105,15 +113,17 @@ std::vector<int> readElements(const fs::path& path, int base, TetMesh& mesh, Mes
   mesh.tets.reserve(count);
   long long firstNumber = 0;
   for (long long i = 0; i < count; ++i) {
-    const TextLine& line = lines.next("tet " + std::to_string(i + 1) + " of " + std::to_string(count));
+    const TextLine& line =
+        lines.next("tet " + std::to_string(i + 1) + " of " + std::to_string(count));
     expectTokens(lines, line, perLine, "a tet");
     const long long number = lines.parseInt(line, 0, "tet number");
     if (i == 0) {
       if (number != 0 && number != 1) lines.fail(line.number, "first tet must be numbered 0 or 1");
       firstNumber = number;
     } else if (number != firstNumber + i) {
-      lines.fail(line.number, "tet number " + std::to_string(number) + " out of sequence (expected " +
-                                  std::to_string(firstNumber + i) + ")");
+      lines.fail(line.number, "tet number " + std::to_string(number) +
+                                  " out of sequence (expected " + std::to_string(firstNumber + i) +
+                                  ")");
     }
     Tet t;
     for (int k = 0; k < 4; ++k) {
@@ -151,7 +161,8 @@ void readFaces(const fs::path& path, int base, TetMesh& mesh) {
   checkCount(lines, header, count, "face", lines.lastLineNumber());
   if (nMark != 0 && nMark != 1) lines.fail(header.number, "marker flag must be 0 or 1");
   for (long long i = 0; i < count; ++i) {
-    const TextLine& line = lines.next("face " + std::to_string(i + 1) + " of " + std::to_string(count));
+    const TextLine& line =
+        lines.next("face " + std::to_string(i + 1) + " of " + std::to_string(count));
     // TetGen may append the two adjacent tets after the marker (-nn); accept them.
     if (line.tokens.size() != 4 + static_cast<size_t>(nMark) &&
         line.tokens.size() != 6 + static_cast<size_t>(nMark)) {
@@ -167,7 +178,8 @@ void readFaces(const fs::path& path, int base, TetMesh& mesh) {
       f[k] = static_cast<int>(v);
     }
     mesh.faces.push_back(f);
-    if (nMark) mesh.faceMarkers.push_back(static_cast<int>(lines.parseInt(line, 4, "boundary marker")));
+    if (nMark)
+      mesh.faceMarkers.push_back(static_cast<int>(lines.parseInt(line, 4, "boundary marker")));
   }
   expectEnd(lines, count, "faces");
 }
@@ -199,7 +211,8 @@ TetMesh readTetGen(const fs::path& path, MeshReadReport* reportOut) {
   return mesh;
 }
 
-void writeTetGen(const fs::path& stem, const TetMesh& mesh, const std::vector<double>* tetAttribute) {
+void writeTetGen(const fs::path& stem, const TetMesh& mesh,
+                 const std::vector<double>* tetAttribute) {
   const fs::path base = tetgenStem(stem);
   writeFileAtomically(fs::path(base).concat(".node"), [&](std::ostream& out) {
     out << mesh.numVertices() << " 3 0 0\n" << std::setprecision(17);

@@ -8,7 +8,9 @@
 namespace galsculpt {
 
 namespace {
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+bool isSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
 
 std::string printable(std::string_view token) {
   std::string out;
@@ -78,7 +80,8 @@ long long TextLines::parseInt(const TextLine& line, size_t token, const char* wh
   if (!t.empty() && t[0] == '+') ++begin;
   const auto [ptr, ec] = std::from_chars(begin, t.data() + t.size(), value);
   if (ec != std::errc() || ptr != t.data() + t.size()) {
-    fail(line.number, std::string("expected ") + what + " (an integer), got '" + printable(t) + "'");
+    fail(line.number,
+         std::string("expected ") + what + " (an integer), got '" + printable(t) + "'");
   }
   return value;
 }

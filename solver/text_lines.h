@@ -13,7 +13,7 @@
 namespace galsculpt {
 
 struct TextLine {
-  int number = 0;                       // 1-based line number in the file
+  int number = 0;                        // 1-based line number in the file
   std::vector<std::string_view> tokens;  // whitespace-separated, comments removed
 };
 

@@ -22,7 +22,8 @@ void writeVtk(const std::filesystem::path& path, const TetMesh& mesh,
     out << "POINTS " << mesh.numVertices() << " double\n";
     for (const Vec3& p : mesh.vertices) out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
     out << "CELLS " << mesh.numTets() << ' ' << 5 * mesh.numTets() << '\n';
-    for (const Tet& t : mesh.tets) out << "4 " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
+    for (const Tet& t : mesh.tets)
+      out << "4 " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
     out << "CELL_TYPES " << mesh.numTets() << '\n';
     for (int i = 0; i < mesh.numTets(); ++i) out << "10\n";
     if (!cellFields.empty()) {

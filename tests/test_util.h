@@ -16,7 +16,8 @@ namespace galsculpt::test {
 class TempDir {
  public:
   TempDir() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "galsculpt-test-XXXXXX").string();
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "galsculpt-test-XXXXXX").string();
     path_ = mkdtemp(pattern.data());
   }
   ~TempDir() {
@@ -61,13 +62,13 @@ inline TetMesh unitCubeTets(double size = 1.0, const Vec3& origin = Vec3::Zero()
 }  // namespace galsculpt::test
 
 // Expects `statement` to throw `type` whose what() contains `substring`.
-#define EXPECT_THROW_WITH(statement, type, substring)                                   \
-  do {                                                                                  \
-    try {                                                                               \
-      statement;                                                                        \
-      ADD_FAILURE() << "expected " #type " containing '" << (substring) << "'";       \
-    } catch (const type& e) {                                                           \
-      EXPECT_NE(std::string(e.what()).find(substring), std::string::npos)             \
-          << "message: " << e.what() << "\nexpected to contain: " << (substring);      \
-    }                                                                                   \
+#define EXPECT_THROW_WITH(statement, type, substring)                             \
+  do {                                                                            \
+    try {                                                                         \
+      statement;                                                                  \
+      ADD_FAILURE() << "expected " #type " containing '" << (substring) << "'";   \
+    } catch (const type& e) {                                                     \
+      EXPECT_NE(std::string(e.what()).find(substring), std::string::npos)         \
+          << "message: " << e.what() << "\nexpected to contain: " << (substring); \
+    }                                                                             \
   } while (0)

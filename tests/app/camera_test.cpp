@@ -24,7 +24,8 @@ TEST(OrbitCamera, FrameKeepsTheWholeBoxInView) {
   c.frame(box);
   const Eigen::Matrix4f m = c.projection(1.0) * c.view();
   for (int i = 0; i < 8; ++i) {
-    const Eigen::Vector3d corner((i & 1) ? box.max.x() : box.min.x(), (i & 2) ? box.max.y() : box.min.y(),
+    const Eigen::Vector3d corner((i & 1) ? box.max.x() : box.min.x(),
+                                 (i & 2) ? box.max.y() : box.min.y(),
                                  (i & 4) ? box.max.z() : box.min.z());
     const Eigen::Vector4f p = m * Eigen::Vector4f(corner.x(), corner.y(), corner.z(), 1.0f);
     EXPECT_LE(std::abs(p.x() / p.w()), 1.0f);

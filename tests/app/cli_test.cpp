@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "solver/shape_generators.h"
 #include "engine/surface_io.h"
+#include "solver/shape_generators.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -47,7 +47,8 @@ TEST(Cli, BadInputExitsThreeWithFileAndLine) {
   const fs::path broken = fs::path(GALSCULPT_TEST_DATA) / "broken" / "nan_coordinate.node";
   const CliRun r = run({"mesh", "info", broken.string()});
   EXPECT_EQ(r.code, kExitBadInput);
-  EXPECT_NE(r.err.find("nan_coordinate.node:3: coordinate is not finite"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("nan_coordinate.node:3: coordinate is not finite"), std::string::npos)
+      << r.err;
   EXPECT_EQ(run({"mesh", "info", "/nonexistent/x.obj"}).code, kExitBadInput);
 }
 
@@ -73,7 +74,8 @@ TEST(Cli, InfoOfTetMeshAndSurface) {
 
 TEST(Cli, ConvertBetweenFormats) {
   test::TempDir dir;
-  const CliRun gen = run({"mesh", "generate", "sphere", (dir / "s.node").string(), "--tets", "2000", "--radius", "0.5"});
+  const CliRun gen = run({"mesh", "generate", "sphere", (dir / "s.node").string(), "--tets", "2000",
+                          "--radius", "0.5"});
   ASSERT_EQ(gen.code, kExitOk) << gen.err;
   for (const char* out : {"s.msh", "s.vtk", "s.obj", "s.stl", "s.glb"}) {
     const CliRun r = run({"mesh", "convert", (dir / "s.node").string(), (dir / out).string()});
@@ -94,7 +96,8 @@ TEST(Cli, ImportRejectsAnOpenSurfaceWithExitThree) {
   TriMesh open = makeIcosphere(1.0, 2);
   open.faces.resize(open.faces.size() - 4);
   writeSurface(dir / "open.obj", open);
-  const CliRun r = run({"mesh", "import", (dir / "open.obj").string(), (dir / "o.node").string(), "--tets", "500"});
+  const CliRun r = run(
+      {"mesh", "import", (dir / "open.obj").string(), (dir / "o.node").string(), "--tets", "500"});
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find("the surface is open"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "o.node"));

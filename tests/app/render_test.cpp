@@ -22,9 +22,12 @@ struct Image {
 };
 
 // The object is orange-ish; the background is a grey-blue gradient (blue >= red).
-bool isObject(const Eigen::Vector3i& c) { return c.x() > c.z() + 20; }
+bool isObject(const Eigen::Vector3i& c) {
+  return c.x() > c.z() + 20;
+}
 
-Image renderSphere(OffscreenContext& ctx, Renderer& r, const TriMesh& mesh, const OrbitCamera& camera) {
+Image renderSphere(OffscreenContext& ctx, Renderer& r, const TriMesh& mesh,
+                   const OrbitCamera& camera) {
   r.setMesh(makeRenderMesh(mesh, Vec3(0.8, 0.55, 0.42)));
   ctx.bind();
   r.draw(camera, ctx.width(), ctx.height());

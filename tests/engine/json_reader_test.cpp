@@ -15,14 +15,18 @@ TEST(JsonReader, SyntaxErrorsGiveTheLine) {
 }
 
 TEST(JsonReader, ValuesAreCheckedWithTheirPath) {
-  const nlohmann::json j = nlohmann::json::parse(R"({"n": 3, "s": "x", "v": [1, 2], "o": {"deep": -1}, "extra": 1})");
+  const nlohmann::json j =
+      nlohmann::json::parse(R"({"n": 3, "s": "x", "v": [1, 2], "o": {"deep": -1}, "extra": 1})");
   JsonObject o(j, "$", "f.json");
   EXPECT_EQ(o.number("n", 0, 0, 10), 3.0);
   EXPECT_THROW_WITH(o.number("n", 0, 5, 10), InputError, "f.json: $.n: must be at least 5, got 3");
-  EXPECT_THROW_WITH(o.string("s", "", {"y", "z"}), InputError, "$.s: unknown value 'x' (expected one of: y, z)");
-  EXPECT_THROW_WITH(o.vec3("v", Eigen::Vector3d::Zero()), InputError, "$.v: expected an array of 3 numbers");
+  EXPECT_THROW_WITH(o.string("s", "", {"y", "z"}), InputError,
+                    "$.s: unknown value 'x' (expected one of: y, z)");
+  EXPECT_THROW_WITH(o.vec3("v", Eigen::Vector3d::Zero()), InputError,
+                    "$.v: expected an array of 3 numbers");
   JsonObject inner = o.object("o");
-  EXPECT_THROW_WITH(inner.integer("deep", 0, 0, 5), InputError, "$.o.deep: must be at least 0, got -1");
+  EXPECT_THROW_WITH(inner.integer("deep", 0, 0, 5), InputError,
+                    "$.o.deep: must be at least 0, got -1");
   EXPECT_THROW_WITH(o.rejectUnknownKeys(), InputError, "$.extra: unknown key");
   EXPECT_EQ(o.number("absent", 4.5, 0, 10), 4.5);
   EXPECT_THROW_WITH(o.requiredNumber("absent", 0, 1), InputError, "$.absent: is required");

@@ -31,14 +31,16 @@ TEST(MeshFiles, TetFormatsRoundTrip) {
   writeTetMesh(dir / "d.vtk", cube, &damage);
   EXPECT_NE(test::readText(dir / "d.vtk").find("SCALARS damage"), std::string::npos);
   writeTetMesh(dir / "d.node", cube, &damage);
-  EXPECT_NE(test::readText(dir / "d.ele").find("6 4 1"), std::string::npos) << "damage as the .ele attribute";
+  EXPECT_NE(test::readText(dir / "d.ele").find("6 4 1"), std::string::npos)
+      << "damage as the .ele attribute";
 }
 
 TEST(MeshFiles, WrongKindsAreClearErrors) {
   EXPECT_THROW_WITH(readTetMesh("x.vtk"), InputError, "output format");
   EXPECT_THROW_WITH(readTetMesh("x.obj"), InputError, "mesh import");
   EXPECT_THROW_WITH(readTetMesh("x.doc"), InputError, "unknown mesh format");
-  EXPECT_THROW_WITH(writeTetMesh("x.obj", test::unitCubeTets()), OutputError, "unknown tet mesh format");
+  EXPECT_THROW_WITH(writeTetMesh("x.obj", test::unitCubeTets()), OutputError,
+                    "unknown tet mesh format");
 }
 
 }  // namespace

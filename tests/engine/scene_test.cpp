@@ -63,7 +63,9 @@ struct BadScene {
   std::string json, message;
 };
 
-void PrintTo(const BadScene& b, std::ostream* os) { *os << "'" << b.message << "'"; }
+void PrintTo(const BadScene& b, std::ostream* os) {
+  *os << "'" << b.message << "'";
+}
 
 class SceneErrors : public ::testing::TestWithParam<BadScene> {};
 
@@ -81,7 +83,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"{}", "s.json: $.mesh: is required"},
         BadScene{"[1, 2]", "s.json: $: expected an object"},
         BadScene{"{\"mesh\": {}}", "$.mesh: give exactly one of 'file', 'generate' or 'import'"},
-        BadScene{"{\"mesh\": {\"generate\": \"cube\", \"tets\": 10}}", "$.mesh.generate: unknown value 'cube'"},
+        BadScene{"{\"mesh\": {\"generate\": \"cube\", \"tets\": 10}}",
+                 "$.mesh.generate: unknown value 'cube'"},
         BadScene{"{\"mesh\": {\"generate\": \"sphere\"}}", "$.mesh.tets: is required"},
         BadScene{std::string("{") + kMesh + R"(, "material": {"poisson_ratio": 0.5}})",
                  "$.material.poisson_ratio: must be at most 0.4999"},
@@ -89,18 +92,24 @@ INSTANTIATE_TEST_SUITE_P(
                  "$.material.preset: unknown value 'jelly'"},
         BadScene{std::string("{") + kMesh + R"(, "anchors": [{"box": {"min": [0, 0]}}]})",
                  "$.anchors[0].box.min: expected an array of 3 numbers"},
-        BadScene{std::string("{") + kMesh + R"(, "anchors": [{"sphere": {"radius": 1}, "path": [{"t": 1}, {"t": 0.5}]}]})",
+        BadScene{std::string("{") + kMesh +
+                     R"(, "anchors": [{"sphere": {"radius": 1}, "path": [{"t": 1}, {"t": 0.5}]}]})",
                  "$.anchors[0].path[1].t: path times must increase"},
-        BadScene{std::string("{") + kMesh + R"(, "colliders": [{"type": "box", "center": [0, 0, 0]}]})",
-                 "$.colliders[0].half_extents: is required for a box"},
+        BadScene{
+            std::string("{") + kMesh + R"(, "colliders": [{"type": "box", "center": [0, 0, 0]}]})",
+            "$.colliders[0].half_extents: is required for a box"},
         BadScene{std::string("{") + kMesh + R"(, "solver": {"grid": "1000/50/all"}})",
                  "$.solver.grid: grid levels must be positive and increase"},
-        BadScene{std::string("{") + kMesh + R"(, "solver": {"grid": "50"}})", "$.solver.grid: grid '50' must list"},
+        BadScene{std::string("{") + kMesh + R"(, "solver": {"grid": "50"}})",
+                 "$.solver.grid: grid '50' must list"},
         BadScene{std::string("{") + kMesh + R"(, "fracture": {"enabled": true}})",
                  "$.fracture.threshold: must be positive when fracture is enabled"},
-        BadScene{std::string("{") + kMesh + R"(, "time_step": "fast"})", "$.time_step: expected a number, got string"},
-        BadScene{std::string("{") + kMesh + R"(, "gravty": [0, -9.81, 0]})", "$.gravty: unknown key"},
-        BadScene{std::string("{") + kMesh + ",\n\"substeps\": 0}", "$.substeps: must be at least 1"},
+        BadScene{std::string("{") + kMesh + R"(, "time_step": "fast"})",
+                 "$.time_step: expected a number, got string"},
+        BadScene{std::string("{") + kMesh + R"(, "gravty": [0, -9.81, 0]})",
+                 "$.gravty: unknown key"},
+        BadScene{std::string("{") + kMesh + ",\n\"substeps\": 0}",
+                 "$.substeps: must be at least 1"},
         BadScene{"{\n\"mesh\": {\n\"file\": \"x.node\",\n}\n}", "s.json:4: JSON syntax error"}));
 
 TEST(Scene, MissingMeshFileIsReportedWhenLoading) {

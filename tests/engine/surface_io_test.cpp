@@ -34,7 +34,8 @@ TEST_P(SurfaceRoundTrip, SameCountsAndPositions) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Formats, SurfaceRoundTrip, ::testing::Values(".obj", ".ply", ".stl", ".gltf", ".glb"),
+INSTANTIATE_TEST_SUITE_P(Formats, SurfaceRoundTrip,
+                         ::testing::Values(".obj", ".ply", ".stl", ".gltf", ".glb"),
                          [](const auto& info) { return info.param.substr(1); });
 
 TEST(SurfaceIo, ObjWritesNoMaterialFileAndGltfKeepsItsBuffer) {
@@ -48,7 +49,8 @@ TEST(SurfaceIo, ObjWritesNoMaterialFileAndGltfKeepsItsBuffer) {
 
 TEST(SurfaceIo, ReadsOff) {
   test::TempDir dir;
-  test::writeText(dir / "t.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+  test::writeText(dir / "t.off",
+                  "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
   const TriMesh m = readSurface(dir / "t.off");
   EXPECT_EQ(m.numVertices(), 4);
   EXPECT_EQ(m.numFaces(), 4);
@@ -61,14 +63,17 @@ TEST(SurfaceIo, Errors) {
   EXPECT_THROW_WITH(readSurface(dir / "missing.obj"), InputError, "missing.obj: file not found");
   test::writeText(dir / "garbage.stl", std::string(100, '\x01'));
   EXPECT_THROW(readSurface(dir / "garbage.stl"), InputError);
-  EXPECT_THROW_WITH(writeSurface(dir / "x.xyz", makeIcosphere(1, 0)), OutputError, "unknown surface format");
-  EXPECT_THROW_WITH(writeSurface(dir / "no" / "x.obj", makeIcosphere(1, 0)), OutputError, "does not exist");
+  EXPECT_THROW_WITH(writeSurface(dir / "x.xyz", makeIcosphere(1, 0)), OutputError,
+                    "unknown surface format");
+  EXPECT_THROW_WITH(writeSurface(dir / "no" / "x.obj", makeIcosphere(1, 0)), OutputError,
+                    "does not exist");
 }
 
 TEST(SurfaceIo, FailedRenameIsReportedAndCleanedUp) {
   test::TempDir dir;
   fs::create_directories(dir / "s.stl" / "occupied");
-  EXPECT_THROW_WITH(writeSurface(dir / "s.stl", makeIcosphere(1.0, 1)), OutputError, "cannot write");
+  EXPECT_THROW_WITH(writeSurface(dir / "s.stl", makeIcosphere(1.0, 1)), OutputError,
+                    "cannot write");
   size_t entries = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path())) ++entries;
   EXPECT_EQ(entries, 1u) << "the temporary export folder is removed";

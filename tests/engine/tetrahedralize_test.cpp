@@ -19,7 +19,8 @@ TEST(Tetrahedralize, SphereLandsWithinTolerance) {
   const TetMeshStats s = computeStats(r.mesh);
   EXPECT_TRUE(s.watertight);
   EXPECT_EQ(s.pieces, 1);
-  EXPECT_NEAR(s.volume, enclosedVolume(makeIcosphere(0.1, 2)), 1e-9) << "TetGen fills the surface exactly";
+  EXPECT_NEAR(s.volume, enclosedVolume(makeIcosphere(0.1, 2)), 1e-9)
+      << "TetGen fills the surface exactly";
   EXPECT_GT(s.minQuality, 0.05);
 }
 
@@ -46,12 +47,15 @@ TEST(Tetrahedralize, BadSurfacesSayWhatIsWrong) {
   o.surfaceName = "bad.obj";
   TriMesh open = makeIcosphere(1.0, 1);
   open.faces.pop_back();
-  EXPECT_THROW_WITH(tetrahedralize(open, o), InputError, "bad.obj: cannot tetrahedralize: the surface is open");
+  EXPECT_THROW_WITH(tetrahedralize(open, o), InputError,
+                    "bad.obj: cannot tetrahedralize: the surface is open");
 
   TriMesh two = makeIcosphere(1.0, 2);
   const TriMesh copy = two;
   for (const Vec3& v : copy.vertices) two.vertices.push_back(v + Vec3(0.5, 0.1, 0.0));
-  for (Tri f : copy.faces) two.faces.push_back({f[0] + copy.numVertices(), f[1] + copy.numVertices(), f[2] + copy.numVertices()});
+  for (Tri f : copy.faces)
+    two.faces.push_back(
+        {f[0] + copy.numVertices(), f[1] + copy.numVertices(), f[2] + copy.numVertices()});
   EXPECT_THROW_WITH(tetrahedralize(two, o), InputError, "self-intersecting");
 
   TriMesh fin = makeIcosphere(1.0, 1);
@@ -68,14 +72,16 @@ TEST(Tetrahedralize, CrashAndTimeoutOfTheProgramAreReported) {
   TetrahedralizeOptions o;
   o.targetTets = 100;
   o.program = fake.string();
-  EXPECT_THROW_WITH(tetrahedralize(makeIcosphere(1.0, 1), o), std::runtime_error, "crashed with signal 6");
+  EXPECT_THROW_WITH(tetrahedralize(makeIcosphere(1.0, 1), o), std::runtime_error,
+                    "crashed with signal 6");
 
   test::writeText(fake, "#!/bin/sh\nsleep 20\n");
   o.timeoutSeconds = 0.5;
   EXPECT_THROW_WITH(tetrahedralize(makeIcosphere(1.0, 1), o), std::runtime_error, "timed out");
 
   o.program = (dir / "missing").string();
-  EXPECT_THROW_WITH(tetrahedralize(makeIcosphere(1.0, 1), o), std::runtime_error, "is TetGen installed?");
+  EXPECT_THROW_WITH(tetrahedralize(makeIcosphere(1.0, 1), o), std::runtime_error,
+                    "is TetGen installed?");
 }
 
 }  // namespace

@@ -40,8 +40,8 @@ TEST(AtomicFile, FailureInsideTheWriterKeepsTheOldFile) {
 TEST(AtomicFile, RenameFailureIsReportedAndCleanedUp) {
   test::TempDir dir;
   fs::create_directories(dir / "occupied" / "child");  // a non-empty folder cannot be replaced
-  EXPECT_THROW_WITH(writeFileAtomically(dir / "occupied", [](std::ostream& out) { out << "x"; }), OutputError,
-                    "cannot write");
+  EXPECT_THROW_WITH(writeFileAtomically(dir / "occupied", [](std::ostream& out) { out << "x"; }),
+                    OutputError, "cannot write");
   EXPECT_TRUE(fs::is_directory(dir / "occupied" / "child"));
   EXPECT_EQ(filesIn(dir.path()), 1u);
 }
@@ -53,7 +53,8 @@ TEST(AtomicFile, MissingFolderIsAClearError) {
 }
 
 TEST(AtomicFile, ReadingAMissingFileNamesIt) {
-  EXPECT_THROW_WITH(readWholeFile("/nonexistent/galsculpt.txt"), InputError, "/nonexistent/galsculpt.txt: cannot open");
+  EXPECT_THROW_WITH(readWholeFile("/nonexistent/galsculpt.txt"), InputError,
+                    "/nonexistent/galsculpt.txt: cannot open");
 }
 
 }  // namespace

@@ -76,7 +76,8 @@ TEST(GmshIo, ErrorsNameFileAndLine) {
       {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 1 1 1\n3 1 0 1\n1\n0 0 0\n$EndNodes\n"
        "$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n",
        "x.msh:13: unknown node tag 2"},
-      {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 999999999 1 1\n", "x.msh:5: node counts exceed"},
+      {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 999999999 1 1\n",
+       "x.msh:5: node counts exceed"},
       {"$MeshFormat\n4.1 0 8\n", "x.msh:2: unexpected end of file, expected $EndMeshFormat"},
   };
   for (const Case& c : cases) {

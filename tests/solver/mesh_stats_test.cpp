@@ -27,10 +27,12 @@ TEST(MeshStats, Cube) {
 
 TEST(MeshStats, TwoTetsSharingOnlyAnEdgeAreNotWatertight) {
   TetMesh m;
-  m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(1, -1, 0), Vec3(1, 0, -1)};
+  m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0),  Vec3(0, 1, 0),
+                Vec3(0, 0, 1), Vec3(1, -1, 0), Vec3(1, 0, -1)};
   m.tets = {{0, 1, 2, 3}, {0, 1, 4, 5}};
   for (Tet& t : m.tets) {
-    if (tetSixVolume(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]) < 0) std::swap(t[2], t[3]);
+    if (tetSixVolume(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]) < 0)
+      std::swap(t[2], t[3]);
   }
   const TetMeshStats s = computeStats(m);
   EXPECT_FALSE(s.watertight);

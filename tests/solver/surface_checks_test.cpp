@@ -32,7 +32,8 @@ TEST(SurfaceChecks, OpenSurfaceNamesABoundaryEdge) {
   m.faces.pop_back();
   const SurfaceTopology t = analyzeSurface(m);
   EXPECT_EQ(t.boundaryEdges, 3);
-  EXPECT_NE(t.describeProblem().find("open: 3 boundary edge(s)"), std::string::npos) << t.describeProblem();
+  EXPECT_NE(t.describeProblem().find("open: 3 boundary edge(s)"), std::string::npos)
+      << t.describeProblem();
 }
 
 TEST(SurfaceChecks, FlippedFaceIsInconsistent) {

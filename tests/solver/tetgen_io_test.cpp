@@ -22,7 +22,8 @@ TEST(TetGenIo, RoundTripKeepsCountsAndPositions) {
   const TetMesh back = readTetGen(dir / "cube.node", &report);
   ASSERT_EQ(back.numVertices(), 8);
   ASSERT_EQ(back.numTets(), 6);
-  for (int i = 0; i < 8; ++i) EXPECT_EQ(back.vertices[i], cube.vertices[i]) << "17 digits round-trip exactly";
+  for (int i = 0; i < 8; ++i)
+    EXPECT_EQ(back.vertices[i], cube.vertices[i]) << "17 digits round-trip exactly";
   EXPECT_EQ(back.tets, cube.tets);
   EXPECT_EQ(report.reorientedTets, 0);
   EXPECT_EQ(report.indexBase, 0);
@@ -100,7 +101,8 @@ TEST(TetGenIo, TruncatedAndCorruptedFilesNeverCrash) {
   for (int trial = 0; trial < 400; ++trial) {
     std::string n = node, e = ele;
     std::string& target = (trial % 2) ? n : e;
-    for (int k = 0; k < 1 + trial % 5; ++k) target[gen() % target.size()] = static_cast<char>(gen() & 0xff);
+    for (int k = 0; k < 1 + trial % 5; ++k)
+      target[gen() % target.size()] = static_cast<char>(gen() & 0xff);
     attempt(n, e);
   }
   for (int trial = 0; trial < 50; ++trial) {
@@ -120,7 +122,8 @@ TEST(TetGenIo, StemResolution) {
 
 TEST(TetGenIo, WriteIntoMissingFolderFailsAndLeavesNothing) {
   TempDir dir;
-  EXPECT_THROW_WITH(writeTetGen(dir / "missing" / "x", test::unitCubeTets()), OutputError, "does not exist");
+  EXPECT_THROW_WITH(writeTetGen(dir / "missing" / "x", test::unitCubeTets()), OutputError,
+                    "does not exist");
 }
 
 }  // namespace

@@ -30,10 +30,12 @@ TEST(VtkIo, WritesPointsCellsTypesAndCellData) {
 
 TEST(VtkIo, RejectsBadFields) {
   test::TempDir dir;
-  EXPECT_THROW_WITH(writeVtk(dir / "c.vtk", test::unitCubeTets(), {{"bad name", std::vector<double>(6)}}),
-                    OutputError, "without spaces");
-  EXPECT_THROW_WITH(writeVtk(dir / "c.vtk", test::unitCubeTets(), {{"short", std::vector<double>(2)}}),
-                    OutputError, "one value per tet");
+  EXPECT_THROW_WITH(
+      writeVtk(dir / "c.vtk", test::unitCubeTets(), {{"bad name", std::vector<double>(6)}}),
+      OutputError, "without spaces");
+  EXPECT_THROW_WITH(
+      writeVtk(dir / "c.vtk", test::unitCubeTets(), {{"short", std::vector<double>(2)}}),
+      OutputError, "one value per tet");
 }
 
 }  // namespace
