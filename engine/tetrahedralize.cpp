@@ -7,12 +7,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "engine/subprocess.h"
 #include "solver/atomic_file.h"
 #include "solver/input_error.h"
 #include "solver/surface_checks.h"
+#include "solver/surface_simplify.h"
 #include "solver/tetgen_io.h"
 
 namespace galsculpt {
@@ -76,6 +78,26 @@ std::string tetgenSwitches(const TetQuality& q, double bound) {
   return sw.str();
 }
 
+constexpr double kTetsPerSurfaceFace = 12.0;
+
+// A simplified copy with about `faces` faces that is still closed and free of crossings; none
+// when simplification cannot keep it so.
+std::optional<TriMesh> simplifyForMeshing(const TriMesh& surface, int faces,
+                                          const TetrahedralizeOptions& options) {
+  for (int attempt = 0; attempt < 3; ++attempt, faces = faces * 3 / 2) {
+    TriMesh coarse = simplifySurface(surface, std::max(faces, 100));
+    if (analyzeSurface(coarse).closedManifold() && findSelfIntersections(coarse, 1).empty()) {
+      if (options.progress) {
+        options.progress("simplified " + options.surfaceName + " from " +
+                         std::to_string(surface.numFaces()) + " to " +
+                         std::to_string(coarse.numFaces()) + " faces");
+      }
+      return coarse;
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 void checkMeshableSurface(const TriMesh& surface, const std::string& name) {
@@ -106,11 +128,14 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
   }
 
   TempDir dir;
-  const fs::path smesh = dir.path() / "input.smesh";
+  fs::path smesh = dir.path() / "input.smesh";
   writeSmesh(smesh, surface);
+  // TetGen writes its result beside its input: input.smesh -> input.1.node / .ele.
+  auto resultStem = [&]() { return fs::path(smesh).replace_extension(".1"); };
 
   const double target = options.targetTets;
   const double tolerance = options.tolerance;
+  bool simplified = false;
   int attempts = 0;
   long long bestCount = -1;
   std::string bestSwitches;
@@ -130,7 +155,7 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
                                " (switches " + sw + ")" +
                                (r.logTail.empty() ? "" : ":\n" + r.logTail));
     }
-    const long long count = countTets(dir.path() / "input.1.ele");
+    const long long count = countTets(fs::path(resultStem()).concat(".ele"));
     if (count <= 0) throw std::runtime_error("tetgen wrote no tets for " + options.surfaceName);
     ++attempts;
     if (options.progress) {
@@ -147,7 +172,7 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
   };
   auto accept = [&](const TetQuality& q, double bound) {
     TetrahedralizeResult result;
-    result.mesh = readTetGen(dir.path() / "input.1");
+    result.mesh = readTetGen(resultStem());
     result.mesh.faces.clear();
     result.mesh.faceMarkers.clear();
     result.mesh.vertexMarkers.clear();
@@ -157,7 +182,27 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
     return result;
   };
 
-  for (const TetQuality& level : qualityLevels(options.radiusEdgeRatio)) {
+  const std::vector<TetQuality> levels = qualityLevels(options.radiusEdgeRatio);
+  for (size_t li = 0; li < levels.size(); ++li) {
+    const TetQuality& level = levels[li];
+    // With the surface kept as given TetGen still needs about 3 tets per surface face: a surface
+    // with more faces than that allows is simplified before any run.
+    const bool hopeless = surface.numFaces() * 3.0 > target * (1.0 + tolerance);
+    if ((li == 2 || (li == 0 && hopeless)) && !simplified) {
+      // The surface as given forces too many tets even when kept as is: simplify it to about
+      // one face per kFacesPerTet tets and start over with the strict levels.
+      simplified = true;
+      const int faces = static_cast<int>(target / kTetsPerSurfaceFace);
+      if (surface.numFaces() > faces) {
+        if (auto coarse = simplifyForMeshing(surface, faces, options)) {
+          surface = std::move(*coarse);
+          smesh = dir.path() / "simplified.smesh";
+          writeSmesh(smesh, surface);
+          li = static_cast<size_t>(-1);  // restart at the strictest level
+          continue;
+        }
+      }
+    }
     // The fewest tets this quality allows: with no volume bound, only the surface and the
     // quality bound place points. A surface finer than the target needs relaxes the quality.
     const long long fewest = run(level, 0.0);

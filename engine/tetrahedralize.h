@@ -7,8 +7,9 @@
 // from volume / N is never enough. Where the count jumps across the target within a 1 % change
 // of the bound, the quality bound is nudged (a few percent) and the search resumes. A surface
 // finer than N tets allow (a scanned model with 50k triangles meshed to 40k tets) first forces
-// more tets than wanted; the quality is then relaxed step by step (keep the surface as given,
-// looser radius-edge bounds), each step probed once without a volume bound.
+// more tets than wanted. Then, in order: keep the surface as given (-Y); simplify the surface
+// (quadric edge collapses, to about one face per 12 tets) and try the strict levels again;
+// relax the radius-edge bound step by step. Each level is probed once without a volume bound.
 #pragma once
 
 #include <functional>

@@ -33,6 +33,22 @@ TEST(Tetrahedralize, CharpyBarAtTwoSizes) {
   }
 }
 
+TEST(Tetrahedralize, ASurfaceFinerThanTheCountAllowsIsSimplified) {
+  const TriMesh fine = makeIcosphere(0.1, 5);  // 20480 faces: far more than 3000 tets allow
+  TetrahedralizeOptions o;
+  o.targetTets = 3000;
+  std::vector<std::string> log;
+  o.progress = [&](const std::string& line) { log.push_back(line); };
+  const TetrahedralizeResult r = tetrahedralize(fine, o);
+  EXPECT_NEAR(r.mesh.numTets(), 3000, 0.15 * 3000);
+  const TetMeshStats s = computeStats(r.mesh);
+  EXPECT_TRUE(s.watertight);
+  EXPECT_NEAR(s.volume / enclosedVolume(fine), 1.0, 0.03);
+  bool simplified = false;
+  for (const std::string& line : log) simplified |= line.rfind("simplified", 0) == 0;
+  EXPECT_TRUE(simplified);
+}
+
 TEST(Tetrahedralize, InsideOutSurfaceIsFlippedNotRejected) {
   TriMesh m = makeIcosphere(1.0, 1);
   for (Tri& f : m.faces) std::swap(f[1], f[2]);
