@@ -5,23 +5,16 @@
 #include <cmath>
 
 #include "solver/surface_checks.h"
+#include "tests/surface_expectations.h"
 
 namespace galsculpt {
 namespace {
-
-void expectClosedEmbedded(const TriMesh& m) {
-  const SurfaceTopology topo = analyzeSurface(m);
-  EXPECT_TRUE(topo.closedManifold()) << topo.describeProblem();
-  EXPECT_EQ(topo.pieces, 1);
-  EXPECT_TRUE(findSelfIntersections(m).empty());
-  EXPECT_GT(enclosedVolume(m), 0.0) << "outward orientation";
-}
 
 TEST(ShapeGenerators, IcosphereApproachesTheSphere) {
   const TriMesh m = makeIcosphere(0.1, 3);
   EXPECT_EQ(m.numFaces(), 1280);
   EXPECT_EQ(m.numVertices(), 642);
-  expectClosedEmbedded(m);
+  test::expectClosedEmbedded(m);
   const double exact = 4.0 / 3.0 * M_PI * 1e-3;
   EXPECT_NEAR(enclosedVolume(m) / exact, 1.0, 0.02);
   for (const Vec3& v : m.vertices) EXPECT_NEAR(v.norm(), 0.1, 1e-12);
@@ -29,7 +22,7 @@ TEST(ShapeGenerators, IcosphereApproachesTheSphere) {
 
 TEST(ShapeGenerators, CharpyBarHasTheStandardDimensionsAndNotch) {
   const TriMesh m = makeCharpyBar();
-  expectClosedEmbedded(m);
+  test::expectClosedEmbedded(m);
   const BoundingBox box = boundingBox(m.vertices);
   EXPECT_NEAR(box.size().x(), 0.055, 1e-12);
   EXPECT_NEAR(box.size().y(), 0.010, 1e-12);
@@ -43,7 +36,7 @@ TEST(ShapeGenerators, SteakIsDeterministicLumpyAndClosed) {
   const TriMesh a = makeSteakSlab(0.005);
   const TriMesh b = makeSteakSlab(0.005);
   EXPECT_EQ(a.vertices, b.vertices);
-  expectClosedEmbedded(a);
+  test::expectClosedEmbedded(a);
   const BoundingBox box = boundingBox(a.vertices);
   EXPECT_GT(box.size().x(), 0.15);
   EXPECT_LT(box.size().y(), 0.05);

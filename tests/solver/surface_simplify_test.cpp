@@ -4,23 +4,17 @@
 
 #include "solver/shape_generators.h"
 #include "solver/surface_checks.h"
+#include "tests/surface_expectations.h"
 
 namespace galsculpt {
 namespace {
-
-void expectClosedAndClean(const TriMesh& m) {
-  const SurfaceTopology t = analyzeSurface(m);
-  EXPECT_TRUE(t.closedManifold()) << t.describeProblem();
-  EXPECT_EQ(t.pieces, 1);
-  EXPECT_TRUE(findSelfIntersections(m, 1).empty());
-}
 
 TEST(SurfaceSimplify, SphereKeepsShapeAndTopology) {
   const TriMesh fine = makeIcosphere(1.0, 4);  // 5120 faces
   const TriMesh coarse = simplifySurface(fine, 500);
   EXPECT_LE(coarse.numFaces(), 500);
   EXPECT_GE(coarse.numFaces(), 480) << "collapses remove two faces at a time";
-  expectClosedAndClean(coarse);
+  test::expectClosedEmbedded(coarse);
   EXPECT_NEAR(enclosedVolume(coarse) / enclosedVolume(fine), 1.0, 0.03);
   for (const Vec3& v : coarse.vertices)
     EXPECT_NEAR(v.norm(), 1.0, 0.03) << "vertices stay near the sphere";
@@ -30,7 +24,7 @@ TEST(SurfaceSimplify, NonConvexSlabStaysEmbedded) {
   const TriMesh fine = makeSteakSlab(0.003);
   const TriMesh coarse = simplifySurface(fine, fine.numFaces() / 10);
   EXPECT_LE(coarse.numFaces(), fine.numFaces() / 10);
-  expectClosedAndClean(coarse);
+  test::expectClosedEmbedded(coarse);
   EXPECT_NEAR(enclosedVolume(coarse) / enclosedVolume(fine), 1.0, 0.03);
 }
 
@@ -39,7 +33,7 @@ TEST(SurfaceSimplify, FlatFacesCollapseWithoutError) {
   // whatever is collapsed must leave a valid closed surface with the same volume.
   const TriMesh bar = makeCharpyBar();
   const TriMesh out = simplifySurface(bar, 4);
-  expectClosedAndClean(out);
+  test::expectClosedEmbedded(out);
   EXPECT_GE(out.numFaces(), 4);
 }
 
