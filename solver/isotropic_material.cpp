@@ -16,7 +16,8 @@ Lame lameFromYoungPoisson(double e, double nu) {
   return {e / (2.0 * (1.0 + nu)), e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))};
 }
 
-SingularValueEnergy evaluateSingularValueEnergy(MaterialModel model, const Lame& lame, const Eigen::Vector3d& s) {
+SingularValueEnergy evaluateSingularValueEnergy(MaterialModel model, const Lame& lame,
+                                                const Eigen::Vector3d& s) {
   SingularValueEnergy out;
   const double mu = lame.mu, lambda = lame.lambda;
   switch (model) {
@@ -25,7 +26,8 @@ SingularValueEnergy evaluateSingularValueEnergy(MaterialModel model, const Lame&
       // mu sum (s_i - 1)^2 + lambda/2 (sum s_i - 3)^2.
       const double trace = s.sum() - 3.0;
       out.energy = mu * (s.array() - 1.0).square().sum() + 0.5 * lambda * trace * trace;
-      out.gradient = 2.0 * mu * (s.array() - 1.0).matrix() + Eigen::Vector3d::Constant(lambda * trace);
+      out.gradient =
+          2.0 * mu * (s.array() - 1.0).matrix() + Eigen::Vector3d::Constant(lambda * trace);
       out.hessian = 2.0 * mu * Eigen::Matrix3d::Identity() + Eigen::Matrix3d::Constant(lambda);
       break;
     }
@@ -38,7 +40,8 @@ SingularValueEnergy evaluateSingularValueEnergy(MaterialModel model, const Lame&
       out.gradient = (dPsiDe * s.array()).matrix();
       for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) {
-          out.hessian(i, j) = s[i] * s[j] * (lambda + (i == j ? 2.0 * mu : 0.0)) + (i == j ? dPsiDe[i] : 0.0);
+          out.hessian(i, j) =
+              s[i] * s[j] * (lambda + (i == j ? 2.0 * mu : 0.0)) + (i == j ? dPsiDe[i] : 0.0);
         }
       }
       break;
@@ -54,14 +57,16 @@ SingularValueEnergy evaluateSingularValueEnergy(MaterialModel model, const Lame&
       const double j = s.prod();
       const Eigen::Vector3d cofactor(s[1] * s[2], s[0] * s[2], s[0] * s[1]);  // dJ/ds_i
       // Shifted by its rest value so that the undeformed state stores no energy.
-      const double restEnergy = 0.5 * lambdaS * (1.0 - alpha) * (1.0 - alpha) - 0.5 * muS * std::log(4.0);
+      const double restEnergy =
+          0.5 * lambdaS * (1.0 - alpha) * (1.0 - alpha) - 0.5 * muS * std::log(4.0);
       out.energy = 0.5 * muS * (ic - 3.0) + 0.5 * lambdaS * (j - alpha) * (j - alpha) -
                    0.5 * muS * std::log(ic + 1.0) - restEnergy;
       const double shear = muS * (1.0 - 1.0 / (ic + 1.0));
       out.gradient = shear * s + lambdaS * (j - alpha) * cofactor;
       for (int a = 0; a < 3; ++a) {
         for (int b = 0; b < 3; ++b) {
-          double h = 2.0 * muS * s[a] * s[b] / ((ic + 1.0) * (ic + 1.0)) + lambdaS * cofactor[a] * cofactor[b];
+          double h = 2.0 * muS * s[a] * s[b] / ((ic + 1.0) * (ic + 1.0)) +
+                     lambdaS * cofactor[a] * cofactor[b];
           if (a == b) {
             h += shear;
           } else {

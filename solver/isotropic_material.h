@@ -23,12 +23,13 @@ struct Lame {
 Lame lameFromYoungPoisson(double youngsModulus, double poissonRatio);
 
 struct SingularValueEnergy {
-  double energy = 0.0;                              // per unit rest volume (J/m^3)
+  double energy = 0.0;                                 // per unit rest volume (J/m^3)
   Eigen::Vector3d gradient = Eigen::Vector3d::Zero();  // dPsi/ds_i
   Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();   // d2Psi/ds_i ds_j
 };
 
 // `s` are the signed singular values (s3 < 0 for an inverted element).
-SingularValueEnergy evaluateSingularValueEnergy(MaterialModel model, const Lame& lame, const Eigen::Vector3d& s);
+SingularValueEnergy evaluateSingularValueEnergy(MaterialModel model, const Lame& lame,
+                                                const Eigen::Vector3d& s);
 
 }  // namespace galsculpt

@@ -28,7 +28,9 @@ RotationSvd rotationVariantSvd(const Eigen::Matrix3d& f) {
   return r;
 }
 
-Eigen::Matrix<double, 9, 1> vecOf(const Eigen::Matrix3d& m) { return Eigen::Map<const Eigen::Matrix<double, 9, 1>>(m.data()); }
+Eigen::Matrix<double, 9, 1> vecOf(const Eigen::Matrix3d& m) {
+  return Eigen::Map<const Eigen::Matrix<double, 9, 1>>(m.data());
+}
 
 // Quotient (a / b) with b kept away from zero, and its limit where numerator and denominator
 // vanish together (equal singular values).
@@ -49,7 +51,8 @@ Mat9 eigenSystemHessian(const RotationSvd& svd, const SingularValueEnergy& e, bo
   // Scaling modes: the 3x3 Hessian in singular values.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> scaling(e.hessian);
   for (int m = 0; m < 3; ++m) {
-    add(scaling.eigenvalues()[m], svd.u * scaling.eigenvectors().col(m).asDiagonal() * svd.v.transpose());
+    add(scaling.eigenvalues()[m],
+        svd.u * scaling.eigenvectors().col(m).asDiagonal() * svd.v.transpose());
   }
   // Twist and flip modes of each pair of singular values.
   const double invSqrt2 = 1.0 / std::sqrt(2.0);
@@ -78,8 +81,8 @@ Eigen::Matrix3d symmetricMatrix(const Eigen::Matrix<double, 6, 1>& v) {
 
 }  // namespace
 
-void evaluateEdgeStrainElement(const Lame& lame, const TetRest& rest, const TetPoints& x, const EdgeDamage& damage,
-                     HessianMode mode, ElementEval& out) {
+void evaluateEdgeStrainElement(const Lame& lame, const TetRest& rest, const TetPoints& x,
+                               const EdgeDamage& damage, HessianMode mode, ElementEval& out) {
   // Isotropic elasticity on (E11,E22,E33,E12,E13,E23); shear entries count twice in E:E.
   Eigen::Matrix<double, 6, 6> c = Eigen::Matrix<double, 6, 6>::Zero();
   c.topLeftCorner<3, 3>().setConstant(lame.lambda);
@@ -126,7 +129,8 @@ void evaluateEdgeStrainElement(const Lame& lame, const TetRest& rest, const TetP
 
 namespace {
 
-Eigen::Matrix3d damagedGreenStrain(const TetRest& rest, const TetPoints& x, const EdgeDamage& damage) {
+Eigen::Matrix3d damagedGreenStrain(const TetRest& rest, const TetPoints& x,
+                                   const EdgeDamage& damage) {
   Eigen::Matrix<double, 6, 1> strain;
   for (int e = 0; e < 6; ++e) {
     const Eigen::Vector3d d = x[kTetEdges[e][1]] - x[kTetEdges[e][0]];
@@ -160,7 +164,8 @@ TetRest computeTetRest(const TetPoints& p) {
     const Eigen::Vector3d d = p[kTetEdges[e][1]] - p[kTetEdges[e][0]];
     r.restLengthSq[e] = d.squaredNorm();
     const Eigen::Vector3d n = d / d.norm();
-    b.row(e) << n.x() * n.x(), n.y() * n.y(), n.z() * n.z(), 2 * n.x() * n.y(), 2 * n.x() * n.z(), 2 * n.y() * n.z();
+    b.row(e) << n.x() * n.x(), n.y() * n.y(), n.z() * n.z(), 2 * n.x() * n.y(), 2 * n.x() * n.z(),
+        2 * n.y() * n.z();
   }
   r.strainFromEdges = b.inverse();
   return r;
@@ -178,7 +183,8 @@ Eigen::Matrix3d firstPiolaStress(MaterialModel model, const Lame& lame, const Ei
   return svd.u * e.gradient.asDiagonal() * svd.v.transpose();
 }
 
-Mat9 stressDerivative(MaterialModel model, const Lame& lame, const Eigen::Matrix3d& f, bool projectSpd) {
+Mat9 stressDerivative(MaterialModel model, const Lame& lame, const Eigen::Matrix3d& f,
+                      bool projectSpd) {
   const RotationSvd svd = rotationVariantSvd(f);
   return eigenSystemHessian(svd, evaluateSingularValueEnergy(model, lame, svd.s), projectSpd);
 }

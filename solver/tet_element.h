@@ -32,10 +32,10 @@ inline constexpr std::uint8_t kAllEdgesIntact = 0x3f;
 
 // Rest-shape data computed once per element.
 struct TetRest {
-  Eigen::Matrix3d dmInverse;             // inverse of [X1-X0, X2-X0, X3-X0]
-  double volume = 0.0;                   // rest volume (m^3)
-  Eigen::Matrix<double, 9, 12> dFdx;     // d vec(F) / d x, column-major vec
-  std::array<double, 6> restLengthSq{};  // |D_k|^2
+  Eigen::Matrix3d dmInverse;                    // inverse of [X1-X0, X2-X0, X3-X0]
+  double volume = 0.0;                          // rest volume (m^3)
+  Eigen::Matrix<double, 9, 12> dFdx;            // d vec(F) / d x, column-major vec
+  std::array<double, 6> restLengthSq{};         // |D_k|^2
   Eigen::Matrix<double, 6, 6> strainFromEdges;  // B^-1: (E11,E22,E33,E12,E13,E23) from eps
 };
 
@@ -55,7 +55,8 @@ Eigen::Matrix3d deformationGradient(const TetRest& rest, const TetPoints& x);
 // First Piola-Kirchhoff stress P = dPsi/dF of an intact element.
 Eigen::Matrix3d firstPiolaStress(MaterialModel model, const Lame& lame, const Eigen::Matrix3d& f);
 // dP/dF (9x9, column-major vec), exact or projected to SPD.
-Mat9 stressDerivative(MaterialModel model, const Lame& lame, const Eigen::Matrix3d& f, bool projectSpd);
+Mat9 stressDerivative(MaterialModel model, const Lame& lame, const Eigen::Matrix3d& f,
+                      bool projectSpd);
 
 struct EdgeDamage {
   std::uint8_t intact = kAllEdgesIntact;  // bit k set: edge k (kTetEdges order) is intact
@@ -64,8 +65,8 @@ struct EdgeDamage {
 
 // The graph-based form alone: St. Venant-Kirchhoff in the masked edge strains. With every
 // edge intact it equals the StVK model exactly. evaluateElement uses it for damaged elements.
-void evaluateEdgeStrainElement(const Lame& lame, const TetRest& rest, const TetPoints& x, const EdgeDamage& damage,
-                               HessianMode mode, ElementEval& out);
+void evaluateEdgeStrainElement(const Lame& lame, const TetRest& rest, const TetPoints& x,
+                               const EdgeDamage& damage, HessianMode mode, ElementEval& out);
 
 // Energy, gradient and (optionally) Hessian of one element: the model itself when intact, the
 // graph-based form when any edge is damaged.

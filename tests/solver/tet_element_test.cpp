@@ -8,11 +8,12 @@ namespace galsculpt {
 namespace {
 
 const Lame kLame = lameFromYoungPoisson(1e5, 0.4);
-const MaterialModel kModels[] = {MaterialModel::Corotational, MaterialModel::StVK, MaterialModel::StableNeoHookean};
+const MaterialModel kModels[] = {MaterialModel::Corotational, MaterialModel::StVK,
+                                 MaterialModel::StableNeoHookean};
 
 TetPoints restTet() {
-  return {Eigen::Vector3d(0.0, 0.0, 0.0), Eigen::Vector3d(1.0, 0.1, 0.0), Eigen::Vector3d(0.2, 0.9, 0.1),
-          Eigen::Vector3d(0.1, 0.2, 1.1)};
+  return {Eigen::Vector3d(0.0, 0.0, 0.0), Eigen::Vector3d(1.0, 0.1, 0.0),
+          Eigen::Vector3d(0.2, 0.9, 0.1), Eigen::Vector3d(0.1, 0.2, 1.1)};
 }
 
 TetPoints deformed(const TetPoints& rest, double amount, unsigned seed) {
@@ -35,7 +36,8 @@ TetPoints unflat(const Vec12& v) {
   return x;
 }
 
-ElementEval eval(MaterialModel m, const TetRest& r, const TetPoints& x, EdgeDamage d, HessianMode mode) {
+ElementEval eval(MaterialModel m, const TetRest& r, const TetPoints& x, EdgeDamage d,
+                 HessianMode mode) {
   ElementEval out;
   evaluateElement(m, kLame, r, x, d, mode, out);
   return out;
@@ -50,7 +52,8 @@ std::vector<Case> allCases() {
   std::vector<Case> cases;
   for (MaterialModel m : kModels) cases.push_back({m, EdgeDamage{}});
   for (std::uint8_t mask : {0x3e, 0x38, 0x15, 0x00}) {
-    for (bool resists : {true, false}) cases.push_back({MaterialModel::StVK, EdgeDamage{mask, resists}});
+    for (bool resists : {true, false})
+      cases.push_back({MaterialModel::StVK, EdgeDamage{mask, resists}});
   }
   return cases;
 }
@@ -130,7 +133,8 @@ TEST(TetElement, SmallStrainsAgreeWithLinearElasticity) {
   h << 0.3, -0.2, 0.5, 0.1, -0.4, 0.2, 0.6, 0.3, 0.1;
   const double eps = 1e-6;
   const Eigen::Matrix3d strain = 0.5 * eps * (h + h.transpose());
-  const Eigen::Matrix3d linear = 2 * kLame.mu * strain + kLame.lambda * strain.trace() * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d linear =
+      2 * kLame.mu * strain + kLame.lambda * strain.trace() * Eigen::Matrix3d::Identity();
   for (MaterialModel m : kModels) {
     const Eigen::Matrix3d p = firstPiolaStress(m, kLame, Eigen::Matrix3d::Identity() + eps * h);
     EXPECT_LT((p - linear).norm(), 1e-4 * linear.norm()) << static_cast<int>(m);
@@ -170,13 +174,17 @@ TEST(TetElement, DamagedEdgesStillResistCompressionUnlessToldNot) {
   const TetRest r = computeTetRest(rest);
   TetPoints squeezed = rest;
   squeezed[1] = rest[0] + 0.5 * (rest[1] - rest[0]);  // edge 0-1 at half length
-  const ElementEval resists = eval(MaterialModel::StVK, r, squeezed, EdgeDamage{0x3e, true}, HessianMode::None);
-  const ElementEval yields = eval(MaterialModel::StVK, r, squeezed, EdgeDamage{0x3e, false}, HessianMode::None);
+  const ElementEval resists =
+      eval(MaterialModel::StVK, r, squeezed, EdgeDamage{0x3e, true}, HessianMode::None);
+  const ElementEval yields =
+      eval(MaterialModel::StVK, r, squeezed, EdgeDamage{0x3e, false}, HessianMode::None);
   EXPECT_GT(resists.energy, yields.energy);
   TetPoints stretched = rest;
   stretched[1] = rest[0] + 1.5 * (rest[1] - rest[0]);
-  const ElementEval a = eval(MaterialModel::StVK, r, stretched, EdgeDamage{0x3e, true}, HessianMode::None);
-  const ElementEval b = eval(MaterialModel::StVK, r, stretched, EdgeDamage{0x3e, false}, HessianMode::None);
+  const ElementEval a =
+      eval(MaterialModel::StVK, r, stretched, EdgeDamage{0x3e, true}, HessianMode::None);
+  const ElementEval b =
+      eval(MaterialModel::StVK, r, stretched, EdgeDamage{0x3e, false}, HessianMode::None);
   EXPECT_DOUBLE_EQ(a.energy, b.energy) << "in tension a damaged edge carries nothing either way";
 }
 
@@ -186,7 +194,8 @@ TEST(TetElement, InvertedStableNeoHookeanStaysFiniteAndPushesBack) {
   TetPoints inverted = rest;
   inverted[3] = Eigen::Vector3d(0.3, 0.3, -0.5);  // through the opposite face
   EXPECT_LT(deformationGradient(r, inverted).determinant(), 0.0);
-  const ElementEval e = eval(MaterialModel::StableNeoHookean, r, inverted, EdgeDamage{}, HessianMode::ProjectedSpd);
+  const ElementEval e =
+      eval(MaterialModel::StableNeoHookean, r, inverted, EdgeDamage{}, HessianMode::ProjectedSpd);
   EXPECT_TRUE(std::isfinite(e.energy));
   EXPECT_TRUE(e.gradient.allFinite());
   EXPECT_TRUE(e.hessian.allFinite());
@@ -205,8 +214,9 @@ TEST(TetElement, EdgeNormalStressIsTheFullProjection) {
     const std::array<double, 6> stress = edgeNormalStress(m, kLame, r, x, EdgeDamage{});
     for (int e = 0; e < 6; ++e) {
       const Eigen::Vector3d n = (x[kTetEdges[e][1]] - x[kTetEdges[e][0]]).normalized();
-      const double expected = s(0, 0) * n.x() * n.x() + s(1, 1) * n.y() * n.y() + s(2, 2) * n.z() * n.z() +
-                              2 * s(0, 1) * n.x() * n.y() + 2 * s(0, 2) * n.x() * n.z() + 2 * s(1, 2) * n.y() * n.z();
+      const double expected = s(0, 0) * n.x() * n.x() + s(1, 1) * n.y() * n.y() +
+                              s(2, 2) * n.z() * n.z() + 2 * s(0, 1) * n.x() * n.y() +
+                              2 * s(0, 2) * n.x() * n.z() + 2 * s(1, 2) * n.y() * n.z();
       EXPECT_NEAR(stress[e], expected, 1e-9 * s.norm());
     }
   }
@@ -215,15 +225,16 @@ TEST(TetElement, EdgeNormalStressIsTheFullProjection) {
 TEST(TetElement, UniaxialTensionLoadsTheAlignedEdgeOnly) {
   // A right-corner tet stretched along x: sigma = diag(sxx, 0, 0) for a material with nu = 0.
   const Lame noPoisson = lameFromYoungPoisson(1e6, 0.0);
-  const TetPoints rest = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0),
-                          Eigen::Vector3d(0, 0, 1)};
+  const TetPoints rest = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
+                          Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, 0, 1)};
   const TetRest r = computeTetRest(rest);
   TetPoints x = rest;
   x[1].x() = 1.001;
-  const std::array<double, 6> s = edgeNormalStress(MaterialModel::Corotational, noPoisson, r, x, EdgeDamage{});
-  EXPECT_NEAR(s[0], 1e6 * 0.001, 2.0);   // edge 0-1 along x: E * strain
-  EXPECT_NEAR(s[1], 0.0, 1e-6);          // edge 0-2 along y
-  EXPECT_NEAR(s[3], 0.5 * s[0], 2.0);    // edge 1-2 at 45 degrees: cos^2 = 1/2
+  const std::array<double, 6> s =
+      edgeNormalStress(MaterialModel::Corotational, noPoisson, r, x, EdgeDamage{});
+  EXPECT_NEAR(s[0], 1e6 * 0.001, 2.0);  // edge 0-1 along x: E * strain
+  EXPECT_NEAR(s[1], 0.0, 1e-6);         // edge 0-2 along y
+  EXPECT_NEAR(s[3], 0.5 * s[0], 2.0);   // edge 1-2 at 45 degrees: cos^2 = 1/2
 }
 
 }  // namespace

@@ -1,0 +1,65 @@
+// The fixed part of a simulation (rest mesh, per-element rest data, material, edge graph,
+// sparsity pattern, scatter map, element colouring) apart from the changing state (positions,
+// velocities, damage). One pipeline of plain functions works on them:
+//   SimModel model = buildSimModel(mesh, material);
+//   SimState state = initialState(model);
+//   StepReport r = step(model, state, settings);      // solver/step.h
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "block_sparse.h"
+#include "isotropic_material.h"
+#include "tet_element.h"
+#include "tet_mesh.h"
+
+namespace galsculpt {
+
+struct MaterialParams {
+  MaterialModel model = MaterialModel::StableNeoHookean;
+  Lame lame;
+  double density = 1000.0;  // kg/m^3
+};
+
+struct SimModel {
+  TetMesh mesh;  // rest configuration
+  MaterialParams material;
+  std::vector<TetRest> rest;  // (nTets)
+  std::vector<double> mass;   // (nVerts) lumped, kg
+  std::vector<Edge> edges;    // (nEdges) unique, sorted
+  std::vector<std::array<int, 6>>
+      tetEdges;                          // (nTets) global edge of each local edge (kTetEdges order)
+  BlockPattern pattern;                  // 3x3 blocks: vertex-vertex over mesh edges
+  std::vector<TetScatter> scatter;       // (nTets)
+  std::vector<std::vector<int>> colors;  // tets grouped so that no two in a group share a vertex
+
+  int numVertices() const { return mesh.numVertices(); }
+  int numTets() const { return mesh.numTets(); }
+  int numEdges() const { return static_cast<int>(edges.size()); }
+};
+
+// Throws std::invalid_argument for a degenerate tet.
+SimModel buildSimModel(const TetMesh& mesh, const MaterialParams& material);
+
+struct StepWorkspace;  // solver scratch kept between frames (factorization pattern, buffers)
+
+struct SimState {
+  std::vector<Vec3> x;                // (nVerts) positions, m
+  std::vector<Vec3> v;                // (nVerts) velocities, m/s
+  std::vector<std::uint8_t> damaged;  // (nEdges) 1 = damaged for good
+  double time = 0.0;                  // s
+  std::shared_ptr<StepWorkspace> workspace;
+};
+
+SimState initialState(const SimModel& model);
+
+// The damage pattern of one tet as an EdgeDamage bit mask.
+EdgeDamage tetDamage(const SimModel& model, const SimState& state, int tet,
+                     bool compressionResists);
+
+// Connected parts over undamaged edges (isolated vertices count as their own piece).
+int countDamagePieces(const SimModel& model, const SimState& state);
+
+}  // namespace galsculpt

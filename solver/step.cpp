@@ -1,0 +1,275 @@
+#include "step.h"
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace galsculpt {
+
+struct StepWorkspace {
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  bool analyzed = false;
+};
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+Eigen::VectorXd flatten(const std::vector<Vec3>& v) {
+  Eigen::VectorXd out(3 * v.size());
+  for (size_t i = 0; i < v.size(); ++i) out.segment<3>(3 * i) = v[i];
+  return out;
+}
+
+void unflatten(const Eigen::VectorXd& in, std::vector<Vec3>& v) {
+  for (size_t i = 0; i < v.size(); ++i) v[i] = in.segment<3>(3 * i);
+}
+
+struct SubstepResult {
+  bool ok = true;
+  int iterations = 0;
+  int backtracks = 0;
+  double residual = 0.0;
+  double energy = 0.0;
+  double msElements = 0.0, msSolve = 0.0;
+};
+
+// One backward-Euler sub-step of length h from `state`; false when it failed (NaN, no descent).
+SubstepResult substep(const SimModel& model, SimState& state, const StepSettings& s, double h,
+                      StepWorkspace& ws) {
+  SubstepResult result;
+  const int n = model.numVertices();
+  const Eigen::VectorXd xn = flatten(state.x);
+  const Eigen::VectorXd vn = flatten(state.v);
+  Eigen::VectorXd mass(3 * n), fext(3 * n);
+  for (int i = 0; i < n; ++i) {
+    mass.segment<3>(3 * i).setConstant(model.mass[i]);
+    fext.segment<3>(3 * i) = model.mass[i] * s.gravity;
+  }
+  const Eigen::VectorXd xhat = xn + h * vn;
+
+  // Anchored DOFs start (and stay) on their prescribed path.
+  std::vector<char> fixed(n, 0);
+  Eigen::VectorXd x = xn;
+  for (const AnchorConstraint& a : s.anchors) {
+    const Vec3 offset = anchorOffset(a, state.time + h);
+    for (int v : a.vertices) {
+      fixed[v] = 1;
+      x.segment<3>(3 * v) = model.mesh.vertices[v] + offset;
+    }
+  }
+
+  BlockSparseMatrix k(model.pattern);
+  Eigen::VectorXd gradient(3 * n);
+  BlockSparseMatrix dampingStiffness(model.pattern);  // beta K(x_n), frozen for the step
+  const double modelSize = std::max(boundingBox(model.mesh.vertices).size().norm(), 1e-12);
+  const double weight = std::max(fext.norm(), 1e-12 * mass.sum());
+
+  auto objective = [&](const Eigen::VectorXd& y, double elastic, const Eigen::VectorXd& dampedK) {
+    const Eigen::VectorXd inertia = y - xhat;
+    const Eigen::VectorXd dx = y - xn;
+    return 0.5 / (h * h) * inertia.dot(mass.cwiseProduct(inertia)) + elastic - fext.dot(y) +
+           0.5 / h * (s.dampingMass * dx.dot(mass.cwiseProduct(dx)) + dx.dot(dampedK));
+  };
+
+  double trialEnergy = 0.0;  // elastic energy at the accepted iterate
+  for (int it = 0; it < s.newtonIterations; ++it) {
+    std::vector<Vec3> positions(n);
+    unflatten(x, positions);
+    auto t0 = Clock::now();
+    const double elastic =
+        assembleElastic(model, positions, state.damaged, s.compressionResists, gradient, &k);
+    result.msElements += msSince(t0);
+    if (it == 0) {
+      for (size_t b = 0; b < k.blocks.size(); ++b)
+        dampingStiffness.blocks[b] = s.dampingStiffness * k.blocks[b];
+    }
+    Eigen::VectorXd dampedK;  // beta K0 (x - x_n)
+    dampingStiffness.multiply(x - xn, dampedK);
+    const Eigen::VectorXd dx = x - xn;
+    Eigen::VectorXd g = mass.cwiseProduct(x - xhat) / (h * h) + gradient - fext +
+                        (s.dampingMass * mass.cwiseProduct(dx) + dampedK) / h;
+    for (int v = 0; v < n; ++v) {
+      if (fixed[v]) g.segment<3>(3 * v).setZero();
+    }
+    result.residual = g.norm() / weight;
+    if (!g.allFinite() || !std::isfinite(elastic)) {
+      result.ok = false;
+      return result;
+    }
+
+    // H = M/h^2 + K + (alpha M + beta K0)/h, anchored rows and columns replaced by identity.
+    t0 = Clock::now();
+    BlockSparseMatrix hm(model.pattern);
+    for (size_t b = 0; b < k.blocks.size(); ++b)
+      hm.blocks[b] = k.blocks[b] + dampingStiffness.blocks[b] / h;
+    for (int v = 0; v < n; ++v) {
+      hm.blocks[model.pattern.diagonal[v]] +=
+          model.mass[v] * (1.0 / (h * h) + s.dampingMass / h) * Eigen::Matrix3d::Identity();
+    }
+    for (int r = 0; r < n; ++r) {
+      for (int kk = model.pattern.rowStart[r]; kk < model.pattern.rowStart[r + 1]; ++kk) {
+        const int c = model.pattern.columns[kk];
+        if (fixed[r] || fixed[c])
+          hm.blocks[kk] = Eigen::Matrix3d::Identity() * (r == c ? 1.0 : 0.0);
+      }
+    }
+    const Eigen::SparseMatrix<double> a = hm.toEigen();
+    if (!ws.analyzed) {
+      ws.ldlt.analyzePattern(a);
+      ws.analyzed = true;
+    }
+    ws.ldlt.factorize(a);
+    if (ws.ldlt.info() != Eigen::Success) {
+      result.ok = false;
+      return result;
+    }
+    const Eigen::VectorXd delta = ws.ldlt.solve(-g);
+    result.msSolve += msSince(t0);
+    if (!delta.allFinite()) {
+      result.ok = false;
+      return result;
+    }
+    ++result.iterations;
+
+    // Backtrack along the Newton direction until the incremental potential decreases: with
+    // lineSearch, by the Armijo condition; otherwise (the paper's one-step solver) only when the
+    // full step would increase it, which is what turns a huge load into an explosion.
+    const double e0 = objective(x, elastic, dampedK);
+    const double slope = g.dot(delta);
+    const double sufficient = s.lineSearch ? 1e-4 : 0.0;
+    double stepLength = 1.0;
+    Eigen::VectorXd trialGradient(3 * n);
+    while (true) {
+      const Eigen::VectorXd trial = x + stepLength * delta;
+      std::vector<Vec3> tp(n);
+      unflatten(trial, tp);
+      trialEnergy =
+          assembleElastic(model, tp, state.damaged, s.compressionResists, trialGradient, nullptr);
+      Eigen::VectorXd trialDampedK;
+      dampingStiffness.multiply(trial - xn, trialDampedK);
+      const double e1 = objective(trial, trialEnergy, trialDampedK);
+      if (std::isfinite(e1) && e1 <= e0 + sufficient * stepLength * slope + 1e-12 * std::abs(e0))
+        break;
+      stepLength *= 0.5;
+      ++result.backtracks;
+      if (stepLength < 1e-8) {
+        result.ok = false;
+        return result;
+      }
+    }
+    x += stepLength * delta;
+    if (delta.lpNorm<Eigen::Infinity>() * stepLength < s.tolerance * modelSize) break;
+  }
+
+  result.energy = trialEnergy;
+  if (!x.allFinite() || !std::isfinite(result.energy)) {
+    result.ok = false;
+    return result;
+  }
+  const Eigen::VectorXd v = (x - xn) / h;
+  unflatten(x, state.x);
+  unflatten(v, state.v);
+  state.time += h;
+  return result;
+}
+
+}  // namespace
+
+Vec3 anchorOffset(const AnchorConstraint& anchor, double time) {
+  const auto& p = anchor.path;
+  if (p.empty()) return Vec3::Zero();
+  if (time <= p.front().time) return p.front().offset;
+  if (time >= p.back().time) return p.back().offset;
+  const auto it = std::upper_bound(p.begin(), p.end(), time,
+                                   [](double t, const AnchorKey& k) { return t < k.time; });
+  const AnchorKey& b = *it;
+  const AnchorKey& a = *(it - 1);
+  const double u = (time - a.time) / (b.time - a.time);
+  return (1.0 - u) * a.offset + u * b.offset;
+}
+
+StepSettings referenceSettings(StepSettings base) {
+  base.newtonIterations = 50;
+  base.lineSearch = true;
+  base.tolerance = 1e-10;
+  return base;
+}
+
+double assembleElastic(const SimModel& model, const std::vector<Vec3>& x,
+                       const std::vector<std::uint8_t>& damaged, bool compressionResists,
+                       Eigen::VectorXd& gradient, BlockSparseMatrix* hessian) {
+  gradient.setZero(3 * model.numVertices());
+  if (hessian) hessian->setZero();
+  std::vector<double> energies(model.numTets(), 0.0);
+  const HessianMode mode = hessian ? HessianMode::ProjectedSpd : HessianMode::None;
+  for (const std::vector<int>& color : model.colors) {
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < color.size(); ++i) {
+      const int t = color[i];
+      const Tet& tet = model.mesh.tets[t];
+      const TetPoints p{x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]};
+      EdgeDamage d;
+      d.compressionResists = compressionResists;
+      for (int e = 0; e < 6; ++e) {
+        if (damaged[model.tetEdges[t][e]]) d.intact &= static_cast<std::uint8_t>(~(1u << e));
+      }
+      ElementEval ev;
+      evaluateElement(model.material.model, model.material.lame, model.rest[t], p, d, mode, ev);
+      energies[t] = ev.energy;
+      for (int a = 0; a < 4; ++a) gradient.segment<3>(3 * tet[a]) += ev.gradient.segment<3>(3 * a);
+      if (hessian) {
+        for (int a = 0; a < 4; ++a) {
+          for (int b = 0; b < 4; ++b)
+            hessian->blocks[model.scatter[t][4 * a + b]] += ev.hessian.block<3, 3>(3 * a, 3 * b);
+        }
+      }
+    }
+  }
+  double total = 0.0;
+  for (double e : energies) total += e;
+  return total;
+}
+
+StepReport step(const SimModel& model, SimState& state, const StepSettings& settings) {
+  const auto start = Clock::now();
+  if (!state.workspace) state.workspace = std::make_shared<StepWorkspace>();
+  StepReport report;
+  const double frameEnd = state.time + settings.dt;
+  int pieces = std::max(1, settings.substeps);
+  double h = settings.dt / pieces;
+  while (state.time < frameEnd - 1e-12 * settings.dt) {
+    h = std::min(h, frameEnd - state.time);
+    const SimState saved{state.x, state.v, state.damaged, state.time, state.workspace};
+    const SubstepResult r = substep(model, state, settings, h, *state.workspace);
+    if (!r.ok) {
+      state.x = saved.x;
+      state.v = saved.v;
+      state.time = saved.time;
+      if (report.retries >= settings.maxRetries) {
+        // Give up on this frame: keep the state as it was, count the warning, and let time move
+        // on so that the caller is never stuck.
+        state.time = frameEnd;
+        ++report.retries;
+        break;
+      }
+      ++report.retries;
+      h *= 0.5;
+      continue;
+    }
+    report.newtonIterations += r.iterations;
+    report.backtracks += r.backtracks;
+    report.residual = r.residual;
+    report.elasticEnergy = r.energy;
+    report.msElements += r.msElements;
+    report.msSolve += r.msSolve;
+  }
+  report.msTotal = msSince(start);
+  return report;
+}
+
+}  // namespace galsculpt
