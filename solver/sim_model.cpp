@@ -76,15 +76,19 @@ SimState initialState(const SimModel& model) {
   s.x = model.mesh.vertices;
   s.v.assign(model.mesh.vertices.size(), Vec3::Zero());
   s.damaged.assign(model.edges.size(), 0);
+  if (model.material.plastic.yieldStress > 0.0) {
+    s.plasticInverse.assign(model.mesh.tets.size(), Eigen::Matrix3d::Identity());
+    s.plasticStrain.assign(model.mesh.tets.size(), 0.0);
+  }
   return s;
 }
 
-EdgeDamage tetDamage(const SimModel& model, const SimState& state, int tet,
+EdgeDamage tetDamage(const SimModel& model, const std::vector<std::uint8_t>& damaged, int tet,
                      bool compressionResists) {
   EdgeDamage d;
   d.compressionResists = compressionResists;
   for (int e = 0; e < 6; ++e) {
-    if (state.damaged[model.tetEdges[tet][e]]) d.intact &= static_cast<std::uint8_t>(~(1u << e));
+    if (damaged[model.tetEdges[tet][e]]) d.intact &= static_cast<std::uint8_t>(~(1u << e));
   }
   return d;
 }

@@ -12,6 +12,7 @@
 
 #include "block_sparse.h"
 #include "isotropic_material.h"
+#include "plasticity.h"
 #include "tet_element.h"
 #include "tet_mesh.h"
 
@@ -21,6 +22,7 @@ struct MaterialParams {
   MaterialModel model = MaterialModel::StableNeoHookean;
   Lame lame;
   double density = 1000.0;  // kg/m^3
+  PlasticParams plastic;    // yieldStress 0: purely elastic
 };
 
 struct SimModel {
@@ -46,17 +48,19 @@ SimModel buildSimModel(const TetMesh& mesh, const MaterialParams& material);
 struct StepWorkspace;  // solver scratch kept between frames (factorization pattern, buffers)
 
 struct SimState {
-  std::vector<Vec3> x;                // (nVerts) positions, m
-  std::vector<Vec3> v;                // (nVerts) velocities, m/s
-  std::vector<std::uint8_t> damaged;  // (nEdges) 1 = damaged for good
-  double time = 0.0;                  // s
+  std::vector<Vec3> x;                          // (nVerts) positions, m
+  std::vector<Vec3> v;                          // (nVerts) velocities, m/s
+  std::vector<std::uint8_t> damaged;            // (nEdges) 1 = damaged for good
+  std::vector<Eigen::Matrix3d> plasticInverse;  // (nTets) Fp^-1; empty for elastic materials
+  std::vector<double> plasticStrain;            // (nTets) accumulated, for hardening
+  double time = 0.0;                            // s
   std::shared_ptr<StepWorkspace> workspace;
 };
 
 SimState initialState(const SimModel& model);
 
 // The damage pattern of one tet as an EdgeDamage bit mask.
-EdgeDamage tetDamage(const SimModel& model, const SimState& state, int tet,
+EdgeDamage tetDamage(const SimModel& model, const std::vector<std::uint8_t>& damaged, int tet,
                      bool compressionResists);
 
 // Connected parts over undamaged edges (isolated vertices count as their own piece).

@@ -1,5 +1,7 @@
 #include "step.h"
 
+#include "plasticity.h"
+
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <chrono>
@@ -36,6 +38,7 @@ struct SubstepResult {
   double residual = 0.0;
   double energy = 0.0;
   double msElements = 0.0, msSolve = 0.0;
+  std::vector<Vec3> contactForces;
 };
 
 // One backward-Euler sub-step of length h from `state`; false when it failed (NaN, no descent).
@@ -69,6 +72,28 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
   const double modelSize = std::max(boundingBox(model.mesh.vertices).size().norm(), 1e-12);
   const double weight = std::max(fext.norm(), 1e-12 * mass.sum());
 
+  // Penalty contact with the colliders posed at the end of the sub-step (colliders.h).
+  const double contactTime = state.time + h;
+  auto contact = [&](const Eigen::VectorXd& y, Eigen::VectorXd* grad, BlockSparseMatrix* hess,
+                     std::vector<Vec3>* forces) {
+    double energy = 0.0;
+    for (size_t c = 0; c < s.colliders.size(); ++c) {
+      const Collider& col = s.colliders[c];
+      for (int v = 0; v < n; ++v) {
+        if (fixed[v]) continue;
+        const ContactSample cs = colliderDistance(col, y.segment<3>(3 * v), contactTime);
+        if (cs.distance >= 0.0) continue;
+        const double stiffness = col.contactStiffness * model.mass[v] / (h * h);
+        energy += 0.5 * stiffness * cs.distance * cs.distance;
+        if (grad) grad->segment<3>(3 * v) += stiffness * cs.distance * cs.normal;
+        if (hess)
+          hess->blocks[model.pattern.diagonal[v]] += stiffness * cs.normal * cs.normal.transpose();
+        if (forces) (*forces)[c] -= stiffness * cs.distance * cs.normal;
+      }
+    }
+    return energy;
+  };
+
   auto objective = [&](const Eigen::VectorXd& y, double elastic, const Eigen::VectorXd& dampedK) {
     const Eigen::VectorXd inertia = y - xhat;
     const Eigen::VectorXd dx = y - xn;
@@ -82,12 +107,13 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
     unflatten(x, positions);
     auto t0 = Clock::now();
     const double elastic =
-        assembleElastic(model, positions, state.damaged, s.compressionResists, gradient, &k);
+        assembleElastic(model, positions, state, s.compressionResists, gradient, &k);
     result.msElements += msSince(t0);
     if (it == 0) {
       for (size_t b = 0; b < k.blocks.size(); ++b)
         dampingStiffness.blocks[b] = s.dampingStiffness * k.blocks[b];
     }
+    const double elasticAndContact = elastic + contact(x, &gradient, &k, nullptr);
     Eigen::VectorXd dampedK;  // beta K0 (x - x_n)
     dampingStiffness.multiply(x - xn, dampedK);
     const Eigen::VectorXd dx = x - xn;
@@ -139,7 +165,7 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
     // Backtrack along the Newton direction until the incremental potential decreases: with
     // lineSearch, by the Armijo condition; otherwise (the paper's one-step solver) only when the
     // full step would increase it, which is what turns a huge load into an explosion.
-    const double e0 = objective(x, elastic, dampedK);
+    const double e0 = objective(x, elasticAndContact, dampedK);
     const double slope = g.dot(delta);
     const double sufficient = s.lineSearch ? 1e-4 : 0.0;
     double stepLength = 1.0;
@@ -148,11 +174,11 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
       const Eigen::VectorXd trial = x + stepLength * delta;
       std::vector<Vec3> tp(n);
       unflatten(trial, tp);
-      trialEnergy =
-          assembleElastic(model, tp, state.damaged, s.compressionResists, trialGradient, nullptr);
+      trialEnergy = assembleElastic(model, tp, state, s.compressionResists, trialGradient, nullptr);
       Eigen::VectorXd trialDampedK;
       dampingStiffness.multiply(trial - xn, trialDampedK);
-      const double e1 = objective(trial, trialEnergy, trialDampedK);
+      const double e1 =
+          objective(trial, trialEnergy + contact(trial, nullptr, nullptr, nullptr), trialDampedK);
       if (std::isfinite(e1) && e1 <= e0 + sufficient * stepLength * slope + 1e-12 * std::abs(e0))
         break;
       stepLength *= 0.5;
@@ -167,6 +193,8 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
   }
 
   result.energy = trialEnergy;
+  result.contactForces.assign(s.colliders.size(), Vec3::Zero());
+  contact(x, nullptr, nullptr, &result.contactForces);
   if (!x.allFinite() || !std::isfinite(result.energy)) {
     result.ok = false;
     return result;
@@ -176,6 +204,20 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
   unflatten(v, state.v);
   state.time += h;
   return result;
+}
+
+// Radial return on every element after a sub-step; returns how many flowed.
+int plasticUpdate(const SimModel& model, SimState& state) {
+  int flowed = 0;
+#pragma omp parallel for schedule(static) reduction(+ : flowed)
+  for (int t = 0; t < model.numTets(); ++t) {
+    const Tet& tet = model.mesh.tets[t];
+    const TetPoints p{state.x[tet[0]], state.x[tet[1]], state.x[tet[2]], state.x[tet[3]]};
+    const Eigen::Matrix3d f = deformationGradient(model.rest[t], p);
+    flowed += plasticReturn(model.material.lame, model.material.plastic, f, state.plasticInverse[t],
+                            state.plasticStrain[t]);
+  }
+  return flowed;
 }
 
 }  // namespace
@@ -200,9 +242,9 @@ StepSettings referenceSettings(StepSettings base) {
   return base;
 }
 
-double assembleElastic(const SimModel& model, const std::vector<Vec3>& x,
-                       const std::vector<std::uint8_t>& damaged, bool compressionResists,
-                       Eigen::VectorXd& gradient, BlockSparseMatrix* hessian) {
+double assembleElastic(const SimModel& model, const std::vector<Vec3>& x, const SimState& state,
+                       bool compressionResists, Eigen::VectorXd& gradient,
+                       BlockSparseMatrix* hessian) {
   gradient.setZero(3 * model.numVertices());
   if (hessian) hessian->setZero();
   std::vector<double> energies(model.numTets(), 0.0);
@@ -213,13 +255,17 @@ double assembleElastic(const SimModel& model, const std::vector<Vec3>& x,
       const int t = color[i];
       const Tet& tet = model.mesh.tets[t];
       const TetPoints p{x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]};
-      EdgeDamage d;
-      d.compressionResists = compressionResists;
-      for (int e = 0; e < 6; ++e) {
-        if (damaged[model.tetEdges[t][e]]) d.intact &= static_cast<std::uint8_t>(~(1u << e));
-      }
+      const EdgeDamage d = tetDamage(model, state.damaged, t, compressionResists);
       ElementEval ev;
-      evaluateElement(model.material.model, model.material.lame, model.rest[t], p, d, mode, ev);
+      // A plastically deformed element measures strain from its new rest shape.
+      const bool plastic =
+          !state.plasticInverse.empty() && !state.plasticInverse[t].isIdentity(0.0);
+      if (plastic) {
+        const TetRest r = plasticRest(model.rest[t], state.plasticInverse[t]);
+        evaluateElement(model.material.model, model.material.lame, r, p, d, mode, ev);
+      } else {
+        evaluateElement(model.material.model, model.material.lame, model.rest[t], p, d, mode, ev);
+      }
       energies[t] = ev.energy;
       for (int a = 0; a < 4; ++a) gradient.segment<3>(3 * tet[a]) += ev.gradient.segment<3>(3 * a);
       if (hessian) {
@@ -244,12 +290,10 @@ StepReport step(const SimModel& model, SimState& state, const StepSettings& sett
   double h = settings.dt / pieces;
   while (state.time < frameEnd - 1e-12 * settings.dt) {
     h = std::min(h, frameEnd - state.time);
-    const SimState saved{state.x, state.v, state.damaged, state.time, state.workspace};
+    const SimState saved = state;
     const SubstepResult r = substep(model, state, settings, h, *state.workspace);
     if (!r.ok) {
-      state.x = saved.x;
-      state.v = saved.v;
-      state.time = saved.time;
+      state = saved;
       if (report.retries >= settings.maxRetries) {
         // Give up on this frame: keep the state as it was, count the warning, and let time move
         // on so that the caller is never stuck.
@@ -261,6 +305,12 @@ StepReport step(const SimModel& model, SimState& state, const StepSettings& sett
       h *= 0.5;
       continue;
     }
+    if (!state.plasticInverse.empty()) {
+      const auto t0 = Clock::now();
+      report.plasticElements += plasticUpdate(model, state);
+      report.msPlastic += msSince(t0);
+    }
+    report.contactForces = r.contactForces;
     report.newtonIterations += r.iterations;
     report.backtracks += r.backtracks;
     report.residual = r.residual;

@@ -14,6 +14,7 @@
 
 #include <vector>
 
+#include "colliders.h"
 #include "sim_model.h"
 
 namespace galsculpt {
@@ -41,6 +42,7 @@ struct StepSettings {
   double tolerance = 1e-9;  // Newton stops when |dx|_inf < tolerance * model size
   bool compressionResists = true;
   std::vector<AnchorConstraint> anchors;
+  std::vector<Collider> colliders;
   int maxRetries = 4;  // halvings of the step after NaN or explosion
 };
 
@@ -53,15 +55,18 @@ struct StepReport {
   double elasticEnergy = 0.0;  // J
   int retries = 0;             // step halvings (warnings)
   int backtracks = 0;          // Newton steps shortened because the full step raised the energy
-  double msElements = 0.0, msSolve = 0.0, msTotal = 0.0;
+  double msElements = 0.0, msSolve = 0.0, msPlastic = 0.0, msTotal = 0.0;
+  std::vector<Vec3> contactForces;  // (nColliders) force of each collider on the body, N
+  int plasticElements = 0;          // elements that flowed this frame
 };
 
 StepReport step(const SimModel& model, SimState& state, const StepSettings& settings);
 
 // Elastic energy of positions `x`; the gradient (3 nVerts) and, when `hessian` is given, the
 // stiffness (projected to SPD). Parallel over element colours: deterministic.
-double assembleElastic(const SimModel& model, const std::vector<Vec3>& x,
-                       const std::vector<std::uint8_t>& damaged, bool compressionResists,
-                       Eigen::VectorXd& gradient, BlockSparseMatrix* hessian);
+// Uses the state's damage and plastic rest shapes, not its positions.
+double assembleElastic(const SimModel& model, const std::vector<Vec3>& x, const SimState& state,
+                       bool compressionResists, Eigen::VectorXd& gradient,
+                       BlockSparseMatrix* hessian);
 
 }  // namespace galsculpt

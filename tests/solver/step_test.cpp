@@ -38,7 +38,7 @@ TetMesh bar(int nx = 2, int ny = 8, int nz = 2, double size = 0.1) {
 
 MaterialParams rubber(MaterialModel model = MaterialModel::StableNeoHookean, double e = 1e5,
                       double nu = 0.4) {
-  return {model, lameFromYoungPoisson(e, nu), 1000.0};
+  return {model, lameFromYoungPoisson(e, nu), 1000.0, {}};
 }
 
 AnchorConstraint topAnchor(const SimModel& m) {
@@ -63,7 +63,7 @@ TEST(Step, AssembledStiffnessIsTheSumOfElementMatrices) {
     s.x[v] += 0.01 * Vec3(std::sin(v), std::cos(3 * v), std::sin(5 * v));
   Eigen::VectorXd g;
   BlockSparseMatrix k(m.pattern);
-  assembleElastic(m, s.x, s.damaged, true, g, &k);
+  assembleElastic(m, s.x, s, true, g, &k);
   Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(3 * m.numVertices(), 3 * m.numVertices());
   for (int t = 0; t < m.numTets(); ++t) {
     const Tet& tet = m.mesh.tets[t];
@@ -128,7 +128,7 @@ TEST(Step, HangingBarSettlesIntoStaticEquilibrium) {
   EXPECT_LT(kineticEnergy(m, s), 1e-7 * 32.0 * 9.81 * 0.8) << "at rest: a tiny fraction of m g L";
   // Static balance on the free vertices: elastic force equals weight.
   Eigen::VectorXd g;
-  assembleElastic(m, s.x, s.damaged, true, g, nullptr);
+  assembleElastic(m, s.x, s, true, g, nullptr);
   double weight = 0.0, imbalance = 0.0;
   std::vector<char> fixed(m.numVertices(), 0);
   for (int v : settings.anchors[0].vertices) fixed[v] = 1;
@@ -214,19 +214,19 @@ TEST_P(StepHardCases, StayFiniteAndBounded) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, StepHardCases,
-    ::testing::Values(HardCase{"nu_0499", rubber(MaterialModel::StableNeoHookean, 1e5, 0.499),
-                               1.0 / 60, 1.0, 1.0},
-                      HardCase{"steel_dt_30",
-                               {MaterialModel::Corotational, lameFromYoungPoisson(2e11, 0.3), 7850},
-                               1.0 / 30,
-                               1.0,
-                               1.0},
-                      HardCase{"stvk_huge_load", rubber(MaterialModel::StVK, 1e5, 0.4), 1.0 / 60,
-                               1.0, 1e6},
-                      HardCase{"snh_huge_load", rubber(MaterialModel::StableNeoHookean, 1e5, 0.4),
-                               1.0 / 60, 1.0, 1e6},
-                      HardCase{"millimetre_scale", rubber(), 1.0 / 60, 1e-3, 1.0},
-                      HardCase{"kilometre_scale", rubber(), 1.0 / 60, 1e3, 1.0}),
+    ::testing::Values(
+        HardCase{"nu_0499", rubber(MaterialModel::StableNeoHookean, 1e5, 0.499), 1.0 / 60, 1.0,
+                 1.0},
+        HardCase{"steel_dt_30",
+                 {MaterialModel::Corotational, lameFromYoungPoisson(2e11, 0.3), 7850, {}},
+                 1.0 / 30,
+                 1.0,
+                 1.0},
+        HardCase{"stvk_huge_load", rubber(MaterialModel::StVK, 1e5, 0.4), 1.0 / 60, 1.0, 1e6},
+        HardCase{"snh_huge_load", rubber(MaterialModel::StableNeoHookean, 1e5, 0.4), 1.0 / 60, 1.0,
+                 1e6},
+        HardCase{"millimetre_scale", rubber(), 1.0 / 60, 1e-3, 1.0},
+        HardCase{"kilometre_scale", rubber(), 1.0 / 60, 1e3, 1.0}),
     [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Step, InvertedAndSliverElementsRecover) {
@@ -265,6 +265,61 @@ TEST(Step, FullyDamagedElementAndIsolatedVertexFallFreely) {
   EXPECT_NEAR(s.v[isolated].y(), -9.81 * 10.0 / 60.0, 1e-9) << "a free particle under gravity";
   for (const Vec3& x : s.x) EXPECT_TRUE(x.allFinite());
   EXPECT_EQ(countDamagePieces(m, s), 2) << "the bar and the isolated vertex";
+}
+
+}  // namespace
+}  // namespace galsculpt
+
+namespace galsculpt {
+namespace {
+
+TEST(StepContact, ABlockRestsOnTheGroundAndTheContactForceIsItsWeight) {
+  TetMesh mesh = bar(2, 2, 2);
+  for (Vec3& v : mesh.vertices) v.y() += 0.05;  // starts 5 cm above the ground
+  const SimModel m = buildSimModel(mesh, rubber(MaterialModel::StableNeoHookean, 1e5, 0.3));
+  SimState s = initialState(m);
+  StepSettings settings;
+  settings.colliders.push_back(Collider{});  // ground plane y = 0
+  settings.dampingMass = 4.0;
+  StepReport r;
+  for (int f = 0; f < 180; ++f) r = step(m, s, settings);
+  double totalMass = 0.0, lowest = 1e9;
+  for (int v = 0; v < m.numVertices(); ++v) {
+    totalMass += m.mass[v];
+    lowest = std::min(lowest, s.x[v].y());
+  }
+  EXPECT_GT(lowest, -2e-3) << "penetration stays small";
+  EXPECT_LT(lowest, 1e-3) << "and it did land";
+  ASSERT_EQ(r.contactForces.size(), 1u);
+  EXPECT_NEAR(r.contactForces[0].y(), totalMass * 9.81, 0.02 * totalMass * 9.81);
+}
+
+TEST(StepPlasticity, ClayKeepsADentAndRubberDoesNot) {
+  auto dent = [](bool clay) {
+    MaterialParams material = rubber(MaterialModel::StVK, 2e5, 0.3);
+    if (clay) material.plastic = {5e3, 1e4};
+    const SimModel m = buildSimModel(bar(2, 2, 2), material);
+    SimState s = initialState(m);
+    // Press the top face down by 4 cm over half a second, hold, then let go.
+    AnchorConstraint bottom, press;
+    for (int v = 0; v < m.numVertices(); ++v) {
+      if (m.mesh.vertices[v].y() < 1e-9) bottom.vertices.push_back(v);
+      if (m.mesh.vertices[v].y() > 0.2 - 1e-9) press.vertices.push_back(v);
+    }
+    press.path = {{0.0, Vec3::Zero()}, {0.5, Vec3(0, -0.04, 0)}};
+    StepSettings settings;
+    settings.gravity = Vec3::Zero();
+    settings.dampingMass = 5.0;
+    settings.anchors = {bottom, press};
+    for (int f = 0; f < 45; ++f) step(m, s, settings);
+    settings.anchors = {bottom};
+    for (int f = 0; f < 240; ++f) step(m, s, settings);
+    double top = 0.0;
+    for (int v : press.vertices) top += s.x[v].y();
+    return 0.2 - top / press.vertices.size();  // remaining dent depth
+  };
+  EXPECT_GT(dent(true), 0.02) << "clay keeps most of the 4 cm";
+  EXPECT_LT(std::abs(dent(false)), 2e-3) << "rubber springs back";
 }
 
 }  // namespace
