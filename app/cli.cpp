@@ -21,6 +21,8 @@ commands:
                          open a scene (.json), a tet mesh or a surface mesh
   render FILE --out DIR [--size WxH]
                          render FILE offscreen (EGL) from standard views into PNG files
+  run SCENE --frames N [--solver reference] --out DIR [--metrics FILE.csv] [--export-every K]
+                         simulate headless: metrics CSV per frame, surfaces as OBJ
   mesh info FILE [--json]
                          counts, bounding box, volume, quality, watertightness, pieces
   mesh convert IN OUT [--tets N]
@@ -65,6 +67,7 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     if (command == "scene") return sceneCommand(rest, out, err);
     if (command == "open") return openCommand(rest, out, err);
     if (command == "render") return renderCommand(rest, out, err);
+    if (command == "run") return runCommand(rest, out, err);
     throw UsageError("unknown command '" + command + "'");
   } catch (const UsageError& e) {
     err << "galsculpt: " << e.what() << "\n(run 'galsculpt --help' for usage)\n";

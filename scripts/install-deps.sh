@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git
-  libeigen3-dev nlohmann-json3-dev libpng-dev
+  libeigen3-dev libsuitesparse-dev nlohmann-json3-dev
   libglfw3-dev libimgui-dev libstb-dev libassimp-dev
   libopengl-dev libegl-dev libgles-dev libegl1-mesa-dev libgl1-mesa-dri mesa-utils xvfb xauth
   libgtest-dev libgmock-dev libbenchmark-dev

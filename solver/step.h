@@ -51,7 +51,7 @@ StepSettings referenceSettings(StepSettings base);
 
 struct StepReport {
   int newtonIterations = 0;
-  double residual = 0.0;       // |grad E| on free DOFs / total weight (|M g|), after the step
+  double residual = 0.0;       // |grad E| at the new positions, free DOFs, relative to |M g|
   double elasticEnergy = 0.0;  // J
   int retries = 0;             // step halvings (warnings)
   int backtracks = 0;          // Newton steps shortened because the full step raised the energy

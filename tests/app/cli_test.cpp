@@ -103,6 +103,26 @@ TEST(Cli, ImportRejectsAnOpenSurfaceWithExitThree) {
   EXPECT_FALSE(fs::exists(dir / "o.node"));
 }
 
+TEST(Cli, RunWritesMetricsAndSurfaces) {
+  test::TempDir dir;
+  const fs::path scene = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
+  const CliRun r = run({"run", scene.string(), "--frames", "4", "--out", (dir / "out").string(),
+                        "--metrics", (dir / "m.csv").string(), "--export-every", "2"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "out" / "final.obj"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "frame_00002.obj"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "frame_00004.obj"));
+  std::istringstream csv(test::readText(dir / "m.csv"));
+  std::string line;
+  int rows = 0;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("frame,time_s,ms_total,", 0), 0u);
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, 4);
+  EXPECT_EQ(run({"run", scene.string(), "--frames", "2"}).code, kExitUsage) << "--out is required";
+  EXPECT_EQ(run({"run", scene.string(), "--out", "x", "--frames", "0"}).code, kExitUsage);
+}
+
 TEST(Cli, SceneCheck) {
   const fs::path scene = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
   const CliRun r = run({"scene", "check", scene.string(), "--load-mesh"});

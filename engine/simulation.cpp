@@ -1,0 +1,185 @@
+#include "simulation.h"
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "solver/input_error.h"
+
+namespace galsculpt {
+
+namespace {
+
+std::vector<int> selectAnchorVertices(const AnchorDesc& a, const TetMesh& mesh,
+                                      const SceneDescription& scene, size_t index) {
+  const std::string path = "$.anchors[" + std::to_string(index) + "]";
+  std::vector<int> out;
+  switch (a.shape) {
+    case AnchorDesc::Shape::Box:
+      for (int v = 0; v < mesh.numVertices(); ++v) {
+        const Vec3& p = mesh.vertices[v];
+        if ((p.array() >= a.min.array()).all() && (p.array() <= a.max.array()).all())
+          out.push_back(v);
+      }
+      break;
+    case AnchorDesc::Shape::Sphere:
+      for (int v = 0; v < mesh.numVertices(); ++v) {
+        if ((mesh.vertices[v] - a.center).norm() <= a.radius) out.push_back(v);
+      }
+      break;
+    case AnchorDesc::Shape::Vertices:
+      for (int v : a.vertices) {
+        if (v >= mesh.numVertices()) {
+          throw InputError(scene.file.string(), 0,
+                           path + ".vertices: vertex " + std::to_string(v) +
+                               " does not exist (the mesh has " +
+                               std::to_string(mesh.numVertices()) + ")");
+        }
+        out.push_back(v);
+      }
+      break;
+  }
+  if (out.empty())
+    throw InputError(scene.file.string(), 0, path + ": selects no vertex of the mesh");
+  return out;
+}
+
+Collider colliderFromScene(const ColliderDesc& d) {
+  Collider c;
+  c.type = d.type == ColliderDesc::Type::Plane    ? Collider::Type::Plane
+           : d.type == ColliderDesc::Type::Sphere ? Collider::Type::Sphere
+                                                  : Collider::Type::Box;
+  c.point = d.point;
+  c.normal = d.normal;
+  c.center = d.center;
+  c.radius = d.radius;
+  c.halfExtents = d.halfExtents;
+  c.motion.type = d.motion.type == MotionDesc::Type::Static   ? ColliderMotion::Type::Static
+                  : d.motion.type == MotionDesc::Type::Linear ? ColliderMotion::Type::Linear
+                                                              : ColliderMotion::Type::Pendulum;
+  c.motion.velocity = d.motion.velocity;
+  c.motion.pivot = d.motion.pivot;
+  c.motion.axis = d.motion.axis;
+  c.motion.angularVelocity = d.motion.angularVelocity;
+  return c;
+}
+
+}  // namespace
+
+MaterialParams materialFromScene(const MaterialDesc& m) {
+  MaterialParams p;
+  try {
+    p.model = materialModelFromName(m.model);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  p.lame = lameFromYoungPoisson(m.youngsModulus, m.poissonRatio);
+  p.density = m.density;
+  p.plastic = {m.yieldStress, m.hardening};
+  return p;
+}
+
+Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, SolverChoice choice)
+    : model_(buildSimModel(mesh, materialFromScene(scene.material))), state_(initialState(model_)) {
+  settings_.dt = scene.timeStep;
+  settings_.substeps = scene.substeps;
+  settings_.gravity = scene.gravity;
+  settings_.dampingMass = scene.dampingMass;
+  settings_.dampingStiffness = scene.dampingStiffness;
+  settings_.compressionResists = scene.fracture.compressionResists;
+  settings_.newtonIterations = scene.solver.newtonIterations;
+  for (size_t i = 0; i < scene.anchors.size(); ++i) {
+    AnchorConstraint a;
+    a.vertices = selectAnchorVertices(scene.anchors[i], mesh, scene, i);
+    for (const PathKey& k : scene.anchors[i].path) a.path.push_back({k.time, k.offset});
+    settings_.anchors.push_back(std::move(a));
+  }
+  for (const ColliderDesc& c : scene.colliders) settings_.colliders.push_back(colliderFromScene(c));
+  if (choice == SolverChoice::Reference || scene.solver.type == "reference") {
+    settings_ = referenceSettings(settings_);
+  } else if (scene.solver.type == "multigrid") {
+    notes_.push_back(
+        "the Galerkin multigrid solver is not built yet: each frame solves the same linearized "
+        "system directly (sparse LDLT)");
+  }
+  if (scene.fracture.enabled)
+    notes_.push_back("fracture is not built yet: edges are never damaged");
+  if (scene.solver.backend == "cuda")
+    notes_.push_back("the CUDA backend is not built yet: running on the CPU");
+  boundary_ = boundaryFaces(mesh);
+  restVolume_ = totalVolume(mesh);
+}
+
+double Simulation::currentVolume() const {
+  double sum = 0.0;
+  for (const Tet& t : model_.mesh.tets) {
+    sum += tetSixVolume(state_.x[t[0]], state_.x[t[1]], state_.x[t[2]], state_.x[t[3]]) / 6.0;
+  }
+  return sum;
+}
+
+TriMesh Simulation::surface() const {
+  TriMesh s;
+  std::vector<int> map(state_.x.size(), -1);
+  for (Tri f : boundary_) {
+    for (int& v : f) {
+      if (map[v] < 0) {
+        map[v] = s.numVertices();
+        s.vertices.push_back(state_.x[v]);
+      }
+      v = map[v];
+    }
+    s.faces.push_back(f);
+  }
+  return s;
+}
+
+FrameMetrics Simulation::advance() {
+  const auto start = std::chrono::steady_clock::now();
+  const StepReport r = step(model_, state_, settings_);
+  ++frame_;
+  FrameMetrics m;
+  m.frame = frame_;
+  m.timeS = state_.time;
+  m.msElements = r.msElements;
+  m.msSolve = r.msSolve;
+  m.msPlastic = r.msPlastic;
+  m.residual = r.residual;
+  m.elasticEnergy = r.elasticEnergy;
+  m.warnings = r.retries;
+  m.newtonIterations = r.newtonIterations;
+  Vec3 contact = Vec3::Zero();
+  for (const Vec3& f : r.contactForces) contact += f;
+  m.contactForceN = contact.norm();
+  m.volume = currentVolume();
+  m.volumeChangePct = 100.0 * (m.volume - restVolume_) / restVolume_;
+  for (int v = 0; v < model_.numVertices(); ++v) {
+    m.kineticEnergy += 0.5 * model_.mass[v] * state_.v[v].squaredNorm();
+    m.maxDisplacement = std::max(m.maxDisplacement, (state_.x[v] - model_.mesh.vertices[v]).norm());
+  }
+  for (std::uint8_t d : state_.damaged) m.damagedEdges += d;
+  m.pieces = countDamagePieces(model_, state_);
+  m.msTotal =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  m.msOther = std::max(0.0, m.msTotal - m.msElements - m.msSolve - m.msPlastic);
+  return m;
+}
+
+std::string metricsCsvHeader() {
+  return "frame,time_s,ms_total,ms_elements,ms_solve,ms_plastic,ms_other,volume,volume_change_pct,"
+         "kinetic_energy,elastic_energy,residual,max_displacement,damaged_edges,pieces,warnings,"
+         "newton_iterations,contact_force_n";
+}
+
+std::string metricsCsvRow(const FrameMetrics& m) {
+  std::ostringstream s;
+  s << std::setprecision(9) << m.frame << ',' << m.timeS << ',' << m.msTotal << ',' << m.msElements
+    << ',' << m.msSolve << ',' << m.msPlastic << ',' << m.msOther << ',' << m.volume << ','
+    << m.volumeChangePct << ',' << m.kineticEnergy << ',' << m.elasticEnergy << ',' << m.residual
+    << ',' << m.maxDisplacement << ',' << m.damagedEdges << ',' << m.pieces << ',' << m.warnings
+    << ',' << m.newtonIterations << ',' << m.contactForceN;
+  return s.str();
+}
+
+}  // namespace galsculpt
