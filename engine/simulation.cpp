@@ -95,7 +95,10 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     for (const PathKey& k : scene.anchors[i].path) a.path.push_back({k.time, k.offset});
     settings_.anchors.push_back(std::move(a));
   }
-  for (const ColliderDesc& c : scene.colliders) settings_.colliders.push_back(colliderFromScene(c));
+  for (const ColliderDesc& c : scene.colliders) {
+    settings_.colliders.push_back(colliderFromScene(c));
+    if (c.friction > 0.0 && notes_.empty()) notes_.push_back("collider friction is not modelled yet: contacts are frictionless");
+  }
   if (choice == SolverChoice::Reference || scene.solver.type == "reference") {
     settings_ = referenceSettings(settings_);
   } else if (scene.solver.type == "multigrid") {
