@@ -1,0 +1,495 @@
+#include "multigrid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <queue>
+#include <stdexcept>
+
+namespace galsculpt {
+
+namespace {
+
+using Mat12 = Eigen::Matrix<double, 12, 12>;
+using Vec12 = Eigen::Matrix<double, 12, 1>;
+
+Mat12 kron4x3(const Eigen::Matrix4d& m, const Eigen::Matrix3d& a) {
+  Mat12 out;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) out.block<3, 3>(3 * i, 3 * j) = m(i, j) * a;
+  }
+  return out;
+}
+
+// Greedy colouring of a symmetric block pattern given as CSR (row -> neighbour rows).
+std::vector<std::vector<int>> colorRows(int rows, const std::vector<int>& rowStart, const std::vector<int>& columns) {
+  std::vector<int> color(rows, -1);
+  std::vector<std::vector<int>> groups;
+  std::vector<char> used;
+  for (int r = 0; r < rows; ++r) {
+    used.assign(groups.size() + 1, 0);
+    for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
+      const int c = color[columns[k]];
+      if (c >= 0) used[c] = 1;
+    }
+    int c = 0;
+    while (used[c]) ++c;
+    color[r] = c;
+    if (c >= static_cast<int>(groups.size())) groups.resize(c + 1);
+    groups[c].push_back(r);
+  }
+  return groups;
+}
+
+// Builds a block CSR over pairs (row, column) and returns, for each input pair, its block.
+void buildCoarsePattern(int rows, const std::vector<std::pair<int, int>>& pairs, std::vector<int>& rowStart,
+                        std::vector<int>& columns, std::vector<int>& blockOfPair) {
+  std::vector<std::vector<int>> cols(rows);
+  for (const auto& [r, c] : pairs) cols[r].push_back(c);
+  rowStart.assign(rows + 1, 0);
+  for (int r = 0; r < rows; ++r) {
+    std::sort(cols[r].begin(), cols[r].end());
+    cols[r].erase(std::unique(cols[r].begin(), cols[r].end()), cols[r].end());
+    rowStart[r + 1] = rowStart[r] + static_cast<int>(cols[r].size());
+  }
+  columns.clear();
+  for (int r = 0; r < rows; ++r) columns.insert(columns.end(), cols[r].begin(), cols[r].end());
+  blockOfPair.resize(pairs.size());
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const auto [r, c] = pairs[i];
+    const auto begin = columns.begin() + rowStart[r], end = columns.begin() + rowStart[r + 1];
+    blockOfPair[i] = static_cast<int>(std::lower_bound(begin, end, c) - columns.begin());
+  }
+}
+
+double levelScale(const std::vector<Vec3>& points, int handles) {
+  const BoundingBox box = boundingBox(points);
+  const Vec3 size = box.size().cwiseMax(1e-12 * std::max(1.0, box.size().maxCoeff()));
+  return std::max(std::cbrt(size.prod() / std::max(handles, 1)), 1e-300);
+}
+
+}  // namespace
+
+std::vector<int> parseGridSetup(const std::string& grid) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  while (true) {
+    const size_t slash = grid.find('/', start);
+    parts.push_back(grid.substr(start, slash - start));
+    if (slash == std::string::npos) break;
+    start = slash + 1;
+  }
+  if (parts.size() < 2 || parts.back() != "all") throw std::invalid_argument("grid setup must end in /all: " + grid);
+  std::vector<int> counts;
+  for (size_t i = 0; i + 1 < parts.size(); ++i) counts.push_back(std::stoi(parts[i]));
+  std::reverse(counts.begin(), counts.end());  // finest coarse level first
+  for (size_t i = 1; i < counts.size(); ++i) {
+    if (counts[i] >= counts[i - 1] || counts[i] < 1) throw std::invalid_argument("grid levels must shrink: " + grid);
+  }
+  return counts;
+}
+
+std::vector<int> farthestPointSamples(const std::vector<Vec3>& points, const std::vector<Edge>& edges,
+                                      const std::vector<int>& candidates, int count, std::vector<int>* nearest) {
+  const int n = static_cast<int>(points.size());
+  std::vector<int> start(n + 1, 0), adj(2 * edges.size());
+  std::vector<double> weight(2 * edges.size());
+  for (const Edge& e : edges) {
+    ++start[e[0] + 1];
+    ++start[e[1] + 1];
+  }
+  for (int i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (const Edge& e : edges) {
+    const double w = (points[e[0]] - points[e[1]]).norm();
+    adj[fill[e[0]]] = e[1];
+    weight[fill[e[0]]++] = w;
+    adj[fill[e[1]]] = e[0];
+    weight[fill[e[1]]++] = w;
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> dist(n, inf);
+  std::vector<int> label(n, -1);
+  using Item = std::pair<double, int>;
+  auto grow = [&](int source, int id, std::vector<double>& d, std::vector<int>* lab) {
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+    d[source] = 0.0;
+    if (lab) (*lab)[source] = id;
+    heap.push({0.0, source});
+    while (!heap.empty()) {
+      const auto [du, u] = heap.top();
+      heap.pop();
+      if (du > d[u]) continue;
+      for (int k = start[u]; k < start[u + 1]; ++k) {
+        const double nd = du + weight[k];
+        const int v = adj[k];
+        if (nd < d[v]) {
+          d[v] = nd;
+          if (lab) (*lab)[v] = id;
+          heap.push({nd, v});
+        }
+      }
+    }
+  };
+  count = std::min<int>(count, static_cast<int>(candidates.size()));
+  std::vector<int> samples;
+  if (count <= 0) return samples;
+  // Fixed seed: the candidate farthest from the first candidate.
+  {
+    std::vector<double> d0(n, inf);
+    grow(candidates[0], 0, d0, nullptr);
+    int first = candidates[0];
+    double best = -1.0;
+    for (int c : candidates) {
+      const double d = std::isinf(d0[c]) ? std::numeric_limits<double>::max() : d0[c];
+      if (d > best) {
+        best = d;
+        first = c;
+      }
+    }
+    samples.push_back(first);
+    grow(first, 0, dist, &label);
+  }
+  while (static_cast<int>(samples.size()) < count) {
+    int next = -1;
+    double best = -1.0;
+    for (int c : candidates) {
+      const double d = std::isinf(dist[c]) ? std::numeric_limits<double>::max() : dist[c];
+      if (d > best) {
+        best = d;
+        next = c;
+      }
+    }
+    if (best <= 0.0) break;  // every candidate is already a sample
+    samples.push_back(next);
+    grow(next, static_cast<int>(samples.size()) - 1, dist, &label);
+  }
+  // Vertices in components without a sample join the first handle (they carry no coupling).
+  for (int& l : label) {
+    if (l < 0) l = 0;
+  }
+  if (nearest) *nearest = std::move(label);
+  return samples;
+}
+
+Multigrid::Multigrid(const BlockPattern& fine, const std::vector<Vec3>& rest, const std::vector<Edge>& edges,
+                     const std::vector<int>& handleCounts)
+    : finePattern_(&fine) {
+  fineColors_ = colorRows(fine.rows, fine.rowStart, fine.columns);
+  std::vector<int> candidates(rest.size());
+  for (size_t i = 0; i < rest.size(); ++i) candidates[i] = static_cast<int>(i);
+  std::vector<Vec3> finerCenters = rest;
+  double finerScale = 1.0;
+  for (size_t l = 0; l < handleCounts.size(); ++l) {
+    MultigridLevel level;
+    std::vector<int> nearest;
+    level.handleVertex = farthestPointSamples(rest, edges, candidates, handleCounts[l], &nearest);
+    level.handles = static_cast<int>(level.handleVertex.size());
+    const double scale = levelScale(rest, level.handles);
+    std::vector<Vec3> centers(level.handles);
+    for (int h = 0; h < level.handles; ++h) centers[h] = rest[level.handleVertex[h]];
+    if (l == 0) {
+      level.parent = nearest;
+      level.y.resize(rest.size());
+      for (size_t v = 0; v < rest.size(); ++v) {
+        level.y[v] << (rest[v] - centers[level.parent[v]]) / scale, 1.0;
+      }
+      std::vector<std::pair<int, int>> pairs;
+      pairs.reserve(fine.columns.size());
+      for (int r = 0; r < fine.rows; ++r) {
+        for (int k = fine.rowStart[r]; k < fine.rowStart[r + 1]; ++k) {
+          pairs.push_back({level.parent[r], level.parent[fine.columns[k]]});
+        }
+      }
+      buildCoarsePattern(level.handles, pairs, level.rowStart, level.columns, level.fineToCoarseBlock);
+    } else {
+      const MultigridLevel& finer = levels_.back();
+      level.parent.resize(finer.handles);
+      level.toParent.resize(finer.handles);
+      for (int a = 0; a < finer.handles; ++a) {
+        const int b = nearest[finer.handleVertex[a]];
+        level.parent[a] = b;
+        Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+        m.topLeftCorner<3, 3>() *= finerScale / scale;
+        m.block<3, 1>(0, 3) = (finerCenters[a] - centers[b]) / scale;
+        level.toParent[a] = kron4x3(m.transpose(), Eigen::Matrix3d::Identity());
+      }
+      std::vector<std::pair<int, int>> pairs;
+      for (int r = 0; r < finer.handles; ++r) {
+        for (int k = finer.rowStart[r]; k < finer.rowStart[r + 1]; ++k) {
+          pairs.push_back({level.parent[r], level.parent[finer.columns[k]]});
+        }
+      }
+      buildCoarsePattern(level.handles, pairs, level.rowStart, level.columns, level.finerToCoarseBlock);
+    }
+    level.blocks.assign(level.columns.size(), Mat12::Zero());
+    level.colors = colorRows(level.handles, level.rowStart, level.columns);
+    level.members.resize(level.handles);
+    for (size_t r = 0; r < level.parent.size(); ++r) level.members[level.parent[r]].push_back(static_cast<int>(r));
+    candidates = level.handleVertex;
+    finerCenters = centers;
+    finerScale = scale;
+    levels_.push_back(std::move(level));
+  }
+}
+
+void Multigrid::refresh(const BlockSparseMatrix& a) {
+  const BlockPattern& fine = *finePattern_;
+  for (size_t l = 0; l < levels_.size(); ++l) {
+    MultigridLevel& level = levels_[l];
+    for (Mat12& b : level.blocks) b.setZero();
+    // Each thread owns one coarse row: no races, fixed summation order.
+#pragma omp parallel for schedule(dynamic, 8)
+    for (int h = 0; h < level.handles; ++h) {
+      for (int r : level.members[h]) {
+        if (l == 0) {
+          for (int k = fine.rowStart[r]; k < fine.rowStart[r + 1]; ++k) {
+            const int c = fine.columns[k];
+            level.blocks[level.fineToCoarseBlock[k]] += kron4x3(level.y[r] * level.y[c].transpose(), a.blocks[k]);
+          }
+        } else {
+          const MultigridLevel& finer = levels_[l - 1];
+          for (int k = finer.rowStart[r]; k < finer.rowStart[r + 1]; ++k) {
+            const int c = finer.columns[k];
+            level.blocks[level.finerToCoarseBlock[k]] +=
+                level.toParent[r].transpose() * finer.blocks[k] * level.toParent[c];
+          }
+        }
+      }
+    }
+    // Regularize modes that no fine vertex sees (aggregates too small or flat for 12 DOFs).
+    for (int h = 0; h < level.handles; ++h) {
+      for (int k = level.rowStart[h]; k < level.rowStart[h + 1]; ++k) {
+        if (level.columns[k] != h) continue;
+        const double shift = 1e-9 * std::max(level.blocks[k].trace() / 12.0, 1e-300);
+        level.blocks[k].diagonal().array() += shift;
+      }
+    }
+  }
+  coarsestDense_ = coarseMatrix(numLevels());
+  coarsestCholesky_.compute(coarsestDense_);
+}
+
+Eigen::MatrixXd Multigrid::coarseMatrix(int l) const {
+  const MultigridLevel& level = levels_[l - 1];
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(12 * level.handles, 12 * level.handles);
+  for (int r = 0; r < level.handles; ++r) {
+    for (int k = level.rowStart[r]; k < level.rowStart[r + 1]; ++k) {
+      m.block<12, 12>(12 * r, 12 * level.columns[k]) = level.blocks[k];
+    }
+  }
+  return m;
+}
+
+Eigen::MatrixXd Multigrid::prolongationMatrix(int l) const {
+  const MultigridLevel& level = levels_[l];
+  if (l == 0) {
+    Eigen::MatrixXd u = Eigen::MatrixXd::Zero(3 * level.parent.size(), 12 * level.handles);
+    for (size_t r = 0; r < level.parent.size(); ++r) {
+      for (int m = 0; m < 4; ++m) {
+        u.block<3, 3>(3 * r, 12 * level.parent[r] + 3 * m) = level.y[r][m] * Eigen::Matrix3d::Identity();
+      }
+    }
+    return u;
+  }
+  Eigen::MatrixXd u = Eigen::MatrixXd::Zero(12 * level.parent.size(), 12 * level.handles);
+  for (size_t a = 0; a < level.parent.size(); ++a) u.block<12, 12>(12 * a, 12 * level.parent[a]) = level.toParent[a];
+  return u;
+}
+
+void Multigrid::restrict(int l, const Eigen::VectorXd& r, Eigen::VectorXd& coarse) const {
+  const MultigridLevel& level = levels_[l];
+  coarse.setZero(12 * level.handles);
+  if (l == 0) {
+    for (size_t v = 0; v < level.parent.size(); ++v) {
+      for (int m = 0; m < 4; ++m) coarse.segment<3>(12 * level.parent[v] + 3 * m) += level.y[v][m] * r.segment<3>(3 * v);
+    }
+  } else {
+    for (size_t a = 0; a < level.parent.size(); ++a) {
+      coarse.segment<12>(12 * level.parent[a]) += level.toParent[a].transpose() * r.segment<12>(12 * a);
+    }
+  }
+}
+
+void Multigrid::prolongAdd(int l, const Eigen::VectorXd& coarse, Eigen::VectorXd& fine) const {
+  const MultigridLevel& level = levels_[l];
+  if (l == 0) {
+#pragma omp parallel for schedule(static)
+    for (size_t v = 0; v < level.parent.size(); ++v) {
+      for (int m = 0; m < 4; ++m) fine.segment<3>(3 * v) += level.y[v][m] * coarse.segment<3>(12 * level.parent[v] + 3 * m);
+    }
+  } else {
+    for (size_t a = 0; a < level.parent.size(); ++a) {
+      fine.segment<12>(12 * a) += level.toParent[a] * coarse.segment<12>(12 * level.parent[a]);
+    }
+  }
+}
+
+void Multigrid::coarseMultiply(int l, const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  const MultigridLevel& level = levels_[l - 1];
+  y.setZero(12 * level.handles);
+#pragma omp parallel for schedule(static)
+  for (int r = 0; r < level.handles; ++r) {
+    Vec12 sum = Vec12::Zero();
+    for (int k = level.rowStart[r]; k < level.rowStart[r + 1]; ++k) sum += level.blocks[k] * x.segment<12>(12 * level.columns[k]);
+    y.segment<12>(12 * r) = sum;
+  }
+}
+
+void Multigrid::smoothFine(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int sweeps,
+                           bool reverse, const MultigridSettings& s) const {
+  const BlockPattern& p = *finePattern_;
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    if (s.jacobi) {
+      Eigen::VectorXd ax;
+      a.multiply(x, ax);
+#pragma omp parallel for schedule(static)
+      for (int r = 0; r < p.rows; ++r) {
+        x.segment<3>(3 * r) += s.jacobiWeight * a.blocks[p.diagonal[r]].inverse() * (b.segment<3>(3 * r) - ax.segment<3>(3 * r));
+      }
+      continue;
+    }
+    const int colors = static_cast<int>(fineColors_.size());
+    for (int ci = 0; ci < colors; ++ci) {
+      const std::vector<int>& rows = fineColors_[reverse ? colors - 1 - ci : ci];
+#pragma omp parallel for schedule(static)
+      for (size_t i = 0; i < rows.size(); ++i) {
+        const int r = rows[i];
+        Eigen::Vector3d rhs = b.segment<3>(3 * r);
+        for (int k = p.rowStart[r]; k < p.rowStart[r + 1]; ++k) {
+          if (p.columns[k] != r) rhs.noalias() -= a.blocks[k] * x.segment<3>(3 * p.columns[k]);
+        }
+        x.segment<3>(3 * r) = a.blocks[p.diagonal[r]].inverse() * rhs;
+      }
+    }
+  }
+}
+
+void Multigrid::smoothCoarse(int l, const Eigen::VectorXd& b, Eigen::VectorXd& x, int sweeps, bool reverse,
+                             const MultigridSettings& s) const {
+  const MultigridLevel& level = levels_[l - 1];
+  auto diagonalBlock = [&](int r) -> const Mat12& {
+    for (int k = level.rowStart[r]; k < level.rowStart[r + 1]; ++k) {
+      if (level.columns[k] == r) return level.blocks[k];
+    }
+    return level.blocks[level.rowStart[r]];
+  };
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    if (s.jacobi) {
+      Eigen::VectorXd ax;
+      coarseMultiply(l, x, ax);
+      for (int r = 0; r < level.handles; ++r) {
+        x.segment<12>(12 * r) += s.jacobiWeight * diagonalBlock(r).llt().solve(b.segment<12>(12 * r) - ax.segment<12>(12 * r));
+      }
+      continue;
+    }
+    const int colors = static_cast<int>(level.colors.size());
+    for (int ci = 0; ci < colors; ++ci) {
+      const std::vector<int>& rows = level.colors[reverse ? colors - 1 - ci : ci];
+#pragma omp parallel for schedule(static)
+      for (size_t i = 0; i < rows.size(); ++i) {
+        const int r = rows[i];
+        Vec12 rhs = b.segment<12>(12 * r);
+        for (int k = level.rowStart[r]; k < level.rowStart[r + 1]; ++k) {
+          if (level.columns[k] != r) rhs.noalias() -= level.blocks[k] * x.segment<12>(12 * level.columns[k]);
+        }
+        x.segment<12>(12 * r) = diagonalBlock(r).llt().solve(rhs);
+      }
+    }
+  }
+}
+
+void Multigrid::solveCoarsest(const Eigen::VectorXd& b, Eigen::VectorXd& x, const MultigridSettings& s) const {
+  if (s.coarseCholesky) {
+    x = coarsestCholesky_.solve(b);
+    return;
+  }
+  // Plain CG from zero for a fixed number of iterations (the paper's coarse solver).
+  const int l = numLevels();
+  x.setZero(b.size());
+  Eigen::VectorXd r = b, p = b, ap;
+  double rr = r.squaredNorm();
+  const double stop = 1e-30 * std::max(rr, 1e-300);
+  for (int it = 0; it < s.coarseIterations && rr > stop; ++it) {
+    coarseMultiply(l, p, ap);
+    const double pap = p.dot(ap);
+    if (!(pap > 0.0)) break;
+    const double alpha = rr / pap;
+    x += alpha * p;
+    r -= alpha * ap;
+    const double rrNew = r.squaredNorm();
+    p = r + (rrNew / rr) * p;
+    rr = rrNew;
+  }
+}
+
+void Multigrid::vcycle(const BlockSparseMatrix& fine, int l, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                       const MultigridSettings& s) const {
+  if (l == numLevels()) {
+    solveCoarsest(b, x, s);
+    return;
+  }
+  Eigen::VectorXd ax;
+  if (l == 0) {
+    smoothFine(fine, b, x, s.preSweeps, false, s);
+    fine.multiply(x, ax);
+  } else {
+    smoothCoarse(l, b, x, s.preSweeps, false, s);
+    coarseMultiply(l, x, ax);
+  }
+  Eigen::VectorXd coarseB, coarseX = Eigen::VectorXd::Zero(12 * levels_[l].handles);
+  restrict(l, b - ax, coarseB);
+  vcycle(fine, l + 1, coarseB, coarseX, s);
+  prolongAdd(l, coarseX, x);
+  if (l == 0) {
+    smoothFine(fine, b, x, s.postSweeps, true, s);
+  } else {
+    smoothCoarse(l, b, x, s.postSweeps, true, s);
+  }
+}
+
+MultigridReport Multigrid::solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                 const MultigridSettings& s) const {
+  MultigridReport report;
+  Eigen::VectorXd ax;
+  a.multiply(x, ax);
+  Eigen::VectorXd r = b - ax;
+  report.initialResidual = r.norm();
+  if (!s.pcg) {
+    for (int c = 0; c < s.cycles; ++c) {
+      vcycle(a, 0, b, x, s);
+      ++report.iterations;
+    }
+    a.multiply(x, ax);
+    report.finalResidual = (b - ax).norm();
+  } else {
+    const double target = s.pcgTolerance * std::max(b.norm(), 1e-300);
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(b.size());
+    vcycle(a, 0, r, z, s);
+    Eigen::VectorXd p = z, ap;
+    double rz = r.dot(z);
+    double rnorm = r.norm();
+    while (report.iterations < s.pcgMaxIterations && rnorm > target) {
+      a.multiply(p, ap);
+      const double pap = p.dot(ap);
+      if (!(pap > 0.0)) break;
+      const double alpha = rz / pap;
+      x += alpha * p;
+      r -= alpha * ap;
+      rnorm = r.norm();
+      ++report.iterations;
+      if (rnorm <= target) break;
+      z.setZero();
+      vcycle(a, 0, r, z, s);
+      const double rzNew = r.dot(z);
+      p = z + (rzNew / rz) * p;
+      rz = rzNew;
+    }
+    report.finalResidual = rnorm;
+  }
+  report.finite = x.allFinite() && std::isfinite(report.finalResidual);
+  return report;
+}
+
+}  // namespace galsculpt

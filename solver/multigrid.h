@@ -1,0 +1,112 @@
+// Galerkin multigrid for the backward-Euler system (paper section 3.2-3.3, Algorithm 2).
+//
+// Hierarchy (built once per mesh): farthest-point sampling with geodesic distances (Dijkstra
+// on the rest edge graph) from a fixed seed picks k_1 > k_2 > ... handles, each level a subset
+// of the one above. Every vertex (or handle) belongs to its geodesically nearest handle of the
+// next level: piecewise-constant skinning weights. Each handle carries an affine map T (3x4,
+// 12 DOFs) acting on positions relative to the handle, so U_1 has one 3x12 block per fine
+// vertex and U_l (l > 1) one 12x12 block per handle. R_l = U_l^T and A_{l+1} = U_l^T A_l U_l,
+// refreshed from the current stiffness every frame (values only; the patterns are fixed).
+//
+// V-cycle: block Gauss-Seidel (multi-colour, parallel, symmetric) or damped block Jacobi on
+// every level but the coarsest, which is solved by CG or a dense Cholesky. The V-cycle is also
+// a preconditioner for CG with a residual tolerance (not in the paper).
+//
+// Aggregates too small or too flat to carry 12 affine DOFs: U has a null space there (affine
+// modes that move no fine vertex). A relative 1e-9 shift on each coarse diagonal block makes
+// those modes solvable; they never reach the fine level, so the fine solution is unchanged.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "block_sparse.h"
+#include "tet_mesh.h"
+
+namespace galsculpt {
+
+// "50/1000/all" -> {1000, 50}: handle counts from the finest coarse level down. Throws
+// std::invalid_argument on a malformed setup.
+std::vector<int> parseGridSetup(const std::string& grid);
+
+// Farthest-point sampling of `count` vertices among `candidates` with geodesic distances over
+// the edge graph; the first sample is the candidate farthest from candidates[0] (deterministic).
+// Also returns, for every vertex, its nearest sample (index into the result) in `nearest`.
+std::vector<int> farthestPointSamples(const std::vector<Vec3>& points, const std::vector<Edge>& edges,
+                                      const std::vector<int>& candidates, int count, std::vector<int>* nearest);
+
+struct MultigridLevel {
+  int handles = 0;
+  std::vector<int> handleVertex;   // (handles) the sampled vertex of each handle
+  std::vector<int> parent;         // (rows of the finer level) handle of this level
+  std::vector<Eigen::Vector4d> y;  // level 1: (fine vertices) [(x - c_parent)/s; 1]
+  std::vector<Eigen::Matrix<double, 12, 12>> toParent;  // levels > 1: (finer handles) 12x12 U block
+  // Coarse operator: dense handle-by-handle 12x12 blocks over the handle adjacency.
+  std::vector<int> rowStart, columns;  // block CSR
+  std::vector<Eigen::Matrix<double, 12, 12>> blocks;
+  // For level 1, the fine block (index into the fine pattern) -> coarse block map.
+  std::vector<int> fineToCoarseBlock;
+  std::vector<int> finerToCoarseBlock;  // levels > 1: finer coarse block -> this level's block
+  std::vector<std::vector<int>> colors;   // handles grouped for parallel Gauss-Seidel
+  std::vector<std::vector<int>> members;  // (handles) rows of the finer level in each aggregate
+};
+
+struct MultigridSettings {
+  int preSweeps = 3;
+  int postSweeps = 3;
+  bool jacobi = false;          // false: symmetric multi-colour Gauss-Seidel
+  double jacobiWeight = 0.66;
+  bool coarseCholesky = false;  // false: CG on the coarsest level
+  int coarseIterations = 20;
+  int cycles = 1;               // V-cycles per solve when not used as a preconditioner
+  bool pcg = false;             // CG preconditioned by one V-cycle per iteration
+  double pcgTolerance = 1e-6;   // relative residual
+  int pcgMaxIterations = 100;
+};
+
+struct MultigridReport {
+  double initialResidual = 0.0;  // |b - A x0|
+  double finalResidual = 0.0;    // |b - A x|
+  int iterations = 0;            // V-cycles or PCG iterations
+  bool finite = true;            // false: NaN appeared (the caller must not use x)
+};
+
+class Multigrid {
+ public:
+  // `fine` is the fine-level pattern, `restPositions` the rest mesh, `edges` its edge graph.
+  Multigrid(const BlockPattern& fine, const std::vector<Vec3>& restPositions, const std::vector<Edge>& edges,
+            const std::vector<int>& handleCounts);
+
+  // Refreshes A_{l+1} = U^T A_l U for every level from the current fine matrix.
+  void refresh(const BlockSparseMatrix& fineMatrix);
+  // Solves A x = b from the initial guess in x.
+  MultigridReport solve(const BlockSparseMatrix& fineMatrix, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                        const MultigridSettings& settings) const;
+
+  int numLevels() const { return static_cast<int>(levels_.size()); }
+  const MultigridLevel& level(int l) const { return levels_[l]; }
+  // Dense U of level l (for tests): rows = finer DOFs, columns = 12 * handles.
+  Eigen::MatrixXd prolongationMatrix(int l) const;
+  // Dense coarse operator of level l (for tests).
+  Eigen::MatrixXd coarseMatrix(int l) const;
+
+ private:
+  void vcycle(const BlockSparseMatrix& fine, int level, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+              const MultigridSettings& s) const;
+  void smoothFine(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int sweeps,
+                  bool reverse, const MultigridSettings& s) const;
+  void smoothCoarse(int level, const Eigen::VectorXd& b, Eigen::VectorXd& x, int sweeps, bool reverse,
+                    const MultigridSettings& s) const;
+  void coarseMultiply(int level, const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  void solveCoarsest(const Eigen::VectorXd& b, Eigen::VectorXd& x, const MultigridSettings& s) const;
+  void restrict(int level, const Eigen::VectorXd& fineResidual, Eigen::VectorXd& coarse) const;
+  void prolongAdd(int level, const Eigen::VectorXd& coarse, Eigen::VectorXd& fine) const;
+
+  const BlockPattern* finePattern_;
+  std::vector<std::vector<int>> fineColors_;
+  std::vector<MultigridLevel> levels_;
+  Eigen::LLT<Eigen::MatrixXd> coarsestCholesky_;
+  Eigen::MatrixXd coarsestDense_;
+};
+
+}  // namespace galsculpt
