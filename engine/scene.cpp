@@ -216,6 +216,8 @@ SolverDesc readSolver(JsonObject o) {
   s.smoother = o.string("smoother", s.smoother, {"gauss_seidel", "jacobi"});
   s.coarseSolver = o.string("coarse_solver", s.coarseSolver, {"cg", "cholesky"});
   s.newtonIterations = o.integer("newton_iters", s.newtonIterations, 1, 100);
+  s.cycles = o.integer("cycles", s.cycles, 1, 1000);
+  s.pcgTolerance = o.number("pcg_tolerance", s.pcgTolerance, 0.0, 0.5);
   s.backend = o.string("backend", s.backend, {"auto", "cpu", "cuda"});
   o.rejectUnknownKeys();
   return s;

@@ -90,6 +90,8 @@ struct SolverDesc {
   std::string smoother = "gauss_seidel";  // gauss_seidel | jacobi
   std::string coarseSolver = "cg";        // cg | cholesky
   int newtonIterations = 1;
+  int cycles = 1;                // V-cycles per linear solve (without PCG)
+  double pcgTolerance = 0.0;     // > 0: CG preconditioned by V-cycles, to this relative residual
   std::string backend = "auto";  // auto | cpu | cuda
 };
 

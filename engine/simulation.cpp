@@ -97,14 +97,22 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   }
   for (const ColliderDesc& c : scene.colliders) {
     settings_.colliders.push_back(colliderFromScene(c));
-    if (c.friction > 0.0 && notes_.empty()) notes_.push_back("collider friction is not modelled yet: contacts are frictionless");
+    if (c.friction > 0.0 && notes_.empty())
+      notes_.push_back("collider friction is not modelled yet: contacts are frictionless");
   }
   if (choice == SolverChoice::Reference || scene.solver.type == "reference") {
     settings_ = referenceSettings(settings_);
   } else if (scene.solver.type == "multigrid") {
-    notes_.push_back(
-        "the Galerkin multigrid solver is not built yet: each frame solves the same linearized "
-        "system directly (sparse LDLT)");
+    settings_.multigrid = true;
+    settings_.gridHandles = parseGridSetup(scene.solver.grid);
+    MultigridSettings& mg = settings_.multigridSettings;
+    mg.preSweeps = mg.postSweeps = scene.solver.fineSweeps;
+    mg.jacobi = scene.solver.smoother == "jacobi";
+    mg.coarseCholesky = scene.solver.coarseSolver == "cholesky";
+    mg.coarseIterations = scene.solver.coarseIterations;
+    mg.cycles = scene.solver.cycles;
+    mg.pcg = scene.solver.pcgTolerance > 0.0;
+    if (mg.pcg) mg.pcgTolerance = scene.solver.pcgTolerance;
   }
   if (scene.fracture.enabled)
     notes_.push_back("fracture is not built yet: edges are never damaged");

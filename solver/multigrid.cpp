@@ -23,7 +23,8 @@ Mat12 kron4x3(const Eigen::Matrix4d& m, const Eigen::Matrix3d& a) {
 }
 
 // Greedy colouring of a symmetric block pattern given as CSR (row -> neighbour rows).
-std::vector<std::vector<int>> colorRows(int rows, const std::vector<int>& rowStart, const std::vector<int>& columns) {
+std::vector<std::vector<int>> colorRows(int rows, const std::vector<int>& rowStart,
+                                        const std::vector<int>& columns) {
   std::vector<int> color(rows, -1);
   std::vector<std::vector<int>> groups;
   std::vector<char> used;
@@ -43,8 +44,9 @@ std::vector<std::vector<int>> colorRows(int rows, const std::vector<int>& rowSta
 }
 
 // Builds a block CSR over pairs (row, column) and returns, for each input pair, its block.
-void buildCoarsePattern(int rows, const std::vector<std::pair<int, int>>& pairs, std::vector<int>& rowStart,
-                        std::vector<int>& columns, std::vector<int>& blockOfPair) {
+void buildCoarsePattern(int rows, const std::vector<std::pair<int, int>>& pairs,
+                        std::vector<int>& rowStart, std::vector<int>& columns,
+                        std::vector<int>& blockOfPair) {
   std::vector<std::vector<int>> cols(rows);
   for (const auto& [r, c] : pairs) cols[r].push_back(c);
   rowStart.assign(rows + 1, 0);
@@ -80,18 +82,22 @@ std::vector<int> parseGridSetup(const std::string& grid) {
     if (slash == std::string::npos) break;
     start = slash + 1;
   }
-  if (parts.size() < 2 || parts.back() != "all") throw std::invalid_argument("grid setup must end in /all: " + grid);
+  if (parts.size() < 2 || parts.back() != "all")
+    throw std::invalid_argument("grid setup must end in /all: " + grid);
   std::vector<int> counts;
   for (size_t i = 0; i + 1 < parts.size(); ++i) counts.push_back(std::stoi(parts[i]));
   std::reverse(counts.begin(), counts.end());  // finest coarse level first
   for (size_t i = 1; i < counts.size(); ++i) {
-    if (counts[i] >= counts[i - 1] || counts[i] < 1) throw std::invalid_argument("grid levels must shrink: " + grid);
+    if (counts[i] >= counts[i - 1] || counts[i] < 1)
+      throw std::invalid_argument("grid levels must shrink: " + grid);
   }
   return counts;
 }
 
-std::vector<int> farthestPointSamples(const std::vector<Vec3>& points, const std::vector<Edge>& edges,
-                                      const std::vector<int>& candidates, int count, std::vector<int>* nearest) {
+std::vector<int> farthestPointSamples(const std::vector<Vec3>& points,
+                                      const std::vector<Edge>& edges,
+                                      const std::vector<int>& candidates, int count,
+                                      std::vector<int>* nearest) {
   const int n = static_cast<int>(points.size());
   std::vector<int> start(n + 1, 0), adj(2 * edges.size());
   std::vector<double> weight(2 * edges.size());
@@ -173,8 +179,8 @@ std::vector<int> farthestPointSamples(const std::vector<Vec3>& points, const std
   return samples;
 }
 
-Multigrid::Multigrid(const BlockPattern& fine, const std::vector<Vec3>& rest, const std::vector<Edge>& edges,
-                     const std::vector<int>& handleCounts)
+Multigrid::Multigrid(const BlockPattern& fine, const std::vector<Vec3>& rest,
+                     const std::vector<Edge>& edges, const std::vector<int>& handleCounts)
     : finePattern_(&fine) {
   fineColors_ = colorRows(fine.rows, fine.rowStart, fine.columns);
   std::vector<int> candidates(rest.size());
@@ -202,7 +208,8 @@ Multigrid::Multigrid(const BlockPattern& fine, const std::vector<Vec3>& rest, co
           pairs.push_back({level.parent[r], level.parent[fine.columns[k]]});
         }
       }
-      buildCoarsePattern(level.handles, pairs, level.rowStart, level.columns, level.fineToCoarseBlock);
+      buildCoarsePattern(level.handles, pairs, level.rowStart, level.columns,
+                         level.fineToCoarseBlock);
     } else {
       const MultigridLevel& finer = levels_.back();
       level.parent.resize(finer.handles);
@@ -221,12 +228,14 @@ Multigrid::Multigrid(const BlockPattern& fine, const std::vector<Vec3>& rest, co
           pairs.push_back({level.parent[r], level.parent[finer.columns[k]]});
         }
       }
-      buildCoarsePattern(level.handles, pairs, level.rowStart, level.columns, level.finerToCoarseBlock);
+      buildCoarsePattern(level.handles, pairs, level.rowStart, level.columns,
+                         level.finerToCoarseBlock);
     }
     level.blocks.assign(level.columns.size(), Mat12::Zero());
     level.colors = colorRows(level.handles, level.rowStart, level.columns);
     level.members.resize(level.handles);
-    for (size_t r = 0; r < level.parent.size(); ++r) level.members[level.parent[r]].push_back(static_cast<int>(r));
+    for (size_t r = 0; r < level.parent.size(); ++r)
+      level.members[level.parent[r]].push_back(static_cast<int>(r));
     candidates = level.handleVertex;
     finerCenters = centers;
     finerScale = scale;
@@ -239,14 +248,15 @@ void Multigrid::refresh(const BlockSparseMatrix& a) {
   for (size_t l = 0; l < levels_.size(); ++l) {
     MultigridLevel& level = levels_[l];
     for (Mat12& b : level.blocks) b.setZero();
-    // Each thread owns one coarse row: no races, fixed summation order.
+      // Each thread owns one coarse row: no races, fixed summation order.
 #pragma omp parallel for schedule(dynamic, 8)
     for (int h = 0; h < level.handles; ++h) {
       for (int r : level.members[h]) {
         if (l == 0) {
           for (int k = fine.rowStart[r]; k < fine.rowStart[r + 1]; ++k) {
             const int c = fine.columns[k];
-            level.blocks[level.fineToCoarseBlock[k]] += kron4x3(level.y[r] * level.y[c].transpose(), a.blocks[k]);
+            level.blocks[level.fineToCoarseBlock[k]] +=
+                kron4x3(level.y[r] * level.y[c].transpose(), a.blocks[k]);
           }
         } else {
           const MultigridLevel& finer = levels_[l - 1];
@@ -288,13 +298,15 @@ Eigen::MatrixXd Multigrid::prolongationMatrix(int l) const {
     Eigen::MatrixXd u = Eigen::MatrixXd::Zero(3 * level.parent.size(), 12 * level.handles);
     for (size_t r = 0; r < level.parent.size(); ++r) {
       for (int m = 0; m < 4; ++m) {
-        u.block<3, 3>(3 * r, 12 * level.parent[r] + 3 * m) = level.y[r][m] * Eigen::Matrix3d::Identity();
+        u.block<3, 3>(3 * r, 12 * level.parent[r] + 3 * m) =
+            level.y[r][m] * Eigen::Matrix3d::Identity();
       }
     }
     return u;
   }
   Eigen::MatrixXd u = Eigen::MatrixXd::Zero(12 * level.parent.size(), 12 * level.handles);
-  for (size_t a = 0; a < level.parent.size(); ++a) u.block<12, 12>(12 * a, 12 * level.parent[a]) = level.toParent[a];
+  for (size_t a = 0; a < level.parent.size(); ++a)
+    u.block<12, 12>(12 * a, 12 * level.parent[a]) = level.toParent[a];
   return u;
 }
 
@@ -303,11 +315,13 @@ void Multigrid::restrict(int l, const Eigen::VectorXd& r, Eigen::VectorXd& coars
   coarse.setZero(12 * level.handles);
   if (l == 0) {
     for (size_t v = 0; v < level.parent.size(); ++v) {
-      for (int m = 0; m < 4; ++m) coarse.segment<3>(12 * level.parent[v] + 3 * m) += level.y[v][m] * r.segment<3>(3 * v);
+      for (int m = 0; m < 4; ++m)
+        coarse.segment<3>(12 * level.parent[v] + 3 * m) += level.y[v][m] * r.segment<3>(3 * v);
     }
   } else {
     for (size_t a = 0; a < level.parent.size(); ++a) {
-      coarse.segment<12>(12 * level.parent[a]) += level.toParent[a].transpose() * r.segment<12>(12 * a);
+      coarse.segment<12>(12 * level.parent[a]) +=
+          level.toParent[a].transpose() * r.segment<12>(12 * a);
     }
   }
 }
@@ -317,7 +331,8 @@ void Multigrid::prolongAdd(int l, const Eigen::VectorXd& coarse, Eigen::VectorXd
   if (l == 0) {
 #pragma omp parallel for schedule(static)
     for (size_t v = 0; v < level.parent.size(); ++v) {
-      for (int m = 0; m < 4; ++m) fine.segment<3>(3 * v) += level.y[v][m] * coarse.segment<3>(12 * level.parent[v] + 3 * m);
+      for (int m = 0; m < 4; ++m)
+        fine.segment<3>(3 * v) += level.y[v][m] * coarse.segment<3>(12 * level.parent[v] + 3 * m);
     }
   } else {
     for (size_t a = 0; a < level.parent.size(); ++a) {
@@ -332,13 +347,14 @@ void Multigrid::coarseMultiply(int l, const Eigen::VectorXd& x, Eigen::VectorXd&
 #pragma omp parallel for schedule(static)
   for (int r = 0; r < level.handles; ++r) {
     Vec12 sum = Vec12::Zero();
-    for (int k = level.rowStart[r]; k < level.rowStart[r + 1]; ++k) sum += level.blocks[k] * x.segment<12>(12 * level.columns[k]);
+    for (int k = level.rowStart[r]; k < level.rowStart[r + 1]; ++k)
+      sum += level.blocks[k] * x.segment<12>(12 * level.columns[k]);
     y.segment<12>(12 * r) = sum;
   }
 }
 
-void Multigrid::smoothFine(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int sweeps,
-                           bool reverse, const MultigridSettings& s) const {
+void Multigrid::smoothFine(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                           int sweeps, bool reverse, const MultigridSettings& s) const {
   const BlockPattern& p = *finePattern_;
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     if (s.jacobi) {
@@ -346,7 +362,8 @@ void Multigrid::smoothFine(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
       a.multiply(x, ax);
 #pragma omp parallel for schedule(static)
       for (int r = 0; r < p.rows; ++r) {
-        x.segment<3>(3 * r) += s.jacobiWeight * a.blocks[p.diagonal[r]].inverse() * (b.segment<3>(3 * r) - ax.segment<3>(3 * r));
+        x.segment<3>(3 * r) += s.jacobiWeight * a.blocks[p.diagonal[r]].inverse() *
+                               (b.segment<3>(3 * r) - ax.segment<3>(3 * r));
       }
       continue;
     }
@@ -366,8 +383,8 @@ void Multigrid::smoothFine(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
   }
 }
 
-void Multigrid::smoothCoarse(int l, const Eigen::VectorXd& b, Eigen::VectorXd& x, int sweeps, bool reverse,
-                             const MultigridSettings& s) const {
+void Multigrid::smoothCoarse(int l, const Eigen::VectorXd& b, Eigen::VectorXd& x, int sweeps,
+                             bool reverse, const MultigridSettings& s) const {
   const MultigridLevel& level = levels_[l - 1];
   auto diagonalBlock = [&](int r) -> const Mat12& {
     for (int k = level.rowStart[r]; k < level.rowStart[r + 1]; ++k) {
@@ -380,7 +397,9 @@ void Multigrid::smoothCoarse(int l, const Eigen::VectorXd& b, Eigen::VectorXd& x
       Eigen::VectorXd ax;
       coarseMultiply(l, x, ax);
       for (int r = 0; r < level.handles; ++r) {
-        x.segment<12>(12 * r) += s.jacobiWeight * diagonalBlock(r).llt().solve(b.segment<12>(12 * r) - ax.segment<12>(12 * r));
+        x.segment<12>(12 * r) +=
+            s.jacobiWeight *
+            diagonalBlock(r).llt().solve(b.segment<12>(12 * r) - ax.segment<12>(12 * r));
       }
       continue;
     }
@@ -392,7 +411,8 @@ void Multigrid::smoothCoarse(int l, const Eigen::VectorXd& b, Eigen::VectorXd& x
         const int r = rows[i];
         Vec12 rhs = b.segment<12>(12 * r);
         for (int k = level.rowStart[r]; k < level.rowStart[r + 1]; ++k) {
-          if (level.columns[k] != r) rhs.noalias() -= level.blocks[k] * x.segment<12>(12 * level.columns[k]);
+          if (level.columns[k] != r)
+            rhs.noalias() -= level.blocks[k] * x.segment<12>(12 * level.columns[k]);
         }
         x.segment<12>(12 * r) = diagonalBlock(r).llt().solve(rhs);
       }
@@ -400,7 +420,8 @@ void Multigrid::smoothCoarse(int l, const Eigen::VectorXd& b, Eigen::VectorXd& x
   }
 }
 
-void Multigrid::solveCoarsest(const Eigen::VectorXd& b, Eigen::VectorXd& x, const MultigridSettings& s) const {
+void Multigrid::solveCoarsest(const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                              const MultigridSettings& s) const {
   if (s.coarseCholesky) {
     x = coarsestCholesky_.solve(b);
     return;
@@ -424,8 +445,8 @@ void Multigrid::solveCoarsest(const Eigen::VectorXd& b, Eigen::VectorXd& x, cons
   }
 }
 
-void Multigrid::vcycle(const BlockSparseMatrix& fine, int l, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                       const MultigridSettings& s) const {
+void Multigrid::vcycle(const BlockSparseMatrix& fine, int l, const Eigen::VectorXd& b,
+                       Eigen::VectorXd& x, const MultigridSettings& s) const {
   if (l == numLevels()) {
     solveCoarsest(b, x, s);
     return;
@@ -449,8 +470,8 @@ void Multigrid::vcycle(const BlockSparseMatrix& fine, int l, const Eigen::Vector
   }
 }
 
-MultigridReport Multigrid::solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                 const MultigridSettings& s) const {
+MultigridReport Multigrid::solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
+                                 Eigen::VectorXd& x, const MultigridSettings& s) const {
   MultigridReport report;
   Eigen::VectorXd ax;
   a.multiply(x, ax);

@@ -32,8 +32,10 @@ std::vector<int> parseGridSetup(const std::string& grid);
 // Farthest-point sampling of `count` vertices among `candidates` with geodesic distances over
 // the edge graph; the first sample is the candidate farthest from candidates[0] (deterministic).
 // Also returns, for every vertex, its nearest sample (index into the result) in `nearest`.
-std::vector<int> farthestPointSamples(const std::vector<Vec3>& points, const std::vector<Edge>& edges,
-                                      const std::vector<int>& candidates, int count, std::vector<int>* nearest);
+std::vector<int> farthestPointSamples(const std::vector<Vec3>& points,
+                                      const std::vector<Edge>& edges,
+                                      const std::vector<int>& candidates, int count,
+                                      std::vector<int>* nearest);
 
 struct MultigridLevel {
   int handles = 0;
@@ -46,7 +48,7 @@ struct MultigridLevel {
   std::vector<Eigen::Matrix<double, 12, 12>> blocks;
   // For level 1, the fine block (index into the fine pattern) -> coarse block map.
   std::vector<int> fineToCoarseBlock;
-  std::vector<int> finerToCoarseBlock;  // levels > 1: finer coarse block -> this level's block
+  std::vector<int> finerToCoarseBlock;    // levels > 1: finer coarse block -> this level's block
   std::vector<std::vector<int>> colors;   // handles grouped for parallel Gauss-Seidel
   std::vector<std::vector<int>> members;  // (handles) rows of the finer level in each aggregate
 };
@@ -54,13 +56,13 @@ struct MultigridLevel {
 struct MultigridSettings {
   int preSweeps = 3;
   int postSweeps = 3;
-  bool jacobi = false;          // false: symmetric multi-colour Gauss-Seidel
+  bool jacobi = false;  // false: symmetric multi-colour Gauss-Seidel
   double jacobiWeight = 0.66;
   bool coarseCholesky = false;  // false: CG on the coarsest level
   int coarseIterations = 20;
-  int cycles = 1;               // V-cycles per solve when not used as a preconditioner
-  bool pcg = false;             // CG preconditioned by one V-cycle per iteration
-  double pcgTolerance = 1e-6;   // relative residual
+  int cycles = 1;              // V-cycles per solve when not used as a preconditioner
+  bool pcg = false;            // CG preconditioned by one V-cycle per iteration
+  double pcgTolerance = 1e-6;  // relative residual
   int pcgMaxIterations = 100;
 };
 
@@ -74,14 +76,14 @@ struct MultigridReport {
 class Multigrid {
  public:
   // `fine` is the fine-level pattern, `restPositions` the rest mesh, `edges` its edge graph.
-  Multigrid(const BlockPattern& fine, const std::vector<Vec3>& restPositions, const std::vector<Edge>& edges,
-            const std::vector<int>& handleCounts);
+  Multigrid(const BlockPattern& fine, const std::vector<Vec3>& restPositions,
+            const std::vector<Edge>& edges, const std::vector<int>& handleCounts);
 
   // Refreshes A_{l+1} = U^T A_l U for every level from the current fine matrix.
   void refresh(const BlockSparseMatrix& fineMatrix);
   // Solves A x = b from the initial guess in x.
-  MultigridReport solve(const BlockSparseMatrix& fineMatrix, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                        const MultigridSettings& settings) const;
+  MultigridReport solve(const BlockSparseMatrix& fineMatrix, const Eigen::VectorXd& b,
+                        Eigen::VectorXd& x, const MultigridSettings& settings) const;
 
   int numLevels() const { return static_cast<int>(levels_.size()); }
   const MultigridLevel& level(int l) const { return levels_[l]; }
@@ -91,14 +93,15 @@ class Multigrid {
   Eigen::MatrixXd coarseMatrix(int l) const;
 
  private:
-  void vcycle(const BlockSparseMatrix& fine, int level, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-              const MultigridSettings& s) const;
-  void smoothFine(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int sweeps,
-                  bool reverse, const MultigridSettings& s) const;
-  void smoothCoarse(int level, const Eigen::VectorXd& b, Eigen::VectorXd& x, int sweeps, bool reverse,
-                    const MultigridSettings& s) const;
+  void vcycle(const BlockSparseMatrix& fine, int level, const Eigen::VectorXd& b,
+              Eigen::VectorXd& x, const MultigridSettings& s) const;
+  void smoothFine(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                  int sweeps, bool reverse, const MultigridSettings& s) const;
+  void smoothCoarse(int level, const Eigen::VectorXd& b, Eigen::VectorXd& x, int sweeps,
+                    bool reverse, const MultigridSettings& s) const;
   void coarseMultiply(int level, const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
-  void solveCoarsest(const Eigen::VectorXd& b, Eigen::VectorXd& x, const MultigridSettings& s) const;
+  void solveCoarsest(const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                     const MultigridSettings& s) const;
   void restrict(int level, const Eigen::VectorXd& fineResidual, Eigen::VectorXd& coarse) const;
   void prolongAdd(int level, const Eigen::VectorXd& coarse, Eigen::VectorXd& fine) const;
 

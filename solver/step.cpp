@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 namespace galsculpt {
 
@@ -15,6 +16,8 @@ namespace galsculpt {
 struct StepWorkspace {
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> ldlt;
   bool analyzed = false;
+  std::unique_ptr<Multigrid> multigrid;  // built once per mesh and grid setup
+  std::vector<int> multigridHandles;
 };
 
 namespace {
@@ -41,6 +44,7 @@ struct SubstepResult {
   double residual = 0.0;
   double energy = 0.0;
   double msElements = 0.0, msSolve = 0.0;
+  double linearResidualReduction = 0.0;
   std::vector<Vec3> contactForces;
 };
 
@@ -143,21 +147,39 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
     for (int r = 0; r < n; ++r) {
       for (int kk = model.pattern.rowStart[r]; kk < model.pattern.rowStart[r + 1]; ++kk) {
         const int c = model.pattern.columns[kk];
+        // Scaled like the inertia term, so that coarse levels see anchors as stiff.
         if (fixed[r] || fixed[c])
-          hm.blocks[kk] = Eigen::Matrix3d::Identity() * (r == c ? 1.0 : 0.0);
+          hm.blocks[kk] = Eigen::Matrix3d::Identity() * (r == c ? model.mass[r] / (h * h) : 0.0);
       }
     }
-    const Eigen::SparseMatrix<double> a = hm.toEigen();
-    if (!ws.analyzed) {
-      ws.ldlt.analyzePattern(a);
-      ws.analyzed = true;
+    Eigen::VectorXd delta;
+    if (s.multigrid) {
+      if (!ws.multigrid || ws.multigridHandles != s.gridHandles) {
+        ws.multigrid = std::make_unique<Multigrid>(model.pattern, model.mesh.vertices, model.edges,
+                                                   s.gridHandles);
+        ws.multigridHandles = s.gridHandles;
+      }
+      ws.multigrid->refresh(hm);
+      delta = Eigen::VectorXd::Zero(3 * n);
+      const MultigridReport mr = ws.multigrid->solve(hm, -g, delta, s.multigridSettings);
+      result.linearResidualReduction =
+          mr.initialResidual > 0.0 ? mr.finalResidual / mr.initialResidual : 0.0;
+      for (int v = 0; v < n; ++v) {
+        if (fixed[v]) delta.segment<3>(3 * v).setZero();
+      }
+    } else {
+      const Eigen::SparseMatrix<double> a = hm.toEigen();
+      if (!ws.analyzed) {
+        ws.ldlt.analyzePattern(a);
+        ws.analyzed = true;
+      }
+      ws.ldlt.factorize(a);
+      if (ws.ldlt.info() != Eigen::Success) {
+        result.ok = false;
+        return result;
+      }
+      delta = ws.ldlt.solve(-g);
     }
-    ws.ldlt.factorize(a);
-    if (ws.ldlt.info() != Eigen::Success) {
-      result.ok = false;
-      return result;
-    }
-    const Eigen::VectorXd delta = ws.ldlt.solve(-g);
     result.msSolve += msSince(t0);
     if (!delta.allFinite()) {
       result.ok = false;
@@ -326,6 +348,7 @@ StepReport step(const SimModel& model, SimState& state, const StepSettings& sett
       report.msPlastic += msSince(t0);
     }
     report.contactForces = r.contactForces;
+    report.linearResidualReduction = r.linearResidualReduction;
     report.newtonIterations += r.iterations;
     report.backtracks += r.backtracks;
     report.residual = r.residual;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "colliders.h"
+#include "multigrid.h"
 #include "sim_model.h"
 
 namespace galsculpt {
@@ -43,6 +44,10 @@ struct StepSettings {
   bool compressionResists = true;
   std::vector<AnchorConstraint> anchors;
   std::vector<Collider> colliders;
+  // Linear solver of each Newton step: CHOLMOD's Cholesky, or the Galerkin multigrid.
+  bool multigrid = false;
+  std::vector<int> gridHandles = {50};  // handle counts, finest coarse level first
+  MultigridSettings multigridSettings;
   int maxRetries = 4;  // halvings of the step after NaN or explosion
 };
 
@@ -56,8 +61,9 @@ struct StepReport {
   int retries = 0;             // step halvings (warnings)
   int backtracks = 0;          // Newton steps shortened because the full step raised the energy
   double msElements = 0.0, msSolve = 0.0, msPlastic = 0.0, msTotal = 0.0;
-  std::vector<Vec3> contactForces;  // (nColliders) force of each collider on the body, N
-  int plasticElements = 0;          // elements that flowed this frame
+  std::vector<Vec3> contactForces;       // (nColliders) force of each collider on the body, N
+  int plasticElements = 0;               // elements that flowed this frame
+  double linearResidualReduction = 0.0;  // |r_final| / |r_initial| of the last linear solve
 };
 
 StepReport step(const SimModel& model, SimState& state, const StepSettings& settings);

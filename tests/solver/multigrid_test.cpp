@@ -23,7 +23,8 @@ TetMesh gridBar(int nx, int ny, int nz, double size) {
       for (int i = 0; i < nx; ++i)
         for (const Tet& t : cube.tets) {
           Tet g;
-          for (int c = 0; c < 4; ++c) g[c] = id(i + (t[c] & 1), j + ((t[c] >> 1) & 1), k + ((t[c] >> 2) & 1));
+          for (int c = 0; c < 4; ++c)
+            g[c] = id(i + (t[c] & 1), j + ((t[c] >> 1) & 1), k + ((t[c] >> 2) & 1));
           m.tets.push_back(g);
         }
   return m;
@@ -37,23 +38,27 @@ struct System {
 };
 
 System elasticitySystem(int nx = 3, int ny = 12, int nz = 3) {
-  System s{buildSimModel(gridBar(nx, ny, nz, 0.02), {MaterialModel::StableNeoHookean, lameFromYoungPoisson(1e5, 0.45),
-                                                      1000.0, {}}),
-           BlockSparseMatrix(BlockPattern{}), Eigen::VectorXd()};
+  System s{
+      buildSimModel(gridBar(nx, ny, nz, 0.02),
+                    {MaterialModel::StableNeoHookean, lameFromYoungPoisson(1e5, 0.45), 1000.0, {}}),
+      BlockSparseMatrix(BlockPattern{}), Eigen::VectorXd()};
   s.a = BlockSparseMatrix(s.model.pattern);
   SimState state = initialState(s.model);
   for (int v = 0; v < s.model.numVertices(); ++v) {
     const Vec3 p = s.model.mesh.vertices[v];
-    state.x[v] += 0.01 * Vec3(std::sin(20 * p.y()), 0.3 * std::cos(13 * p.x()), std::sin(7 * p.z() + p.y()));
+    state.x[v] +=
+        0.01 * Vec3(std::sin(20 * p.y()), 0.3 * std::cos(13 * p.x()), std::sin(7 * p.z() + p.y()));
   }
   Eigen::VectorXd g;
   assembleElastic(s.model, state.x, state, true, g, &s.a);
   const double h = 1.0 / 60.0;
   for (int v = 0; v < s.model.numVertices(); ++v) {
-    s.a.blocks[s.model.pattern.diagonal[v]] += s.model.mass[v] / (h * h) * Eigen::Matrix3d::Identity();
+    s.a.blocks[s.model.pattern.diagonal[v]] +=
+        s.model.mass[v] / (h * h) * Eigen::Matrix3d::Identity();
   }
   s.b = -g;
-  for (int v = 0; v < s.model.numVertices(); ++v) s.b.segment<3>(3 * v) += s.model.mass[v] * Vec3(0, -9.81, 0);
+  for (int v = 0; v < s.model.numVertices(); ++v)
+    s.b.segment<3>(3 * v) += s.model.mass[v] * Vec3(0, -9.81, 0);
   return s;
 }
 
@@ -91,13 +96,15 @@ TEST(Multigrid, ProlongationHasOneBlockPerFineRow) {
   const Eigen::MatrixXd u = mg.prolongationMatrix(0);
   for (int r = 0; r < s.model.numVertices(); ++r) {
     int blocks = 0;
-    for (int h = 0; h < mg.level(0).handles; ++h) blocks += u.block(3 * r, 12 * h, 3, 12).norm() > 0.0;
+    for (int h = 0; h < mg.level(0).handles; ++h)
+      blocks += u.block(3 * r, 12 * h, 3, 12).norm() > 0.0;
     EXPECT_EQ(blocks, 1);
   }
   const Eigen::MatrixXd u2 = mg.prolongationMatrix(1);
   for (int a = 0; a < mg.level(0).handles; ++a) {
     int blocks = 0;
-    for (int h = 0; h < mg.level(1).handles; ++h) blocks += u2.block(12 * a, 12 * h, 12, 12).norm() > 0.0;
+    for (int h = 0; h < mg.level(1).handles; ++h)
+      blocks += u2.block(12 * a, 12 * h, 12, 12).norm() > 0.0;
     EXPECT_EQ(blocks, 1);
   }
 }
@@ -112,7 +119,8 @@ TEST(Multigrid, CoarseOperatorsAreGalerkinProductsAndPositiveDefinite) {
     const Eigen::MatrixXd u = mg.prolongationMatrix(0);
     const Eigen::MatrixXd a1 = mg.coarseMatrix(1);
     const Eigen::MatrixXd galerkin = u.transpose() * a * u;
-    EXPECT_LT((a1 - galerkin).norm(), 1e-8 * galerkin.norm()) << "up to the tiny regularizing shift";
+    EXPECT_LT((a1 - galerkin).norm(), 1e-8 * galerkin.norm())
+        << "up to the tiny regularizing shift";
     EXPECT_LT((a1 - a1.transpose()).norm(), 1e-10 * a1.norm());
     EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(a1).info(), Eigen::Success);
     const Eigen::MatrixXd a2 = mg.coarseMatrix(2);
@@ -131,7 +139,8 @@ TEST(Multigrid, AffineMotionsArePreservedByProlongation) {
   Eigen::Matrix<double, 3, 4> t;
   t << 0.1, 0.2, -0.3, 0.01, 0.05, -0.1, 0.2, 0.02, 0.3, 0.1, 0.0, -0.03;
   Eigen::VectorXd q(12 * mg.level(0).handles);
-  const double scale = (s.model.mesh.vertices[mg.level(0).handleVertex[0]] - s.model.mesh.vertices[0]).norm();
+  const double scale =
+      (s.model.mesh.vertices[mg.level(0).handleVertex[0]] - s.model.mesh.vertices[0]).norm();
   (void)scale;
   // Per handle: T_j acting on (x - c_j)/s + 1 must equal the global map G x + g0.
   for (int h = 0; h < mg.level(0).handles; ++h) {
@@ -141,7 +150,8 @@ TEST(Multigrid, AffineMotionsArePreservedByProlongation) {
       if (mg.level(0).parent[v] == h && v != mg.level(0).handleVertex[h]) member = v;
     const Vec3 c = s.model.mesh.vertices[mg.level(0).handleVertex[h]];
     double sc = 1.0;
-    if (member >= 0) sc = (s.model.mesh.vertices[member] - c).norm() / mg.level(0).y[member].head<3>().norm();
+    if (member >= 0)
+      sc = (s.model.mesh.vertices[member] - c).norm() / mg.level(0).y[member].head<3>().norm();
     Eigen::Matrix<double, 3, 4> th;
     th.leftCols<3>() = t.leftCols<3>() * sc;
     th.col(3) = t.leftCols<3>() * c + t.col(3);
@@ -166,7 +176,8 @@ TEST(Multigrid, VCycleReducesTheResidualAndPcgReachesTheDirectSolution) {
   Eigen::VectorXd x10 = Eigen::VectorXd::Zero(s.b.size());
   const MultigridReport ten = mg.solve(s.a, s.b, x10, settings);
   EXPECT_LT(ten.finalResidual, 1e-3 * ten.initialResidual);
-  std::printf("one V-cycle: %.3g, ten: %.3g\n", one.finalResidual / one.initialResidual, ten.finalResidual / ten.initialResidual);
+  std::printf("one V-cycle: %.3g, ten: %.3g\n", one.finalResidual / one.initialResidual,
+              ten.finalResidual / ten.initialResidual);
 
   settings.pcg = true;
   settings.pcgTolerance = 1e-12;
@@ -186,7 +197,8 @@ TEST(Multigrid, VCycleReducesTheResidualAndPcgReachesTheDirectSolution) {
     settings.cycles = 30;
     Eigen::VectorXd xj = Eigen::VectorXd::Zero(s.b.size());
     const MultigridReport j = mg.solve(s.a, s.b, xj, settings);
-    EXPECT_LT(j.finalResidual, 1e-3 * j.initialResidual) << "Jacobi smoothing converges too, slower";
+    EXPECT_LT(j.finalResidual, 1e-3 * j.initialResidual)
+        << "Jacobi smoothing converges too, slower";
   }
 }
 
