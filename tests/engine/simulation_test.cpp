@@ -40,7 +40,8 @@ TEST(Simulation, HangingSphereSagsAndSettlesWithAnchorsHeld) {
     EXPECT_EQ(sim.state().x[v], sim.model().mesh.vertices[v]) << "anchored vertices do not move";
   }
   EXPECT_TRUE(sim.surface().numFaces() > 0);
-  EXPECT_FALSE(sim.notes().empty()) << "says that multigrid is not there yet";
+  EXPECT_TRUE(sim.settings().multigrid) << "the scene default solver is the Galerkin multigrid";
+  EXPECT_EQ(sim.settings().gridHandles, std::vector<int>{50});
 }
 
 TEST(Simulation, AnchorErrorsNameTheJsonPath) {
