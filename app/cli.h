@@ -20,6 +20,7 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
 int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int sceneCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int openCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int renderCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 

@@ -123,6 +123,31 @@ TEST(Cli, RunWritesMetricsAndSurfaces) {
   EXPECT_EQ(run({"run", scene.string(), "--out", "x", "--frames", "0"}).code, kExitUsage);
 }
 
+TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
+  // A private assets folder whose "sphere" scene uses the small committed mesh.
+  test::TempDir dir;
+  fs::create_directories(dir / "scenes");
+  test::writeText(dir / "scenes" / "hanging_sphere.json",
+                  std::string(R"({"mesh": {"file": ")") + GALSCULPT_SOURCE_DIR +
+                      R"(/assets/meshes/sphere_small.node"}, "material": {"youngs_modulus": 8000, "poisson_ratio": 0.48,
+                      "density": 1000}, "anchors": [{"box": {"min": [-1, 0.08, -1]}}]})");
+  setenv("GALSCULPT_ASSETS", dir.path().c_str(), 1);
+  const CliRun r = run({"bench", "--scene", "sphere", "--frames", "3", "--json", (dir / "b.json").string()});
+  unsetenv("GALSCULPT_ASSETS");
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const auto j = nlohmann::json::parse(test::readText(dir / "b.json"));
+  ASSERT_EQ(j["results"].size(), 2u);
+  for (const char* key : {"scene", "tets", "solver", "grid", "fine_sweeps", "coarse_iters", "frames", "ms_per_frame",
+                          "fps", "peak_rss_mb", "rel_position_error", "volume_change_pct"}) {
+    EXPECT_TRUE(j["results"][1].contains(key)) << key;
+  }
+  EXPECT_EQ(j["results"][0]["solver"], "reference");
+  EXPECT_EQ(j["results"][1]["solver"], "multigrid");
+  EXPECT_GT(j["results"][1]["rel_position_error"].get<double>(), 0.0);
+  EXPECT_LT(j["results"][1]["rel_position_error"].get<double>(), 1.0);
+  EXPECT_EQ(run({"bench", "--scene", "moon"}).code, kExitUsage);
+}
+
 TEST(Cli, SceneCheck) {
   const fs::path scene = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
   const CliRun r = run({"scene", "check", scene.string(), "--load-mesh"});
