@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "engine/json_reader.h"
+#include "solver/multigrid.h"
 #include "solver/input_error.h"
 
 namespace galsculpt {
@@ -19,34 +20,10 @@ const std::vector<std::string> kModels = {"corotational", "stvk", "stable_neo_ho
 
 // "50/1000/all": coarse to fine, counts strictly increasing, ending in "all".
 void checkGrid(JsonObject& o, const std::string& key, const std::string& grid) {
-  std::vector<std::string> parts;
-  size_t start = 0;
-  while (true) {
-    const size_t slash = grid.find('/', start);
-    parts.push_back(grid.substr(start, slash - start));
-    if (slash == std::string::npos) break;
-    start = slash + 1;
-  }
-  if (parts.size() < 2 || parts.back() != "all") {
-    o.fail(key,
-           "grid '" + grid +
-               "' must list coarse vertex counts and end in 'all', e.g. 50/all or 50/1000/all");
-  }
-  long long previous = 0;
-  for (size_t i = 0; i + 1 < parts.size(); ++i) {
-    long long n = 0;
-    try {
-      size_t used = 0;
-      n = std::stoll(parts[i], &used);
-      if (used != parts[i].size()) throw std::invalid_argument("trailing");
-    } catch (const std::exception&) {
-      o.fail(key, "grid level '" + parts[i] + "' is not a vertex count");
-    }
-    if (n < 1 || n <= previous) {
-      o.fail(key,
-             "grid levels must be positive and increase from coarse to fine, got '" + grid + "'");
-    }
-    previous = n;
+  try {
+    parseGridSetup(grid);
+  } catch (const std::invalid_argument& e) {
+    o.fail(key, e.what());
   }
 }
 

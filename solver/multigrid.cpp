@@ -82,15 +82,23 @@ std::vector<int> parseGridSetup(const std::string& grid) {
     if (slash == std::string::npos) break;
     start = slash + 1;
   }
-  if (parts.size() < 2 || parts.back() != "all")
-    throw std::invalid_argument("grid setup must end in /all: " + grid);
-  std::vector<int> counts;
-  for (size_t i = 0; i + 1 < parts.size(); ++i) counts.push_back(std::stoi(parts[i]));
-  std::reverse(counts.begin(), counts.end());  // finest coarse level first
-  for (size_t i = 1; i < counts.size(); ++i) {
-    if (counts[i] >= counts[i - 1] || counts[i] < 1)
-      throw std::invalid_argument("grid levels must shrink: " + grid);
+  if (parts.size() < 2 || parts.back() != "all") {
+    throw std::invalid_argument("grid '" + grid +
+                                "' must list coarse vertex counts and end in 'all', e.g. 50/all or 50/1000/all");
   }
+  std::vector<int> counts;  // coarse to fine as written
+  for (size_t i = 0; i + 1 < parts.size(); ++i) {
+    const std::string& p = parts[i];
+    if (p.empty() || p.size() > 9 || p.find_first_not_of("0123456789") != std::string::npos) {
+      throw std::invalid_argument("grid level '" + p + "' is not a vertex count");
+    }
+    const int n = std::stoi(p);
+    if (n < 1 || (!counts.empty() && n <= counts.back())) {
+      throw std::invalid_argument("grid levels must be positive and increase from coarse to fine, got '" + grid + "'");
+    }
+    counts.push_back(n);
+  }
+  std::reverse(counts.begin(), counts.end());  // finest coarse level first
   return counts;
 }
 
