@@ -8,4 +8,7 @@ bash scripts/build.sh
 cd build
 # Generated meshes are cached inside the build tree, never in the user's cache.
 export GALSCULPT_CACHE_DIR="$PWD/test-cache"
+# ctest already runs tests side by side; OpenMP threads on top of that oversubscribe the cores
+# and spin. Tests that check threading set their thread counts themselves.
+export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
 ctest --output-on-failure -j "$(nproc 2>/dev/null || echo 2)" "$@"

@@ -34,7 +34,6 @@ inline constexpr std::uint8_t kAllEdgesIntact = 0x3f;
 struct TetRest {
   Eigen::Matrix3d dmInverse;                    // inverse of [X1-X0, X2-X0, X3-X0]
   double volume = 0.0;                          // rest volume (m^3)
-  Eigen::Matrix<double, 9, 12> dFdx;            // d vec(F) / d x, column-major vec
   std::array<double, 6> restLengthSq{};         // |D_k|^2
   Eigen::Matrix<double, 6, 6> strainFromEdges;  // B^-1: (E11,E22,E33,E12,E13,E23) from eps
 };
