@@ -17,6 +17,9 @@ struct StepWorkspace {
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> ldlt;
   bool analyzed = false;
   std::unique_ptr<Multigrid> multigrid;  // built once per mesh and grid setup
+  // Matrices on the model's fixed pattern, allocated once: the elastic stiffness, the stiffness
+  // frozen at x_n for Rayleigh damping (only with several Newton iterations), the system.
+  std::unique_ptr<BlockSparseMatrix> stiffness, frozen, system;
   std::vector<int> multigridHandles;
 };
 
@@ -73,9 +76,19 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
     }
   }
 
-  BlockSparseMatrix k(model.pattern);
+  if (!ws.stiffness) {
+    ws.stiffness = std::make_unique<BlockSparseMatrix>(model.pattern);
+    ws.system = std::make_unique<BlockSparseMatrix>(model.pattern);
+  }
+  BlockSparseMatrix& k = *ws.stiffness;
+  BlockSparseMatrix& hm = *ws.system;
+  // beta K(x_n) for Rayleigh damping: the stiffness itself when it is assembled only once.
+  const BlockSparseMatrix* frozen = &k;
+  auto dampedProduct = [&](const Eigen::VectorXd& dx, Eigen::VectorXd& out) {
+    frozen->multiply(dx, out);
+    out *= s.dampingStiffness;
+  };
   Eigen::VectorXd gradient(3 * n);
-  BlockSparseMatrix dampingStiffness(model.pattern);  // beta K(x_n), frozen for the step
   const double modelSize = std::max(boundingBox(model.mesh.vertices).size().norm(), 1e-12);
   const double weight = std::max(fext.norm(), 1e-12 * mass.sum());
 
@@ -117,13 +130,14 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
     const double elastic =
         assembleElastic(model, positions, state, s.compressionResists, gradient, &k);
     result.msElements += msSince(t0);
-    if (it == 0) {
-      for (size_t b = 0; b < k.blocks.size(); ++b)
-        dampingStiffness.blocks[b] = s.dampingStiffness * k.blocks[b];
+    if (it == 0 && s.newtonIterations > 1) {
+      if (!ws.frozen) ws.frozen = std::make_unique<BlockSparseMatrix>(model.pattern);
+      ws.frozen->blocks = k.blocks;
+      frozen = ws.frozen.get();
     }
-    const double elasticAndContact = elastic + contact(x, &gradient, &k, nullptr);
+    const double elasticAndContact = elastic + contact(x, &gradient, nullptr, nullptr);
     Eigen::VectorXd dampedK;  // beta K0 (x - x_n)
-    dampingStiffness.multiply(x - xn, dampedK);
+    dampedProduct(x - xn, dampedK);
     const Eigen::VectorXd dx = x - xn;
     Eigen::VectorXd g = mass.cwiseProduct(x - xhat) / (h * h) + gradient - fext +
                         (s.dampingMass * mass.cwiseProduct(dx) + dampedK) / h;
@@ -137,9 +151,11 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
 
     // H = M/h^2 + K + (alpha M + beta K0)/h, anchored rows and columns replaced by identity.
     t0 = Clock::now();
-    BlockSparseMatrix hm(model.pattern);
+    const double betaOverH = s.dampingStiffness / h;
+#pragma omp parallel for schedule(static)
     for (size_t b = 0; b < k.blocks.size(); ++b)
-      hm.blocks[b] = k.blocks[b] + dampingStiffness.blocks[b] / h;
+      hm.blocks[b] = k.blocks[b] + betaOverH * frozen->blocks[b];
+    contact(x, nullptr, &hm, nullptr);
     for (int v = 0; v < n; ++v) {
       hm.blocks[model.pattern.diagonal[v]] +=
           model.mass[v] * (1.0 / (h * h) + s.dampingMass / h) * Eigen::Matrix3d::Identity();
@@ -200,7 +216,7 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
       unflatten(trial, tp);
       trialEnergy = assembleElastic(model, tp, state, s.compressionResists, trialGradient, nullptr);
       Eigen::VectorXd trialDampedK;
-      dampingStiffness.multiply(trial - xn, trialDampedK);
+      dampedProduct(trial - xn, trialDampedK);
       const double e1 =
           objective(trial, trialEnergy + contact(trial, nullptr, nullptr, nullptr), trialDampedK);
       if (std::isfinite(e1) && e1 <= e0 + sufficient * stepLength * slope + 1e-12 * std::abs(e0))
@@ -221,7 +237,7 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
     // Residual of the backward-Euler equations at the accepted positions (free DOFs), relative
     // to the body's weight: how far this frame is from the exact implicit solution.
     Eigen::VectorXd dampedK;
-    dampingStiffness.multiply(x - xn, dampedK);
+    dampedProduct(x - xn, dampedK);
     Eigen::VectorXd g = mass.cwiseProduct(x - xhat) / (h * h) + trialGradient - fext +
                         (s.dampingMass * mass.cwiseProduct(x - xn) + dampedK) / h;
     contact(x, &g, nullptr, nullptr);
