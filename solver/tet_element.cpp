@@ -149,6 +149,32 @@ Eigen::Matrix<double, 4, 3> shapeGradients(const TetRest& rest) {
   return c;
 }
 
+// Psi and P straight from F for StVK and stable neo-Hookean (the same functions as their
+// singular-value forms; the finite-difference tests compare the two paths).
+Eigen::Matrix3d directStress(MaterialModel model, const Lame& lame, const Eigen::Matrix3d& f,
+                             double& psi) {
+  if (model == MaterialModel::StVK) {
+    const Eigen::Matrix3d e = 0.5 * (f.transpose() * f - Eigen::Matrix3d::Identity());
+    const double trace = e.trace();
+    psi = lame.mu * e.squaredNorm() + 0.5 * lame.lambda * trace * trace;
+    return f * (2.0 * lame.mu * e + lame.lambda * trace * Eigen::Matrix3d::Identity());
+  }
+  const double muS = 4.0 / 3.0 * lame.mu;
+  const double lambdaS = lame.lambda + 5.0 / 6.0 * lame.mu;
+  const double alpha = 1.0 + 0.75 * muS / lambdaS;
+  const double ic = f.squaredNorm();
+  const double j = f.determinant();
+  Eigen::Matrix3d cofactor;  // dJ/dF
+  cofactor.col(0) = f.col(1).cross(f.col(2));
+  cofactor.col(1) = f.col(2).cross(f.col(0));
+  cofactor.col(2) = f.col(0).cross(f.col(1));
+  const double restEnergy =
+      0.5 * lambdaS * (1.0 - alpha) * (1.0 - alpha) - 0.5 * muS * std::log(4.0);
+  psi = 0.5 * muS * (ic - 3.0) + 0.5 * lambdaS * (j - alpha) * (j - alpha) -
+        0.5 * muS * std::log(ic + 1.0) - restEnergy;
+  return muS * (1.0 - 1.0 / (ic + 1.0)) * f + lambdaS * (j - alpha) * cofactor;
+}
+
 }  // namespace
 
 TetRest computeTetRest(const TetPoints& p) {
@@ -196,14 +222,24 @@ void evaluateElement(MaterialModel model, const Lame& lame, const TetRest& rest,
     return;
   }
   const Eigen::Matrix3d f = deformationGradient(rest, x);
+  const Eigen::Matrix<double, 4, 3> c = shapeGradients(rest);
+  if (mode == HessianMode::None && model != MaterialModel::Corotational) {
+    // Energy and force without an SVD: both models are polynomial in F (and J) directly.
+    double psi = 0.0;
+    const Eigen::Matrix3d p = directStress(model, lame, f, psi);
+    out.energy = rest.volume * psi;
+    for (int a = 0; a < 4; ++a)
+      out.gradient.segment<3>(3 * a) = rest.volume * (p * c.row(a).transpose());
+    return;
+  }
   const RotationSvd svd = rotationVariantSvd(f);
   const SingularValueEnergy e = evaluateSingularValueEnergy(model, lame, svd.s);
   const Eigen::Matrix3d p = svd.u * e.gradient.asDiagonal() * svd.v.transpose();
   out.energy = rest.volume * e.energy;
   // dF/dx has the structure dF_ij/dx_ak = delta_ik c_aj (c_a the rows of the shape-function
   // gradients); using it directly is several times cheaper than the dense 9x12 products.
-  const Eigen::Matrix<double, 4, 3> c = shapeGradients(rest);
-  for (int a = 0; a < 4; ++a) out.gradient.segment<3>(3 * a) = rest.volume * (p * c.row(a).transpose());
+  for (int a = 0; a < 4; ++a)
+    out.gradient.segment<3>(3 * a) = rest.volume * (p * c.row(a).transpose());
   if (mode == HessianMode::None) return;
   const Mat9 dpdf = eigenSystemHessian(svd, e, mode == HessianMode::ProjectedSpd);
   // K_ab = V sum_{j,n} c_aj c_bn H_(j,n), H_(j,n) the 3x3 block of dP/dF at columns j, n of F.
