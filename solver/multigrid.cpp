@@ -83,8 +83,9 @@ std::vector<int> parseGridSetup(const std::string& grid) {
     start = slash + 1;
   }
   if (parts.size() < 2 || parts.back() != "all") {
-    throw std::invalid_argument("grid '" + grid +
-                                "' must list coarse vertex counts and end in 'all', e.g. 50/all or 50/1000/all");
+    throw std::invalid_argument(
+        "grid '" + grid +
+        "' must list coarse vertex counts and end in 'all', e.g. 50/all or 50/1000/all");
   }
   std::vector<int> counts;  // coarse to fine as written
   for (size_t i = 0; i + 1 < parts.size(); ++i) {
@@ -94,7 +95,8 @@ std::vector<int> parseGridSetup(const std::string& grid) {
     }
     const int n = std::stoi(p);
     if (n < 1 || (!counts.empty() && n <= counts.back())) {
-      throw std::invalid_argument("grid levels must be positive and increase from coarse to fine, got '" + grid + "'");
+      throw std::invalid_argument(
+          "grid levels must be positive and increase from coarse to fine, got '" + grid + "'");
     }
     counts.push_back(n);
   }
@@ -251,7 +253,7 @@ Multigrid::Multigrid(const BlockPattern& fine, const std::vector<Vec3>& rest,
   }
 }
 
-void Multigrid::refresh(const BlockSparseMatrix& a) {
+void Multigrid::refresh(const BlockSparseMatrix& a, const MultigridSettings& settings) {
   const BlockPattern& fine = *finePattern_;
   for (size_t l = 0; l < levels_.size(); ++l) {
     MultigridLevel& level = levels_[l];
@@ -285,8 +287,12 @@ void Multigrid::refresh(const BlockSparseMatrix& a) {
       }
     }
   }
-  coarsestDense_ = coarseMatrix(numLevels());
-  coarsestCholesky_.compute(coarsestDense_);
+  coarsestFactored_ = false;
+  if (settings.coarseCholesky) {
+    coarsestDense_ = coarseMatrix(numLevels());
+    coarsestCholesky_.compute(coarsestDense_);
+    coarsestFactored_ = coarsestCholesky_.info() == Eigen::Success;
+  }
 }
 
 Eigen::MatrixXd Multigrid::coarseMatrix(int l) const {
@@ -430,7 +436,7 @@ void Multigrid::smoothCoarse(int l, const Eigen::VectorXd& b, Eigen::VectorXd& x
 
 void Multigrid::solveCoarsest(const Eigen::VectorXd& b, Eigen::VectorXd& x,
                               const MultigridSettings& s) const {
-  if (s.coarseCholesky) {
+  if (s.coarseCholesky && coarsestFactored_) {
     x = coarsestCholesky_.solve(b);
     return;
   }

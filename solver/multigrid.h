@@ -79,8 +79,9 @@ class Multigrid {
   Multigrid(const BlockPattern& fine, const std::vector<Vec3>& restPositions,
             const std::vector<Edge>& edges, const std::vector<int>& handleCounts);
 
-  // Refreshes A_{l+1} = U^T A_l U for every level from the current fine matrix.
-  void refresh(const BlockSparseMatrix& fineMatrix);
+  // Refreshes A_{l+1} = U^T A_l U for every level from the current fine matrix; factors the
+  // coarsest level densely only when the settings ask for a Cholesky coarse solve.
+  void refresh(const BlockSparseMatrix& fineMatrix, const MultigridSettings& settings);
   // Solves A x = b from the initial guess in x.
   MultigridReport solve(const BlockSparseMatrix& fineMatrix, const Eigen::VectorXd& b,
                         Eigen::VectorXd& x, const MultigridSettings& settings) const;
@@ -110,6 +111,7 @@ class Multigrid {
   std::vector<MultigridLevel> levels_;
   Eigen::LLT<Eigen::MatrixXd> coarsestCholesky_;
   Eigen::MatrixXd coarsestDense_;
+  bool coarsestFactored_ = false;
 };
 
 }  // namespace galsculpt

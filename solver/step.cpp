@@ -175,7 +175,7 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
                                                    s.gridHandles);
         ws.multigridHandles = s.gridHandles;
       }
-      ws.multigrid->refresh(hm);
+      ws.multigrid->refresh(hm, s.multigridSettings);
       delta = Eigen::VectorXd::Zero(3 * n);
       const MultigridReport mr = ws.multigrid->solve(hm, -g, delta, s.multigridSettings);
       result.linearResidualReduction =

@@ -114,7 +114,7 @@ TEST(Multigrid, CoarseOperatorsAreGalerkinProductsAndPositiveDefinite) {
   for (const std::vector<int>& counts : {std::vector<int>{40, 6}, std::vector<int>{150, 30}}) {
     const System s = elasticitySystem();
     Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, counts);
-    mg.refresh(s.a);
+    mg.refresh(s.a, MultigridSettings{});
     const Eigen::MatrixXd a = Eigen::MatrixXd(s.a.toEigen());
     const Eigen::MatrixXd u = mg.prolongationMatrix(0);
     const Eigen::MatrixXd a1 = mg.coarseMatrix(1);
@@ -167,7 +167,9 @@ TEST(Multigrid, AffineMotionsArePreservedByProlongation) {
 TEST(Multigrid, VCycleReducesTheResidualAndPcgReachesTheDirectSolution) {
   const System s = elasticitySystem();
   Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {60, 8});
-  mg.refresh(s.a);
+  MultigridSettings cholesky;
+  cholesky.coarseCholesky = true;
+  mg.refresh(s.a, cholesky);  // factors the coarsest level too, for the Jacobi + Cholesky case
   MultigridSettings settings;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(s.b.size());
   const MultigridReport one = mg.solve(s.a, s.b, x, settings);
@@ -205,7 +207,7 @@ TEST(Multigrid, VCycleReducesTheResidualAndPcgReachesTheDirectSolution) {
 TEST(Multigrid, SolvesAreDeterministic) {
   const System s = elasticitySystem();
   Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {60});
-  mg.refresh(s.a);
+  mg.refresh(s.a, MultigridSettings{});
   Eigen::VectorXd a = Eigen::VectorXd::Zero(s.b.size()), b = a;
   mg.solve(s.a, s.b, a, MultigridSettings{});
   mg.solve(s.a, s.b, b, MultigridSettings{});
