@@ -324,3 +324,25 @@ TEST(StepPlasticity, ClayKeepsADentAndRubberDoesNot) {
 
 }  // namespace
 }  // namespace galsculpt
+
+namespace galsculpt {
+namespace {
+
+// A sub-step that cannot succeed (a NaN velocity poisons every attempt) is rolled back and
+// halved up to maxRetries times, each counted; then the frame is given up, the state kept as it
+// was and time moved on, so that a caller is never stuck in a loop.
+TEST(StepRecovery, FailedSubstepsAreRolledBackCountedAndNeverHang) {
+  const SimModel m = buildSimModel(bar(1, 2, 1), rubber());
+  SimState s = initialState(m);
+  s.v[3] = Vec3(std::nan(""), 0, 0);
+  const std::vector<Vec3> before = s.x;
+  StepSettings settings;
+  settings.maxRetries = 3;
+  const StepReport r = step(m, s, settings);
+  EXPECT_EQ(r.retries, settings.maxRetries + 1);
+  EXPECT_NEAR(s.time, settings.dt, 1e-15);
+  EXPECT_EQ(s.x, before) << "the positions are those of the last good state";
+}
+
+}  // namespace
+}  // namespace galsculpt
