@@ -59,6 +59,31 @@ inline TetMesh unitCubeTets(double size = 1.0, const Vec3& origin = Vec3::Zero()
   return m;
 }
 
+// A box of nx x ny x nz cubes of edge `size`, each split into 6 tets (Kuhn), origin at 0.
+inline TetMesh gridBar(int nx, int ny, int nz, double size) {
+  TetMesh m;
+  auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
+  for (int k = 0; k <= nz; ++k) {
+    for (int j = 0; j <= ny; ++j) {
+      for (int i = 0; i <= nx; ++i) m.vertices.push_back(size * Vec3(i, j, k));
+    }
+  }
+  const TetMesh cube = unitCubeTets();
+  for (int k = 0; k < nz; ++k) {
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        for (const Tet& t : cube.tets) {
+          Tet g;
+          for (int c = 0; c < 4; ++c)
+            g[c] = id(i + (t[c] & 1), j + ((t[c] >> 1) & 1), k + ((t[c] >> 2) & 1));
+          m.tets.push_back(g);
+        }
+      }
+    }
+  }
+  return m;
+}
+
 }  // namespace galsculpt::test
 
 // Expects `statement` to throw `type` whose what() contains `substring`.

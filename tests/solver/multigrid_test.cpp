@@ -11,24 +11,7 @@
 namespace galsculpt {
 namespace {
 
-TetMesh gridBar(int nx, int ny, int nz, double size) {
-  TetMesh m;
-  auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
-  for (int k = 0; k <= nz; ++k)
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) m.vertices.push_back(size * Vec3(i, j, k));
-  const TetMesh cube = test::unitCubeTets();
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        for (const Tet& t : cube.tets) {
-          Tet g;
-          for (int c = 0; c < 4; ++c)
-            g[c] = id(i + (t[c] & 1), j + ((t[c] >> 1) & 1), k + ((t[c] >> 2) & 1));
-          m.tets.push_back(g);
-        }
-  return m;
-}
+using test::gridBar;
 
 // The backward-Euler matrix M/h^2 + K of a deformed, hanging bar.
 struct System {

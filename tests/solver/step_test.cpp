@@ -11,29 +11,7 @@ namespace {
 
 // A 2x2x8 bar of cubes (6 tets each) along y, 10 cm per cube.
 TetMesh bar(int nx = 2, int ny = 8, int nz = 2, double size = 0.1) {
-  TetMesh m;
-  auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
-  for (int k = 0; k <= nz; ++k) {
-    for (int j = 0; j <= ny; ++j) {
-      for (int i = 0; i <= nx; ++i) m.vertices.push_back(size * Vec3(i, j, k));
-    }
-  }
-  const TetMesh cube = test::unitCubeTets();
-  for (int k = 0; k < nz; ++k) {
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 0; i < nx; ++i) {
-        for (const Tet& t : cube.tets) {
-          Tet g;
-          for (int c = 0; c < 4; ++c) {
-            const int corner = t[c];
-            g[c] = id(i + (corner & 1), j + ((corner >> 1) & 1), k + ((corner >> 2) & 1));
-          }
-          m.tets.push_back(g);
-        }
-      }
-    }
-  }
-  return m;
+  return test::gridBar(nx, ny, nz, size);
 }
 
 MaterialParams rubber(MaterialModel model = MaterialModel::StableNeoHookean, double e = 1e5,
