@@ -14,7 +14,36 @@ struct RotationSvd {
   Eigen::Vector3d s;
 };
 
+// Fast path: eigenvectors of F^T F in closed form give V and the singular values; U follows
+// from F V. Used only where it is well conditioned (checked); otherwise Jacobi SVD below.
+bool svdFromNormalMatrix(const Eigen::Matrix3d& f, RotationSvd& r) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  es.computeDirect(f.transpose() * f);
+  const Eigen::Vector3d lambda = es.eigenvalues();  // ascending
+  if (!(lambda[2] > 0.0) || !(lambda[1] > 1e-8 * lambda[2])) return false;
+  Eigen::Matrix3d v;
+  v << es.eigenvectors().col(2), es.eigenvectors().col(1), es.eigenvectors().col(0);
+  if (!((v.transpose() * v - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-10))
+    return false;
+  if (v.determinant() < 0.0) v.col(2) *= -1.0;
+  const double s0 = std::sqrt(lambda[2]), s1 = std::sqrt(lambda[1]);
+  const Eigen::Vector3d u0 = f * v.col(0) / s0, u1 = f * v.col(1) / s1;
+  if (!(std::abs(u0.dot(u1)) < 1e-9 && std::abs(u0.squaredNorm() - 1.0) < 1e-9 &&
+        std::abs(u1.squaredNorm() - 1.0) < 1e-9)) {
+    return false;
+  }
+  r.u.col(0) = u0;
+  r.u.col(1) = u1;
+  r.u.col(2) = u0.cross(u1);
+  r.v = v;
+  r.s = Eigen::Vector3d(s0, s1, r.u.col(2).dot(f * v.col(2)));  // signed: negative when inverted
+  const double scale = std::max(f.cwiseAbs().maxCoeff(), 1e-300);
+  return (r.u * r.s.asDiagonal() * r.v.transpose() - f).cwiseAbs().maxCoeff() < 1e-11 * scale;
+}
+
 RotationSvd rotationVariantSvd(const Eigen::Matrix3d& f) {
+  RotationSvd fast;
+  if (svdFromNormalMatrix(f, fast)) return fast;
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(f, Eigen::ComputeFullU | Eigen::ComputeFullV);
   RotationSvd r{svd.matrixU(), svd.matrixV(), svd.singularValues()};
   if (r.u.determinant() < 0.0) {
@@ -49,7 +78,17 @@ Mat9 eigenSystemHessian(const RotationSvd& svd, const SingularValueEnergy& e, bo
     h.noalias() += lambda * q * q.transpose();
   };
   // Scaling modes: the 3x3 Hessian in singular values.
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> scaling(e.hessian);
+  // Closed-form 3x3 eigen-solve, with the iterative solver as the fallback where the closed form
+  // loses orthogonality (nearly repeated eigenvalues).
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> scaling;
+  scaling.computeDirect(e.hessian);
+  const Eigen::Matrix3d& q = scaling.eigenvectors();
+  const double scale = std::max(e.hessian.cwiseAbs().maxCoeff(), 1e-300);
+  if (!((q.transpose() * q - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-10) ||
+      !((q * scaling.eigenvalues().asDiagonal() * q.transpose() - e.hessian).cwiseAbs().maxCoeff() <
+        1e-11 * scale)) {
+    scaling.compute(e.hessian);
+  }
   for (int m = 0; m < 3; ++m) {
     add(scaling.eigenvalues()[m],
         svd.u * scaling.eigenvectors().col(m).asDiagonal() * svd.v.transpose());
