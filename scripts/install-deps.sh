@@ -9,7 +9,7 @@ packages=(
   libglfw3-dev libimgui-dev libstb-dev libassimp-dev
   libopengl-dev libegl-dev libgles-dev libegl1-mesa-dev libgl1-mesa-dri mesa-utils xvfb xauth
   libgtest-dev libgmock-dev libbenchmark-dev
-  tetgen gnuplot-nox
+  tetgen gnuplot-nox python3
 )
 
 sudo_cmd=()

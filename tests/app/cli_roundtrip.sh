@@ -11,7 +11,7 @@ cd "$work"
 "$galsculpt" mesh generate charpy bar.stl >/dev/null
 "$galsculpt" mesh info bar.stl | grep -q "watertight: yes"
 "$galsculpt" mesh import bar.stl bar.node --tets 4000 2>import.log
-tets=$("$galsculpt" mesh info bar.node --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["tets"])')
+tets=$("$galsculpt" mesh info bar.node | sed -n 's/^tets: //p')
 if [ "$tets" -lt 3400 ] || [ "$tets" -gt 4600 ]; then echo "got $tets tets, wanted 4000 +-15 %"; exit 1; fi
 "$galsculpt" mesh info bar.node | grep -q "watertight: yes"
 "$galsculpt" mesh info bar.node | grep -q "pieces: 1"
