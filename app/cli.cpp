@@ -23,6 +23,9 @@ commands:
                          render FILE offscreen (EGL) from standard views into PNG files
   run SCENE --frames N [--solver reference] --out DIR [--metrics FILE.csv] [--export-every K]
                          simulate headless: metrics CSV per frame, surfaces as OBJ
+  play SCRIPT --out DIR [--export-every K] [--metrics FILE.csv] [--solver reference]
+                         run a playback script (scene + timed knife/brush/anchor events)
+                         headless; always writes DIR/final.obj
   bench [--scene NAME] [--quick] [--sweep] [--frames N] [--json FILE]
                          speed against error of the multigrid vs the reference solver
   mesh info FILE [--json]
@@ -70,6 +73,7 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     if (command == "open") return openCommand(rest, out, err);
     if (command == "render") return renderCommand(rest, out, err);
     if (command == "run") return runCommand(rest, out, err);
+    if (command == "play") return playCommand(rest, out, err);
     if (command == "bench") return benchCommand(rest, out, err);
     throw UsageError("unknown command '" + command + "'");
   } catch (const UsageError& e) {

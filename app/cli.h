@@ -22,6 +22,7 @@ int sceneCommand(const std::vector<std::string>& args, std::ostream& out, std::o
 int openCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int playCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int renderCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 // assets/ of the source tree or of an install; $GALSCULPT_ASSETS overrides.

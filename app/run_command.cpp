@@ -1,14 +1,17 @@
 // `galsculpt run SCENE --frames N [--solver reference] --out DIR --metrics FILE.csv
 //  [--export-every K]`: headless simulation with a progress bar and per-frame metrics.
+// `galsculpt play SCRIPT --out DIR [--export-every K]`: the same for a playback script.
 #include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 
 #include "app/cli.h"
 #include "app/cli_args.h"
+#include "engine/playback.h"
 #include "engine/scene_mesh.h"
 #include "engine/simulation.h"
 #include "engine/surface_io.h"
@@ -40,6 +43,41 @@ std::string frameName(int frame) {
   return s.str();
 }
 
+// The frame loop shared by run and play: metrics CSV, OBJ exports, final.obj, summary.
+int simulateFrames(const std::string& name, int frames, Simulation& sim, const TetMesh& mesh,
+                   const fs::path& outDir, const fs::path& metricsPath, int exportEvery,
+                   const std::function<FrameMetrics()>& advance, std::ostream& out,
+                   std::ostream& err) {
+  for (const std::string& note : sim.notes()) err << "note: " << note << '\n';
+  std::error_code ec;
+  fs::create_directories(outDir, ec);
+  if (ec) throw OutputError("cannot create " + outDir.string() + ": " + ec.message());
+
+  std::ostringstream csv;
+  csv << metricsCsvHeader() << '\n';
+  const bool interactive = isatty(STDERR_FILENO);
+  double msSum = 0.0;
+  int warnings = 0;
+  FrameMetrics last;
+  for (int f = 1; f <= frames; ++f) {
+    last = advance();
+    csv << metricsCsvRow(last) << '\n';
+    msSum += last.msTotal;
+    warnings += last.warnings;
+    drawProgress(err, f, frames, msSum / f, interactive);
+    if (exportEvery > 0 && f % exportEvery == 0) writeSurface(outDir / frameName(f), sim.surface());
+  }
+  writeSurface(outDir / "final.obj", sim.surface());
+  writeFileAtomically(metricsPath, [&](std::ostream& o) { o << csv.str(); });
+  out << name << ": " << frames << " frames, " << std::fixed << std::setprecision(2)
+      << msSum / frames << " ms/frame, volume change " << std::setprecision(3)
+      << 100.0 * (sim.currentVolume() / totalVolume(mesh) - 1.0) << " %, " << last.damagedEdges
+      << " damaged edges, " << last.pieces << " piece(s), " << warnings << " warning(s)\n"
+      << std::defaultfloat;
+  out << "wrote " << metricsPath.string() << " and " << (outDir / "final.obj").string() << '\n';
+  return kExitOk;
+}
+
 }  // namespace
 
 int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -63,33 +101,32 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
       loadSceneMesh(scene, [&err](const std::string& line) { err << line << '\n'; });
   Simulation sim(scene, mesh,
                  solver == "reference" ? SolverChoice::Reference : SolverChoice::FromScene);
-  for (const std::string& note : sim.notes()) err << "note: " << note << '\n';
-  std::error_code ec;
-  fs::create_directories(outDir, ec);
-  if (ec) throw OutputError("cannot create " + outDir.string() + ": " + ec.message());
+  return simulateFrames(
+      scene.name, frames, sim, mesh, outDir, metricsPath, exportEvery,
+      [&sim] { return sim.advance(); }, out, err);
+}
 
-  std::ostringstream csv;
-  csv << metricsCsvHeader() << '\n';
-  const bool interactive = isatty(STDERR_FILENO);
-  double msSum = 0.0;
-  int warnings = 0;
-  for (int f = 1; f <= frames; ++f) {
-    const FrameMetrics m = sim.advance();
-    csv << metricsCsvRow(m) << '\n';
-    msSum += m.msTotal;
-    warnings += m.warnings;
-    drawProgress(err, f, frames, msSum / f, interactive);
-    if (exportEvery > 0 && f % exportEvery == 0) writeSurface(outDir / frameName(f), sim.surface());
-  }
-  writeSurface(outDir / "final.obj", sim.surface());
-  writeFileAtomically(metricsPath, [&](std::ostream& o) { o << csv.str(); });
-  out << scene.name << ": " << frames << " frames, " << std::fixed << std::setprecision(2)
-      << msSum / frames << " ms/frame, volume change " << std::setprecision(3)
-      << 100.0 * (sim.currentVolume() / totalVolume(mesh) - 1.0) << " %, " << warnings
-      << " warning(s)\n"
-      << std::defaultfloat;
-  out << "wrote " << metricsPath.string() << " and " << (outDir / "final.obj").string() << '\n';
-  return kExitOk;
+int playCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  const CliArgs a(args, {"--out", "--metrics", "--export-every", "--solver"}, {});
+  a.expectPositional(1, 1,
+                     "galsculpt play SCRIPT --out DIR [--export-every K] [--metrics FILE.csv] "
+                     "[--solver reference]");
+  if (!a.has("--out")) throw UsageError("play needs --out DIR");
+  const int exportEvery = a.intValue("--export-every", 0, 1, 10000000);
+  const std::string solver = a.value("--solver").value_or("scene");
+  if (solver != "scene" && solver != "reference")
+    throw UsageError("--solver must be 'reference' (or omitted)");
+  const fs::path outDir = *a.value("--out");
+  const fs::path metricsPath = a.value("--metrics").value_or((outDir / "metrics.csv").string());
+  const PlaybackScript script = loadPlaybackScript(a.positional()[0]);
+  const TetMesh mesh =
+      loadSceneMesh(script.scene, [&err](const std::string& line) { err << line << '\n'; });
+  Simulation sim(script.scene, mesh,
+                 solver == "reference" ? SolverChoice::Reference : SolverChoice::FromScene);
+  Playback playback(script, sim);
+  return simulateFrames(
+      script.scene.name, script.frames, sim, mesh, outDir, metricsPath, exportEvery,
+      [&playback] { return playback.advance(); }, out, err);
 }
 
 }  // namespace galsculpt

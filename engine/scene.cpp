@@ -4,8 +4,8 @@
 #include <stdexcept>
 
 #include "engine/json_reader.h"
-#include "solver/multigrid.h"
 #include "solver/input_error.h"
+#include "solver/multigrid.h"
 
 namespace galsculpt {
 
@@ -70,6 +70,7 @@ MaterialDesc readMaterial(JsonObject o) {
   m.density = o.number("density", m.density, 1e-3, 1e6);
   m.yieldStress = o.number("yield_stress", m.yieldStress, 0.0, 1e13);
   m.hardening = o.number("hardening", m.hardening, 0.0, 1e13);
+  m.fractureThreshold = o.number("fracture_threshold", m.fractureThreshold, 0.0, 1e13);
   o.rejectUnknownKeys();
   return m;
 }
@@ -89,7 +90,9 @@ std::vector<PathKey> readPath(JsonObject& o, const std::string& key) {
   return keys;
 }
 
-AnchorDesc readAnchor(JsonObject o) {
+}  // namespace
+
+AnchorDesc readAnchorDesc(JsonObject o) {
   AnchorDesc a;
   const int shapes = o.has("box") + o.has("sphere") + o.has("vertices");
   if (shapes != 1) o.fail("", "give exactly one of 'box', 'sphere' or 'vertices'");
@@ -123,6 +126,8 @@ AnchorDesc readAnchor(JsonObject o) {
   o.rejectUnknownKeys();
   return a;
 }
+
+namespace {
 
 MotionDesc readMotion(JsonObject o) {
   MotionDesc m;
@@ -172,9 +177,7 @@ ColliderDesc readCollider(JsonObject o) {
 FractureDesc readFracture(JsonObject o) {
   FractureDesc f;
   f.enabled = o.boolean("enabled", true);
-  f.threshold = o.number("threshold", 0.0, 0.0, 1e13);
-  if (f.enabled && f.threshold <= 0.0)
-    o.fail("threshold", "must be positive when fracture is enabled");
+  f.threshold = o.number("threshold", 0.0, 0.0, 1e13);  // 0: the material preset's
   f.kernelRadius = o.number("kernel_radius", 0.0, 0.0, 1e6);
   f.thresholdJitter = o.number("threshold_jitter", 0.0, 0.0, 0.99);
   f.seed = static_cast<unsigned>(o.integer("seed", 1, 0, std::numeric_limits<int>::max()));
@@ -196,6 +199,7 @@ SolverDesc readSolver(JsonObject o) {
   s.cycles = o.integer("cycles", s.cycles, 1, 1000);
   s.pcgTolerance = o.number("pcg_tolerance", s.pcgTolerance, 0.0, 0.5);
   s.backend = o.string("backend", s.backend, {"auto", "cpu", "cuda"});
+  s.splitAggregates = o.boolean("split_aggregates", s.splitAggregates);
   o.rejectUnknownKeys();
   return s;
 }
@@ -212,11 +216,13 @@ MaterialDesc materialPreset(const std::string& name) {
     m.density = 1800.0;
     m.yieldStress = 5.0e3;
     m.hardening = 1.0e4;
+    m.fractureThreshold = 3.0e4;
   } else if (name == "rubber") {
     m.model = "stable_neo_hookean";
     m.youngsModulus = 1.0e6;
     m.poissonRatio = 0.48;
     m.density = 1100.0;
+    m.fractureThreshold = 1.5e6;
   } else if (name == "flesh") {  // soft tissue; plastic before it tears (ductile)
     m.model = "stable_neo_hookean";
     m.youngsModulus = 5.0e4;
@@ -224,11 +230,13 @@ MaterialDesc materialPreset(const std::string& name) {
     m.density = 1060.0;
     m.yieldStress = 2.0e4;
     m.hardening = 1.0e4;
+    m.fractureThreshold = 5.0e4;
   } else if (name == "steel") {  // structural steel, brittle fracture preset
     m.model = "corotational";
     m.youngsModulus = 2.0e11;
     m.poissonRatio = 0.3;
     m.density = 7850.0;
+    m.fractureThreshold = 4.0e8;
   } else {
     throw std::invalid_argument("unknown material preset '" + name + "'");
   }
@@ -259,15 +267,24 @@ SceneDescription loadScene(const fs::path& file) {
   }
   const auto anchors = o.array("anchors");
   for (size_t i = 0; i < anchors.size(); ++i) {
-    s.anchors.push_back(
-        readAnchor(JsonObject(anchors[i], "$.anchors[" + std::to_string(i) + "]", file.string())));
+    s.anchors.push_back(readAnchorDesc(
+        JsonObject(anchors[i], "$.anchors[" + std::to_string(i) + "]", file.string())));
   }
   const auto colliders = o.array("colliders");
   for (size_t i = 0; i < colliders.size(); ++i) {
     s.colliders.push_back(readCollider(
         JsonObject(colliders[i], "$.colliders[" + std::to_string(i) + "]", file.string())));
   }
-  if (o.has("fracture")) s.fracture = readFracture(o.object("fracture"));
+  if (o.has("fracture")) {
+    JsonObject f = o.object("fracture");
+    s.fracture = readFracture(f);
+    if (s.fracture.enabled && s.fracture.threshold <= 0.0) {
+      s.fracture.threshold = s.material.fractureThreshold;
+      if (s.fracture.threshold <= 0.0)
+        f.fail("threshold",
+               "must be positive when fracture is enabled (the material has no default)");
+    }
+  }
   if (o.has("solver")) s.solver = readSolver(o.object("solver"));
   o.rejectUnknownKeys();
   return s;

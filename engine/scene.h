@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/json_reader.h"
+
 namespace galsculpt {
 
 struct MeshSource {
@@ -32,6 +34,7 @@ struct MaterialDesc {
   double density = 0.0;      // kg/m^3
   double yieldStress = 0.0;  // Pa, 0 = elastic
   double hardening = 0.0;    // Pa (linear isotropic hardening modulus)
+  double fractureThreshold = 0.0;  // Pa, the preset's edge stress at break (fracture default)
 };
 
 // Default values of a named preset; throws std::invalid_argument for an unknown name.
@@ -93,6 +96,7 @@ struct SolverDesc {
   int cycles = 1;                // V-cycles per linear solve (without PCG)
   double pcgTolerance = 0.0;     // > 0: CG preconditioned by V-cycles, to this relative residual
   std::string backend = "auto";  // auto | cpu | cuda
+  bool splitAggregates = true;   // crack-aware coarse levels
 };
 
 struct SceneDescription {
@@ -110,6 +114,9 @@ struct SceneDescription {
   FractureDesc fracture;
   SolverDesc solver;
 };
+
+// One anchor object (box / sphere / vertices, optional path), as in a scene's "anchors" list.
+AnchorDesc readAnchorDesc(JsonObject o);
 
 // Reads and validates a scene; throws InputError naming file and JSON path.
 SceneDescription loadScene(const std::filesystem::path& file);

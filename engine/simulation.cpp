@@ -12,8 +12,7 @@ namespace galsculpt {
 namespace {
 
 std::vector<int> selectAnchorVertices(const AnchorDesc& a, const TetMesh& mesh,
-                                      const SceneDescription& scene, size_t index) {
-  const std::string path = "$.anchors[" + std::to_string(index) + "]";
+                                      const std::string& file, const std::string& path) {
   std::vector<int> out;
   switch (a.shape) {
     case AnchorDesc::Shape::Box:
@@ -31,7 +30,7 @@ std::vector<int> selectAnchorVertices(const AnchorDesc& a, const TetMesh& mesh,
     case AnchorDesc::Shape::Vertices:
       for (int v : a.vertices) {
         if (v >= mesh.numVertices()) {
-          throw InputError(scene.file.string(), 0,
+          throw InputError(file, 0,
                            path + ".vertices: vertex " + std::to_string(v) +
                                " does not exist (the mesh has " +
                                std::to_string(mesh.numVertices()) + ")");
@@ -40,8 +39,7 @@ std::vector<int> selectAnchorVertices(const AnchorDesc& a, const TetMesh& mesh,
       }
       break;
   }
-  if (out.empty())
-    throw InputError(scene.file.string(), 0, path + ": selects no vertex of the mesh");
+  if (out.empty()) throw InputError(file, 0, path + ": selects no vertex of the mesh");
   return out;
 }
 
@@ -91,7 +89,9 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   settings_.newtonIterations = scene.solver.newtonIterations;
   for (size_t i = 0; i < scene.anchors.size(); ++i) {
     AnchorConstraint a;
-    a.vertices = selectAnchorVertices(scene.anchors[i], mesh, scene, i);
+    a.vertices = selectAnchorVertices(scene.anchors[i], mesh, scene.file.string(),
+                                      "$.anchors[" + std::to_string(i) + "]");
+    anchorIds_.push_back(-static_cast<int>(i) - 1);
     for (const PathKey& k : scene.anchors[i].path) a.path.push_back({k.time, k.offset});
     settings_.anchors.push_back(std::move(a));
   }
@@ -111,11 +111,18 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     mg.coarseCholesky = scene.solver.coarseSolver == "cholesky";
     mg.coarseIterations = scene.solver.coarseIterations;
     mg.cycles = scene.solver.cycles;
+    mg.splitAggregates = scene.solver.splitAggregates;
     mg.pcg = scene.solver.pcgTolerance > 0.0;
     if (mg.pcg) mg.pcgTolerance = scene.solver.pcgTolerance;
   }
-  if (scene.fracture.enabled)
-    notes_.push_back("fracture is not built yet: edges are never damaged");
+  if (scene.fracture.enabled) {
+    FractureSettings f;
+    f.threshold = scene.fracture.threshold;
+    f.kernelRadius = scene.fracture.kernelRadius;
+    f.thresholdJitter = scene.fracture.thresholdJitter;
+    f.seed = scene.fracture.seed;
+    settings_.fracture = std::make_shared<FractureField>(buildFractureField(model_, f));
+  }
   if (scene.solver.backend == "cuda")
     notes_.push_back("the CUDA backend is not built yet: running on the CPU");
   boundary_ = boundaryFaces(mesh);
@@ -146,6 +153,45 @@ TriMesh Simulation::surface() const {
   return s;
 }
 
+std::vector<int> Simulation::selectVertices(const AnchorDesc& shape, const std::string& file,
+                                            const std::string& jsonPath) const {
+  return selectAnchorVertices(shape, model_.mesh, file, jsonPath);
+}
+
+std::vector<int> Simulation::verticesNear(const Vec3& center, double radius) const {
+  std::vector<int> out;
+  for (int v = 0; v < model_.numVertices(); ++v) {
+    if ((state_.x[v] - center).norm() <= radius) out.push_back(v);
+  }
+  return out;
+}
+
+int Simulation::cut(const std::vector<BladeTriangle>& surface) {
+  const int n = cutAlongSurface(model_, state_, surface);
+  toolDamage_ += n;
+  return n;
+}
+
+int Simulation::addAnchor(const std::vector<int>& vertices, const std::vector<AnchorKey>& path) {
+  AnchorConstraint a;
+  a.vertices = vertices;
+  for (int v : vertices) a.origin.push_back(state_.x[v]);
+  for (const AnchorKey& k : path) a.path.push_back({state_.time + k.time, k.offset});
+  settings_.anchors.push_back(std::move(a));
+  anchorIds_.push_back(nextAnchorId_);
+  return nextAnchorId_++;
+}
+
+void Simulation::removeAnchor(int id) {
+  for (size_t i = 0; i < anchorIds_.size(); ++i) {
+    if (anchorIds_[i] != id) continue;
+    anchorIds_.erase(anchorIds_.begin() + static_cast<long>(i));
+    settings_.anchors.erase(settings_.anchors.begin() + static_cast<long>(i));
+    return;
+  }
+  throw std::out_of_range("no anchor with id " + std::to_string(id));
+}
+
 FrameMetrics Simulation::advance() {
   const auto start = std::chrono::steady_clock::now();
   const StepReport r = step(model_, state_, settings_);
@@ -163,6 +209,9 @@ FrameMetrics Simulation::advance() {
   Vec3 contact = Vec3::Zero();
   for (const Vec3& f : r.contactForces) contact += f;
   m.contactForceN = contact.norm();
+  m.msFracture = r.msFracture;
+  m.newlyDamaged = r.newlyDamaged + toolDamage_;
+  toolDamage_ = 0;
   m.volume = currentVolume();
   m.volumeChangePct = 100.0 * (m.volume - restVolume_) / restVolume_;
   for (int v = 0; v < model_.numVertices(); ++v) {
@@ -170,17 +219,21 @@ FrameMetrics Simulation::advance() {
     m.maxDisplacement = std::max(m.maxDisplacement, (state_.x[v] - model_.mesh.vertices[v]).norm());
   }
   for (std::uint8_t d : state_.damaged) m.damagedEdges += d;
-  m.pieces = countDamagePieces(model_, state_);
+  if (piecesRevision_ != state_.damageRevision) {
+    pieces_ = countDamagePieces(model_, state_);
+    piecesRevision_ = state_.damageRevision;
+  }
+  m.pieces = pieces_;
   m.msTotal =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  m.msOther = std::max(0.0, m.msTotal - m.msElements - m.msSolve - m.msPlastic);
+  m.msOther = std::max(0.0, m.msTotal - m.msElements - m.msSolve - m.msPlastic - m.msFracture);
   return m;
 }
 
 std::string metricsCsvHeader() {
   return "frame,time_s,ms_total,ms_elements,ms_solve,ms_plastic,ms_other,volume,volume_change_pct,"
          "kinetic_energy,elastic_energy,residual,max_displacement,damaged_edges,pieces,warnings,"
-         "newton_iterations,contact_force_n";
+         "newton_iterations,contact_force_n,ms_fracture";
 }
 
 std::string metricsCsvRow(const FrameMetrics& m) {
@@ -189,7 +242,7 @@ std::string metricsCsvRow(const FrameMetrics& m) {
     << ',' << m.msSolve << ',' << m.msPlastic << ',' << m.msOther << ',' << m.volume << ','
     << m.volumeChangePct << ',' << m.kineticEnergy << ',' << m.elasticEnergy << ',' << m.residual
     << ',' << m.maxDisplacement << ',' << m.damagedEdges << ',' << m.pieces << ',' << m.warnings
-    << ',' << m.newtonIterations << ',' << m.contactForceN;
+    << ',' << m.newtonIterations << ',' << m.contactForceN << ',' << m.msFracture;
   return s.str();
 }
 

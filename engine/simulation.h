@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/scene.h"
+#include "solver/knife.h"
 #include "solver/step.h"
 
 namespace galsculpt {
@@ -22,6 +23,8 @@ struct FrameMetrics {
   double maxDisplacement = 0.0;
   int damagedEdges = 0, pieces = 0, warnings = 0, newtonIterations = 0;
   double contactForceN = 0.0;  // magnitude of the summed collider forces
+  double msFracture = 0.0;     // the fracture pass (part of ms_other before it had a column)
+  int newlyDamaged = 0;        // edges broken this frame (fracture and tools)
 };
 
 // CSV header and row, in the column order documented in docs/cli.md.
@@ -40,6 +43,22 @@ class Simulation {
 
   FrameMetrics advance();
 
+  // Tools (engine/playback.h drives them from scripts; the app from the mouse).
+  // Damages every edge crossing the blade surface (current positions); returns how many.
+  int cut(const std::vector<BladeTriangle>& surface);
+  // Holds `vertices` where they are now, moved by `path` offsets (times from now); returns an
+  // id for removeAnchor.
+  int addAnchor(const std::vector<int>& vertices, const std::vector<AnchorKey>& path = {});
+  // Removes an anchor added by addAnchor or, with id < 0, the scene's anchor -id - 1. Throws
+  // std::out_of_range for an unknown id.
+  void removeAnchor(int id);
+  // Vertices whose rest position the anchor description selects (throws InputError naming
+  // the file and JSON path when it selects none).
+  std::vector<int> selectVertices(const AnchorDesc& shape, const std::string& file,
+                                  const std::string& jsonPath) const;
+  // Vertices within `radius` of `center` at the current positions.
+  std::vector<int> verticesNear(const Vec3& center, double radius) const;
+
   const SimModel& model() const { return model_; }
   const SimState& state() const { return state_; }
   const StepSettings& settings() const { return settings_; }
@@ -56,6 +75,11 @@ class Simulation {
   StepSettings settings_;
   std::vector<std::string> notes_;
   std::vector<Tri> boundary_;
+  std::vector<int> anchorIds_;  // id of each entry of settings_.anchors (scene anchors: -i - 1)
+  int nextAnchorId_ = 0;
+  int toolDamage_ = 0;  // edges cut by tools since the last frame
+  std::uint64_t piecesRevision_ = ~0ull;
+  int pieces_ = 1;
   double restVolume_ = 0.0;
   int frame_ = 0;
 };

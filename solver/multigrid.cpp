@@ -7,6 +7,8 @@
 #include <queue>
 #include <stdexcept>
 
+#include "union_find.h"
+
 namespace galsculpt {
 
 namespace {
@@ -191,27 +193,101 @@ std::vector<int> farthestPointSamples(const std::vector<Vec3>& points,
 
 Multigrid::Multigrid(const BlockPattern& fine, const std::vector<Vec3>& rest,
                      const std::vector<Edge>& edges, const std::vector<int>& handleCounts)
-    : finePattern_(&fine) {
+    : finePattern_(&fine), rest_(rest) {
   fineColors_ = colorRows(fine.rows, fine.rowStart, fine.columns);
   std::vector<int> candidates(rest.size());
   for (size_t i = 0; i < rest.size(); ++i) candidates[i] = static_cast<int>(i);
-  std::vector<Vec3> finerCenters = rest;
-  double finerScale = 1.0;
   for (size_t l = 0; l < handleCounts.size(); ++l) {
-    MultigridLevel level;
-    std::vector<int> nearest;
-    level.handleVertex = farthestPointSamples(rest, edges, candidates, handleCounts[l], &nearest);
-    level.handles = static_cast<int>(level.handleVertex.size());
-    const double scale = levelScale(rest, level.handles);
-    std::vector<Vec3> centers(level.handles);
-    for (int h = 0; h < level.handles; ++h) centers[h] = rest[level.handleVertex[h]];
-    if (l == 0) {
-      level.parent = nearest;
-      level.y.resize(rest.size());
-      for (size_t v = 0; v < rest.size(); ++v) {
-        level.y[v] << (rest[v] - centers[level.parent[v]]) / scale, 1.0;
+    BaseLevel base;
+    base.samples = farthestPointSamples(rest, edges, candidates, handleCounts[l], &base.nearest);
+    base.scale = levelScale(rest, static_cast<int>(base.samples.size()));
+    // Each sample's row in the finer level (its index among the candidates).
+    std::vector<int> rowOfVertex(rest.size(), -1);
+    for (size_t i = 0; i < candidates.size(); ++i) rowOfVertex[candidates[i]] = static_cast<int>(i);
+    for (int v : base.samples) base.sampleRow.push_back(rowOfVertex[v]);
+    candidates = base.samples;
+    base_.push_back(std::move(base));
+  }
+  levels_.resize(base_.size());
+  assignAggregates(edges, nullptr);
+  buildLevelStructures();
+}
+
+bool Multigrid::assignAggregates(const std::vector<Edge>& edges,
+                                 const std::vector<std::uint8_t>* damaged) {
+  const int n = static_cast<int>(rest_.size());
+  std::vector<int> fineToRow(n);
+  for (int v = 0; v < n; ++v) fineToRow[v] = v;
+  bool changed = false;
+  for (size_t l = 0; l < base_.size(); ++l) {
+    const BaseLevel& base = base_[l];
+    const int rows = l == 0 ? n : levels_[l - 1].handles;
+    std::vector<int> rowBase(rows), rowVertex(rows);
+    for (int r = 0; r < rows; ++r) {
+      rowVertex[r] = l == 0 ? r : levels_[l - 1].handleVertex[r];
+      rowBase[r] =
+          l == 0 ? base.nearest[r] : base.nearest[base_[l - 1].samples[levels_[l - 1].origin[r]]];
+    }
+    // Rows of one base aggregate joined by undamaged edges form one handle; without damage
+    // the aggregate is the base one, whole.
+    UnionFind components(rows);
+    if (damaged) {
+      for (size_t e = 0; e < edges.size(); ++e) {
+        if ((*damaged)[e]) continue;
+        const int a = fineToRow[edges[e][0]], b = fineToRow[edges[e][1]];
+        if (a != b && rowBase[a] == rowBase[b]) components.unite(a, b);
       }
-      std::vector<std::pair<int, int>> pairs;
+    } else {
+      std::vector<int> first(base.samples.size(), -1);
+      for (int r = 0; r < rows; ++r) {
+        int& f = first[rowBase[r]];
+        if (f < 0) f = r;
+        components.unite(f, r);
+      }
+    }
+    // The part holding the base sample keeps the base handle's index, so that an undamaged
+    // mesh gets the base hierarchy; other parts are appended in row order (deterministic).
+    std::vector<int> idOfRoot(rows, -1);
+    std::vector<int> handleVertex(base.samples.begin(), base.samples.end());
+    std::vector<int> origin(base.samples.size());
+    for (size_t h = 0; h < base.samples.size(); ++h) {
+      idOfRoot[components.find(base.sampleRow[h])] = static_cast<int>(h);
+      origin[h] = static_cast<int>(h);
+    }
+    std::vector<int> parent(rows);
+    for (int r = 0; r < rows; ++r) {
+      int& id = idOfRoot[components.find(r)];
+      if (id < 0) {
+        id = static_cast<int>(handleVertex.size());
+        handleVertex.push_back(rowVertex[r]);
+        origin.push_back(rowBase[r]);
+      }
+      parent[r] = id;
+    }
+    MultigridLevel& level = levels_[l];
+    if (level.parent != parent || level.handleVertex != handleVertex) changed = true;
+    level.parent = std::move(parent);
+    level.handleVertex = std::move(handleVertex);
+    level.origin = std::move(origin);
+    level.handles = static_cast<int>(level.handleVertex.size());
+    for (int& r : fineToRow) r = level.parent[r];
+  }
+  return changed;
+}
+
+void Multigrid::buildLevelStructures() {
+  const BlockPattern& fine = *finePattern_;
+  for (size_t l = 0; l < levels_.size(); ++l) {
+    MultigridLevel& level = levels_[l];
+    const double scale = base_[l].scale;
+    std::vector<Vec3> centers(level.handles);
+    for (int h = 0; h < level.handles; ++h) centers[h] = rest_[level.handleVertex[h]];
+    std::vector<std::pair<int, int>> pairs;
+    if (l == 0) {
+      level.y.resize(rest_.size());
+      for (size_t v = 0; v < rest_.size(); ++v) {
+        level.y[v] << (rest_[v] - centers[level.parent[v]]) / scale, 1.0;
+      }
       pairs.reserve(fine.columns.size());
       for (int r = 0; r < fine.rows; ++r) {
         for (int k = fine.rowStart[r]; k < fine.rowStart[r + 1]; ++k) {
@@ -221,18 +297,16 @@ Multigrid::Multigrid(const BlockPattern& fine, const std::vector<Vec3>& rest,
       buildCoarsePattern(level.handles, pairs, level.rowStart, level.columns,
                          level.fineToCoarseBlock);
     } else {
-      const MultigridLevel& finer = levels_.back();
-      level.parent.resize(finer.handles);
+      const MultigridLevel& finer = levels_[l - 1];
+      const double finerScale = base_[l - 1].scale;
       level.toParent.resize(finer.handles);
       for (int a = 0; a < finer.handles; ++a) {
-        const int b = nearest[finer.handleVertex[a]];
-        level.parent[a] = b;
+        const int b = level.parent[a];
         Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
         m.topLeftCorner<3, 3>() *= finerScale / scale;
-        m.block<3, 1>(0, 3) = (finerCenters[a] - centers[b]) / scale;
+        m.block<3, 1>(0, 3) = (rest_[finer.handleVertex[a]] - centers[b]) / scale;
         level.toParent[a] = kron4x3(m.transpose(), Eigen::Matrix3d::Identity());
       }
-      std::vector<std::pair<int, int>> pairs;
       for (int r = 0; r < finer.handles; ++r) {
         for (int k = finer.rowStart[r]; k < finer.rowStart[r + 1]; ++k) {
           pairs.push_back({level.parent[r], level.parent[finer.columns[k]]});
@@ -243,14 +317,20 @@ Multigrid::Multigrid(const BlockPattern& fine, const std::vector<Vec3>& rest,
     }
     level.blocks.assign(level.columns.size(), Mat12::Zero());
     level.colors = colorRows(level.handles, level.rowStart, level.columns);
-    level.members.resize(level.handles);
+    level.members.assign(level.handles, {});
     for (size_t r = 0; r < level.parent.size(); ++r)
       level.members[level.parent[r]].push_back(static_cast<int>(r));
-    candidates = level.handleVertex;
-    finerCenters = centers;
-    finerScale = scale;
-    levels_.push_back(std::move(level));
   }
+}
+
+bool Multigrid::updateDamage(const std::vector<Edge>& edges,
+                             const std::vector<std::uint8_t>& damaged, std::uint64_t revision) {
+  if (revision == damageRevision_) return false;
+  damageRevision_ = revision;
+  const bool anyDamage = std::find(damaged.begin(), damaged.end(), 1) != damaged.end();
+  if (!assignAggregates(edges, anyDamage ? &damaged : nullptr)) return false;
+  buildLevelStructures();
+  return true;
 }
 
 void Multigrid::refresh(const BlockSparseMatrix& a, const MultigridSettings& settings) {

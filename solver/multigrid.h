@@ -17,6 +17,7 @@
 // those modes solvable; they never reach the fine level, so the fine solution is unchanged.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,7 @@ std::vector<int> farthestPointSamples(const std::vector<Vec3>& points,
 struct MultigridLevel {
   int handles = 0;
   std::vector<int> handleVertex;   // (handles) the sampled vertex of each handle
+  std::vector<int> origin;         // (handles) the base aggregate (sample) it was split from
   std::vector<int> parent;         // (rows of the finer level) handle of this level
   std::vector<Eigen::Vector4d> y;  // level 1: (fine vertices) [(x - c_parent)/s; 1]
   std::vector<Eigen::Matrix<double, 12, 12>> toParent;  // levels > 1: (finer handles) 12x12 U block
@@ -64,6 +66,7 @@ struct MultigridSettings {
   bool pcg = false;            // CG preconditioned by one V-cycle per iteration
   double pcgTolerance = 1e-6;  // relative residual
   int pcgMaxIterations = 100;
+  bool splitAggregates = true;  // crack-aware: split aggregates that damage disconnects
 };
 
 struct MultigridReport {
@@ -78,6 +81,14 @@ class Multigrid {
   // `fine` is the fine-level pattern, `restPositions` the rest mesh, `edges` its edge graph.
   Multigrid(const BlockPattern& fine, const std::vector<Vec3>& restPositions,
             const std::vector<Edge>& edges, const std::vector<int>& handleCounts);
+
+  // Crack-aware aggregates: splits every base aggregate into its connected parts over the
+  // undamaged edges (a part that holds no sample gets its own handle), so that no handle glues
+  // pieces together. Does nothing when `revision` was seen already; returns whether the
+  // hierarchy changed. Call refresh() afterwards.
+  bool updateDamage(const std::vector<Edge>& edges, const std::vector<std::uint8_t>& damaged,
+                    std::uint64_t revision);
+  std::uint64_t damageRevision() const { return damageRevision_; }
 
   // Refreshes A_{l+1} = U^T A_l U for every level from the current fine matrix; factors the
   // coarsest level densely only when the settings ask for a Cholesky coarse solve.
@@ -106,7 +117,21 @@ class Multigrid {
   void restrict(int level, const Eigen::VectorXd& fineResidual, Eigen::VectorXd& coarse) const;
   void prolongAdd(int level, const Eigen::VectorXd& coarse, Eigen::VectorXd& fine) const;
 
+  struct BaseLevel {
+    std::vector<int> samples;    // farthest-point samples (fine vertex indices)
+    std::vector<int> sampleRow;  // each sample's row in the finer level
+    std::vector<int> nearest;    // (fine vertices) nearest sample
+    double scale = 1.0;          // typical aggregate size, for the local frames
+  };
+  // Aggregates of every level from the base samples, split over undamaged edges when `damaged`
+  // is given; returns whether any assignment changed.
+  bool assignAggregates(const std::vector<Edge>& edges, const std::vector<std::uint8_t>* damaged);
+  void buildLevelStructures();
+
   const BlockPattern* finePattern_;
+  std::vector<Vec3> rest_;
+  std::vector<BaseLevel> base_;
+  std::uint64_t damageRevision_ = 0;
   std::vector<std::vector<int>> fineColors_;
   std::vector<MultigridLevel> levels_;
   Eigen::LLT<Eigen::MatrixXd> coarsestCholesky_;

@@ -51,6 +51,7 @@ struct SimState {
   std::vector<Vec3> x;                          // (nVerts) positions, m
   std::vector<Vec3> v;                          // (nVerts) velocities, m/s
   std::vector<std::uint8_t> damaged;            // (nEdges) 1 = damaged for good
+  std::uint64_t damageRevision = 0;             // bumped whenever `damaged` changes
   std::vector<Eigen::Matrix3d> plasticInverse;  // (nTets) Fp^-1; empty for elastic materials
   std::vector<double> plasticStrain;            // (nTets) accumulated, for hardening
   double time = 0.0;                            // s

@@ -70,9 +70,10 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
   Eigen::VectorXd x = xn;
   for (const AnchorConstraint& a : s.anchors) {
     const Vec3 offset = anchorOffset(a, state.time + h);
-    for (int v : a.vertices) {
+    for (size_t i = 0; i < a.vertices.size(); ++i) {
+      const int v = a.vertices[i];
       fixed[v] = 1;
-      x.segment<3>(3 * v) = model.mesh.vertices[v] + offset;
+      x.segment<3>(3 * v) = (a.origin.empty() ? model.mesh.vertices[v] : a.origin[i]) + offset;
     }
   }
 
@@ -123,6 +124,8 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
 
   double trialEnergy = 0.0;  // elastic energy at the accepted iterate
   Eigen::VectorXd trialGradient = Eigen::VectorXd::Zero(3 * n);  // and its gradient
+  double acceptedEnergy = 0.0;  // the same at the last accepted iterate
+  Eigen::VectorXd acceptedGradient = Eigen::VectorXd::Zero(3 * n);
   for (int it = 0; it < s.newtonIterations; ++it) {
     std::vector<Vec3> positions(n);
     unflatten(x, positions);
@@ -175,6 +178,8 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
                                                    s.gridHandles);
         ws.multigridHandles = s.gridHandles;
       }
+      if (s.multigridSettings.splitAggregates)
+        ws.multigrid->updateDamage(model.edges, state.damaged, state.damageRevision);
       ws.multigrid->refresh(hm, s.multigridSettings);
       delta = Eigen::VectorXd::Zero(3 * n);
       const MultigridReport mr = ws.multigrid->solve(hm, -g, delta, s.multigridSettings);
@@ -223,22 +228,32 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
         break;
       stepLength *= 0.5;
       ++result.backtracks;
-      if (stepLength < 1e-8) {
+      if (stepLength < 1e-8) break;
+    }
+    if (stepLength < 1e-8) {
+      // No descent along the Newton direction. From the start of the sub-step that is a
+      // failure (rolled back and halved); after accepted iterations it means the iterate sits
+      // at the potential's minimum as far as rounding or a kink (a damaged edge switching
+      // between tension and compression) allows: keep it.
+      if (result.iterations == 1) {
         result.ok = false;
         return result;
       }
+      break;
     }
     x += stepLength * delta;
+    acceptedEnergy = trialEnergy;
+    std::swap(acceptedGradient, trialGradient);
     if (delta.lpNorm<Eigen::Infinity>() * stepLength < s.tolerance * modelSize) break;
   }
 
-  result.energy = trialEnergy;
+  result.energy = acceptedEnergy;
   {
     // Residual of the backward-Euler equations at the accepted positions (free DOFs), relative
     // to the body's weight: how far this frame is from the exact implicit solution.
     Eigen::VectorXd dampedK;
     dampedProduct(x - xn, dampedK);
-    Eigen::VectorXd g = mass.cwiseProduct(x - xhat) / (h * h) + trialGradient - fext +
+    Eigen::VectorXd g = mass.cwiseProduct(x - xhat) / (h * h) + acceptedGradient - fext +
                         (s.dampingMass * mass.cwiseProduct(x - xn) + dampedK) / h;
     contact(x, &g, nullptr, nullptr);
     for (int v = 0; v < n; ++v) {
@@ -362,6 +377,14 @@ StepReport step(const SimModel& model, SimState& state, const StepSettings& sett
       const auto t0 = Clock::now();
       report.plasticElements += plasticUpdate(model, state);
       report.msPlastic += msSince(t0);
+    }
+    if (settings.fracture) {
+      const auto t0 = Clock::now();
+      const FractureReport fr =
+          fracturePass(model, *settings.fracture, state, settings.compressionResists);
+      report.newlyDamaged += fr.newlyDamaged;
+      report.maxStressRatio = fr.maxStressRatio;
+      report.msFracture += msSince(t0);
     }
     report.contactForces = r.contactForces;
     report.linearResidualReduction = r.linearResidualReduction;

@@ -14,7 +14,10 @@
 
 #include <vector>
 
+#include <memory>
+
 #include "colliders.h"
+#include "fracture.h"
 #include "multigrid.h"
 #include "sim_model.h"
 
@@ -27,7 +30,10 @@ struct AnchorKey {
 
 struct AnchorConstraint {
   std::vector<int> vertices;    // anchored vertices
-  std::vector<AnchorKey> path;  // empty: fixed at rest; else offset(t), linear, held at the ends
+  std::vector<AnchorKey> path;  // empty: fixed; else offset(t), linear, held at the ends
+  // Where each vertex sits at offset zero (same order as vertices); empty: its rest position.
+  // Tools that grab a deformed body anchor it where it is.
+  std::vector<Vec3> origin;
 };
 
 Vec3 anchorOffset(const AnchorConstraint& anchor, double time);
@@ -49,6 +55,8 @@ struct StepSettings {
   std::vector<int> gridHandles = {50};  // handle counts, finest coarse level first
   MultigridSettings multigridSettings;
   int maxRetries = 4;  // halvings of the step after NaN or explosion
+  // The fracture pass after every sub-step (fracture.h); null: no fracture (and no cost).
+  std::shared_ptr<const FractureField> fracture;
 };
 
 // The reference solver's settings: Newton with line search to a tight tolerance.
@@ -64,6 +72,9 @@ struct StepReport {
   std::vector<Vec3> contactForces;       // (nColliders) force of each collider on the body, N
   int plasticElements = 0;               // elements that flowed this frame
   double linearResidualReduction = 0.0;  // |r_final| / |r_initial| of the last linear solve
+  int newlyDamaged = 0;                  // edges the fracture pass broke this frame
+  double maxStressRatio = 0.0;           // largest edge stress over its threshold (last pass)
+  double msFracture = 0.0;
 };
 
 StepReport step(const SimModel& model, SimState& state, const StepSettings& settings);

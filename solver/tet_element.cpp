@@ -127,7 +127,21 @@ void evaluateEdgeStrainElement(const Lame& lame, const TetRest& rest, const TetP
   c.topLeftCorner<3, 3>().setConstant(lame.lambda);
   for (int i = 0; i < 3; ++i) c(i, i) += 2.0 * lame.mu;
   for (int i = 3; i < 6; ++i) c(i, i) = 4.0 * lame.mu;
-  const Eigen::Matrix<double, 6, 6> k = rest.strainFromEdges.transpose() * c * rest.strainFromEdges;
+  Eigen::Matrix<double, 6, 6> k = rest.strainFromEdges.transpose() * c * rest.strainFromEdges;
+  // When only two opposite edges are intact, the element's vertices form two pieces, one per
+  // edge (every other damage pattern leaves the four vertices connected). Their strains must
+  // not be coupled, or one piece's stretch would push the other: adding the PSD term
+  // |k01| (u0 - sign(k01) u1)(u0 - sign(k01) u1)^T removes k01 and keeps K PSD for any set of
+  // compressed damaged edges that stay active.
+  for (const auto& [e0, e1] : {std::pair{0, 5}, std::pair{1, 4}, std::pair{2, 3}}) {
+    if (damage.intact != ((1u << e0) | (1u << e1))) continue;
+    const double k01 = k(e0, e1);
+    const double sign = k01 >= 0.0 ? 1.0 : -1.0;
+    k(e0, e0) += std::abs(k01);
+    k(e1, e1) += std::abs(k01);
+    k(e0, e1) -= sign * std::abs(k01);
+    k(e1, e0) -= sign * std::abs(k01);
+  }
 
   Eigen::Matrix<double, 6, 1> strain, slope;  // masked strain and d(masked)/d(raw)
   std::array<Eigen::Vector3d, 6> d;

@@ -123,22 +123,42 @@ TEST(Cli, RunWritesMetricsAndSurfaces) {
   EXPECT_EQ(run({"run", scene.string(), "--out", "x", "--frames", "0"}).code, kExitUsage);
 }
 
+TEST(Cli, PlayRunsAScriptHeadlessAndWritesTheFinalSurface) {
+  test::TempDir dir;
+  const fs::path script = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scripts" / "sphere_cut.json";
+  const CliRun r =
+      run({"play", script.string(), "--out", (dir / "out").string(), "--export-every", "30"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("2 piece(s)"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(dir / "out" / "final.obj"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "frame_00060.obj"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "metrics.csv"));
+  EXPECT_EQ(run({"play", script.string()}).code, kExitUsage) << "--out is required";
+  test::writeText(dir / "bad.json", "{\"frames\": 2}");
+  const CliRun bad = run({"play", (dir / "bad.json").string(), "--out", (dir / "o2").string()});
+  EXPECT_EQ(bad.code, kExitBadInput);
+  EXPECT_NE(bad.err.find("$.scene"), std::string::npos) << bad.err;
+}
+
 TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   // A private assets folder whose "sphere" scene uses the small committed mesh.
   test::TempDir dir;
   fs::create_directories(dir / "scenes");
-  test::writeText(dir / "scenes" / "hanging_sphere.json",
-                  std::string(R"({"mesh": {"file": ")") + GALSCULPT_SOURCE_DIR +
-                      R"(/assets/meshes/sphere_small.node"}, "material": {"youngs_modulus": 8000, "poisson_ratio": 0.48,
+  test::writeText(
+      dir / "scenes" / "hanging_sphere.json",
+      std::string(R"({"mesh": {"file": ")") + GALSCULPT_SOURCE_DIR +
+          R"(/assets/meshes/sphere_small.node"}, "material": {"youngs_modulus": 8000, "poisson_ratio": 0.48,
                       "density": 1000}, "anchors": [{"box": {"min": [-1, 0.08, -1]}}]})");
   setenv("GALSCULPT_ASSETS", dir.path().c_str(), 1);
-  const CliRun r = run({"bench", "--scene", "sphere", "--frames", "3", "--json", (dir / "b.json").string()});
+  const CliRun r =
+      run({"bench", "--scene", "sphere", "--frames", "3", "--json", (dir / "b.json").string()});
   unsetenv("GALSCULPT_ASSETS");
   ASSERT_EQ(r.code, kExitOk) << r.err;
   const auto j = nlohmann::json::parse(test::readText(dir / "b.json"));
   ASSERT_EQ(j["results"].size(), 2u);
-  for (const char* key : {"scene", "tets", "solver", "grid", "fine_sweeps", "coarse_iters", "frames", "ms_per_frame",
-                          "fps", "peak_rss_mb", "rel_position_error", "volume_change_pct"}) {
+  for (const char* key :
+       {"scene", "tets", "solver", "grid", "fine_sweeps", "coarse_iters", "frames", "ms_per_frame",
+        "fps", "peak_rss_mb", "rel_position_error", "volume_change_pct"}) {
     EXPECT_TRUE(j["results"][1].contains(key)) << key;
   }
   EXPECT_EQ(j["results"][0]["solver"], "reference");

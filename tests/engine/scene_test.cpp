@@ -52,6 +52,25 @@ TEST(Scene, CharpyHasAPendulumAndFracture) {
   EXPECT_EQ(s.colliders[3].motion.type, MotionDesc::Type::Pendulum);
 }
 
+// Brittle and ductile presets carry their own break stress; a scene may leave it out.
+TEST(Scene, FractureThresholdDefaultsToTheMaterialPreset) {
+  test::TempDir dir;
+  const std::string mesh = R"("mesh": {"generate": "sphere", "tets": 500})";
+  test::writeText(dir / "steel.json", "{" + mesh + R"(, "material": {"preset": "steel"},
+                  "fracture": {"enabled": true}})");
+  test::writeText(dir / "flesh.json", "{" + mesh + R"(, "material": {"preset": "flesh"},
+                  "fracture": {"enabled": true, "threshold": 1234}, "solver": {"split_aggregates": false}})");
+  const SceneDescription steel = loadScene(dir / "steel.json");
+  const SceneDescription flesh = loadScene(dir / "flesh.json");
+  EXPECT_DOUBLE_EQ(steel.fracture.threshold, materialPreset("steel").fractureThreshold);
+  EXPECT_GT(materialPreset("steel").fractureThreshold, 1e8);
+  EXPECT_GT(materialPreset("flesh").yieldStress, 0.0) << "ductile: plastic before it breaks";
+  EXPECT_LT(materialPreset("flesh").yieldStress, materialPreset("flesh").fractureThreshold);
+  EXPECT_DOUBLE_EQ(flesh.fracture.threshold, 1234.0);
+  EXPECT_TRUE(steel.solver.splitAggregates);
+  EXPECT_FALSE(flesh.solver.splitAggregates);
+}
+
 TEST(Scene, DefaultSceneMeshIsCommittedAndLoads) {
   const SceneDescription s = loadScene(kScenes / "default.json");
   const TetMesh mesh = loadSceneMesh(s);
@@ -102,7 +121,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "$.solver.grid: grid levels must be positive and increase"},
         BadScene{std::string("{") + kMesh + R"(, "solver": {"grid": "50"}})",
                  "$.solver.grid: grid '50' must list"},
-        BadScene{std::string("{") + kMesh + R"(, "fracture": {"enabled": true}})",
+        BadScene{std::string("{") + kMesh +
+                     R"(, "material": {"fracture_threshold": 0}, "fracture": {"enabled": true}})",
                  "$.fracture.threshold: must be positive when fracture is enabled"},
         BadScene{std::string("{") + kMesh + R"(, "time_step": "fast"})",
                  "$.time_step: expected a number, got string"},

@@ -51,7 +51,7 @@ struct Case {
 std::vector<Case> allCases() {
   std::vector<Case> cases;
   for (MaterialModel m : kModels) cases.push_back({m, EdgeDamage{}});
-  for (std::uint8_t mask : {0x3e, 0x38, 0x15, 0x00}) {
+  for (std::uint8_t mask : {0x3e, 0x38, 0x15, 0x00, 0x21, 0x0c}) {
     for (bool resists : {true, false})
       cases.push_back({MaterialModel::StVK, EdgeDamage{mask, resists}});
   }
@@ -167,6 +167,26 @@ TEST(TetElement, VertexWithAllEdgesDamagedIsFree) {
   const ElementEval b = eval(MaterialModel::StableNeoHookean, r, x, isolated, HessianMode::Exact);
   EXPECT_EQ(a.gradient, b.gradient) << "exerts no force: the others do not feel it move";
   EXPECT_EQ((a.hessian.block<3, 12>(0, 0).norm()), 0.0);
+}
+
+// Only edges 0-1 and 2-3 intact: the element holds two pieces, {0, 1} and {2, 3}; stretching
+// one must not push the other (the strain coupling between them is removed).
+TEST(TetElement, TwoOppositeIntactEdgesAreTwoUncoupledPieces) {
+  const TetPoints rest = restTet();
+  const TetRest r = computeTetRest(rest);
+  const EdgeDamage twoPieces{0x21, false};
+  TetPoints x = rest;
+  x[1] = rest[0] + 1.3 * (rest[1] - rest[0]);  // piece {0, 1} stretched, {2, 3} at rest
+  const ElementEval e = eval(MaterialModel::StVK, r, x, twoPieces, HessianMode::Exact);
+  EXPECT_GT(e.gradient.segment<3>(3).norm(), 0.0) << "the stretched edge pulls back";
+  EXPECT_EQ(e.gradient.segment<6>(6).norm(), 0.0) << "the other piece feels nothing";
+  EXPECT_EQ((e.hessian.block<6, 6>(0, 6).norm()), 0.0) << "no stiffness couples the pieces";
+  // The coupling-free stiffness stays positive semi-definite.
+  const Eigen::SelfAdjointEigenSolver<Mat12> eig(
+      eval(MaterialModel::StVK, r, deformed(rest, 0.3, 2), EdgeDamage{0x21, true},
+           HessianMode::ProjectedSpd)
+          .hessian);
+  EXPECT_GT(eig.eigenvalues().minCoeff(), -1e-9 * eig.eigenvalues().maxCoeff());
 }
 
 TEST(TetElement, DamagedEdgesStillResistCompressionUnlessToldNot) {

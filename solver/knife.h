@@ -1,0 +1,47 @@
+// Cutting: a knife stroke is a surface; every mesh edge that crosses it is damaged for good.
+//
+// The surface is a set of triangles in the current (deformed) configuration: the quad swept by
+// a blade segment between two frames, or a screen-space stroke extruded along the view rays.
+// Each edge is tested against each triangle with exact orientation predicates
+// (exact_predicates.h), so grazing edges, edges through a blade vertex or along a blade edge,
+// and edges parallel to the blade are decided consistently:
+//   - the triangle is closed: an edge through its boundary or a corner is cut;
+//   - an edge end exactly on the blade's plane counts as lying on its positive side (the side
+//     its normal (b - a) x (c - a) points to), so a planar cut through mesh vertices assigns each
+//     such vertex to one side and still separates the two sides completely;
+//   - an edge lying in the blade's plane, and a zero-area (not moving) blade, cut nothing.
+#pragma once
+
+#include <vector>
+
+#include "sim_model.h"
+
+namespace galsculpt {
+
+struct BladeTriangle {
+  Vec3 a, b, c;
+};
+
+// The surface swept by a blade segment moving from (from0, from1) to (to0, to1): two
+// triangles of the ruled quad.
+std::vector<BladeTriangle> sweptBladeSurface(const Vec3& from0, const Vec3& from1, const Vec3& to0,
+                                             const Vec3& to1);
+
+// A stroke drawn on the screen, extruded along the view rays: nearPoints[i] and farPoints[i]
+// are the ends of the ray through the stroke's i-th point. Two triangles per stroke segment.
+std::vector<BladeTriangle> extrudedStrokeSurface(const std::vector<Vec3>& nearPoints,
+                                                 const std::vector<Vec3>& farPoints);
+
+// Whether segment pq crosses the closed triangle, by the rules above.
+bool segmentCrossesTriangle(const Vec3& p, const Vec3& q, const BladeTriangle& t);
+
+// Indices of the edges (positions x) that cross any triangle of the surface, ascending.
+std::vector<int> edgesCrossingSurface(const std::vector<Vec3>& x, const std::vector<Edge>& edges,
+                                      const std::vector<BladeTriangle>& surface);
+
+// Damages every undamaged edge of the state that crosses the surface at the current
+// positions; returns how many were newly damaged (and bumps state.damageRevision if any).
+int cutAlongSurface(const SimModel& model, SimState& state,
+                    const std::vector<BladeTriangle>& surface);
+
+}  // namespace galsculpt

@@ -1,0 +1,132 @@
+#include "engine/playback.h"
+
+#include <gtest/gtest.h>
+
+#include "engine/scene_mesh.h"
+#include "solver/input_error.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kAssets = fs::path(GALSCULPT_SOURCE_DIR) / "assets";
+
+// The committed script: one knife stroke through the default sphere gives exactly two pieces.
+TEST(Playback, SphereCutScriptGivesExactlyTwoPieces) {
+  const PlaybackScript script = loadPlaybackScript(kAssets / "scripts" / "sphere_cut.json");
+  Simulation sim(script.scene, loadSceneMesh(script.scene));
+  Playback playback(script, sim);
+  FrameMetrics m;
+  int previousDamage = 0;
+  while (!playback.finished()) {
+    m = playback.advance();
+    EXPECT_GE(m.damagedEdges, previousDamage) << "damage never decreases";
+    EXPECT_EQ(m.warnings, 0) << "frame " << m.frame;
+    previousDamage = m.damagedEdges;
+  }
+  EXPECT_EQ(m.frame, script.frames);
+  EXPECT_GT(m.damagedEdges, 0);
+  EXPECT_EQ(m.pieces, 2);
+  for (const Vec3& x : sim.state().x) ASSERT_TRUE(x.allFinite());
+}
+
+std::string scriptWith(const std::string& events) {
+  return R"({"scene": ")" + (kAssets / "scenes" / "default.json").string() +
+         R"(", "frames": 12, "events": [)" + events + "]}";
+}
+
+TEST(Playback, BrushDragsTheGrabbedVerticesThenReleasesThem) {
+  test::TempDir dir;
+  test::writeText(dir / "s.json", scriptWith(R"({"frame": 0, "tool": "brush", "center": [0, 0.1, 0],
+                      "radius": 0.02, "offset": [0.03, 0, 0], "duration": 6})"));
+  const PlaybackScript script = loadPlaybackScript(dir / "s.json");
+  Simulation sim(script.scene, loadSceneMesh(script.scene));
+  const std::vector<int> grabbed = sim.verticesNear(Vec3(0, 0.1, 0), 0.02);
+  ASSERT_FALSE(grabbed.empty());
+  const std::vector<Vec3> start = [&] {
+    std::vector<Vec3> p;
+    for (int v : grabbed) p.push_back(sim.state().x[v]);
+    return p;
+  }();
+  Playback playback(script, sim);
+  for (int f = 0; f < 6; ++f) playback.advance();
+  for (size_t i = 0; i < grabbed.size(); ++i) {
+    EXPECT_NEAR((sim.state().x[grabbed[i]] - start[i] - Vec3(0.03, 0, 0)).norm(), 0.0, 1e-6)
+        << "held at the end of the drag";
+  }
+  EXPECT_EQ(sim.settings().anchors.size(), 2u) << "the scene's anchor and the brush";
+  playback.advance();
+  EXPECT_EQ(sim.settings().anchors.size(), 1u) << "released after its duration";
+}
+
+TEST(Playback, AnchorsAreAddedAndRemovedByName) {
+  test::TempDir dir;
+  test::writeText(dir / "s.json", scriptWith(R"(
+      {"frame": 2, "tool": "anchor", "name": "top", "anchor": {"box": {"min": [-1, 0.08, -1]}}},
+      {"frame": 4, "tool": "anchor", "action": "remove", "name": "top"},
+      {"frame": 5, "tool": "anchor", "action": "remove", "scene_anchor": 0})"));
+  const PlaybackScript script = loadPlaybackScript(dir / "s.json");
+  Simulation sim(script.scene, loadSceneMesh(script.scene));
+  Playback playback(script, sim);
+  std::vector<size_t> counts;
+  for (int f = 0; f < 6; ++f) {
+    playback.advance();
+    counts.push_back(sim.settings().anchors.size());
+  }
+  EXPECT_EQ(counts, (std::vector<size_t>{1, 1, 2, 2, 1, 0}));
+}
+
+TEST(Playback, MalformedScriptsNameTheJsonPath) {
+  test::TempDir dir;
+  auto errorOf = [&](const std::string& text) {
+    test::writeText(dir / "bad.json", text);
+    try {
+      loadPlaybackScript(dir / "bad.json");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(errorOf(R"({"frames": 3})").find("$.scene"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"scene": "nowhere.json", "frames": 3})").find("does not exist"),
+            std::string::npos);
+  EXPECT_NE(errorOf(scriptWith(R"({"tool": "spoon"})")).find("$.events[0].tool"),
+            std::string::npos);
+  EXPECT_NE(errorOf(scriptWith(R"({"tool": "knife", "from": [[0, 0, 0], [1, 0, 0]]})"))
+                .find("$.events[0].to"),
+            std::string::npos);
+  EXPECT_NE(
+      errorOf(
+          scriptWith(
+              R"({"tool": "knife", "from": [[0, 0], [1, 0, 0]], "to": [[0, 0, 0], [1, 0, 0]]})"))
+          .find("must be a point"),
+      std::string::npos);
+  EXPECT_NE(errorOf(scriptWith(R"({"tool": "anchor", "action": "remove", "name": "x"})"))
+                .find("no anchor 'x'"),
+            std::string::npos);
+  EXPECT_NE(
+      errorOf(scriptWith(R"({"tool": "brush", "center": [0, 0, 0], "radius": 0.1, "colour": 1})"))
+          .find("colour"),
+      std::string::npos);
+  EXPECT_NE(errorOf(scriptWith(R"({"tool": "anchor", "action": "remove", "scene_anchor": 3})"))
+                .find("scene_anchor"),
+            std::string::npos);
+  // An anchor that selects nothing is caught before the run starts.
+  test::writeText(dir / "empty.json",
+                  scriptWith(R"({"tool": "anchor", "anchor": {"box": {"min": [5, 5, 5]}}})"));
+  const PlaybackScript script = loadPlaybackScript(dir / "empty.json");
+  Simulation sim(script.scene, loadSceneMesh(script.scene));
+  try {
+    Playback p(script, sim);
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("$.events[0].anchor: selects no vertex"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace galsculpt
