@@ -182,6 +182,7 @@ FractureDesc readFracture(JsonObject o) {
   f.thresholdJitter = o.number("threshold_jitter", 0.0, 0.0, 0.99);
   f.seed = static_cast<unsigned>(o.integer("seed", 1, 0, std::numeric_limits<int>::max()));
   f.compressionResists = o.boolean("compression_resists", true);
+  f.iterations = o.integer("iterations", 1, 1, 100);
   o.rejectUnknownKeys();
   return f;
 }

@@ -83,6 +83,7 @@ struct FractureDesc {
   double thresholdJitter = 0.0;  // relative spread of random thresholds (0 = uniform)
   unsigned seed = 1;
   bool compressionResists = true;  // damaged edges still resist compression
+  int iterations = 1;              // solves per step while edges keep breaking
 };
 
 struct SolverDesc {

@@ -122,6 +122,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     f.thresholdJitter = scene.fracture.thresholdJitter;
     f.seed = scene.fracture.seed;
     settings_.fracture = std::make_shared<FractureField>(buildFractureField(model_, f));
+    settings_.fractureIterations = scene.fracture.iterations;
   }
   if (scene.solver.backend == "cuda")
     notes_.push_back("the CUDA backend is not built yet: running on the CPU");

@@ -356,6 +356,7 @@ StepReport step(const SimModel& model, SimState& state, const StepSettings& sett
   const double frameEnd = state.time + settings.dt;
   int pieces = std::max(1, settings.substeps);
   double h = settings.dt / pieces;
+  int redo = 0;  // fracture re-solves of the current sub-step
   while (state.time < frameEnd - 1e-12 * settings.dt) {
     h = std::min(h, frameEnd - state.time);
     const SimState saved = state;
@@ -385,7 +386,22 @@ StepReport step(const SimModel& model, SimState& state, const StepSettings& sett
       report.newlyDamaged += fr.newlyDamaged;
       report.maxStressRatio = fr.maxStressRatio;
       report.msFracture += msSince(t0);
+      if (fr.newlyDamaged > 0 && redo + 1 < settings.fractureIterations) {
+        // Let the crack run within the sub-step: solve it again from its start with the new
+        // damage (kept), until no edge breaks or the iterations are spent.
+        ++redo;
+        ++report.fractureRedos;
+        report.msElements += r.msElements;
+        report.msSolve += r.msSolve;
+        std::vector<std::uint8_t> damaged = std::move(state.damaged);
+        const std::uint64_t revision = state.damageRevision;
+        state = saved;
+        state.damaged = std::move(damaged);
+        state.damageRevision = revision;
+        continue;
+      }
     }
+    redo = 0;
     report.contactForces = r.contactForces;
     report.linearResidualReduction = r.linearResidualReduction;
     report.newtonIterations += r.iterations;

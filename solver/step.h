@@ -57,6 +57,9 @@ struct StepSettings {
   int maxRetries = 4;  // halvings of the step after NaN or explosion
   // The fracture pass after every sub-step (fracture.h); null: no fracture (and no cost).
   std::shared_ptr<const FractureField> fracture;
+  // Solves of a sub-step while its fracture pass keeps breaking edges (1: the paper's one pass
+  // per step; more let a crack run within a step, at the cost of re-solving).
+  int fractureIterations = 1;
 };
 
 // The reference solver's settings: Newton with line search to a tight tolerance.
@@ -75,6 +78,7 @@ struct StepReport {
   int newlyDamaged = 0;                  // edges the fracture pass broke this frame
   double maxStressRatio = 0.0;           // largest edge stress over its threshold (last pass)
   double msFracture = 0.0;
+  int fractureRedos = 0;  // sub-steps solved again after new damage
 };
 
 StepReport step(const SimModel& model, SimState& state, const StepSettings& settings);
