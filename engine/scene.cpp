@@ -287,6 +287,25 @@ SceneDescription loadScene(const fs::path& file) {
     }
   }
   if (o.has("solver")) s.solver = readSolver(o.object("solver"));
+  if (o.has("measure")) {
+    JsonObject m = o.object("measure");
+    if (m.has("opening")) {
+      const nlohmann::json& pts = m.raw("opening");
+      if (!pts.is_array() || pts.size() != 2)
+        m.fail("opening", "must be two points [[x, y, z], [x, y, z]]");
+      for (const nlohmann::json& p : pts) {
+        if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() ||
+            !p[2].is_number())
+          m.fail("opening", "must be two points [[x, y, z], [x, y, z]]");
+        s.measure.opening.emplace_back(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+      }
+    }
+    s.measure.loadCollider = m.integer("load_collider", -1, 0, 1000000);
+    if (s.measure.loadCollider >= static_cast<int>(s.colliders.size()))
+      m.fail("load_collider",
+             "names no collider (the scene has " + std::to_string(s.colliders.size()) + ")");
+    m.rejectUnknownKeys();
+  }
   o.rejectUnknownKeys();
   return s;
 }

@@ -100,6 +100,15 @@ struct SolverDesc {
   bool splitAggregates = true;   // crack-aware coarse levels
 };
 
+// Optional measurements written as metrics columns.
+struct MeasureDesc {
+  // Opening: the change in distance between the mesh vertices nearest two rest points (the
+  // Charpy test's crack-mouth opening displacement, CMOD). Empty: not measured.
+  std::vector<Eigen::Vector3d> opening;
+  // Load: the force magnitude of one collider (index into colliders; -1: not measured).
+  int loadCollider = -1;
+};
+
 struct SceneDescription {
   std::filesystem::path file;
   std::string name;
@@ -114,6 +123,7 @@ struct SceneDescription {
   std::vector<ColliderDesc> colliders;
   FractureDesc fracture;
   SolverDesc solver;
+  MeasureDesc measure;
 };
 
 // One anchor object (box / sphere / vertices, optional path), as in a scene's "anchors" list.

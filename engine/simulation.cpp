@@ -126,6 +126,14 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   }
   if (scene.solver.backend == "cuda")
     notes_.push_back("the CUDA backend is not built yet: running on the CPU");
+  for (const Vec3& p : scene.measure.opening) {
+    int best = 0;
+    for (int v = 1; v < mesh.numVertices(); ++v) {
+      if ((mesh.vertices[v] - p).squaredNorm() < (mesh.vertices[best] - p).squaredNorm()) best = v;
+    }
+    openingVertices_.push_back(best);
+  }
+  loadCollider_ = scene.measure.loadCollider;
   boundary_ = boundaryFaces(mesh);
   restVolume_ = totalVolume(mesh);
 }
@@ -212,6 +220,13 @@ FrameMetrics Simulation::advance() {
   m.contactForceN = contact.norm();
   m.msFracture = r.msFracture;
   m.newlyDamaged = r.newlyDamaged + toolDamage_;
+  if (loadCollider_ >= 0 && loadCollider_ < static_cast<int>(r.contactForces.size()))
+    m.loadN = r.contactForces[loadCollider_].norm();
+  if (openingVertices_.size() == 2) {
+    const int a = openingVertices_[0], b = openingVertices_[1];
+    m.openingM = (state_.x[a] - state_.x[b]).norm() -
+                 (model_.mesh.vertices[a] - model_.mesh.vertices[b]).norm();
+  }
   toolDamage_ = 0;
   m.volume = currentVolume();
   m.volumeChangePct = 100.0 * (m.volume - restVolume_) / restVolume_;
@@ -234,7 +249,7 @@ FrameMetrics Simulation::advance() {
 std::string metricsCsvHeader() {
   return "frame,time_s,ms_total,ms_elements,ms_solve,ms_plastic,ms_other,volume,volume_change_pct,"
          "kinetic_energy,elastic_energy,residual,max_displacement,damaged_edges,pieces,warnings,"
-         "newton_iterations,contact_force_n,ms_fracture";
+         "newton_iterations,contact_force_n,ms_fracture,opening_m,load_n";
 }
 
 std::string metricsCsvRow(const FrameMetrics& m) {
@@ -243,7 +258,8 @@ std::string metricsCsvRow(const FrameMetrics& m) {
     << ',' << m.msSolve << ',' << m.msPlastic << ',' << m.msOther << ',' << m.volume << ','
     << m.volumeChangePct << ',' << m.kineticEnergy << ',' << m.elasticEnergy << ',' << m.residual
     << ',' << m.maxDisplacement << ',' << m.damagedEdges << ',' << m.pieces << ',' << m.warnings
-    << ',' << m.newtonIterations << ',' << m.contactForceN << ',' << m.msFracture;
+    << ',' << m.newtonIterations << ',' << m.contactForceN << ',' << m.msFracture << ','
+    << m.openingM << ',' << m.loadN;
   return s.str();
 }
 

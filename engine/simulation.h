@@ -25,6 +25,8 @@ struct FrameMetrics {
   double contactForceN = 0.0;  // magnitude of the summed collider forces
   double msFracture = 0.0;     // the fracture pass (part of ms_other before it had a column)
   int newlyDamaged = 0;        // edges broken this frame (fracture and tools)
+  double openingM = 0.0;       // scene measure.opening: distance change of its two vertices, m
+  double loadN = 0.0;          // scene measure.load_collider: that collider's force magnitude, N
 };
 
 // CSV header and row, in the column order documented in docs/cli.md.
@@ -80,6 +82,8 @@ class Simulation {
   int toolDamage_ = 0;  // edges cut by tools since the last frame
   std::uint64_t piecesRevision_ = ~0ull;
   int pieces_ = 1;
+  std::vector<int> openingVertices_;  // measure.opening: the two probed vertices
+  int loadCollider_ = -1;
   double restVolume_ = 0.0;
   int frame_ = 0;
 };

@@ -152,7 +152,19 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   setenv("GALSCULPT_ASSETS", dir.path().c_str(), 1);
   const CliRun r =
       run({"bench", "--scene", "sphere", "--frames", "3", "--json", (dir / "b.json").string()});
+  const CliRun cracks =
+      run({"bench", "--cracks", "--frames", "2", "--json", (dir / "c.json").string()});
   unsetenv("GALSCULPT_ASSETS");
+  ASSERT_EQ(cracks.code, kExitOk) << cracks.err;
+  const auto c = nlohmann::json::parse(test::readText(dir / "c.json"));
+  ASSERT_EQ(c["results"].size(), 3u);
+  EXPECT_EQ(c["results"][0]["cuts"], 0);
+  EXPECT_EQ(c["results"][2]["cuts"], 100);
+  EXPECT_EQ(c["results"][0]["damaged_edges"], 0);
+  EXPECT_GT(c["results"][2]["damaged_edges"].get<int>(),
+            c["results"][1]["damaged_edges"].get<int>());
+  EXPECT_GT(c["results"][1]["damaged_edges"].get<int>(), 0);
+  EXPECT_TRUE(c["results"][2]["rel_position_error"].is_null());
   ASSERT_EQ(r.code, kExitOk) << r.err;
   const auto j = nlohmann::json::parse(test::readText(dir / "b.json"));
   ASSERT_EQ(j["results"].size(), 2u);

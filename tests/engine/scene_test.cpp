@@ -71,6 +71,23 @@ TEST(Scene, FractureThresholdDefaultsToTheMaterialPreset) {
   EXPECT_FALSE(flesh.solver.splitAggregates);
 }
 
+TEST(Scene, MeasureProbesAreReadAndChecked) {
+  const SceneDescription charpy = loadScene(kScenes / "charpy.json");
+  ASSERT_EQ(charpy.measure.opening.size(), 2u);
+  EXPECT_EQ(charpy.measure.loadCollider, 3);
+  test::TempDir dir;
+  test::writeText(dir / "bad.json", R"({"mesh": {"generate": "sphere", "tets": 500},
+                  "measure": {"load_collider": 2}})");
+  try {
+    loadScene(dir / "bad.json");
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("$.measure.load_collider: names no collider"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Scene, DefaultSceneMeshIsCommittedAndLoads) {
   const SceneDescription s = loadScene(kScenes / "default.json");
   const TetMesh mesh = loadSceneMesh(s);

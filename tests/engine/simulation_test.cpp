@@ -44,6 +44,23 @@ TEST(Simulation, HangingSphereSagsAndSettlesWithAnchorsHeld) {
   EXPECT_EQ(sim.settings().gridHandles, std::vector<int>{50});
 }
 
+// The measure probes: the opening between a top and a bottom vertex grows as the sphere sags,
+// and the ground's force on a resting ball is reported on its own.
+TEST(Simulation, MeasureProbesReportOpeningAndLoad) {
+  test::TempDir dir;
+  const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + R"(,
+    "material": {"preset": "rubber", "youngs_modulus": 2e4, "poisson_ratio": 0.45, "density": 1000},
+    "anchors": [{"box": {"min": [-1, 0.08, -1]}}],
+    "colliders": [{"type": "plane", "point": [0, -0.2, 0], "normal": [0, 1, 0]}],
+    "measure": {"opening": [[0, 0.1, 0], [0, -0.1, 0]], "load_collider": 0}})");
+  Simulation sim(scene, loadSceneMesh(scene));
+  FrameMetrics m;
+  for (int f = 0; f < 10; ++f) m = sim.advance();
+  EXPECT_GT(m.openingM, 1e-4) << "the hanging sphere stretches";
+  EXPECT_EQ(m.loadN, 0.0) << "the ground is out of reach";
+  EXPECT_NE(metricsCsvRow(m).find(","), std::string::npos);
+}
+
 TEST(Simulation, AnchorErrorsNameTheJsonPath) {
   test::TempDir dir;
   const SceneDescription nothing = sceneFrom(
@@ -94,7 +111,8 @@ TEST(Simulation, MultigridTracksTheReferenceOnTheHangingSphere) {
   };
   const SceneDescription ref = scene(R"({"type": "reference"})");
   const SceneDescription mg = scene(R"({"type": "multigrid", "grid": "50/all"})");
-  const SceneDescription pcg = scene(R"({"type": "multigrid", "grid": "50/all", "pcg_tolerance": 1e-8})");
+  const SceneDescription pcg =
+      scene(R"({"type": "multigrid", "grid": "50/all", "pcg_tolerance": 1e-8})");
   const TetMesh mesh = loadSceneMesh(ref);
   Simulation a(ref, mesh), b(mg, mesh), c(pcg, mesh);
   for (int f = 0; f < 30; ++f) {
@@ -108,7 +126,8 @@ TEST(Simulation, MultigridTracksTheReferenceOnTheHangingSphere) {
     errMg = std::max(errMg, (b.state().x[v] - a.state().x[v]).norm());
     errPcg = std::max(errPcg, (c.state().x[v] - a.state().x[v]).norm());
   }
-  std::printf("sag %.4g m, multigrid error %.3g %%, PCG error %.3g %%\n", sag, 100 * errMg / sag, 100 * errPcg / sag);
+  std::printf("sag %.4g m, multigrid error %.3g %%, PCG error %.3g %%\n", sag, 100 * errMg / sag,
+              100 * errPcg / sag);
   EXPECT_GT(sag, 0.005);
   EXPECT_LT(errMg, 0.05 * sag);
   EXPECT_LT(errPcg, 5e-3 * sag) << "what is left is the one-Newton-step linearization";

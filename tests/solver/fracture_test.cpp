@@ -66,9 +66,8 @@ struct TensionRun {
   int pieces = 0;
 };
 
-TensionRun pullApart(bool multigrid, double kernel) {
-  const SimModel m = barModel();
-  SimState s = initialState(m);
+// No gravity; the top held, the bottom pulled down 0.4 m per second; threshold 2e4 Pa.
+StepSettings tensionSettings(const SimModel& m, double kernel) {
   StepSettings st;
   st.gravity.setZero();
   AnchorConstraint top, bottom;
@@ -79,6 +78,13 @@ TensionRun pullApart(bool multigrid, double kernel) {
   bottom.path = {{0.0, Vec3::Zero()}, {1.0, Vec3(0, -0.4, 0)}};
   st.anchors = {top, bottom};
   st.fracture = std::make_shared<FractureField>(buildFractureField(m, {2.0e4, kernel, 0.0, 1}));
+  return st;
+}
+
+TensionRun pullApart(bool multigrid, double kernel) {
+  const SimModel m = barModel();
+  SimState s = initialState(m);
+  StepSettings st = tensionSettings(m, kernel);
   st.multigrid = multigrid;
   st.gridHandles = {12};
   st.multigridSettings.pcg = true;
@@ -109,6 +115,32 @@ TEST(Fracture, TensionBreaksTheBarAndMultigridAgreesOnTheFirstBreak) {
   EXPECT_LE(std::abs(multigrid.firstBreakFrame - reference.firstBreakFrame), 1);
   EXPECT_GE(reference.pieces, 2);
   EXPECT_GE(multigrid.pieces, 2);
+}
+
+// With several fracture iterations a step is solved again after new damage, so the crack runs
+// further within the step than with the paper's single pass (same loading, same frame).
+TEST(Fracture, IterationsLetACrackRunWithinAStep) {
+  auto damageAfter = [](int iterations, int& redos) {
+    const SimModel m = barModel();
+    SimState s = initialState(m);
+    StepSettings st = referenceSettings(tensionSettings(m, 0.0));
+    st.fractureIterations = iterations;
+    redos = 0;
+    int damaged = 0;
+    for (int f = 1; f <= 60 && damaged == 0; ++f) {
+      const StepReport r = step(m, s, st);
+      redos += r.fractureRedos;
+      for (auto d : s.damaged) damaged += d;
+    }
+    return damaged;
+  };
+  int redosOne = 0, redosMany = 0;
+  const int one = damageAfter(1, redosOne);
+  const int many = damageAfter(8, redosMany);
+  EXPECT_EQ(redosOne, 0);
+  EXPECT_GT(redosMany, 0);
+  EXPECT_GT(one, 0);
+  EXPECT_GT(many, one) << "damage in the first breaking frame";
 }
 
 TEST(Fracture, NoPassAndNoDamageWhenFractureIsOff) {

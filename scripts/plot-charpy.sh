@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Load against crack-mouth opening displacement from a Charpy run's metrics CSV (PNG, gnuplot).
+# usage: scripts/plot-charpy.sh METRICS.csv OUT.png
+#   galsculpt run assets/scenes/charpy.json --frames 300 --out out --metrics charpy.csv
+#   scripts/plot-charpy.sh charpy.csv docs/images/charpy_load_cmod.png
+set -euo pipefail
+if [[ $# -ne 2 ]]; then
+  echo "usage: $0 METRICS.csv OUT.png" >&2
+  exit 2
+fi
+csv=$1
+out=$2
+[[ -r $csv ]] || { echo "$0: cannot read $csv" >&2; exit 3; }
+head -1 "$csv" | grep -q 'opening_m' || { echo "$0: $csv has no opening_m column" >&2; exit 3; }
+head -1 "$csv" | grep -q 'load_n' || { echo "$0: $csv has no load_n column" >&2; exit 3; }
+tmp="$out.tmp.png"
+gnuplot <<GP
+set terminal pngcairo size 900,600 font ",11"
+set output "$tmp"
+set datafile separator ","
+set key autotitle columnhead
+set xlabel "crack-mouth opening displacement (mm)"
+set ylabel "load on the striker (kN)"
+set grid
+plot "$csv" using (column("opening_m")*1000):(column("load_n")/1000) with linespoints pt 7 ps 0.5 title "Galsculpt, Galerkin multigrid + graph-based FEM"
+GP
+mv "$tmp" "$out"
+echo "wrote $out"

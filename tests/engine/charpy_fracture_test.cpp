@@ -1,0 +1,68 @@
+// The Charpy scene at full size (labelled `slow`): the pendulum starts a crack at the notch root,
+// gravity alone breaks nothing.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include "engine/scene.h"
+#include "engine/scene_mesh.h"
+#include "engine/simulation.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CharpyRun {
+  int damaged = 0;
+  Vec3 firstDamage = Vec3::Zero();  // mean rest midpoint of the first frame's broken edges
+  double peakLoad = 0.0, opening = 0.0;
+};
+
+CharpyRun runCharpy(bool pendulum, int frames) {
+  const fs::path cache = fs::path(GALSCULPT_SOURCE_DIR) / "build" / "test-cache";
+  if (!getenv("GALSCULPT_CACHE_DIR")) setenv("GALSCULPT_CACHE_DIR", cache.c_str(), 1);
+  SceneDescription scene =
+      loadScene(fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "charpy.json");
+  if (!pendulum) {
+    scene.colliders.pop_back();  // the striker
+    scene.measure.loadCollider = -1;
+  }
+  const TetMesh mesh = loadSceneMesh(scene);
+  Simulation sim(scene, mesh);
+  CharpyRun run;
+  for (int f = 0; f < frames; ++f) {
+    const FrameMetrics m = sim.advance();
+    EXPECT_EQ(m.warnings, 0) << "frame " << m.frame;
+    run.peakLoad = std::max(run.peakLoad, m.loadN);
+    run.opening = m.openingM;
+    if (run.damaged == 0 && m.damagedEdges > 0) {
+      const SimModel& model = sim.model();
+      for (int e = 0; e < model.numEdges(); ++e) {
+        if (!sim.state().damaged[e]) continue;
+        run.firstDamage +=
+            0.5 * (model.mesh.vertices[model.edges[e][0]] + model.mesh.vertices[model.edges[e][1]]);
+      }
+      run.firstDamage /= m.damagedEdges;
+    }
+    run.damaged = m.damagedEdges;
+  }
+  for (const Vec3& x : sim.state().x) EXPECT_TRUE(x.allFinite());
+  return run;
+}
+
+TEST(CharpyFracture, ThePendulumCracksTheNotchRootAndGravityAloneDoesNot) {
+  const CharpyRun struck = runCharpy(true, 40);
+  ASSERT_GT(struck.damaged, 0);
+  // The notch root is at x = 27.5 mm, y = 8 mm (the notch is 2 mm deep in the 10 mm top face).
+  EXPECT_NEAR(struck.firstDamage.x(), 0.0275, 0.002);
+  EXPECT_NEAR(struck.firstDamage.y(), 0.008, 0.002);
+  EXPECT_GT(struck.peakLoad, 1e3) << "the striker loads the bar (N)";
+  EXPECT_GT(struck.opening, 0.0) << "the notch mouth opens";
+  const CharpyRun resting = runCharpy(false, 40);
+  EXPECT_EQ(resting.damaged, 0);
+  EXPECT_LT(std::abs(resting.opening), 1e-6);
+}
+
+}  // namespace
+}  // namespace galsculpt
