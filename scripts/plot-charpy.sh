@@ -22,6 +22,8 @@ set key autotitle columnhead
 set xlabel "crack-mouth opening displacement (mm)"
 set ylabel "load on the striker (kN)"
 set grid
+set xrange [0:*]
+set yrange [0:*]
 plot "$csv" using (column("opening_m")*1000):(column("load_n")/1000) with linespoints pt 7 ps 0.5 title "Galsculpt, Galerkin multigrid + graph-based FEM"
 GP
 mv "$tmp" "$out"

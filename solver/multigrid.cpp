@@ -16,6 +16,8 @@ namespace {
 using Mat12 = Eigen::Matrix<double, 12, 12>;
 using Vec12 = Eigen::Matrix<double, 12, 1>;
 
+constexpr int kMinFragment = 4;  // smallest damage fragment that gets a coarse handle
+
 Mat12 kron4x3(const Eigen::Matrix4d& m, const Eigen::Matrix3d& a) {
   Mat12 out;
   for (int i = 0; i < 4; ++i) {
@@ -50,7 +52,12 @@ void buildCoarsePattern(int rows, const std::vector<std::pair<int, int>>& pairs,
                         std::vector<int>& rowStart, std::vector<int>& columns,
                         std::vector<int>& blockOfPair) {
   std::vector<std::vector<int>> cols(rows);
-  for (const auto& [r, c] : pairs) cols[r].push_back(c);
+  for (const auto& [r, c] : pairs) {
+    if (r >= 0 && c >= 0) cols[r].push_back(c);
+  }
+  // Every row keeps its diagonal block, even a handle left without rows (its regularization
+  // lives there).
+  for (int r = 0; r < rows; ++r) cols[r].push_back(r);
   rowStart.assign(rows + 1, 0);
   for (int r = 0; r < rows; ++r) {
     std::sort(cols[r].begin(), cols[r].end());
@@ -62,6 +69,10 @@ void buildCoarsePattern(int rows, const std::vector<std::pair<int, int>>& pairs,
   blockOfPair.resize(pairs.size());
   for (size_t i = 0; i < pairs.size(); ++i) {
     const auto [r, c] = pairs[i];
+    if (r < 0 || c < 0) {
+      blockOfPair[i] = -1;  // a row without a coarse handle
+      continue;
+    }
     const auto begin = columns.begin() + rowStart[r], end = columns.begin() + rowStart[r + 1];
     blockOfPair[i] = static_cast<int>(std::lower_bound(begin, end, c) - columns.begin());
   }
@@ -235,7 +246,7 @@ bool Multigrid::assignAggregates(const std::vector<Edge>& edges,
       for (size_t e = 0; e < edges.size(); ++e) {
         if ((*damaged)[e]) continue;
         const int a = fineToRow[edges[e][0]], b = fineToRow[edges[e][1]];
-        if (a != b && rowBase[a] == rowBase[b]) components.unite(a, b);
+        if (a >= 0 && b >= 0 && a != b && rowBase[a] == rowBase[b]) components.unite(a, b);
       }
     } else {
       std::vector<int> first(base.samples.size(), -1);
@@ -254,9 +265,28 @@ bool Multigrid::assignAggregates(const std::vector<Edge>& edges,
       idOfRoot[components.find(base.sampleRow[h])] = static_cast<int>(h);
       origin[h] = static_cast<int>(h);
     }
+    // Pieces of fewer than four vertices cannot carry an affine map and need none: a free
+    // vertex or a tiny fragment is solved by the fine smoother alone. Giving each a handle
+    // would grow the coarse levels with every crack (hundreds of loose vertices after many
+    // cuts), so they get no coarse correction at all (parent -1).
+    // Only whole pieces that small are left out: a small part of a large piece still needs
+    // the coarse correction that moves the piece.
+    std::vector<int> pieceSize(rows, 0);
+    UnionFind pieces(rows);
+    if (l == 0 && damaged) {
+      for (size_t e = 0; e < edges.size(); ++e) {
+        if (!(*damaged)[e]) pieces.unite(edges[e][0], edges[e][1]);
+      }
+      for (int r = 0; r < rows; ++r) ++pieceSize[pieces.find(r)];
+    }
     std::vector<int> parent(rows);
     for (int r = 0; r < rows; ++r) {
-      int& id = idOfRoot[components.find(r)];
+      const int root = components.find(r);
+      if (l == 0 && damaged && pieceSize[pieces.find(r)] < kMinFragment) {
+        parent[r] = -1;
+        continue;
+      }
+      int& id = idOfRoot[root];
       if (id < 0) {
         id = static_cast<int>(handleVertex.size());
         handleVertex.push_back(rowVertex[r]);
@@ -270,7 +300,7 @@ bool Multigrid::assignAggregates(const std::vector<Edge>& edges,
     level.handleVertex = std::move(handleVertex);
     level.origin = std::move(origin);
     level.handles = static_cast<int>(level.handleVertex.size());
-    for (int& r : fineToRow) r = level.parent[r];
+    for (int& r : fineToRow) r = r >= 0 ? level.parent[r] : -1;
   }
   return changed;
 }
@@ -286,6 +316,10 @@ void Multigrid::buildLevelStructures() {
     if (l == 0) {
       level.y.resize(rest_.size());
       for (size_t v = 0; v < rest_.size(); ++v) {
+        if (level.parent[v] < 0) {
+          level.y[v].setZero();
+          continue;
+        }
         level.y[v] << (rest_[v] - centers[level.parent[v]]) / scale, 1.0;
       }
       pairs.reserve(fine.columns.size());
@@ -318,8 +352,9 @@ void Multigrid::buildLevelStructures() {
     level.blocks.assign(level.columns.size(), Mat12::Zero());
     level.colors = colorRows(level.handles, level.rowStart, level.columns);
     level.members.assign(level.handles, {});
-    for (size_t r = 0; r < level.parent.size(); ++r)
-      level.members[level.parent[r]].push_back(static_cast<int>(r));
+    for (size_t r = 0; r < level.parent.size(); ++r) {
+      if (level.parent[r] >= 0) level.members[level.parent[r]].push_back(static_cast<int>(r));
+    }
   }
 }
 
@@ -345,6 +380,7 @@ void Multigrid::refresh(const BlockSparseMatrix& a, const MultigridSettings& set
         if (l == 0) {
           for (int k = fine.rowStart[r]; k < fine.rowStart[r + 1]; ++k) {
             const int c = fine.columns[k];
+            if (level.fineToCoarseBlock[k] < 0) continue;  // column without a coarse handle
             level.blocks[level.fineToCoarseBlock[k]] +=
                 kron4x3(level.y[r] * level.y[c].transpose(), a.blocks[k]);
           }
@@ -362,7 +398,11 @@ void Multigrid::refresh(const BlockSparseMatrix& a, const MultigridSettings& set
     for (int h = 0; h < level.handles; ++h) {
       for (int k = level.rowStart[h]; k < level.rowStart[h + 1]; ++k) {
         if (level.columns[k] != h) continue;
-        const double shift = 1e-9 * std::max(level.blocks[k].trace() / 12.0, 1e-300);
+        // A handle whose sample broke off as a loose fragment has no rows: identity keeps it
+        // decoupled and harmless (its right-hand side is always zero).
+        const double shift = level.members[h].empty()
+                                 ? 1.0
+                                 : 1e-9 * std::max(level.blocks[k].trace() / 12.0, 1e-300);
         level.blocks[k].diagonal().array() += shift;
       }
     }
@@ -391,6 +431,7 @@ Eigen::MatrixXd Multigrid::prolongationMatrix(int l) const {
   if (l == 0) {
     Eigen::MatrixXd u = Eigen::MatrixXd::Zero(3 * level.parent.size(), 12 * level.handles);
     for (size_t r = 0; r < level.parent.size(); ++r) {
+      if (level.parent[r] < 0) continue;
       for (int m = 0; m < 4; ++m) {
         u.block<3, 3>(3 * r, 12 * level.parent[r] + 3 * m) =
             level.y[r][m] * Eigen::Matrix3d::Identity();
@@ -409,6 +450,7 @@ void Multigrid::restrict(int l, const Eigen::VectorXd& r, Eigen::VectorXd& coars
   coarse.setZero(12 * level.handles);
   if (l == 0) {
     for (size_t v = 0; v < level.parent.size(); ++v) {
+      if (level.parent[v] < 0) continue;
       for (int m = 0; m < 4; ++m)
         coarse.segment<3>(12 * level.parent[v] + 3 * m) += level.y[v][m] * r.segment<3>(3 * v);
     }
@@ -425,6 +467,7 @@ void Multigrid::prolongAdd(int l, const Eigen::VectorXd& coarse, Eigen::VectorXd
   if (l == 0) {
 #pragma omp parallel for schedule(static)
     for (size_t v = 0; v < level.parent.size(); ++v) {
+      if (level.parent[v] < 0) continue;
       for (int m = 0; m < 4; ++m)
         fine.segment<3>(3 * v) += level.y[v][m] * coarse.segment<3>(12 * level.parent[v] + 3 * m);
     }

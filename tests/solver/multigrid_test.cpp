@@ -197,5 +197,48 @@ TEST(Multigrid, SolvesAreDeterministic) {
   EXPECT_EQ(a, b);
 }
 
+// Damage splits aggregates into their connected parts (each part its own handle, one U block
+// per row still), loose vertices get no handle at all, and the coarse matrices stay SPD.
+TEST(Multigrid, DamageSplitsAggregatesAndLeavesLooseVerticesToTheSmoother) {
+  const System s = elasticitySystem();
+  Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {8});
+  const int baseHandles = mg.level(0).handles;
+  std::vector<std::uint8_t> damaged(s.model.numEdges(), 0);
+  EXPECT_FALSE(mg.updateDamage(s.model.edges, damaged, 1)) << "no damage, no change";
+  // Cut the bar across at y = 0.12 (between vertex layers) and free vertex 0 entirely.
+  for (int e = 0; e < s.model.numEdges(); ++e) {
+    const Edge& ed = s.model.edges[e];
+    const double y0 = s.model.mesh.vertices[ed[0]].y(), y1 = s.model.mesh.vertices[ed[1]].y();
+    if ((y0 - 0.11) * (y1 - 0.11) < 0.0 || ed[0] == 0 || ed[1] == 0) damaged[e] = 1;
+  }
+  EXPECT_TRUE(mg.updateDamage(s.model.edges, damaged, 2));
+  EXPECT_FALSE(mg.updateDamage(s.model.edges, damaged, 2)) << "same revision: nothing to do";
+  const MultigridLevel& level = mg.level(0);
+  EXPECT_GT(level.handles, baseHandles) << "the aggregate across the cut is split";
+  EXPECT_EQ(level.parent[0], -1) << "a loose vertex gets no coarse handle";
+  // No aggregate holds vertices from both sides of the cut.
+  for (int h = 0; h < level.handles; ++h) {
+    int below = 0, above = 0;
+    for (int v : level.members[h]) (s.model.mesh.vertices[v].y() < 0.11 ? below : above) += 1;
+    EXPECT_TRUE(below == 0 || above == 0) << "handle " << h;
+  }
+  // U: one block per fine row that has a handle, none for the loose vertex.
+  const Eigen::MatrixXd u = mg.prolongationMatrix(0);
+  EXPECT_EQ(u.topRows(3).norm(), 0.0);
+  for (int v = 1; v < s.model.numVertices(); ++v) {
+    int blocks = 0;
+    for (int h = 0; h < level.handles; ++h) blocks += u.block(3 * v, 12 * h, 3, 12).norm() > 0.0;
+    EXPECT_EQ(blocks, 1) << "vertex " << v;
+  }
+  mg.refresh(s.a, MultigridSettings{});
+  const Eigen::MatrixXd coarse = mg.coarseMatrix(1);
+  EXPECT_LT((coarse - coarse.transpose()).norm(), 1e-9 * coarse.norm());
+  EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(coarse).info(), Eigen::Success);
+  // Undoing the damage (a fresh revision with none) restores the base hierarchy.
+  std::fill(damaged.begin(), damaged.end(), 0);
+  EXPECT_TRUE(mg.updateDamage(s.model.edges, damaged, 3));
+  EXPECT_EQ(mg.level(0).handles, baseHandles);
+}
+
 }  // namespace
 }  // namespace galsculpt
