@@ -44,8 +44,8 @@ std::string frameName(int frame) {
 }
 
 // The frame loop shared by run and play: metrics CSV, OBJ exports, final.obj, summary.
-int simulateFrames(const std::string& name, int frames, Simulation& sim, const TetMesh& mesh,
-                   const fs::path& outDir, const fs::path& metricsPath, int exportEvery,
+int simulateFrames(const std::string& name, int frames, Simulation& sim, const fs::path& outDir,
+                   const fs::path& metricsPath, int exportEvery,
                    const std::function<FrameMetrics()>& advance, std::ostream& out,
                    std::ostream& err) {
   for (const std::string& note : sim.notes()) err << "note: " << note << '\n';
@@ -71,8 +71,8 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const T
   writeFileAtomically(metricsPath, [&](std::ostream& o) { o << csv.str(); });
   out << name << ": " << frames << " frames, " << std::fixed << std::setprecision(2)
       << msSum / frames << " ms/frame, volume change " << std::setprecision(3)
-      << 100.0 * (sim.currentVolume() / totalVolume(mesh) - 1.0) << " %, " << last.damagedEdges
-      << " damaged edges, " << last.pieces << " piece(s), " << warnings << " warning(s)\n"
+      << sim.volumeChangePercent() << " %, " << last.damagedEdges << " damaged edges, "
+      << last.pieces << " piece(s), " << warnings << " warning(s)\n"
       << std::defaultfloat;
   out << "wrote " << metricsPath.string() << " and " << (outDir / "final.obj").string() << '\n';
   return kExitOk;
@@ -102,8 +102,8 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
   Simulation sim(scene, mesh,
                  solver == "reference" ? SolverChoice::Reference : SolverChoice::FromScene);
   return simulateFrames(
-      scene.name, frames, sim, mesh, outDir, metricsPath, exportEvery,
-      [&sim] { return sim.advance(); }, out, err);
+      scene.name, frames, sim, outDir, metricsPath, exportEvery, [&sim] { return sim.advance(); },
+      out, err);
 }
 
 int playCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -125,7 +125,7 @@ int playCommand(const std::vector<std::string>& args, std::ostream& out, std::os
                  solver == "reference" ? SolverChoice::Reference : SolverChoice::FromScene);
   Playback playback(script, sim);
   return simulateFrames(
-      script.scene.name, script.frames, sim, mesh, outDir, metricsPath, exportEvery,
+      script.scene.name, script.frames, sim, outDir, metricsPath, exportEvery,
       [&playback] { return playback.advance(); }, out, err);
 }
 

@@ -183,6 +183,7 @@ FractureDesc readFracture(JsonObject o) {
   f.seed = static_cast<unsigned>(o.integer("seed", 1, 0, std::numeric_limits<int>::max()));
   f.compressionResists = o.boolean("compression_resists", true);
   f.iterations = o.integer("iterations", 1, 1, 100);
+  f.compressiveThreshold = o.number("compressive_threshold", 0.0, 0.0, 1e13);
   o.rejectUnknownKeys();
   return f;
 }

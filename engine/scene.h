@@ -84,6 +84,7 @@ struct FractureDesc {
   unsigned seed = 1;
   bool compressionResists = true;  // damaged edges still resist compression
   int iterations = 1;              // solves per step while edges keep breaking
+  double compressiveThreshold = 0.0;  // Pa, edges crushed beyond it break too (0: never)
 };
 
 struct SolverDesc {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "solver/input_error.h"
+#include "solver/union_find.h"
 
 namespace galsculpt {
 
@@ -121,6 +122,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     f.kernelRadius = scene.fracture.kernelRadius;
     f.thresholdJitter = scene.fracture.thresholdJitter;
     f.seed = scene.fracture.seed;
+    f.compressiveThreshold = scene.fracture.compressiveThreshold;
     settings_.fracture = std::make_shared<FractureField>(buildFractureField(model_, f));
     settings_.fractureIterations = scene.fracture.iterations;
   }
@@ -135,15 +137,42 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   }
   loadCollider_ = scene.measure.loadCollider;
   boundary_ = boundaryFaces(mesh);
-  restVolume_ = totalVolume(mesh);
+  updatePieces();
+}
+
+void Simulation::updatePieces() {
+  if (piecesRevision_ == state_.damageRevision) return;
+  piecesRevision_ = state_.damageRevision;
+  UnionFind uf(model_.numVertices());
+  pieces_ = model_.numVertices();
+  for (int e = 0; e < model_.numEdges(); ++e) {
+    if (!state_.damaged[e]) pieces_ -= uf.unite(model_.edges[e][0], model_.edges[e][1]);
+  }
+  // A tet whose corners lie in different pieces is no longer material (its vertices have
+  // parted): volumes count only tets inside one piece, at rest and now alike.
+  countedTets_.assign(model_.numTets(), 1);
+  restVolume_ = 0.0;
+  for (int t = 0; t < model_.numTets(); ++t) {
+    const Tet& tet = model_.mesh.tets[t];
+    const int p = uf.find(tet[0]);
+    countedTets_[t] = uf.find(tet[1]) == p && uf.find(tet[2]) == p && uf.find(tet[3]) == p;
+    if (countedTets_[t]) restVolume_ += model_.rest[t].volume;
+  }
 }
 
 double Simulation::currentVolume() const {
   double sum = 0.0;
-  for (const Tet& t : model_.mesh.tets) {
-    sum += tetSixVolume(state_.x[t[0]], state_.x[t[1]], state_.x[t[2]], state_.x[t[3]]) / 6.0;
+  for (int t = 0; t < model_.numTets(); ++t) {
+    if (!countedTets_[t]) continue;
+    const Tet& tet = model_.mesh.tets[t];
+    sum +=
+        tetSixVolume(state_.x[tet[0]], state_.x[tet[1]], state_.x[tet[2]], state_.x[tet[3]]) / 6.0;
   }
   return sum;
+}
+
+double Simulation::volumeChangePercent() const {
+  return restVolume_ > 0.0 ? 100.0 * (currentVolume() - restVolume_) / restVolume_ : 0.0;
 }
 
 TriMesh Simulation::surface() const {
@@ -229,18 +258,15 @@ FrameMetrics Simulation::advance() {
                  (model_.mesh.vertices[a] - model_.mesh.vertices[b]).norm();
   }
   toolDamage_ = 0;
+  updatePieces();
+  m.pieces = pieces_;
   m.volume = currentVolume();
-  m.volumeChangePct = 100.0 * (m.volume - restVolume_) / restVolume_;
+  m.volumeChangePct = restVolume_ > 0.0 ? 100.0 * (m.volume - restVolume_) / restVolume_ : 0.0;
   for (int v = 0; v < model_.numVertices(); ++v) {
     m.kineticEnergy += 0.5 * model_.mass[v] * state_.v[v].squaredNorm();
     m.maxDisplacement = std::max(m.maxDisplacement, (state_.x[v] - model_.mesh.vertices[v]).norm());
   }
   for (std::uint8_t d : state_.damaged) m.damagedEdges += d;
-  if (piecesRevision_ != state_.damageRevision) {
-    pieces_ = countDamagePieces(model_, state_);
-    piecesRevision_ = state_.damageRevision;
-  }
-  m.pieces = pieces_;
   m.msTotal =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   m.msOther = std::max(0.0, m.msTotal - m.msElements - m.msSolve - m.msPlastic - m.msFracture);

@@ -70,7 +70,10 @@ class Simulation {
   int frame() const { return frame_; }
   // The tet mesh's boundary at the current positions.
   TriMesh surface() const;
+  // Volume of the tets that lie inside one piece (all of them until something breaks), and its
+  // change from their rest volume.
   double currentVolume() const;
+  double volumeChangePercent() const;
 
  private:
   SimModel model_;
@@ -81,7 +84,9 @@ class Simulation {
   std::vector<int> anchorIds_;  // id of each entry of settings_.anchors (scene anchors: -i - 1)
   int nextAnchorId_ = 0;
   int toolDamage_ = 0;  // edges cut by tools since the last frame
+  void updatePieces();  // pieces and counted tets, when the damage changed
   std::uint64_t piecesRevision_ = ~0ull;
+  std::vector<char> countedTets_;
   int pieces_ = 1;
   std::vector<int> openingVertices_;  // measure.opening: the two probed vertices
   int loadCollider_ = -1;

@@ -51,17 +51,25 @@ std::vector<double> elementEdgeStresses(const SimModel& model, const SimState& s
   return out;
 }
 
+// The largest tension over the elements around each edge, and (when asked) the largest
+// compression, as a negative number.
 std::vector<double> localEdgeStress(const SimModel& model, const FractureField& field,
-                                    const SimState& state, bool compressionResists) {
+                                    const SimState& state, bool compressionResists,
+                                    std::vector<double>* compression = nullptr) {
   const std::vector<double> slot = elementEdgeStresses(model, state, compressionResists);
   std::vector<double> out(model.numEdges(), 0.0);
+  if (compression) compression->assign(model.numEdges(), 0.0);
 #pragma omp parallel for schedule(static)
   for (int e = 0; e < model.numEdges(); ++e) {
     if (state.damaged[e]) continue;
-    double s = -std::numeric_limits<double>::infinity();
-    for (int k = field.slotStart[e]; k < field.slotStart[e + 1]; ++k)
-      s = std::max(s, slot[field.slots[k]]);
-    out[e] = std::isfinite(s) ? s : 0.0;
+    double hi = -std::numeric_limits<double>::infinity();
+    double lo = std::numeric_limits<double>::infinity();
+    for (int k = field.slotStart[e]; k < field.slotStart[e + 1]; ++k) {
+      hi = std::max(hi, slot[field.slots[k]]);
+      lo = std::min(lo, slot[field.slots[k]]);
+    }
+    out[e] = std::isfinite(hi) ? hi : 0.0;
+    if (compression) (*compression)[e] = std::isfinite(lo) ? lo : 0.0;
   }
   return out;
 }
@@ -106,6 +114,8 @@ FractureField buildFractureField(const SimModel& model, const FractureSettings& 
   if (!(settings.thresholdJitter >= 0.0 && settings.thresholdJitter < 1.0))
     throw std::invalid_argument("fracture threshold jitter must lie in [0, 1)");
   if (!(settings.kernelRadius >= 0.0)) throw std::invalid_argument("kernel radius must be >= 0");
+  if (!(settings.compressiveThreshold >= 0.0))
+    throw std::invalid_argument("compressive threshold must be >= 0");
   FractureField f;
   f.settings = settings;
   const int nEdges = model.numEdges();
@@ -163,14 +173,24 @@ std::vector<double> fractureEdgeStress(const SimModel& model, const FractureFiel
 FractureReport fracturePass(const SimModel& model, const FractureField& field, SimState& state,
                             bool compressionResists) {
   FractureReport report;
-  const std::vector<double> local = localEdgeStress(model, field, state, compressionResists);
+  const bool crushes = field.settings.compressiveThreshold > 0.0;
+  std::vector<double> compression;
+  const std::vector<double> local =
+      localEdgeStress(model, field, state, compressionResists, crushes ? &compression : nullptr);
   const int nEdges = model.numEdges();
   std::vector<char> breaks(nEdges, 0);
+  if (crushes) {
+    // Crushing is local (no kernel): the scale of the compressive threshold, not its
+    // randomness, decides it.
+    for (int e = 0; e < nEdges; ++e) {
+      if (!state.damaged[e] && -compression[e] > field.settings.compressiveThreshold) breaks[e] = 1;
+    }
+  }
   if (field.settings.kernelRadius <= 0.0) {
     for (int e = 0; e < nEdges; ++e) {
       if (state.damaged[e]) continue;
       report.maxStressRatio = std::max(report.maxStressRatio, local[e] / field.threshold[e]);
-      breaks[e] = local[e] > field.threshold[e];
+      breaks[e] |= local[e] > field.threshold[e];
     }
   } else {
     // Only edges within R_d of an edge over the smallest threshold can average above theirs.
@@ -190,7 +210,7 @@ FractureReport fracturePass(const SimModel& model, const FractureField& field, S
     for (size_t i = 0; i < list.size(); ++i) {
       const int e = list[i];
       report.maxStressRatio = std::max(report.maxStressRatio, mean[i] / field.threshold[e]);
-      breaks[e] = mean[i] > field.threshold[e];
+      breaks[e] |= mean[i] > field.threshold[e];
     }
     if (list.empty()) {
       for (int e = 0; e < nEdges; ++e) {

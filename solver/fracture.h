@@ -29,6 +29,9 @@ struct FractureSettings {
   double kernelRadius = 0.0;     // m; 0: local
   double thresholdJitter = 0.0;  // relative, in [0, 1)
   std::uint32_t seed = 1;
+  // Pa; > 0: an edge also breaks when compressed beyond it (crushing, shear lips). 0: never;
+  // the paper's criterion is tension only.
+  double compressiveThreshold = 0.0;
 };
 
 // What the pass needs, built once per mesh: per-edge thresholds, the element slots around each

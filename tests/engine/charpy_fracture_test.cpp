@@ -1,11 +1,16 @@
-// The Charpy scene at full size (labelled `slow`): the pendulum starts a crack at the notch root,
-// gravity alone breaks nothing.
+// The Charpy scene at full size (labelled `slow`): the pendulum starts a crack at the notch root
+// and breaks the bar in two; gravity alone breaks nothing.
 #include <gtest/gtest.h>
 #include <stdlib.h>
+
+#include <algorithm>
+#include <map>
+#include <numeric>
 
 #include "engine/scene.h"
 #include "engine/scene_mesh.h"
 #include "engine/simulation.h"
+#include "solver/union_find.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -15,6 +20,7 @@ namespace fs = std::filesystem;
 
 struct CharpyRun {
   int damaged = 0;
+  std::vector<int> pieceSizes;      // largest first
   Vec3 firstDamage = Vec3::Zero();  // mean rest midpoint of the first frame's broken edges
   double peakLoad = 0.0, opening = 0.0;
 };
@@ -48,17 +54,33 @@ CharpyRun runCharpy(bool pendulum, int frames) {
     run.damaged = m.damagedEdges;
   }
   for (const Vec3& x : sim.state().x) EXPECT_TRUE(x.allFinite());
+  const SimModel& model = sim.model();
+  UnionFind pieces(model.numVertices());
+  for (int e = 0; e < model.numEdges(); ++e) {
+    if (!sim.state().damaged[e]) pieces.unite(model.edges[e][0], model.edges[e][1]);
+  }
+  std::map<int, int> sizes;
+  for (int v = 0; v < model.numVertices(); ++v) ++sizes[pieces.find(v)];
+  for (const auto& [root, size] : sizes) run.pieceSizes.push_back(size);
+  std::sort(run.pieceSizes.rbegin(), run.pieceSizes.rend());
   return run;
 }
 
-TEST(CharpyFracture, ThePendulumCracksTheNotchRootAndGravityAloneDoesNot) {
-  const CharpyRun struck = runCharpy(true, 40);
+TEST(CharpyFracture, ThePendulumBreaksTheBarInTwoFromTheNotchAndGravityAloneDoesNot) {
+  const CharpyRun struck = runCharpy(true, 150);
   ASSERT_GT(struck.damaged, 0);
   // The notch root is at x = 27.5 mm, y = 8 mm (the notch is 2 mm deep in the 10 mm top face).
   EXPECT_NEAR(struck.firstDamage.x(), 0.0275, 0.002);
   EXPECT_NEAR(struck.firstDamage.y(), 0.008, 0.002);
   EXPECT_GT(struck.peakLoad, 1e3) << "the striker loads the bar (N)";
   EXPECT_GT(struck.opening, 0.0) << "the notch mouth opens";
+  // Two halves, each with over 40 % of the vertices; what else broke off is crushed debris
+  // under the striker (loose vertices).
+  ASSERT_GE(struck.pieceSizes.size(), 2u);
+  const int total = std::accumulate(struck.pieceSizes.begin(), struck.pieceSizes.end(), 0);
+  EXPECT_GT(struck.pieceSizes[0], 0.4 * total);
+  EXPECT_GT(struck.pieceSizes[1], 0.4 * total);
+  EXPECT_LT(struck.pieceSizes[2], 0.01 * total);
   const CharpyRun resting = runCharpy(false, 40);
   EXPECT_EQ(resting.damaged, 0);
   EXPECT_LT(std::abs(resting.opening), 1e-6);

@@ -143,6 +143,28 @@ TEST(Fracture, IterationsLetACrackRunWithinAStep) {
   EXPECT_GT(many, one) << "damage in the first breaking frame";
 }
 
+// Crushing: squeezed edges break only when a compressive threshold is set (the paper's
+// criterion is tension only).
+TEST(Fracture, CompressiveThresholdCrushesSqueezedEdges) {
+  auto crushed = [](double compressive) {
+    const SimModel m = barModel();
+    SimState s = initialState(m);
+    StepSettings st = tensionSettings(m, 0.0);
+    st.anchors[1].path = {{0.0, Vec3::Zero()}, {1.0, Vec3(0, 0.3, 0)}};  // push up instead
+    FractureSettings f{1e9, 0.0, 0.0, 1};
+    f.compressiveThreshold = compressive;
+    st.fracture = std::make_shared<FractureField>(buildFractureField(m, f));
+    int damaged = 0;
+    for (int frame = 0; frame < 30; ++frame) {
+      const StepReport r = step(m, s, st);
+      damaged += r.newlyDamaged;
+    }
+    return damaged;
+  };
+  EXPECT_EQ(crushed(0.0), 0) << "tension only: a squeezed bar never breaks";
+  EXPECT_GT(crushed(1.0e4), 0);
+}
+
 TEST(Fracture, NoPassAndNoDamageWhenFractureIsOff) {
   const SimModel m = barModel();
   SimState s = initialState(m);
