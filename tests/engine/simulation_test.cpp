@@ -61,6 +61,26 @@ TEST(Simulation, MeasureProbesReportOpeningAndLoad) {
   EXPECT_NE(metricsCsvRow(m).find(","), std::string::npos);
 }
 
+// A sphere cut in two: the lower half falls away. Tets across the cut are no longer material,
+// so the volume change stays that of the two halves (it read thousands of percent when the
+// parted tets were counted).
+TEST(Simulation, VolumeCountsOnlyTetsInsideOnePiece) {
+  test::TempDir dir;
+  const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + R"(,
+    "material": {"preset": "rubber"}, "anchors": [{"box": {"min": [-1, 0.08, -1]}}],
+    "solver": {"coarse_solver": "cholesky"}})");
+  Simulation sim(scene, loadSceneMesh(scene));
+  ASSERT_GT(sim.cut(sweptBladeSurface(Vec3(-1, 0.01, -1), Vec3(-1, 0.01, 1), Vec3(1, 0.01, -1),
+                                      Vec3(1, 0.01, 1))),
+            0);
+  FrameMetrics m;
+  for (int f = 0; f < 30; ++f) m = sim.advance();
+  EXPECT_EQ(m.pieces, 2);
+  EXPECT_GT(m.maxDisplacement, 0.5) << "the lower half fell";
+  EXPECT_LT(std::abs(m.volumeChangePct), 2.0);
+  EXPECT_LT(std::abs(sim.volumeChangePercent()), 2.0);
+}
+
 TEST(Simulation, AnchorErrorsNameTheJsonPath) {
   test::TempDir dir;
   const SceneDescription nothing = sceneFrom(
