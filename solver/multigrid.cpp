@@ -365,7 +365,45 @@ bool Multigrid::updateDamage(const std::vector<Edge>& edges,
   const bool anyDamage = std::find(damaged.begin(), damaged.end(), 1) != damaged.end();
   if (!assignAggregates(edges, anyDamage ? &damaged : nullptr)) return false;
   buildLevelStructures();
+  assignCoarsestPieces(edges, anyDamage ? &damaged : nullptr);
   return true;
+}
+
+void Multigrid::assignCoarsestPieces(const std::vector<Edge>& edges,
+                                     const std::vector<std::uint8_t>* damaged) {
+  piece_.clear();
+  pieceCount_ = 0;
+  if (!damaged) return;
+  UnionFind uf(static_cast<int>(rest_.size()));
+  for (size_t e = 0; e < edges.size(); ++e) {
+    if (!(*damaged)[e]) uf.unite(edges[e][0], edges[e][1]);
+  }
+  const MultigridLevel& coarsest = levels_.back();
+  std::vector<int> idOfRoot(rest_.size(), -1);
+  piece_.resize(coarsest.handles);
+  for (int h = 0; h < coarsest.handles; ++h) {
+    int& id = idOfRoot[uf.find(coarsest.handleVertex[h])];
+    if (id < 0) id = pieceCount_++;
+    piece_[h] = id;
+  }
+  if (pieceCount_ < 2) {
+    piece_.clear();
+    pieceCount_ = 0;
+    return;
+  }
+  // Each handle's affine map as seen from its piece's frame (centre: the piece's first handle).
+  std::vector<int> centerVertex(pieceCount_, -1);
+  for (int h = 0; h < coarsest.handles; ++h) {
+    if (centerVertex[piece_[h]] < 0) centerVertex[piece_[h]] = coarsest.handleVertex[h];
+  }
+  const double scale = base_.back().scale;
+  pieceMap_.resize(coarsest.handles);
+  for (int h = 0; h < coarsest.handles; ++h) {
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    m.block<3, 1>(0, 3) =
+        (rest_[coarsest.handleVertex[h]] - rest_[centerVertex[piece_[h]]]) / scale;
+    pieceMap_[h] = kron4x3(m.transpose(), Eigen::Matrix3d::Identity());
+  }
 }
 
 void Multigrid::refresh(const BlockSparseMatrix& a, const MultigridSettings& settings) {
@@ -405,6 +443,25 @@ void Multigrid::refresh(const BlockSparseMatrix& a, const MultigridSettings& set
                                  : 1e-9 * std::max(level.blocks[k].trace() / 12.0, 1e-300);
         level.blocks[k].diagonal().array() += shift;
       }
+    }
+  }
+  if (pieceCount_ >= 2) {
+    // The per-piece Galerkin operator P^T A_c P, block diagonal over pieces (pieces couple only
+    // through compressed crack faces, which this correction leaves to CG).
+    const MultigridLevel& c = levels_.back();
+    std::vector<Mat12> blocks(pieceCount_, Mat12::Zero());
+    for (int h = 0; h < c.handles; ++h) {
+      for (int k = c.rowStart[h]; k < c.rowStart[h + 1]; ++k) {
+        const int g = c.columns[k];
+        if (piece_[g] != piece_[h]) continue;
+        blocks[piece_[h]] += pieceMap_[h].transpose() * c.blocks[k] * pieceMap_[g];
+      }
+    }
+    pieceSolvers_.clear();
+    pieceSolvers_.resize(pieceCount_);
+    for (int p = 0; p < pieceCount_; ++p) {
+      blocks[p].diagonal().array() += 1e-12 * std::max(blocks[p].trace() / 12.0, 1e-300);
+      pieceSolvers_[p].compute(blocks[p]);
     }
   }
   coarsestFactored_ = false;
@@ -563,12 +620,31 @@ void Multigrid::solveCoarsest(const Eigen::VectorXd& b, Eigen::VectorXd& x,
     x = coarsestCholesky_.solve(b);
     return;
   }
-  // Plain CG from zero for a fixed number of iterations (the paper's coarse solver).
+  // CG for a fixed number of iterations (the paper's coarse solver). When damage has made
+  // several pieces, CG starts from the exact per-piece affine solution: a piece free of every
+  // anchor has only its mass in its translation modes, beside stiff elastic ones, and CG from
+  // zero barely moves it in 20 iterations (a cut-off, falling half fell 9 mm instead of 1.27 m).
   const int l = numLevels();
   x.setZero(b.size());
-  Eigen::VectorXd r = b, p = b, ap;
+  Eigen::VectorXd r = b;
+  if (pieceCount_ >= 2) {
+    std::vector<Vec12> rhs(pieceCount_, Vec12::Zero());
+    for (size_t h = 0; h < piece_.size(); ++h)
+      rhs[piece_[h]] += pieceMap_[h].transpose() * b.segment<12>(12 * h);
+    std::vector<Vec12> e(pieceCount_);
+    for (int p = 0; p < pieceCount_; ++p) e[p] = pieceSolvers_[p].solve(rhs[p]);
+    for (size_t h = 0; h < piece_.size(); ++h) x.segment<12>(12 * h) = pieceMap_[h] * e[piece_[h]];
+    Eigen::VectorXd ax;
+    coarseMultiply(l, x, ax);
+    r = b - ax;
+    if (!x.allFinite()) {
+      x.setZero(b.size());
+      r = b;
+    }
+  }
+  Eigen::VectorXd p = r, ap;
   double rr = r.squaredNorm();
-  const double stop = 1e-30 * std::max(rr, 1e-300);
+  const double stop = 1e-30 * std::max(b.squaredNorm(), 1e-300);
   for (int it = 0; it < s.coarseIterations && rr > stop; ++it) {
     coarseMultiply(l, p, ap);
     const double pap = p.dot(ap);

@@ -127,6 +127,9 @@ class Multigrid {
   // is given; returns whether any assignment changed.
   bool assignAggregates(const std::vector<Edge>& edges, const std::vector<std::uint8_t>* damaged);
   void buildLevelStructures();
+  // Pieces of the coarsest handles and each handle's map from its piece's affine frame.
+  void assignCoarsestPieces(const std::vector<Edge>& edges,
+                            const std::vector<std::uint8_t>* damaged);
 
   const BlockPattern* finePattern_;
   std::vector<Vec3> rest_;
@@ -136,6 +139,11 @@ class Multigrid {
   std::vector<MultigridLevel> levels_;
   Eigen::LLT<Eigen::MatrixXd> coarsestCholesky_;
   Eigen::MatrixXd coarsestDense_;
+  // Per-piece coarse correction (only with two or more pieces holding handles).
+  int pieceCount_ = 0;
+  std::vector<int> piece_;                               // (coarsest handles) piece
+  std::vector<Eigen::Matrix<double, 12, 12>> pieceMap_;  // (coarsest handles) piece -> handle
+  std::vector<Eigen::LLT<Eigen::Matrix<double, 12, 12>>> pieceSolvers_;
   bool coarsestFactored_ = false;
 };
 

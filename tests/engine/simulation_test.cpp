@@ -67,8 +67,7 @@ TEST(Simulation, MeasureProbesReportOpeningAndLoad) {
 TEST(Simulation, VolumeCountsOnlyTetsInsideOnePiece) {
   test::TempDir dir;
   const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + R"(,
-    "material": {"preset": "rubber"}, "anchors": [{"box": {"min": [-1, 0.08, -1]}}],
-    "solver": {"coarse_solver": "cholesky"}})");
+    "material": {"preset": "rubber"}, "anchors": [{"box": {"min": [-1, 0.08, -1]}}]})");
   Simulation sim(scene, loadSceneMesh(scene));
   ASSERT_GT(sim.cut(sweptBladeSurface(Vec3(-1, 0.01, -1), Vec3(-1, 0.01, 1), Vec3(1, 0.01, -1),
                                       Vec3(1, 0.01, 1))),
@@ -76,7 +75,9 @@ TEST(Simulation, VolumeCountsOnlyTetsInsideOnePiece) {
   FrameMetrics m;
   for (int f = 0; f < 30; ++f) m = sim.advance();
   EXPECT_EQ(m.pieces, 2);
-  EXPECT_GT(m.maxDisplacement, 0.5) << "the lower half fell";
+  // Free fall for 30 steps of backward Euler: g h^2 30 31 / 2 = 1.267 m. The multigrid's
+  // per-piece coarse correction lets the freed half fall (it moved 9 mm without it).
+  EXPECT_NEAR(m.maxDisplacement, 9.81 * 30 * 31 / 2 / 3600.0, 0.02);
   EXPECT_LT(std::abs(m.volumeChangePct), 2.0);
   EXPECT_LT(std::abs(sim.volumeChangePercent()), 2.0);
 }
