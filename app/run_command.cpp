@@ -78,6 +78,30 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const f
   return kExitOk;
 }
 
+// What run and play share: where outputs go, how often surfaces are exported, which solver.
+struct RunOptions {
+  fs::path outDir, metricsPath;
+  int exportEvery = 0;
+  SolverChoice solver = SolverChoice::FromScene;
+};
+
+RunOptions readRunOptions(const CliArgs& a, const std::string& command) {
+  if (!a.has("--out")) throw UsageError(command + " needs --out DIR");
+  RunOptions o;
+  o.exportEvery = a.intValue("--export-every", 0, 1, 10000000);
+  const std::string solver = a.value("--solver").value_or("scene");
+  if (solver != "scene" && solver != "reference")
+    throw UsageError("--solver must be 'reference' (or omitted)");
+  o.solver = solver == "reference" ? SolverChoice::Reference : SolverChoice::FromScene;
+  o.outDir = *a.value("--out");
+  o.metricsPath = a.value("--metrics").value_or((o.outDir / "metrics.csv").string());
+  return o;
+}
+
+TetMesh loadMeshReporting(const SceneDescription& scene, std::ostream& err) {
+  return loadSceneMesh(scene, [&err](const std::string& line) { err << line << '\n'; });
+}
+
 }  // namespace
 
 int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -86,24 +110,14 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
       1, 1,
       "galsculpt run SCENE --frames N [--solver reference] --out DIR --metrics FILE.csv "
       "[--export-every K]");
-  if (!a.has("--out")) throw UsageError("run needs --out DIR");
+  const RunOptions o = readRunOptions(a, "run");
   const int frames = a.intValue("--frames", 0, 1, 10000000);
   if (!a.has("--frames")) throw UsageError("run needs --frames N");
-  const int exportEvery = a.intValue("--export-every", 0, 1, 10000000);
-  const std::string solver = a.value("--solver").value_or("scene");
-  if (solver != "scene" && solver != "reference")
-    throw UsageError("--solver must be 'reference' (or omitted)");
-  const fs::path outDir = *a.value("--out");
-  const fs::path metricsPath = a.value("--metrics").value_or((outDir / "metrics.csv").string());
-
   const SceneDescription scene = loadScene(a.positional()[0]);
-  const TetMesh mesh =
-      loadSceneMesh(scene, [&err](const std::string& line) { err << line << '\n'; });
-  Simulation sim(scene, mesh,
-                 solver == "reference" ? SolverChoice::Reference : SolverChoice::FromScene);
+  Simulation sim(scene, loadMeshReporting(scene, err), o.solver);
   return simulateFrames(
-      scene.name, frames, sim, outDir, metricsPath, exportEvery, [&sim] { return sim.advance(); },
-      out, err);
+      scene.name, frames, sim, o.outDir, o.metricsPath, o.exportEvery,
+      [&sim] { return sim.advance(); }, out, err);
 }
 
 int playCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -111,21 +125,12 @@ int playCommand(const std::vector<std::string>& args, std::ostream& out, std::os
   a.expectPositional(1, 1,
                      "galsculpt play SCRIPT --out DIR [--export-every K] [--metrics FILE.csv] "
                      "[--solver reference]");
-  if (!a.has("--out")) throw UsageError("play needs --out DIR");
-  const int exportEvery = a.intValue("--export-every", 0, 1, 10000000);
-  const std::string solver = a.value("--solver").value_or("scene");
-  if (solver != "scene" && solver != "reference")
-    throw UsageError("--solver must be 'reference' (or omitted)");
-  const fs::path outDir = *a.value("--out");
-  const fs::path metricsPath = a.value("--metrics").value_or((outDir / "metrics.csv").string());
+  const RunOptions o = readRunOptions(a, "play");
   const PlaybackScript script = loadPlaybackScript(a.positional()[0]);
-  const TetMesh mesh =
-      loadSceneMesh(script.scene, [&err](const std::string& line) { err << line << '\n'; });
-  Simulation sim(script.scene, mesh,
-                 solver == "reference" ? SolverChoice::Reference : SolverChoice::FromScene);
+  Simulation sim(script.scene, loadMeshReporting(script.scene, err), o.solver);
   Playback playback(script, sim);
   return simulateFrames(
-      script.scene.name, script.frames, sim, outDir, metricsPath, exportEvery,
+      script.scene.name, script.frames, sim, o.outDir, o.metricsPath, o.exportEvery,
       [&playback] { return playback.advance(); }, out, err);
 }
 

@@ -248,7 +248,6 @@ FrameMetrics Simulation::advance() {
   for (const Vec3& f : r.contactForces) contact += f;
   m.contactForceN = contact.norm();
   m.msFracture = r.msFracture;
-  m.backtracks = r.backtracks;
   m.newlyDamaged = r.newlyDamaged + toolDamage_;
   if (loadCollider_ >= 0 && loadCollider_ < static_cast<int>(r.contactForces.size()))
     m.loadN = r.contactForces[loadCollider_].norm();

@@ -220,12 +220,13 @@ Multigrid::Multigrid(const BlockPattern& fine, const std::vector<Vec3>& rest,
     base_.push_back(std::move(base));
   }
   levels_.resize(base_.size());
-  assignAggregates(edges, nullptr);
+  assignAggregates(edges, nullptr, {});
   buildLevelStructures();
 }
 
 bool Multigrid::assignAggregates(const std::vector<Edge>& edges,
-                                 const std::vector<std::uint8_t>* damaged) {
+                                 const std::vector<std::uint8_t>* damaged,
+                                 const std::vector<int>& vertexPiece) {
   const int n = static_cast<int>(rest_.size());
   std::vector<int> fineToRow(n);
   for (int v = 0; v < n; ++v) fineToRow[v] = v;
@@ -272,17 +273,13 @@ bool Multigrid::assignAggregates(const std::vector<Edge>& edges,
     // Only whole pieces that small are left out: a small part of a large piece still needs
     // the coarse correction that moves the piece.
     std::vector<int> pieceSize(rows, 0);
-    UnionFind pieces(rows);
     if (l == 0 && damaged) {
-      for (size_t e = 0; e < edges.size(); ++e) {
-        if (!(*damaged)[e]) pieces.unite(edges[e][0], edges[e][1]);
-      }
-      for (int r = 0; r < rows; ++r) ++pieceSize[pieces.find(r)];
+      for (int r = 0; r < rows; ++r) ++pieceSize[vertexPiece[r]];
     }
     std::vector<int> parent(rows);
     for (int r = 0; r < rows; ++r) {
       const int root = components.find(r);
-      if (l == 0 && damaged && pieceSize[pieces.find(r)] < kMinFragment) {
+      if (l == 0 && damaged && pieceSize[vertexPiece[r]] < kMinFragment) {
         parent[r] = -1;
         continue;
       }
@@ -363,26 +360,31 @@ bool Multigrid::updateDamage(const std::vector<Edge>& edges,
   if (revision == damageRevision_) return false;
   damageRevision_ = revision;
   const bool anyDamage = std::find(damaged.begin(), damaged.end(), 1) != damaged.end();
-  if (!assignAggregates(edges, anyDamage ? &damaged : nullptr)) return false;
+  // Each vertex's piece (a representative vertex), found once for both uses below.
+  std::vector<int> vertexPiece;
+  if (anyDamage) {
+    UnionFind uf(static_cast<int>(rest_.size()));
+    for (size_t e = 0; e < edges.size(); ++e) {
+      if (!damaged[e]) uf.unite(edges[e][0], edges[e][1]);
+    }
+    vertexPiece.resize(rest_.size());
+    for (size_t v = 0; v < rest_.size(); ++v) vertexPiece[v] = uf.find(static_cast<int>(v));
+  }
+  if (!assignAggregates(edges, anyDamage ? &damaged : nullptr, vertexPiece)) return false;
   buildLevelStructures();
-  assignCoarsestPieces(edges, anyDamage ? &damaged : nullptr);
+  assignCoarsestPieces(vertexPiece);
   return true;
 }
 
-void Multigrid::assignCoarsestPieces(const std::vector<Edge>& edges,
-                                     const std::vector<std::uint8_t>* damaged) {
+void Multigrid::assignCoarsestPieces(const std::vector<int>& vertexPiece) {
   piece_.clear();
   pieceCount_ = 0;
-  if (!damaged) return;
-  UnionFind uf(static_cast<int>(rest_.size()));
-  for (size_t e = 0; e < edges.size(); ++e) {
-    if (!(*damaged)[e]) uf.unite(edges[e][0], edges[e][1]);
-  }
+  if (vertexPiece.empty()) return;
   const MultigridLevel& coarsest = levels_.back();
   std::vector<int> idOfRoot(rest_.size(), -1);
   piece_.resize(coarsest.handles);
   for (int h = 0; h < coarsest.handles; ++h) {
-    int& id = idOfRoot[uf.find(coarsest.handleVertex[h])];
+    int& id = idOfRoot[vertexPiece[coarsest.handleVertex[h]]];
     if (id < 0) id = pieceCount_++;
     piece_[h] = id;
   }

@@ -125,11 +125,12 @@ class Multigrid {
   };
   // Aggregates of every level from the base samples, split over undamaged edges when `damaged`
   // is given; returns whether any assignment changed.
-  bool assignAggregates(const std::vector<Edge>& edges, const std::vector<std::uint8_t>* damaged);
+  // `vertexPiece` (each vertex's piece) is read only with damage.
+  bool assignAggregates(const std::vector<Edge>& edges, const std::vector<std::uint8_t>* damaged,
+                        const std::vector<int>& vertexPiece);
   void buildLevelStructures();
-  // Pieces of the coarsest handles and each handle's map from its piece's affine frame.
-  void assignCoarsestPieces(const std::vector<Edge>& edges,
-                            const std::vector<std::uint8_t>* damaged);
+  // Pieces of the coarsest handles and their affine maps (empty `vertexPiece`: undamaged).
+  void assignCoarsestPieces(const std::vector<int>& vertexPiece);
 
   const BlockPattern* finePattern_;
   std::vector<Vec3> rest_;
