@@ -14,9 +14,6 @@ struct RenderMesh {
   std::vector<unsigned> indices;  // (3 nTris)
 };
 
-// Area-weighted vertex normals of a surface (zero for unused vertices).
-std::vector<Vec3> vertexNormals(const TriMesh& mesh);
-
 RenderMesh makeRenderMesh(const TriMesh& mesh, const Vec3& color);
 
 }  // namespace galsculpt

@@ -37,17 +37,28 @@ void drawProgress(std::ostream& err, int done, int total, double msPerFrame, boo
   }
 }
 
-std::string frameName(int frame) {
+std::string frameName(int frame, const std::string& extension) {
   std::ostringstream s;
-  s << "frame_" << std::setw(5) << std::setfill('0') << frame << ".obj";
+  s << "frame_" << std::setw(5) << std::setfill('0') << frame << '.' << extension;
   return s.str();
 }
 
-// The frame loop shared by run and play: metrics CSV, OBJ exports, final.obj, summary.
-int simulateFrames(const std::string& name, int frames, Simulation& sim, const fs::path& outDir,
-                   const fs::path& metricsPath, int exportEvery,
+// What run and play share: where outputs go, how often surfaces are exported, which solver.
+struct RunOptions {
+  fs::path outDir, metricsPath;
+  int exportEvery = 0;
+  std::string exportFormat = "obj";  // obj, ply, stl, gltf or glb
+  bool exportTets = false;
+  SolverChoice solver = SolverChoice::FromScene;
+};
+
+// The frame loop shared by run and play: metrics CSV, surface exports, final.obj, summary.
+int simulateFrames(const std::string& name, int frames, Simulation& sim, const RunOptions& o,
                    const std::function<FrameMetrics()>& advance, std::ostream& out,
                    std::ostream& err) {
+  const fs::path& outDir = o.outDir;
+  const fs::path& metricsPath = o.metricsPath;
+  const int exportEvery = o.exportEvery;
   for (const std::string& note : sim.notes()) err << "note: " << note << '\n';
   std::error_code ec;
   fs::create_directories(outDir, ec);
@@ -65,9 +76,16 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const f
     msSum += last.msTotal;
     warnings += last.warnings;
     drawProgress(err, f, frames, msSum / f, interactive);
-    if (exportEvery > 0 && f % exportEvery == 0) writeSurface(outDir / frameName(f), sim.surface());
+    if (exportEvery > 0 && f % exportEvery == 0)
+      writeVisualSurface(outDir / frameName(f, o.exportFormat), sim.surface());
   }
-  writeSurface(outDir / "final.obj", sim.surface());
+  writeVisualSurface(outDir / "final.obj", sim.surface());
+  if (o.exportFormat != "obj")
+    writeVisualSurface(outDir / ("final." + o.exportFormat), sim.surface());
+  if (o.exportTets) {
+    sim.writeTetsWithDamage(outDir / "final");
+    out << "wrote " << (outDir / "final").string() << ".node/.ele/.face/.damage/.vtk\n";
+  }
   writeFileAtomically(metricsPath, [&](std::ostream& o) { o << csv.str(); });
   out << name << ": " << frames << " frames, " << std::fixed << std::setprecision(2)
       << msSum / frames << " ms/frame, volume change " << std::setprecision(3)
@@ -78,17 +96,16 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const f
   return kExitOk;
 }
 
-// What run and play share: where outputs go, how often surfaces are exported, which solver.
-struct RunOptions {
-  fs::path outDir, metricsPath;
-  int exportEvery = 0;
-  SolverChoice solver = SolverChoice::FromScene;
-};
-
 RunOptions readRunOptions(const CliArgs& a, const std::string& command) {
   if (!a.has("--out")) throw UsageError(command + " needs --out DIR");
   RunOptions o;
   o.exportEvery = a.intValue("--export-every", 0, 1, 10000000);
+  o.exportFormat = a.value("--export-format").value_or("obj");
+  if (o.exportFormat != "obj" && o.exportFormat != "ply" && o.exportFormat != "stl" &&
+      o.exportFormat != "gltf" && o.exportFormat != "glb") {
+    throw UsageError("--export-format must be obj, ply, stl, gltf or glb");
+  }
+  o.exportTets = a.has("--export-tets");
   const std::string solver = a.value("--solver").value_or("scene");
   if (solver != "scene" && solver != "reference")
     throw UsageError("--solver must be 'reference' (or omitted)");
@@ -105,33 +122,36 @@ TetMesh loadMeshReporting(const SceneDescription& scene, std::ostream& err) {
 }  // namespace
 
 int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(args, {"--frames", "--solver", "--out", "--metrics", "--export-every"}, {});
+  const CliArgs a(
+      args, {"--frames", "--solver", "--out", "--metrics", "--export-every", "--export-format"},
+      {"--export-tets"});
   a.expectPositional(
       1, 1,
       "galsculpt run SCENE --frames N [--solver reference] --out DIR --metrics FILE.csv "
-      "[--export-every K]");
+      "[--export-every K] [--export-format obj|ply|stl|gltf|glb] [--export-tets]");
   const RunOptions o = readRunOptions(a, "run");
   const int frames = a.intValue("--frames", 0, 1, 10000000);
   if (!a.has("--frames")) throw UsageError("run needs --frames N");
   const SceneDescription scene = loadScene(a.positional()[0]);
   Simulation sim(scene, loadMeshReporting(scene, err), o.solver);
   return simulateFrames(
-      scene.name, frames, sim, o.outDir, o.metricsPath, o.exportEvery,
-      [&sim] { return sim.advance(); }, out, err);
+      scene.name, frames, sim, o, [&sim] { return sim.advance(); }, out, err);
 }
 
 int playCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(args, {"--out", "--metrics", "--export-every", "--solver"}, {});
+  const CliArgs a(args, {"--out", "--metrics", "--export-every", "--solver", "--export-format"},
+                  {"--export-tets"});
   a.expectPositional(1, 1,
                      "galsculpt play SCRIPT --out DIR [--export-every K] [--metrics FILE.csv] "
-                     "[--solver reference]");
+                     "[--solver reference] [--export-format obj|ply|stl|gltf|glb] "
+                     "[--export-tets]");
   const RunOptions o = readRunOptions(a, "play");
   const PlaybackScript script = loadPlaybackScript(a.positional()[0]);
   Simulation sim(script.scene, loadMeshReporting(script.scene, err), o.solver);
   Playback playback(script, sim);
   return simulateFrames(
-      script.scene.name, script.frames, sim, o.outDir, o.metricsPath, o.exportEvery,
-      [&playback] { return playback.advance(); }, out, err);
+      script.scene.name, script.frames, sim, o, [&playback] { return playback.advance(); }, out,
+      err);
 }
 
 }  // namespace galsculpt

@@ -5,8 +5,11 @@
 #include <iomanip>
 #include <sstream>
 
+#include "solver/damage_io.h"
 #include "solver/input_error.h"
+#include "solver/tetgen_io.h"
 #include "solver/union_find.h"
+#include "solver/vtk_io.h"
 
 namespace galsculpt {
 
@@ -80,7 +83,9 @@ MaterialParams materialFromScene(const MaterialDesc& m) {
 }
 
 Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, SolverChoice choice)
-    : model_(buildSimModel(mesh, materialFromScene(scene.material))), state_(initialState(model_)) {
+    : model_(buildSimModel(mesh, materialFromScene(scene.material))),
+      state_(initialState(model_)),
+      surfaceBuilder_(model_) {
   settings_.dt = scene.timeStep;
   settings_.substeps = scene.substeps;
   settings_.gravity = scene.gravity;
@@ -136,7 +141,6 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     openingVertices_.push_back(best);
   }
   loadCollider_ = scene.measure.loadCollider;
-  boundary_ = boundaryFaces(mesh);
   updatePieces();
 }
 
@@ -175,20 +179,34 @@ double Simulation::volumeChangePercent() const {
   return restVolume_ > 0.0 ? 100.0 * (currentVolume() - restVolume_) / restVolume_ : 0.0;
 }
 
-TriMesh Simulation::surface() const {
-  TriMesh s;
-  std::vector<int> map(state_.x.size(), -1);
-  for (Tri f : boundary_) {
-    for (int& v : f) {
-      if (map[v] < 0) {
-        map[v] = s.numVertices();
-        s.vertices.push_back(state_.x[v]);
-      }
-      v = map[v];
-    }
-    s.faces.push_back(f);
+const VisualSurface& Simulation::surface(SurfaceUpdateStats* stats) const {
+  const SurfaceUpdateStats s = surfaceBuilder_.update(model_, state_);
+  if (stats) *stats = s;
+  return surfaceBuilder_.surface();
+}
+
+void Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
+  TetMesh now = model_.mesh;
+  now.vertices = state_.x;
+  writeTetGen(stem, now);
+  writeDamage(stem.string() + ".damage", model_.edges, state_.damaged);
+  // Piece of each tet: the piece of its first corner when all four share it, otherwise -1.
+  UnionFind uf(model_.numVertices());
+  for (int e = 0; e < model_.numEdges(); ++e) {
+    if (!state_.damaged[e]) uf.unite(model_.edges[e][0], model_.edges[e][1]);
   }
-  return s;
+  std::vector<int> label(model_.numVertices(), -1);
+  int pieces = 0;
+  VtkCellField piece{"piece", std::vector<double>(model_.numTets(), -1.0)};
+  for (int t = 0; t < model_.numTets(); ++t) {
+    const Tet& tet = model_.mesh.tets[t];
+    const int root = uf.find(tet[0]);
+    if (uf.find(tet[1]) != root || uf.find(tet[2]) != root || uf.find(tet[3]) != root) continue;
+    if (label[root] < 0) label[root] = pieces++;
+    piece.values[t] = label[root];
+  }
+  writeVtk(stem.string() + ".vtk", now,
+           {{"damage", tetDamageFraction(model_.tetEdges, state_.damaged)}, piece});
 }
 
 std::vector<int> Simulation::selectVertices(const AnchorDesc& shape, const std::string& file,

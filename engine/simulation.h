@@ -2,10 +2,12 @@
 // plus per-frame metrics. The engine's one place where scene descriptions meet the solver.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "engine/scene.h"
+#include "engine/surface_builder.h"
 #include "solver/knife.h"
 #include "solver/step.h"
 
@@ -67,8 +69,12 @@ class Simulation {
   // Notes for the user about how the scene is run (e.g. a solver that is not available yet).
   const std::vector<std::string>& notes() const { return notes_; }
   int frame() const { return frame_; }
-  // The tet mesh's boundary at the current positions.
-  TriMesh surface() const;
+  // The visualization surface (engine/surface_builder.h) at the current damage and positions,
+  // brought up to date on each call; `stats` (optional) gets what that update cost.
+  const VisualSurface& surface(SurfaceUpdateStats* stats = nullptr) const;
+  // Writes the tet mesh at the current positions with its damage: stem.node/.ele/.face,
+  // stem.damage (solver/damage_io.h) and stem.vtk (cell data: damage, piece).
+  void writeTetsWithDamage(const std::filesystem::path& stem) const;
   // Volume of the tets that lie inside one piece (all of them until something breaks), and its
   // change from their rest volume.
   double currentVolume() const;
@@ -79,7 +85,7 @@ class Simulation {
   SimState state_;
   StepSettings settings_;
   std::vector<std::string> notes_;
-  std::vector<Tri> boundary_;
+  mutable SurfaceBuilder surfaceBuilder_;
   std::vector<int> anchorIds_;  // id of each entry of settings_.anchors (scene anchors: -i - 1)
   int nextAnchorId_ = 0;
   int toolDamage_ = 0;  // edges cut by tools since the last frame

@@ -8,9 +8,11 @@
 #include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
 #include <cmath>
+#include <iomanip>
 #include <map>
 #include <memory>
 
+#include "solver/atomic_file.h"
 #include "solver/input_error.h"
 
 namespace galsculpt {
@@ -103,54 +105,70 @@ TriMesh readSurface(const fs::path& path) {
   return out;
 }
 
-void writeSurface(const fs::path& path, const TriMesh& mesh, const std::vector<Vec3>* normals) {
-  const std::string ext = lowerExtension(path);
-  const char* format = exportFormatFor(ext);
-  if (!format) {
-    throw OutputError("cannot write " + path.string() + ": unknown surface format '" + ext +
-                      "' (use .obj, .ply, .stl, .gltf or .glb)");
-  }
+namespace {
+
+// One mesh of an exported scene: its own vertices (and normals, optional) and faces.
+struct ExportPart {
+  std::string name;
+  const TriMesh* mesh;
+  const std::vector<Vec3>* normals;
+};
+
+aiVector3D toAi(const Vec3& p) {
+  return aiVector3D(static_cast<ai_real>(p.x()), static_cast<ai_real>(p.y()),
+                    static_cast<ai_real>(p.z()));
+}
+
+fs::path checkedOutputDir(const fs::path& path) {
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) {
     throw OutputError("cannot write " + path.string() + ": directory " + dir.string() +
                       " does not exist");
   }
+  return dir;
+}
 
+void exportWithAssimp(const fs::path& path, const char* format,
+                      const std::vector<ExportPart>& parts) {
+  const fs::path dir = checkedOutputDir(path);
   // The aiScene owns and frees everything attached below.
   auto scene = std::make_unique<aiScene>();
+  const unsigned n = static_cast<unsigned>(parts.size());
   scene->mRootNode = new aiNode();
-  scene->mMaterials = new aiMaterial* [1] { new aiMaterial() };
-  scene->mNumMaterials = 1;
-  auto* out = new aiMesh();
-  scene->mMeshes = new aiMesh* [1] { out };
-  scene->mNumMeshes = 1;
-  scene->mRootNode->mMeshes = new unsigned[1]{0};
-  scene->mRootNode->mNumMeshes = 1;
-  out->mMaterialIndex = 0;
-  out->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
-  out->mNumVertices = static_cast<unsigned>(mesh.vertices.size());
-  out->mVertices = new aiVector3D[out->mNumVertices];
-  for (unsigned i = 0; i < out->mNumVertices; ++i) {
-    const Vec3& p = mesh.vertices[i];
-    out->mVertices[i] = aiVector3D(static_cast<ai_real>(p.x()), static_cast<ai_real>(p.y()),
-                                   static_cast<ai_real>(p.z()));
-  }
-  if (normals && normals->size() == mesh.vertices.size()) {
-    out->mNormals = new aiVector3D[out->mNumVertices];
-    for (unsigned i = 0; i < out->mNumVertices; ++i) {
-      const Vec3& n = (*normals)[i];
-      out->mNormals[i] = aiVector3D(static_cast<ai_real>(n.x()), static_cast<ai_real>(n.y()),
-                                    static_cast<ai_real>(n.z()));
+  scene->mMaterials = new aiMaterial*[n];
+  scene->mMeshes = new aiMesh*[n];
+  scene->mNumMaterials = scene->mNumMeshes = n;
+  scene->mRootNode->mMeshes = new unsigned[n];
+  scene->mRootNode->mNumMeshes = n;
+  for (unsigned m = 0; m < n; ++m) {
+    const TriMesh& mesh = *parts[m].mesh;
+    auto* material = new aiMaterial();
+    const aiString name(parts[m].name);
+    material->AddProperty(&name, AI_MATKEY_NAME);
+    scene->mMaterials[m] = material;
+    auto* out = new aiMesh();
+    scene->mMeshes[m] = out;
+    scene->mRootNode->mMeshes[m] = m;
+    out->mName = aiString(parts[m].name);
+    out->mMaterialIndex = m;
+    out->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
+    out->mNumVertices = static_cast<unsigned>(mesh.vertices.size());
+    out->mVertices = new aiVector3D[out->mNumVertices];
+    for (unsigned i = 0; i < out->mNumVertices; ++i) out->mVertices[i] = toAi(mesh.vertices[i]);
+    const std::vector<Vec3>* normals = parts[m].normals;
+    if (normals && normals->size() == mesh.vertices.size()) {
+      out->mNormals = new aiVector3D[out->mNumVertices];
+      for (unsigned i = 0; i < out->mNumVertices; ++i) out->mNormals[i] = toAi((*normals)[i]);
     }
-  }
-  out->mNumFaces = static_cast<unsigned>(mesh.faces.size());
-  out->mFaces = new aiFace[out->mNumFaces];
-  for (unsigned f = 0; f < out->mNumFaces; ++f) {
-    out->mFaces[f].mNumIndices = 3;
-    out->mFaces[f].mIndices = new unsigned[3];
-    for (int k = 0; k < 3; ++k)
-      out->mFaces[f].mIndices[k] = static_cast<unsigned>(mesh.faces[f][k]);
+    out->mNumFaces = static_cast<unsigned>(mesh.faces.size());
+    out->mFaces = new aiFace[out->mNumFaces];
+    for (unsigned f = 0; f < out->mNumFaces; ++f) {
+      out->mFaces[f].mNumIndices = 3;
+      out->mFaces[f].mIndices = new unsigned[3];
+      for (int k = 0; k < 3; ++k)
+        out->mFaces[f].mIndices[k] = static_cast<unsigned>(mesh.faces[f][k]);
+    }
   }
 
   // Export into a private folder beside the target (same file system), then rename every file
@@ -161,6 +179,7 @@ void writeSurface(const fs::path& path, const TriMesh& mesh, const std::vector<V
                       dir.string());
   }
   const fs::path tmpDir = pattern;
+  std::error_code ec;
   Assimp::Exporter exporter;
   const aiReturn status = exporter.Export(scene.get(), format, (tmpDir / path.filename()).string());
   if (status != aiReturn_SUCCESS) {
@@ -177,6 +196,77 @@ void writeSurface(const fs::path& path, const TriMesh& mesh, const std::vector<V
     }
   }
   fs::remove_all(tmpDir, ec);
+}
+
+const char* checkedFormat(const fs::path& path) {
+  const char* format = exportFormatFor(lowerExtension(path));
+  if (!format) {
+    throw OutputError("cannot write " + path.string() + ": unknown surface format '" +
+                      lowerExtension(path) + "' (use .obj, .ply, .stl, .gltf or .glb)");
+  }
+  return format;
+}
+
+// OBJ by hand: assimp's OBJ exporter merges vertices that share a position, which would weld
+// the two sides of a crack that has not opened yet. One vertex list for the whole surface, so
+// outer and crack faces stay connected; a normal list per tag keeps crack edges sharp.
+void writeObj(const fs::path& path, const VisualSurface& s) {
+  checkedOutputDir(path);
+  const ShadingNormals normals = shadingNormals(s);
+  const int n = s.mesh.numVertices();
+  writeFileAtomically(path, [&](std::ostream& out) {
+    out << "# galsculpt visualization surface: " << n << " vertices, " << s.mesh.numFaces()
+        << " faces; groups 'outer' (the body's surface) and 'crack' (crack faces)\n";
+    out << std::setprecision(9);
+    for (const Vec3& p : s.mesh.vertices)
+      out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    for (const std::vector<Vec3>* list : {&normals.outer, &normals.crack}) {
+      for (const Vec3& p : *list) out << "vn " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    }
+    for (SurfaceTag tag : {SurfaceTag::Outer, SurfaceTag::Crack}) {
+      bool header = false;
+      const int normalBase = tag == SurfaceTag::Crack ? n : 0;
+      for (size_t f = 0; f < s.mesh.faces.size(); ++f) {
+        if (s.tags[f] != tag) continue;
+        if (!header) out << (tag == SurfaceTag::Crack ? "g crack\n" : "g outer\n");
+        header = true;
+        out << 'f';
+        for (int v : s.mesh.faces[f]) out << ' ' << v + 1 << "//" << normalBase + v + 1;
+        out << '\n';
+      }
+    }
+  });
+}
+
+}  // namespace
+
+void writeSurface(const fs::path& path, const TriMesh& mesh, const std::vector<Vec3>* normals) {
+  exportWithAssimp(path, checkedFormat(path), {{"surface", &mesh, normals}});
+}
+
+void writeVisualSurface(const fs::path& path, const VisualSurface& surface) {
+  const char* format = checkedFormat(path);
+  const std::string ext = lowerExtension(path);
+  if (ext == ".obj") {
+    writeObj(path, surface);
+  } else if (ext == ".gltf" || ext == ".glb") {
+    // One mesh per tag (materials 'outer' and 'crack'), each with its own normals.
+    std::vector<TriMesh> parts;
+    std::vector<std::vector<Vec3>> normals;
+    std::vector<ExportPart> list;
+    for (SurfaceTag tag : {SurfaceTag::Outer, SurfaceTag::Crack}) {
+      parts.push_back(facesWithTag(surface, tag));
+      normals.push_back(vertexNormals(parts.back()));
+    }
+    for (int k = 0; k < 2; ++k) {
+      if (parts[k].faces.empty()) continue;
+      list.push_back({k == 0 ? "outer" : "crack", &parts[k], &normals[k]});
+    }
+    exportWithAssimp(path, format, list);
+  } else {
+    // PLY and STL hold one untagged triangle list.
+    exportWithAssimp(path, format, {{"surface", &surface.mesh, nullptr}});
+  }
 }
 
 }  // namespace galsculpt

@@ -127,4 +127,19 @@ int countPieces(const TetMesh& mesh, std::vector<int>* pieceOfVertex) {
   return pieces;
 }
 
+std::vector<Vec3> vertexNormals(const TriMesh& mesh) {
+  std::vector<Vec3> normals(mesh.vertices.size(), Vec3::Zero());
+  for (const Tri& f : mesh.faces) {
+    // The cross product's length is twice the area: area weighting for free.
+    const Vec3 n = (mesh.vertices[f[1]] - mesh.vertices[f[0]])
+                       .cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
+    for (int k = 0; k < 3; ++k) normals[f[k]] += n;
+  }
+  for (Vec3& n : normals) {
+    const double len = n.norm();
+    if (len > 0.0) n /= len;
+  }
+  return normals;
+}
+
 }  // namespace galsculpt

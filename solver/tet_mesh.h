@@ -66,6 +66,9 @@ std::vector<Edge> uniqueEdges(const TetMesh& mesh);
 
 BoundingBox boundingBox(const std::vector<Vec3>& points);
 
+// Area-weighted vertex normals of a surface (zero for unused vertices).
+std::vector<Vec3> vertexNormals(const TriMesh& mesh);
+
 // Mean-ratio quality in [0, 1]: 1 for a regular tet, 0 for a flat one (negative if inverted).
 double tetMeanRatio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 

@@ -39,7 +39,7 @@ TEST(Simulation, HangingSphereSagsAndSettlesWithAnchorsHeld) {
   for (int v : sim.settings().anchors[0].vertices) {
     EXPECT_EQ(sim.state().x[v], sim.model().mesh.vertices[v]) << "anchored vertices do not move";
   }
-  EXPECT_TRUE(sim.surface().numFaces() > 0);
+  EXPECT_TRUE(sim.surface().mesh.numFaces() > 0);
   EXPECT_TRUE(sim.settings().multigrid) << "the scene default solver is the Galerkin multigrid";
   EXPECT_EQ(sim.settings().gridHandles, std::vector<int>{50});
 }

@@ -1,0 +1,72 @@
+#include "damage_io.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "atomic_file.h"
+#include "input_error.h"
+#include "text_lines.h"
+
+namespace galsculpt {
+
+void writeDamage(const std::filesystem::path& path, const std::vector<Edge>& edges,
+                 const std::vector<std::uint8_t>& damaged) {
+  if (damaged.size() != edges.size()) {
+    throw OutputError("cannot write " + path.string() + ": one damage flag per edge is needed");
+  }
+  const auto count = std::count_if(damaged.begin(), damaged.end(), [](auto d) { return d != 0; });
+  writeFileAtomically(path, [&](std::ostream& out) {
+    out << "# galsculpt damage 1\n" << count << '\n';
+    for (size_t e = 0; e < edges.size(); ++e) {
+      if (damaged[e]) out << edges[e][0] << ' ' << edges[e][1] << '\n';
+    }
+  });
+}
+
+std::vector<std::uint8_t> readDamage(const std::filesystem::path& path,
+                                     const std::vector<Edge>& edges) {
+  TextLines lines(path.string(), readWholeFile(path));
+  const TextLine& header = lines.next("the number of damaged edges");
+  if (header.tokens.size() != 1) lines.fail(header.number, "expected the number of damaged edges");
+  const long long count = lines.parseInt(header, 0, "the number of damaged edges");
+  if (count < 0 || count > static_cast<long long>(edges.size())) {
+    lines.fail(header.number, "the mesh has " + std::to_string(edges.size()) +
+                                  " edges; cannot damage " + std::to_string(count));
+  }
+  std::vector<std::uint8_t> damaged(edges.size(), 0);
+  for (long long i = 0; i < count; ++i) {
+    const TextLine& line = lines.next("a damaged edge (two vertex numbers)");
+    if (line.tokens.size() != 2) lines.fail(line.number, "expected two vertex numbers");
+    long long a = lines.parseInt(line, 0, "a vertex number");
+    long long b = lines.parseInt(line, 1, "a vertex number");
+    if (a > b) std::swap(a, b);
+    const Edge key{static_cast<int>(a), static_cast<int>(b)};
+    const auto it = std::lower_bound(edges.begin(), edges.end(), key);
+    if (a < 0 || it == edges.end() || *it != key) {
+      std::ostringstream what;
+      what << '(' << a << ", " << b << ") is not an edge of the mesh";
+      lines.fail(line.number, what.str());
+    }
+    std::uint8_t& flag = damaged[it - edges.begin()];
+    if (flag) lines.fail(line.number, "edge listed twice");
+    flag = 1;
+  }
+  if (!lines.atEnd()) {
+    lines.fail(lines.peek()->number,
+               "more edges than the count on line " + std::to_string(header.number) + " says");
+  }
+  return damaged;
+}
+
+std::vector<double> tetDamageFraction(const std::vector<std::array<int, 6>>& tetEdges,
+                                      const std::vector<std::uint8_t>& damaged) {
+  std::vector<double> out(tetEdges.size(), 0.0);
+  for (size_t t = 0; t < tetEdges.size(); ++t) {
+    int n = 0;
+    for (int e : tetEdges[t]) n += damaged[e] != 0;
+    out[t] = n / 6.0;
+  }
+  return out;
+}
+
+}  // namespace galsculpt
