@@ -25,7 +25,8 @@ void writeDamage(const std::filesystem::path& path, const std::vector<Edge>& edg
 
 std::vector<std::uint8_t> readDamage(const std::filesystem::path& path,
                                      const std::vector<Edge>& edges) {
-  TextLines lines(path.string(), readWholeFile(path));
+  const std::string text = readWholeFile(path);  // TextLines keeps views into it
+  TextLines lines(path.string(), text);
   const TextLine& header = lines.next("the number of damaged edges");
   if (header.tokens.size() != 1) lines.fail(header.number, "expected the number of damaged edges");
   const long long count = lines.parseInt(header, 0, "the number of damaged edges");

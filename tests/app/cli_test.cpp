@@ -134,6 +134,18 @@ TEST(Cli, PlayRunsAScriptHeadlessAndWritesTheFinalSurface) {
   EXPECT_TRUE(fs::exists(dir / "out" / "frame_00060.obj"));
   EXPECT_TRUE(fs::exists(dir / "out" / "metrics.csv"));
   EXPECT_EQ(run({"play", script.string()}).code, kExitUsage) << "--out is required";
+  EXPECT_EQ(run({"play", script.string(), "--out", (dir / "o3").string(), "--export-format", "fbx"})
+                .code,
+            kExitUsage);
+
+  // Other formats and the tet mesh with its damage.
+  const CliRun formats = run({"play", script.string(), "--out", (dir / "glb").string(),
+                              "--export-every", "60", "--export-format", "glb", "--export-tets"});
+  ASSERT_EQ(formats.code, kExitOk) << formats.err;
+  for (const char* name : {"final.obj", "final.glb", "frame_00060.glb", "final.node", "final.ele",
+                           "final.face", "final.damage", "final.vtk"}) {
+    EXPECT_TRUE(fs::exists(dir / "glb" / name)) << name;
+  }
   test::writeText(dir / "bad.json", "{\"frames\": 2}");
   const CliRun bad = run({"play", (dir / "bad.json").string(), "--out", (dir / "o2").string()});
   EXPECT_EQ(bad.code, kExitBadInput);

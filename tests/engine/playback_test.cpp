@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/surface_io.h"
+#include "solver/surface_checks.h"
+#include "tests/test_util.h"
+
 #include "engine/scene_mesh.h"
 #include "solver/input_error.h"
 #include "tests/test_util.h"
@@ -30,6 +34,19 @@ TEST(Playback, SphereCutScriptGivesExactlyTwoPieces) {
   EXPECT_GT(m.damagedEdges, 0);
   EXPECT_EQ(m.pieces, 2);
   for (const Vec3& x : sim.state().x) ASSERT_TRUE(x.allFinite());
+
+  // The visualization surface: two closed pieces, with crack faces.
+  const VisualSurface& surface = sim.surface();
+  const SurfaceTopology topo = analyzeSurface(surface.mesh);
+  EXPECT_TRUE(topo.closedManifold()) << topo.describeProblem();
+  EXPECT_EQ(countSurfacePieces(surface.mesh), 2);
+  EXPECT_GT(facesWithTag(surface, SurfaceTag::Crack).numFaces(), 0);
+  test::TempDir dir;
+  writeVisualSurface(dir / "cut.obj", surface);
+  const TriMesh back = readSurface(dir / "cut.obj");
+  EXPECT_TRUE(analyzeSurface(back).closedManifold());
+  EXPECT_EQ(countSurfacePieces(back), 2);
+  EXPECT_EQ(back.numFaces(), surface.mesh.numFaces());
 }
 
 std::string scriptWith(const std::string& events) {

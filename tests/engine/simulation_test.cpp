@@ -5,7 +5,9 @@
 #include <sstream>
 
 #include "engine/scene_mesh.h"
+#include "solver/damage_io.h"
 #include "solver/input_error.h"
+#include "solver/tetgen_io.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -152,6 +154,27 @@ TEST(Simulation, MultigridTracksTheReferenceOnTheHangingSphere) {
   EXPECT_GT(sag, 0.005);
   EXPECT_LT(errMg, 0.05 * sag);
   EXPECT_LT(errPcg, 5e-3 * sag) << "what is left is the one-Newton-step linearization";
+}
+
+TEST(Simulation, TetMeshWithDamageRoundTrips) {
+  test::TempDir dir;
+  const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + "}");
+  Simulation sim(scene, loadSceneMesh(scene));
+  sim.cut(sweptBladeSurface(Vec3(-1, 0.01, -1), Vec3(-1, 0.01, 1), Vec3(1, 0.01, -1),
+                            Vec3(1, 0.01, 1)));
+  for (int f = 0; f < 3; ++f) sim.advance();
+  sim.writeTetsWithDamage(dir / "cut");
+  const TetMesh back = readTetGen(dir / "cut");
+  ASSERT_EQ(back.numVertices(), sim.model().numVertices());
+  ASSERT_EQ(back.numTets(), sim.model().numTets());
+  for (int v = 0; v < back.numVertices(); ++v) {
+    EXPECT_LT((back.vertices[v] - sim.state().x[v]).norm(), 1e-12) << "current positions";
+  }
+  EXPECT_EQ(back.tets, sim.model().mesh.tets);
+  EXPECT_EQ(readDamage(dir / "cut.damage", uniqueEdges(back)), sim.state().damaged);
+  const std::string vtk = test::readText(dir / "cut.vtk");
+  EXPECT_NE(vtk.find("SCALARS damage double 1"), std::string::npos);
+  EXPECT_NE(vtk.find("SCALARS piece double 1"), std::string::npos);
 }
 
 }  // namespace

@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
+#include "engine/surface_builder.h"
 #include "solver/input_error.h"
+#include "solver/knife.h"
 #include "solver/shape_generators.h"
 #include "solver/surface_checks.h"
 #include "tests/test_util.h"
@@ -37,6 +41,68 @@ TEST_P(SurfaceRoundTrip, SameCountsAndPositions) {
 INSTANTIATE_TEST_SUITE_P(Formats, SurfaceRoundTrip,
                          ::testing::Values(".obj", ".ply", ".stl", ".gltf", ".glb"),
                          [](const auto& info) { return info.param.substr(1); });
+
+// A bar cut in two whose halves have moved apart: the visualization surface of two pieces.
+VisualSurface cutBarSurface() {
+  SimModel model = buildSimModel(test::gridBar(4, 3, 2, 0.1), MaterialParams{});
+  SimState state = initialState(model);
+  cutAlongSurface(model, state,
+                  sweptBladeSurface(Vec3(0.21, -1, -1), Vec3(0.21, -1, 1), Vec3(0.21, 1, -1),
+                                    Vec3(0.21, 1, 1)));
+  for (int v = 0; v < model.numVertices(); ++v) {
+    if (model.mesh.vertices[v].x() > 0.21) state.x[v] += Vec3(0.05, 0.01, 0);
+  }
+  SurfaceBuilder builder(model);
+  builder.update(model, state);
+  return builder.surface();
+}
+
+class VisualSurfaceRoundTrip : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(VisualSurfaceRoundTrip, SameCountsPositionsAndPieces) {
+  test::TempDir dir;
+  const VisualSurface s = cutBarSurface();
+  ASSERT_TRUE(analyzeSurface(s.mesh).closedManifold());
+  const fs::path file = dir / ("cut" + GetParam());
+  writeVisualSurface(file, s);
+  const TriMesh back = readSurface(file);
+  ASSERT_EQ(back.numFaces(), s.mesh.numFaces());
+  ASSERT_EQ(back.numVertices(), s.mesh.numVertices()) << "outer and crack parts weld back";
+  EXPECT_TRUE(analyzeSurface(back).closedManifold()) << analyzeSurface(back).describeProblem();
+  EXPECT_EQ(countSurfacePieces(back), 2);
+  EXPECT_NEAR(enclosedVolume(back), enclosedVolume(s.mesh), 1e-6 * enclosedVolume(s.mesh));
+  // Every vertex comes back (float precision), in some order.
+  for (const Vec3& p : s.mesh.vertices) {
+    double nearest = 1e9;
+    for (const Vec3& q : back.vertices) nearest = std::min(nearest, (p - q).norm());
+    ASSERT_LT(nearest, 1e-6);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, VisualSurfaceRoundTrip,
+                         ::testing::Values(".obj", ".ply", ".stl", ".gltf", ".glb"),
+                         [](const auto& info) { return info.param.substr(1); });
+
+TEST(SurfaceIo, ObjKeepsTagsAsGroupsAndCoincidentCopiesApart) {
+  test::TempDir dir;
+  // An uncut-open slit: both sides' copies sit at the same positions.
+  SimModel model = buildSimModel(test::gridBar(4, 3, 2, 0.1), MaterialParams{});
+  SimState state = initialState(model);
+  cutAlongSurface(model, state,
+                  sweptBladeSurface(Vec3(0.21, -1, -1), Vec3(0.21, -1, 0.1), Vec3(0.21, 1, -1),
+                                    Vec3(0.21, 1, 0.1)));
+  SurfaceBuilder builder(model);
+  builder.update(model, state);
+  writeVisualSurface(dir / "slit.obj", builder.surface());
+  const std::string text = test::readText(dir / "slit.obj");
+  EXPECT_NE(text.find("\ng outer\n"), std::string::npos);
+  EXPECT_NE(text.find("\ng crack\n"), std::string::npos);
+  int vertices = 0;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) vertices += line.rfind("v ", 0) == 0;
+  EXPECT_EQ(vertices, builder.surface().mesh.numVertices()) << "no vertex merged by position";
+  EXPECT_THROW(writeVisualSurface(dir / "missing" / "slit.obj", builder.surface()), OutputError);
+}
 
 TEST(SurfaceIo, ObjWritesNoMaterialFileAndGltfKeepsItsBuffer) {
   test::TempDir dir;
