@@ -8,7 +8,9 @@
 // The visualization surface (writeVisualSurface) keeps its tags: OBJ groups `outer` and `crack`
 // over one shared vertex list (written by us: assimp's OBJ exporter merges vertices at equal
 // positions, which would weld the two sides of a closed crack), glTF one mesh per tag;
-// PLY and STL hold one untagged triangle list.
+// PLY and STL hold one untagged triangle list. readSurface welds vertices at equal positions
+// (STL needs it; assimp's OBJ reader does not keep the file's indexing), so a crack whose two
+// sides still touch comes back closed: the files themselves keep them apart.
 #pragma once
 
 #include <filesystem>

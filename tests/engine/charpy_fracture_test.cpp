@@ -10,7 +10,10 @@
 #include "engine/scene.h"
 #include "engine/scene_mesh.h"
 #include "engine/simulation.h"
+#include "engine/surface_io.h"
+#include "solver/surface_checks.h"
 #include "solver/union_find.h"
+#include "tests/surface_expectations.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -23,6 +26,9 @@ struct CharpyRun {
   std::vector<int> pieceSizes;      // largest first
   Vec3 firstDamage = Vec3::Zero();  // mean rest midpoint of the first frame's broken edges
   double peakLoad = 0.0, opening = 0.0;
+  int surfaceProblems = 0;  // frames (every 25th and the last) whose surface was not closed
+  int exportedPieces = 0;   // surface pieces of the final OBJ, read back
+  bool exportClosed = false;
 };
 
 CharpyRun runCharpy(bool pendulum, int frames) {
@@ -52,7 +58,19 @@ CharpyRun runCharpy(bool pendulum, int frames) {
       run.firstDamage /= m.damagedEdges;
     }
     run.damaged = m.damagedEdges;
+    if (m.frame % 25 == 0 || m.frame == frames) {
+      const SurfaceTopology topo = analyzeSurface(sim.surface().mesh);
+      if (!topo.closedManifold()) {
+        ++run.surfaceProblems;
+        ADD_FAILURE() << "frame " << m.frame << ": " << topo.describeProblem();
+      }
+    }
   }
+  test::TempDir dir;
+  writeVisualSurface(dir / "final.obj", sim.surface());
+  const TriMesh back = test::readObjByIndex((dir / "final.obj").string());
+  run.exportClosed = analyzeSurface(back).closedManifold();
+  run.exportedPieces = countSurfacePieces(back);
   for (const Vec3& x : sim.state().x) EXPECT_TRUE(x.allFinite());
   const SimModel& model = sim.model();
   UnionFind pieces(model.numVertices());
@@ -81,6 +99,10 @@ TEST(CharpyFracture, ThePendulumBreaksTheBarInTwoFromTheNotchAndGravityAloneDoes
   EXPECT_GT(struck.pieceSizes[0], 0.4 * total);
   EXPECT_GT(struck.pieceSizes[1], 0.4 * total);
   EXPECT_LT(struck.pieceSizes[2], 0.01 * total);
+  // The exported surface, as indexed in the file: closed pieces, at least the two halves.
+  EXPECT_EQ(struck.surfaceProblems, 0);
+  EXPECT_TRUE(struck.exportClosed);
+  EXPECT_GE(struck.exportedPieces, 2);
   const CharpyRun resting = runCharpy(false, 40);
   EXPECT_EQ(resting.damaged, 0);
   EXPECT_LT(std::abs(resting.opening), 1e-6);

@@ -9,6 +9,7 @@
 #include "solver/knife.h"
 #include "solver/shape_generators.h"
 #include "solver/surface_checks.h"
+#include "tests/surface_expectations.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -101,6 +102,9 @@ TEST(SurfaceIo, ObjKeepsTagsAsGroupsAndCoincidentCopiesApart) {
   std::istringstream lines(text);
   for (std::string line; std::getline(lines, line);) vertices += line.rfind("v ", 0) == 0;
   EXPECT_EQ(vertices, builder.surface().mesh.numVertices()) << "no vertex merged by position";
+  const TriMesh indexed = test::readObjByIndex((dir / "slit.obj").string());
+  EXPECT_EQ(indexed.faces, builder.surface().mesh.faces);
+  EXPECT_TRUE(analyzeSurface(indexed).closedManifold());
   EXPECT_THROW(writeVisualSurface(dir / "missing" / "slit.obj", builder.surface()), OutputError);
 }
 
