@@ -22,4 +22,16 @@ RenderMesh makeRenderMesh(const TriMesh& mesh, const Vec3& color) {
   return r;
 }
 
+RenderMesh makeRenderMesh(const VisualSurface& surface, const Vec3& outerColor,
+                          const Vec3& crackColor) {
+  RenderMesh out = makeRenderMesh(facesWithTag(surface, SurfaceTag::Outer), outerColor);
+  const RenderMesh crack = makeRenderMesh(facesWithTag(surface, SurfaceTag::Crack), crackColor);
+  const unsigned offset = static_cast<unsigned>(out.positions.size() / 3);
+  out.positions.insert(out.positions.end(), crack.positions.begin(), crack.positions.end());
+  out.normals.insert(out.normals.end(), crack.normals.begin(), crack.normals.end());
+  out.colors.insert(out.colors.end(), crack.colors.begin(), crack.colors.end());
+  for (unsigned i : crack.indices) out.indices.push_back(offset + i);
+  return out;
+}
+
 }  // namespace galsculpt

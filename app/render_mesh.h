@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "engine/surface_builder.h"
 #include "solver/tet_mesh.h"
 
 namespace galsculpt {
@@ -15,5 +16,10 @@ struct RenderMesh {
 };
 
 RenderMesh makeRenderMesh(const TriMesh& mesh, const Vec3& color);
+
+// The visualization surface with crack faces tinted: each tag gets its own vertices, so normals
+// are smooth within a tag and sharp where crack faces meet the outer surface.
+RenderMesh makeRenderMesh(const VisualSurface& surface, const Vec3& outerColor,
+                          const Vec3& crackColor);
 
 }  // namespace galsculpt

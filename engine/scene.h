@@ -31,9 +31,9 @@ struct MaterialDesc {
   std::string model = "stable_neo_hookean";  // corotational | stvk | stable_neo_hookean
   double youngsModulus = 0.0;                // Pa
   double poissonRatio = 0.0;
-  double density = 0.0;      // kg/m^3
-  double yieldStress = 0.0;  // Pa, 0 = elastic
-  double hardening = 0.0;    // Pa (linear isotropic hardening modulus)
+  double density = 0.0;            // kg/m^3
+  double yieldStress = 0.0;        // Pa, 0 = elastic
+  double hardening = 0.0;          // Pa (linear isotropic hardening modulus)
   double fractureThreshold = 0.0;  // Pa, the preset's edge stress at break (fracture default)
 };
 
@@ -82,8 +82,8 @@ struct FractureDesc {
   double kernelRadius = 0.0;     // m, non-local averaging radius (0 = local)
   double thresholdJitter = 0.0;  // relative spread of random thresholds (0 = uniform)
   unsigned seed = 1;
-  bool compressionResists = true;  // damaged edges still resist compression
-  int iterations = 1;              // solves per step while edges keep breaking
+  bool compressionResists = true;     // damaged edges still resist compression
+  int iterations = 1;                 // solves per step while edges keep breaking
   double compressiveThreshold = 0.0;  // Pa, edges crushed beyond it break too (0: never)
 };
 

@@ -262,6 +262,7 @@ FrameMetrics Simulation::advance() {
   m.elasticEnergy = r.elasticEnergy;
   m.warnings = r.retries;
   m.newtonIterations = r.newtonIterations;
+  m.backtracks = r.backtracks;
   Vec3 contact = Vec3::Zero();
   for (const Vec3& f : r.contactForces) contact += f;
   m.contactForceN = contact.norm();
@@ -293,7 +294,7 @@ FrameMetrics Simulation::advance() {
 std::string metricsCsvHeader() {
   return "frame,time_s,ms_total,ms_elements,ms_solve,ms_plastic,ms_other,volume,volume_change_pct,"
          "kinetic_energy,elastic_energy,residual,max_displacement,damaged_edges,pieces,warnings,"
-         "newton_iterations,contact_force_n,ms_fracture,opening_m,load_n";
+         "newton_iterations,contact_force_n,ms_fracture,opening_m,load_n,backtracks";
 }
 
 std::string metricsCsvRow(const FrameMetrics& m) {
@@ -303,7 +304,7 @@ std::string metricsCsvRow(const FrameMetrics& m) {
     << m.volumeChangePct << ',' << m.kineticEnergy << ',' << m.elasticEnergy << ',' << m.residual
     << ',' << m.maxDisplacement << ',' << m.damagedEdges << ',' << m.pieces << ',' << m.warnings
     << ',' << m.newtonIterations << ',' << m.contactForceN << ',' << m.msFracture << ','
-    << m.openingM << ',' << m.loadN;
+    << m.openingM << ',' << m.loadN << ',' << m.backtracks;
   return s.str();
 }
 

@@ -29,6 +29,7 @@ struct FrameMetrics {
   int newlyDamaged = 0;        // edges broken this frame (fracture and tools)
   double openingM = 0.0;       // scene measure.opening: distance change of its two vertices, m
   double loadN = 0.0;          // scene measure.load_collider: that collider's force magnitude, N
+  int backtracks = 0;          // Newton steps shortened by the energy guard / line search
 };
 
 // CSV header and row, in the column order documented in docs/cli.md.

@@ -203,9 +203,9 @@ SurfaceBuilder::SurfaceBuilder(const SimModel& model) {
   buildCsr(model.numVertices(), vertexEdgePairs, vertexEdgeStart_, vertexEdges_);
 
   damagedSeen_.assign(model.numEdges(), 0);
+  numMeshVertices_ = model.numVertices();
   slotOfOwner_.assign(boundary_.size() + static_cast<size_t>(nT), -1);
   deformation_.resize(model.numVertices());
-  deformationStamp_.assign(model.numVertices(), 0);
 }
 
 std::int64_t SurfaceBuilder::acquirePoint(std::uint64_t key) {
@@ -378,12 +378,17 @@ void SurfaceBuilder::renumber() {
   surface_.tags.clear();
   surface_.cellVertex.clear();
   outSource_.clear();
-  std::unordered_map<std::int64_t, int> outIndex;
-  outIndex.reserve(boundary_.size());
+  // Output index of each mesh vertex and point slot, -1 until first used (flat arrays: this
+  // runs over every face after each damage change).
+  vertexOut_.assign(numMeshVertices_, -1);
+  pointOut_.assign(pointKey_.size(), -1);
   auto number = [&](std::int64_t source) {
-    const auto [it, inserted] = outIndex.emplace(source, static_cast<int>(outSource_.size()));
-    if (inserted) outSource_.push_back(source);
-    return it->second;
+    int& index = source < 0 ? vertexOut_[-source - 1] : pointOut_[source];
+    if (index < 0) {
+      index = static_cast<int>(outSource_.size());
+      outSource_.push_back(source);
+    }
+    return index;
   };
   auto emit = [&](const PendingTri& tri) {
     surface_.mesh.faces.push_back(
@@ -402,11 +407,46 @@ void SurfaceBuilder::renumber() {
   }
 }
 
-const Eigen::Matrix3d& SurfaceBuilder::localDeformation(const SimModel& model,
-                                                        const SimState& state, int v) {
-  Eigen::Matrix3d& F = deformation_[v];
-  if (deformationStamp_[v] == positionStamp_) return F;
-  deformationStamp_[v] = positionStamp_;
+int SurfaceBuilder::supportOf(const SimModel& model, std::uint64_t key, int (&support)[4]) const {
+  const int index = keyIndex(key);
+  int n = 0;
+  switch (keyKind(key)) {
+    case kEdgePoint:
+      support[n++] = model.edges[index][0];
+      support[n++] = model.edges[index][1];
+      break;
+    case kFacePoint:
+      for (int v : faceCorners_[index]) support[n++] = v;
+      break;
+    case kTetPoint:
+      for (int v : model.mesh.tets[index]) support[n++] = v;
+      break;
+  }
+  return n;
+}
+
+void SurfaceBuilder::collectDeformedVertices(const SimModel& model) {
+  // The corners of copies that hold only part of their point's support: they need F_v.
+  deformedVertices_.clear();
+  std::vector<char> seen(model.numVertices(), 0);
+  for (std::int64_t source : outSource_) {
+    if (source < 0) continue;
+    const std::uint64_t key = pointKey_[source];
+    int support[4];
+    const int n = supportOf(model, key, support);
+    const unsigned mask = keyMask(key);
+    if (mask == (1u << n) - 1) continue;
+    for (int k = 0; k < n; ++k) {
+      if ((mask & (1u << k)) && !seen[support[k]]) {
+        seen[support[k]] = 1;
+        deformedVertices_.push_back(support[k]);
+      }
+    }
+  }
+}
+
+Eigen::Matrix3d SurfaceBuilder::fitDeformation(const SimModel& model, const SimState& state,
+                                               int v) const {
   // Least-squares fit of dx = F dX over the undamaged edges at v: the deformation of v's own
   // side. Too few directions (a vertex on a thin sliver): regularized towards the identity.
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero(), B = Eigen::Matrix3d::Zero();
@@ -420,48 +460,34 @@ const Eigen::Matrix3d& SurfaceBuilder::localDeformation(const SimModel& model,
     B += dx * dX.transpose();
   }
   const double scale = A.trace() / 3.0;
-  if (scale <= 0.0) {
-    F.setIdentity();
-  } else if (A.determinant() > 1e-6 * scale * scale * scale) {
-    F = B * A.inverse();
-  } else {
-    const double mu = 1e-2 * scale;
-    F = (B + mu * Eigen::Matrix3d::Identity()) * (A + mu * Eigen::Matrix3d::Identity()).inverse();
-  }
-  return F;
+  if (scale <= 0.0) return Eigen::Matrix3d::Identity();
+  if (A.determinant() > 1e-6 * scale * scale * scale) return B * A.inverse();
+  const double mu = 1e-2 * scale;
+  return (B + mu * Eigen::Matrix3d::Identity()) * (A + mu * Eigen::Matrix3d::Identity()).inverse();
 }
 
 void SurfaceBuilder::evaluatePositions(const SimModel& model, const SimState& state) {
-  if (++positionStamp_ == 0) {
-    std::fill(deformationStamp_.begin(), deformationStamp_.end(), 0);
-    positionStamp_ = 1;
+  const int nDeformed = static_cast<int>(deformedVertices_.size());
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < nDeformed; ++k) {
+    const int v = deformedVertices_[k];
+    deformation_[v] = fitDeformation(model, state, v);
   }
   std::vector<Vec3>& out = surface_.mesh.vertices;
   out.resize(outSource_.size());
   const std::vector<Vec3>& X = model.mesh.vertices;
-  for (size_t i = 0; i < outSource_.size(); ++i) {
+  const long count = static_cast<long>(outSource_.size());
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < count; ++i) {
     const std::int64_t source = outSource_[i];
     if (source < 0) {
       out[i] = state.x[-source - 1];
       continue;
     }
     const std::uint64_t key = pointKey_[source];
-    const int index = keyIndex(key);
-    const unsigned mask = keyMask(key);
     int support[4];
-    int n = 0;
-    switch (keyKind(key)) {
-      case kEdgePoint:
-        support[n++] = model.edges[index][0];
-        support[n++] = model.edges[index][1];
-        break;
-      case kFacePoint:
-        for (int v : faceCorners_[index]) support[n++] = v;
-        break;
-      case kTetPoint:
-        for (int v : model.mesh.tets[index]) support[n++] = v;
-        break;
-    }
+    const int n = supportOf(model, key, support);
+    const unsigned mask = keyMask(key);
     if (mask == (1u << n) - 1) {
       Vec3 sum = Vec3::Zero();
       for (int k = 0; k < n; ++k) sum += state.x[support[k]];
@@ -476,7 +502,7 @@ void SurfaceBuilder::evaluatePositions(const SimModel& model, const SimState& st
     for (int k = 0; k < n; ++k) {
       if (!(mask & (1u << k))) continue;
       const int v = support[k];
-      sum += state.x[v] + localDeformation(model, state, v) * (restPoint - X[v]);
+      sum += state.x[v] + deformation_[v] * (restPoint - X[v]);
       ++held;
     }
     out[i] = sum / held;
@@ -503,7 +529,10 @@ SurfaceUpdateStats SurfaceBuilder::update(const SimModel& model, const SimState&
     for (int owner : owners) regenerateOwner(model, state.damaged, owner);
     stats.rebuiltOwners = static_cast<int>(owners.size());
     stats.topologyChanged = first || !owners.empty();
-    if (stats.topologyChanged) renumber();
+    if (stats.topologyChanged) {
+      renumber();
+      collectDeformedVertices(model);
+    }
     revisionSeen_ = state.damageRevision;
   }
   stats.msTopology = msSince(start);

@@ -97,7 +97,9 @@ class SurfaceBuilder {
   void releasePoint(std::int64_t corner);
   void renumber();
   void evaluatePositions(const SimModel& model, const SimState& state);
-  const Eigen::Matrix3d& localDeformation(const SimModel& model, const SimState& state, int v);
+  int supportOf(const SimModel& model, std::uint64_t key, int (&support)[4]) const;
+  void collectDeformedVertices(const SimModel& model);
+  Eigen::Matrix3d fitDeformation(const SimModel& model, const SimState& state, int v) const;
 
   // Mesh adjacency, built once.
   std::vector<BoundaryFace> boundary_;                 // (nBoundary)
@@ -120,9 +122,10 @@ class SurfaceBuilder {
 
   // Output numbering: each surface vertex is a point slot (>= 0) or a mesh vertex -(v + 1).
   std::vector<std::int64_t> outSource_;
-  std::vector<Eigen::Matrix3d> deformation_;  // (nVerts) F_v, valid where stamp == frame
-  std::vector<std::uint32_t> deformationStamp_;
-  std::uint32_t positionStamp_ = 0;
+  std::vector<int> vertexOut_, pointOut_;  // renumbering scratch
+  int numMeshVertices_ = 0;
+  std::vector<int> deformedVertices_;         // vertices whose F_v some copy needs
+  std::vector<Eigen::Matrix3d> deformation_;  // (nVerts) F_v, refreshed for those each update
 
   VisualSurface surface_;
 };

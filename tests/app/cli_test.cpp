@@ -134,9 +134,9 @@ TEST(Cli, PlayRunsAScriptHeadlessAndWritesTheFinalSurface) {
   EXPECT_TRUE(fs::exists(dir / "out" / "frame_00060.obj"));
   EXPECT_TRUE(fs::exists(dir / "out" / "metrics.csv"));
   EXPECT_EQ(run({"play", script.string()}).code, kExitUsage) << "--out is required";
-  EXPECT_EQ(run({"play", script.string(), "--out", (dir / "o3").string(), "--export-format", "fbx"})
-                .code,
-            kExitUsage);
+  EXPECT_EQ(
+      run({"play", script.string(), "--out", (dir / "o3").string(), "--export-format", "fbx"}).code,
+      kExitUsage);
 
   // Other formats and the tet mesh with its damage.
   const CliRun formats = run({"play", script.string(), "--out", (dir / "glb").string(),

@@ -6,6 +6,8 @@
 #include "app/render_mesh.h"
 #include "app/renderer.h"
 #include "app/view_content.h"
+#include "engine/surface_builder.h"
+#include "solver/knife.h"
 #include "solver/shape_generators.h"
 #include "tests/test_util.h"
 
@@ -102,6 +104,44 @@ TEST(RenderViews, WritesPngFiles) {
     ASSERT_GT(png.size(), 8u);
     EXPECT_EQ(png.substr(1, 3), "PNG");
   }
+}
+
+// A bar cut in two, its right half moved away: the crack faces show, tinted.
+TEST_F(RenderTest, CrackFacesAreTintedWhereACutOpens) {
+  SimModel model = buildSimModel(test::gridBar(6, 2, 2, 0.1), MaterialParams{});
+  SimState state = initialState(model);
+  SurfaceBuilder builder(model);
+  const Vec3 outer(0.8, 0.55, 0.42), crack(0.75, 0.12, 0.1);
+  // Looking down into the gap, from beyond its far side: the near half's crack face shows.
+  OrbitCamera camera;
+  camera.target = Vec3(0.435, 0.1, 0.1);
+  camera.distance = 1.6;
+  camera.yaw = 0.6;
+  camera.pitch = 0.9;
+  auto crackPixels = [&] {
+    builder.update(model, state);
+    renderer_.setMesh(makeRenderMesh(builder.surface(), outer, crack));
+    ctx_->bind();
+    renderer_.draw(camera, ctx_->width(), ctx_->height());
+    const Image img{ctx_->width(), ctx_->height(), ctx_->readPixels()};
+    int n = 0;
+    for (int y = 0; y < img.height; ++y) {
+      for (int x = 0; x < img.width; ++x) {
+        const Eigen::Vector3i c = img.at(x, y);
+        // Red with little green: the crack tint (the outer colour keeps green near 0.7 red).
+        n += c.x() > 60 && c.y() * 100 < c.x() * 55;
+      }
+    }
+    return n;
+  };
+  EXPECT_EQ(crackPixels(), 0) << "no crack before the cut";
+  cutAlongSurface(model, state,
+                  sweptBladeSurface(Vec3(0.31, -1, -1), Vec3(0.31, -1, 1), Vec3(0.31, 1, -1),
+                                    Vec3(0.31, 1, 1)));
+  for (int v = 0; v < model.numVertices(); ++v) {
+    if (model.mesh.vertices[v].x() > 0.31) state.x[v] += Vec3(0.25, 0, 0);
+  }
+  EXPECT_GT(crackPixels(), 40) << "the opened cut shows its crack faces";
 }
 
 }  // namespace

@@ -170,11 +170,25 @@ TEST(SurfaceBuilder, IncrementalUpdatesMatchABuildFromScratch) {
     const SurfaceUpdateStats stats = incremental.update(b.model, b.state);
     EXPECT_LE(stats.rebuiltOwners, b.model.numTets() + 200);
   }
-  SurfaceBuilder fresh(b.model);
-  fresh.update(b.model, b.state);
-  EXPECT_EQ(incremental.surface().mesh.faces, fresh.surface().mesh.faces);
-  EXPECT_EQ(incremental.surface().mesh.vertices, fresh.surface().mesh.vertices);
-  EXPECT_EQ(incremental.surface().tags, fresh.surface().tags);
+  auto expectSameAsFresh = [&](const std::string& when) {
+    SurfaceBuilder fresh(b.model);
+    fresh.update(b.model, b.state);
+    EXPECT_EQ(incremental.surface().mesh.faces, fresh.surface().mesh.faces) << when;
+    EXPECT_EQ(incremental.surface().mesh.vertices, fresh.surface().mesh.vertices) << when;
+    EXPECT_EQ(incremental.surface().tags, fresh.surface().tags) << when;
+  };
+  expectSameAsFresh("after 20 cuts");
+  // Damage taken back (an undo) is handled the same way, down to no damage at all.
+  for (size_t e = 0; e < b.state.damaged.size(); e += 2) b.state.damaged[e] = 0;
+  ++b.state.damageRevision;
+  incremental.update(b.model, b.state);
+  expectSameAsFresh("after half the damage is undone");
+  std::fill(b.state.damaged.begin(), b.state.damaged.end(), 0);
+  ++b.state.damageRevision;
+  incremental.update(b.model, b.state);
+  expectSameAsFresh("after all of it is undone");
+  EXPECT_EQ(incremental.surface().mesh.numFaces(),
+            static_cast<int>(boundaryFaces(b.model.mesh).size()));
 
   // Only what is around the new damage is regenerated.
   Body one = makeBody(jitteredBar());
