@@ -176,7 +176,9 @@ nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh
   const fs::path resultFile = scratch / "result.json";
   std::error_code ec;
   fs::remove(resultFile, ec);
-  // Output still buffered in the parent would be written a second time by the child.
+  // Output still buffered in the parent would be written a second time by the child. The parent
+  // must not have entered an OpenMP region before forking: libgomp's thread pool does not
+  // survive fork, and the child's first parallel region would wait for it forever.
   std::cout.flush();
   std::cerr.flush();
   std::fflush(nullptr);
