@@ -8,6 +8,10 @@
 
 namespace galsculpt {
 
+// The body's colour and the tint of crack faces (linear RGB).
+inline const Vec3 kSurfaceColor(0.80, 0.55, 0.42);
+inline const Vec3 kCrackColor(0.75, 0.12, 0.10);
+
 struct RenderMesh {
   std::vector<float> positions;   // (3 nVerts)
   std::vector<float> normals;     // (3 nVerts)

@@ -7,10 +7,16 @@
 #include <filesystem>
 #include <functional>
 #include <iomanip>
+#include <memory>
 #include <sstream>
+#include <tuple>
 
+#include "app/camera.h"
 #include "app/cli.h"
 #include "app/cli_args.h"
+#include "app/offscreen_context.h"
+#include "app/render_mesh.h"
+#include "app/renderer.h"
 #include "engine/playback.h"
 #include "engine/scene_mesh.h"
 #include "engine/simulation.h"
@@ -49,7 +55,36 @@ struct RunOptions {
   int exportEvery = 0;
   std::string exportFormat = "obj";  // obj, ply, stl, gltf or glb
   bool exportTets = false;
+  int pngEvery = 0;  // render the surface offscreen every K frames (0: never)
+  int width = 1280, height = 800;
   SolverChoice solver = SolverChoice::FromScene;
+};
+
+// Offscreen snapshots of the visualization surface (EGL; crack faces tinted), framed on the
+// body at rest and seen from the standard perspective view.
+class FrameRenderer {
+ public:
+  FrameRenderer(const Simulation& sim, int width, int height) : width_(width), height_(height) {
+    std::string error;
+    context_ = OffscreenContext::create(width, height, &error);
+    if (!context_) throw std::runtime_error("offscreen rendering unavailable: " + error);
+    if (!renderer_.init(&error)) throw std::runtime_error(error);
+    camera_.frame(boundingBox(sim.model().mesh.vertices));
+    camera_.yaw = 0.6;
+    camera_.pitch = 0.35;
+  }
+  void write(const Simulation& sim, const fs::path& file) {
+    renderer_.setMesh(makeRenderMesh(sim.surface(), kSurfaceColor, kCrackColor));
+    context_->bind();
+    renderer_.draw(camera_, width_, height_);
+    writePng(file.string(), width_, height_, context_->readPixels());
+  }
+
+ private:
+  int width_, height_;
+  std::unique_ptr<OffscreenContext> context_;
+  Renderer renderer_;
+  OrbitCamera camera_;
 };
 
 // The frame loop shared by run and play: metrics CSV, surface exports, final.obj, summary.
@@ -59,6 +94,8 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
   const fs::path& outDir = o.outDir;
   const fs::path& metricsPath = o.metricsPath;
   const int exportEvery = o.exportEvery;
+  std::unique_ptr<FrameRenderer> pictures;
+  if (o.pngEvery > 0) pictures = std::make_unique<FrameRenderer>(sim, o.width, o.height);
   for (const std::string& note : sim.notes()) err << "note: " << note << '\n';
   std::error_code ec;
   fs::create_directories(outDir, ec);
@@ -78,7 +115,9 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
     drawProgress(err, f, frames, msSum / f, interactive);
     if (exportEvery > 0 && f % exportEvery == 0)
       writeVisualSurface(outDir / frameName(f, o.exportFormat), sim.surface());
+    if (pictures && f % o.pngEvery == 0) pictures->write(sim, outDir / frameName(f, "png"));
   }
+  if (pictures) pictures->write(sim, outDir / "final.png");
   writeVisualSurface(outDir / "final.obj", sim.surface());
   if (o.exportFormat != "obj")
     writeVisualSurface(outDir / ("final." + o.exportFormat), sim.surface());
@@ -106,6 +145,8 @@ RunOptions readRunOptions(const CliArgs& a, const std::string& command) {
     throw UsageError("--export-format must be obj, ply, stl, gltf or glb");
   }
   o.exportTets = a.has("--export-tets");
+  o.pngEvery = a.intValue("--png-every", 0, 1, 10000000);
+  std::tie(o.width, o.height) = a.sizeValue("--size", {1280, 800});
   const std::string solver = a.value("--solver").value_or("scene");
   if (solver != "scene" && solver != "reference")
     throw UsageError("--solver must be 'reference' (or omitted)");
@@ -122,13 +163,15 @@ TetMesh loadMeshReporting(const SceneDescription& scene, std::ostream& err) {
 }  // namespace
 
 int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(
-      args, {"--frames", "--solver", "--out", "--metrics", "--export-every", "--export-format"},
-      {"--export-tets"});
+  const CliArgs a(args,
+                  {"--frames", "--solver", "--out", "--metrics", "--export-every",
+                   "--export-format", "--png-every", "--size"},
+                  {"--export-tets"});
   a.expectPositional(
       1, 1,
       "galsculpt run SCENE --frames N [--solver reference] --out DIR --metrics FILE.csv "
-      "[--export-every K] [--export-format obj|ply|stl|gltf|glb] [--export-tets]");
+      "[--export-every K] [--export-format obj|ply|stl|gltf|glb] [--export-tets] "
+      "[--png-every K] [--size WxH]");
   const RunOptions o = readRunOptions(a, "run");
   const int frames = a.intValue("--frames", 0, 1, 10000000);
   if (!a.has("--frames")) throw UsageError("run needs --frames N");
@@ -139,12 +182,14 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
 }
 
 int playCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(args, {"--out", "--metrics", "--export-every", "--solver", "--export-format"},
+  const CliArgs a(args,
+                  {"--out", "--metrics", "--export-every", "--solver", "--export-format",
+                   "--png-every", "--size"},
                   {"--export-tets"});
   a.expectPositional(1, 1,
                      "galsculpt play SCRIPT --out DIR [--export-every K] [--metrics FILE.csv] "
                      "[--solver reference] [--export-format obj|ply|stl|gltf|glb] "
-                     "[--export-tets]");
+                     "[--export-tets] [--png-every K] [--size WxH]");
   const RunOptions o = readRunOptions(a, "play");
   const PlaybackScript script = loadPlaybackScript(a.positional()[0]);
   Simulation sim(script.scene, loadMeshReporting(script.scene, err), o.solver);

@@ -21,8 +21,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const Vec3 kSurfaceColor(0.80, 0.55, 0.42);
-
 bool haveDisplay() {
   const char* x = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");

@@ -139,11 +139,13 @@ TEST(Cli, PlayRunsAScriptHeadlessAndWritesTheFinalSurface) {
       kExitUsage);
 
   // Other formats and the tet mesh with its damage.
-  const CliRun formats = run({"play", script.string(), "--out", (dir / "glb").string(),
-                              "--export-every", "60", "--export-format", "glb", "--export-tets"});
+  const CliRun formats =
+      run({"play", script.string(), "--out", (dir / "glb").string(), "--export-every", "60",
+           "--export-format", "glb", "--export-tets", "--png-every", "30", "--size", "160x100"});
   ASSERT_EQ(formats.code, kExitOk) << formats.err;
-  for (const char* name : {"final.obj", "final.glb", "frame_00060.glb", "final.node", "final.ele",
-                           "final.face", "final.damage", "final.vtk"}) {
+  for (const char* name :
+       {"final.obj", "final.glb", "frame_00060.glb", "final.node", "final.ele", "final.face",
+        "final.damage", "final.vtk", "frame_00030.png", "frame_00060.png", "final.png"}) {
     EXPECT_TRUE(fs::exists(dir / "glb" / name)) << name;
   }
   test::writeText(dir / "bad.json", "{\"frames\": 2}");
