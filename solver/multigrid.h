@@ -131,6 +131,12 @@ class Multigrid {
   void buildLevelStructures();
   // Pieces of the coarsest handles and their affine maps (empty `vertexPiece`: undamaged).
   void assignCoarsestPieces(const std::vector<int>& vertexPiece);
+  // Pieces too small for coarse handles (but more than one vertex), and their correction.
+  void collectFragments(const std::vector<int>& vertexPiece);
+  void correctFragments(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
+                        Eigen::VectorXd& x) const;
+  std::vector<int> fragmentStart_{0}, fragmentVertices_;  // CSR: vertices of each fragment
+  std::vector<int> fragmentOf_;                           // (nVerts) fragment, -1: none
 
   const BlockPattern* finePattern_;
   std::vector<Vec3> rest_;
