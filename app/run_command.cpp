@@ -14,9 +14,8 @@
 #include "app/camera.h"
 #include "app/cli.h"
 #include "app/cli_args.h"
-#include "app/offscreen_context.h"
 #include "app/render_mesh.h"
-#include "app/renderer.h"
+#include "app/snapshot_renderer.h"
 #include "engine/playback.h"
 #include "engine/scene_mesh.h"
 #include "engine/simulation.h"
@@ -60,30 +59,20 @@ struct RunOptions {
   SolverChoice solver = SolverChoice::FromScene;
 };
 
-// Offscreen snapshots of the visualization surface (EGL; crack faces tinted), framed on the
-// body at rest and seen from the standard perspective view.
+// Offscreen snapshots of the visualization surface (crack faces tinted), framed on the body at
+// rest and seen from the standard perspective view (the camera's default angles).
 class FrameRenderer {
  public:
-  FrameRenderer(const Simulation& sim, int width, int height) : width_(width), height_(height) {
-    std::string error;
-    context_ = OffscreenContext::create(width, height, &error);
-    if (!context_) throw std::runtime_error("offscreen rendering unavailable: " + error);
-    if (!renderer_.init(&error)) throw std::runtime_error(error);
+  FrameRenderer(const Simulation& sim, int width, int height) : snapshots_(width, height) {
     camera_.frame(boundingBox(sim.model().mesh.vertices));
-    camera_.yaw = 0.6;
-    camera_.pitch = 0.35;
   }
   void write(const Simulation& sim, const fs::path& file) {
-    renderer_.setMesh(makeRenderMesh(sim.surface(), kSurfaceColor, kCrackColor));
-    context_->bind();
-    renderer_.draw(camera_, width_, height_);
-    writePng(file.string(), width_, height_, context_->readPixels());
+    snapshots_.setMesh(makeRenderMesh(sim.surface(), kSurfaceColor, kCrackColor));
+    snapshots_.write(camera_, file);
   }
 
  private:
-  int width_, height_;
-  std::unique_ptr<OffscreenContext> context_;
-  Renderer renderer_;
+  SnapshotRenderer snapshots_;
   OrbitCamera camera_;
 };
 

@@ -5,9 +5,8 @@
 #include "app/camera.h"
 #include "app/cli.h"
 #include "app/cli_args.h"
-#include "app/offscreen_context.h"
 #include "app/render_mesh.h"
-#include "app/renderer.h"
+#include "app/snapshot_renderer.h"
 #include "app/view_content.h"
 #include "engine/mesh_files.h"
 #include "engine/scene.h"
@@ -67,12 +66,8 @@ ViewContent loadViewContent(const fs::path& file, std::ostream& log) {
 
 std::vector<std::string> renderViewsOffscreen(const ViewContent& content, const fs::path& outDir,
                                               int width, int height) {
-  std::string error;
-  auto context = OffscreenContext::create(width, height, &error);
-  if (!context) throw std::runtime_error("offscreen rendering unavailable: " + error);
-  Renderer renderer;
-  if (!renderer.init(&error)) throw std::runtime_error(error);
-  renderer.setMesh(makeRenderMesh(content.surface, kSurfaceColor));
+  SnapshotRenderer snapshots(width, height);
+  snapshots.setMesh(makeRenderMesh(content.surface, kSurfaceColor));
   std::error_code ec;
   fs::create_directories(outDir, ec);
   if (ec) throw OutputError("cannot create " + outDir.string() + ": " + ec.message());
@@ -83,7 +78,8 @@ std::vector<std::string> renderViewsOffscreen(const ViewContent& content, const 
     const char* name;
     double yaw, pitch;
   };
-  const View views[] = {{"perspective", 0.6, 0.35},
+  const OrbitCamera standard;  // its default angles are the perspective view
+  const View views[] = {{"perspective", standard.yaw, standard.pitch},
                         {"front", 0.0, 0.0},
                         {"side", 1.5707963, 0.0},
                         {"top", 0.0, 1.55}};
@@ -91,10 +87,8 @@ std::vector<std::string> renderViewsOffscreen(const ViewContent& content, const 
   for (const View& v : views) {
     camera.yaw = v.yaw;
     camera.pitch = v.pitch;
-    context->bind();
-    renderer.draw(camera, width, height);
     const fs::path file = outDir / (std::string("view_") + v.name + ".png");
-    writePng(file.string(), width, height, context->readPixels());
+    snapshots.write(camera, file);
     written.push_back(file.string());
   }
   return written;

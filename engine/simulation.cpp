@@ -154,12 +154,15 @@ void Simulation::updatePieces() {
   }
   // A tet whose corners lie in different pieces is no longer material (its vertices have
   // parted): volumes count only tets inside one piece, at rest and now alike.
+  pieceOfVertex_.resize(model_.numVertices());
+  for (int v = 0; v < model_.numVertices(); ++v) pieceOfVertex_[v] = uf.find(v);
   countedTets_.assign(model_.numTets(), 1);
   restVolume_ = 0.0;
   for (int t = 0; t < model_.numTets(); ++t) {
     const Tet& tet = model_.mesh.tets[t];
-    const int p = uf.find(tet[0]);
-    countedTets_[t] = uf.find(tet[1]) == p && uf.find(tet[2]) == p && uf.find(tet[3]) == p;
+    const int p = pieceOfVertex_[tet[0]];
+    countedTets_[t] =
+        pieceOfVertex_[tet[1]] == p && pieceOfVertex_[tet[2]] == p && pieceOfVertex_[tet[3]] == p;
     if (countedTets_[t]) restVolume_ += model_.rest[t].volume;
   }
 }
@@ -180,8 +183,16 @@ double Simulation::volumeChangePercent() const {
 }
 
 const VisualSurface& Simulation::surface(SurfaceUpdateStats* stats) const {
-  const SurfaceUpdateStats s = surfaceBuilder_.update(model_, state_);
-  if (stats) *stats = s;
+  // Positions change only in advance() and damage only with its revision: a second call for the
+  // same state (final.png, final.obj, final.EXT) reuses the surface.
+  if (surfaceFrame_ != frame_ || surfaceRevision_ != state_.damageRevision) {
+    const SurfaceUpdateStats s = surfaceBuilder_.update(model_, state_);
+    surfaceFrame_ = frame_;
+    surfaceRevision_ = state_.damageRevision;
+    if (stats) *stats = s;
+  } else if (stats) {
+    *stats = SurfaceUpdateStats{};
+  }
   return surfaceBuilder_.surface();
 }
 
@@ -190,20 +201,15 @@ void Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
   now.vertices = state_.x;
   writeTetGen(stem, now);
   writeDamage(stem.string() + ".damage", model_.edges, state_.damaged);
-  // Piece of each tet: the piece of its first corner when all four share it, otherwise -1.
-  UnionFind uf(model_.numVertices());
-  for (int e = 0; e < model_.numEdges(); ++e) {
-    if (!state_.damaged[e]) uf.unite(model_.edges[e][0], model_.edges[e][1]);
-  }
+  // Piece of each tet: numbered in tet order when all four corners share it, otherwise -1.
   std::vector<int> label(model_.numVertices(), -1);
   int pieces = 0;
   VtkCellField piece{"piece", std::vector<double>(model_.numTets(), -1.0)};
   for (int t = 0; t < model_.numTets(); ++t) {
-    const Tet& tet = model_.mesh.tets[t];
-    const int root = uf.find(tet[0]);
-    if (uf.find(tet[1]) != root || uf.find(tet[2]) != root || uf.find(tet[3]) != root) continue;
-    if (label[root] < 0) label[root] = pieces++;
-    piece.values[t] = label[root];
+    if (!countedTets_[t]) continue;
+    int& id = label[pieceOfVertex_[model_.mesh.tets[t][0]]];
+    if (id < 0) id = pieces++;
+    piece.values[t] = id;
   }
   writeVtk(stem.string() + ".vtk", now,
            {{"damage", tetDamageFraction(model_.tetEdges, state_.damaged)}, piece});
@@ -225,6 +231,7 @@ std::vector<int> Simulation::verticesNear(const Vec3& center, double radius) con
 int Simulation::cut(const std::vector<BladeTriangle>& surface) {
   const int n = cutAlongSurface(model_, state_, surface);
   toolDamage_ += n;
+  if (n > 0) updatePieces();  // volumes and exports see the new pieces before the next frame
   return n;
 }
 

@@ -87,12 +87,15 @@ class Simulation {
   StepSettings settings_;
   std::vector<std::string> notes_;
   mutable SurfaceBuilder surfaceBuilder_;
+  mutable int surfaceFrame_ = -1;  // the state the surface was last brought up to
+  mutable std::uint64_t surfaceRevision_ = 0;
   std::vector<int> anchorIds_;  // id of each entry of settings_.anchors (scene anchors: -i - 1)
   int nextAnchorId_ = 0;
   int toolDamage_ = 0;  // edges cut by tools since the last frame
   void updatePieces();  // pieces and counted tets, when the damage changed
   std::uint64_t piecesRevision_ = ~0ull;
   std::vector<char> countedTets_;
+  std::vector<int> pieceOfVertex_;  // a representative vertex of each vertex's piece
   int pieces_ = 1;
   std::vector<int> openingVertices_;  // measure.opening: the two probed vertices
   int loadCollider_ = -1;

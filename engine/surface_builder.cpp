@@ -112,25 +112,10 @@ TriMesh facesWithTag(const VisualSurface& surface, SurfaceTag tag) {
 }
 
 ShadingNormals shadingNormals(const VisualSurface& surface) {
-  const TriMesh& m = surface.mesh;
-  ShadingNormals n;
-  n.outer.assign(m.vertices.size(), Vec3::Zero());
-  n.crack.assign(m.vertices.size(), Vec3::Zero());
-  for (size_t f = 0; f < m.faces.size(); ++f) {
-    const Tri& t = m.faces[f];
-    // The cross product's length is twice the area: area weighting for free.
-    const Vec3 normal =
-        (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]);
-    std::vector<Vec3>& target = surface.tags[f] == SurfaceTag::Crack ? n.crack : n.outer;
-    for (int v : t) target[v] += normal;
-  }
-  for (std::vector<Vec3>* list : {&n.outer, &n.crack}) {
-    for (Vec3& v : *list) {
-      const double len = v.norm();
-      if (len > 0.0) v /= len;
-    }
-  }
-  return n;
+  std::vector<Tri> outer, crack;
+  for (size_t f = 0; f < surface.mesh.faces.size(); ++f)
+    (surface.tags[f] == SurfaceTag::Crack ? crack : outer).push_back(surface.mesh.faces[f]);
+  return {vertexNormals(surface.mesh.vertices, outer), vertexNormals(surface.mesh.vertices, crack)};
 }
 
 SurfaceBuilder::SurfaceBuilder(const SimModel& model) {
@@ -203,7 +188,6 @@ SurfaceBuilder::SurfaceBuilder(const SimModel& model) {
   buildCsr(model.numVertices(), vertexEdgePairs, vertexEdgeStart_, vertexEdges_);
 
   damagedSeen_.assign(model.numEdges(), 0);
-  numMeshVertices_ = model.numVertices();
   slotOfOwner_.assign(boundary_.size() + static_cast<size_t>(nT), -1);
   deformation_.resize(model.numVertices());
 }
@@ -380,7 +364,7 @@ void SurfaceBuilder::renumber() {
   outSource_.clear();
   // Output index of each mesh vertex and point slot, -1 until first used (flat arrays: this
   // runs over every face after each damage change).
-  vertexOut_.assign(numMeshVertices_, -1);
+  vertexOut_.assign(deformation_.size(), -1);  // one entry per mesh vertex
   pointOut_.assign(pointKey_.size(), -1);
   auto number = [&](std::int64_t source) {
     int& index = source < 0 ? vertexOut_[-source - 1] : pointOut_[source];

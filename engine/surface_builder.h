@@ -122,8 +122,7 @@ class SurfaceBuilder {
 
   // Output numbering: each surface vertex is a point slot (>= 0) or a mesh vertex -(v + 1).
   std::vector<std::int64_t> outSource_;
-  std::vector<int> vertexOut_, pointOut_;  // renumbering scratch
-  int numMeshVertices_ = 0;
+  std::vector<int> vertexOut_, pointOut_;     // renumbering scratch
   std::vector<int> deformedVertices_;         // vertices whose F_v some copy needs
   std::vector<Eigen::Matrix3d> deformation_;  // (nVerts) F_v, refreshed for those each update
 

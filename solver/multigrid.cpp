@@ -384,26 +384,76 @@ bool Multigrid::updateDamage(const std::vector<Edge>& edges,
 void Multigrid::collectFragments(const std::vector<int>& vertexPiece) {
   fragmentStart_.assign(1, 0);
   fragmentVertices_.clear();
+  fragments_.clear();
   fragmentOf_.assign(rest_.size(), -1);
   if (vertexPiece.empty()) return;
   // Pieces without a coarse handle and of more than one vertex (a lone vertex's block solve in
-  // the smoother is already exact for its translation).
-  std::vector<std::vector<int>> byPiece;
-  std::vector<int> slot(vertexPiece.size(), -1);
-  for (size_t v = 0; v < vertexPiece.size(); ++v) {
-    if (levels_[0].parent[v] >= 0) continue;
-    int& s = slot[vertexPiece[v]];
-    if (s < 0) {
-      s = static_cast<int>(byPiece.size());
-      byPiece.emplace_back();
-    }
-    byPiece[s].push_back(static_cast<int>(v));
+  // the smoother is already exact for its translation), grouped by a counting sort on pieces.
+  std::vector<int> count(rest_.size() + 1, 0);
+  for (size_t v = 0; v < rest_.size(); ++v) {
+    if (levels_[0].parent[v] < 0) ++count[vertexPiece[v] + 1];
   }
-  for (const std::vector<int>& piece : byPiece) {
-    if (piece.size() < 2) continue;
-    for (int v : piece) fragmentOf_[v] = static_cast<int>(fragmentStart_.size()) - 1;
-    fragmentVertices_.insert(fragmentVertices_.end(), piece.begin(), piece.end());
-    fragmentStart_.push_back(static_cast<int>(fragmentVertices_.size()));
+  for (size_t piece = 0; piece < rest_.size(); ++piece) {
+    if (count[piece + 1] < 2) count[piece + 1] = 0;  // lone vertices: not a fragment
+  }
+  std::vector<int> fragmentOfPiece(rest_.size(), -1);
+  for (size_t piece = 0; piece < rest_.size(); ++piece) {
+    if (count[piece + 1] == 0) continue;
+    fragmentOfPiece[piece] = static_cast<int>(fragmentStart_.size()) - 1;
+    fragmentStart_.push_back(fragmentStart_.back() + count[piece + 1]);
+  }
+  fragmentVertices_.resize(fragmentStart_.back());
+  std::vector<int> fill(fragmentStart_.begin(), fragmentStart_.end() - 1);
+  for (size_t v = 0; v < rest_.size(); ++v) {
+    const int f = levels_[0].parent[v] < 0 ? fragmentOfPiece[vertexPiece[v]] : -1;
+    if (f < 0) continue;
+    fragmentOf_[v] = f;
+    fragmentVertices_[fill[f]++] = static_cast<int>(v);
+  }
+  // Each fragment's frame for its affine modes y_v = [(X_v - c) / scale, 1].
+  fragments_.resize(fragmentStart_.size() - 1);
+  for (size_t f = 0; f < fragments_.size(); ++f) {
+    FragmentCorrection& fc = fragments_[f];
+    fc.center.setZero();
+    for (int i = fragmentStart_[f]; i < fragmentStart_[f + 1]; ++i)
+      fc.center += rest_[fragmentVertices_[i]];
+    fc.center /= fragmentStart_[f + 1] - fragmentStart_[f];
+    fc.scale = 0.0;
+    for (int i = fragmentStart_[f]; i < fragmentStart_[f + 1]; ++i)
+      fc.scale = std::max(fc.scale, (rest_[fragmentVertices_[i]] - fc.center).norm());
+    if (fc.scale <= 0.0) fc.scale = 1.0;
+  }
+}
+
+Eigen::Vector4d Multigrid::fragmentModes(int fragment, int v) const {
+  const FragmentCorrection& fc = fragments_[fragment];
+  Eigen::Vector4d y;
+  y << (rest_[v] - fc.center) / fc.scale, 1.0;
+  return y;
+}
+
+void Multigrid::factorFragments(const BlockSparseMatrix& a) {
+  // The Galerkin operator U^T A U in each fragment's 12 affine modes, factored once per
+  // refresh. A fragment too small or flat for an affine map is corrected in its translation.
+  const BlockPattern& p = *finePattern_;
+  const int count = static_cast<int>(fragments_.size());
+#pragma omp parallel for schedule(dynamic, 16)
+  for (int f = 0; f < count; ++f) {
+    FragmentCorrection& fc = fragments_[f];
+    Mat12 m = Mat12::Zero();
+    for (int i = fragmentStart_[f]; i < fragmentStart_[f + 1]; ++i) {
+      const int r = fragmentVertices_[i];
+      const Eigen::Vector4d yr = fragmentModes(f, r);
+      for (int k = p.rowStart[r]; k < p.rowStart[r + 1]; ++k) {
+        const int c = p.columns[k];
+        if (fragmentOf_[c] == f) m += kron4x3(yr * fragmentModes(f, c).transpose(), a.blocks[k]);
+      }
+    }
+    fc.affineSolver.compute(m);
+    fc.affine = fragmentStart_[f + 1] - fragmentStart_[f] >= 4 &&
+                fc.affineSolver.info() == Eigen::Success && fc.affineSolver.isPositive() &&
+                fc.affineSolver.vectorD().minCoeff() > 1e-12 * m.trace();
+    fc.translationSolver.compute(m.bottomRightCorner<3, 3>());
   }
 }
 
@@ -411,54 +461,33 @@ void Multigrid::correctFragments(const BlockSparseMatrix& a, const Eigen::Vector
                                  Eigen::VectorXd& x) const {
   // Galerkin correction in each fragment's own affine modes (what a coarse handle would give,
   // without growing the coarse levels: a fragment is its own piece, so nothing couples it to
-  // the handles but contact): with U the fragment's 12 affine modes (y_v (x) I per vertex, y_v
-  // = [(X_v - c) / scale, 1]), solve (U^T A U) e = U^T (b - A x) and add U e. A fragment too
-  // small or flat for an affine map is corrected in its translation only.
+  // the handles but contact): with U the fragment's modes, solve (U^T A U) e = U^T (b - A x)
+  // (factored in factorFragments) and add U e.
   const BlockPattern& p = *finePattern_;
-  const int fragments = static_cast<int>(fragmentStart_.size()) - 1;
+  const int count = static_cast<int>(fragments_.size());
 #pragma omp parallel for schedule(dynamic, 16)
-  for (int f = 0; f < fragments; ++f) {
-    const int begin = fragmentStart_[f], end = fragmentStart_[f + 1];
-    Vec3 center = Vec3::Zero();
-    for (int i = begin; i < end; ++i) center += rest_[fragmentVertices_[i]];
-    center /= end - begin;
-    double scale = 0.0;
-    for (int i = begin; i < end; ++i)
-      scale = std::max(scale, (rest_[fragmentVertices_[i]] - center).norm());
-    if (scale <= 0.0) scale = 1.0;
-    auto modes = [&](int v) {
-      Eigen::Vector4d y;
-      y << (rest_[v] - center) / scale, 1.0;
-      return y;
-    };
-    Mat12 m = Mat12::Zero();
+  for (int f = 0; f < count; ++f) {
+    const FragmentCorrection& fc = fragments_[f];
     Vec12 rhs = Vec12::Zero();
-    for (int i = begin; i < end; ++i) {
+    for (int i = fragmentStart_[f]; i < fragmentStart_[f + 1]; ++i) {
       const int r = fragmentVertices_[i];
-      const Eigen::Vector4d yr = modes(r);
       Eigen::Vector3d residual = b.segment<3>(3 * r);
-      for (int k = p.rowStart[r]; k < p.rowStart[r + 1]; ++k) {
-        const int c = p.columns[k];
-        residual.noalias() -= a.blocks[k] * x.segment<3>(3 * c);
-        if (fragmentOf_[c] == f) m += kron4x3(yr * modes(c).transpose(), a.blocks[k]);
-      }
-      for (int j = 0; j < 4; ++j) rhs.segment<3>(3 * j) += yr[j] * residual;
+      for (int k = p.rowStart[r]; k < p.rowStart[r + 1]; ++k)
+        residual.noalias() -= a.blocks[k] * x.segment<3>(3 * p.columns[k]);
+      const Eigen::Vector4d y = fragmentModes(f, r);
+      for (int j = 0; j < 4; ++j) rhs.segment<3>(3 * j) += y[j] * residual;
     }
-    const Eigen::LDLT<Mat12> ldlt(m);
     Vec12 e = Vec12::Zero();
-    const bool affine = end - begin >= 4 && ldlt.info() == Eigen::Success && ldlt.isPositive() &&
-                        ldlt.vectorD().minCoeff() > 1e-12 * m.trace();
-    if (affine) {
-      e = ldlt.solve(rhs);
+    if (fc.affine) {
+      e = fc.affineSolver.solve(rhs);
     } else {
-      const Eigen::LLT<Eigen::Matrix3d> llt(m.bottomRightCorner<3, 3>());
-      if (llt.info() != Eigen::Success) continue;
-      e.tail<3>() = llt.solve(rhs.tail<3>());
+      if (fc.translationSolver.info() != Eigen::Success) continue;
+      e.tail<3>() = fc.translationSolver.solve(rhs.tail<3>());
     }
     if (!e.allFinite()) continue;
-    for (int i = begin; i < end; ++i) {
+    for (int i = fragmentStart_[f]; i < fragmentStart_[f + 1]; ++i) {
       const int v = fragmentVertices_[i];
-      const Eigen::Vector4d y = modes(v);
+      const Eigen::Vector4d y = fragmentModes(f, v);
       for (int j = 0; j < 4; ++j) x.segment<3>(3 * v) += y[j] * e.segment<3>(3 * j);
     }
   }
@@ -535,6 +564,7 @@ void Multigrid::refresh(const BlockSparseMatrix& a, const MultigridSettings& set
       }
     }
   }
+  factorFragments(a);
   if (pieceCount_ >= 2) {
     // The per-piece Galerkin operator P^T A_c P, block diagonal over pieces (pieces couple only
     // through compressed crack faces, which this correction leaves to CG).
@@ -767,7 +797,7 @@ void Multigrid::vcycle(const BlockSparseMatrix& fine, int l, const Eigen::Vector
   vcycle(fine, l + 1, coarseB, coarseX, s);
   prolongAdd(l, coarseX, x);
   if (l == 0) {
-    if (fragmentStart_.size() > 1) correctFragments(fine, b, x);
+    if (!fragments_.empty()) correctFragments(fine, b, x);
     smoothFine(fine, b, x, s.postSweeps, true, s);
   } else {
     smoothCoarse(l, b, x, s.postSweeps, true, s);

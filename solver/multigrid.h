@@ -133,10 +133,20 @@ class Multigrid {
   void assignCoarsestPieces(const std::vector<int>& vertexPiece);
   // Pieces too small for coarse handles (but more than one vertex), and their correction.
   void collectFragments(const std::vector<int>& vertexPiece);
+  void factorFragments(const BlockSparseMatrix& a);
   void correctFragments(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
                         Eigen::VectorXd& x) const;
+  Eigen::Vector4d fragmentModes(int fragment, int v) const;  // y_v in the fragment's frame
+  struct FragmentCorrection {
+    Vec3 center = Vec3::Zero();
+    double scale = 1.0;
+    bool affine = false;  // else: translation only
+    Eigen::LDLT<Eigen::Matrix<double, 12, 12>> affineSolver;
+    Eigen::LLT<Eigen::Matrix3d> translationSolver;
+  };
   std::vector<int> fragmentStart_{0}, fragmentVertices_;  // CSR: vertices of each fragment
   std::vector<int> fragmentOf_;                           // (nVerts) fragment, -1: none
+  std::vector<FragmentCorrection> fragments_;             // (nFragments)
 
   const BlockPattern* finePattern_;
   std::vector<Vec3> rest_;

@@ -127,12 +127,11 @@ int countPieces(const TetMesh& mesh, std::vector<int>* pieceOfVertex) {
   return pieces;
 }
 
-std::vector<Vec3> vertexNormals(const TriMesh& mesh) {
-  std::vector<Vec3> normals(mesh.vertices.size(), Vec3::Zero());
-  for (const Tri& f : mesh.faces) {
+std::vector<Vec3> vertexNormals(const std::vector<Vec3>& vertices, const std::vector<Tri>& faces) {
+  std::vector<Vec3> normals(vertices.size(), Vec3::Zero());
+  for (const Tri& f : faces) {
     // The cross product's length is twice the area: area weighting for free.
-    const Vec3 n = (mesh.vertices[f[1]] - mesh.vertices[f[0]])
-                       .cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
+    const Vec3 n = (vertices[f[1]] - vertices[f[0]]).cross(vertices[f[2]] - vertices[f[0]]);
     for (int k = 0; k < 3; ++k) normals[f[k]] += n;
   }
   for (Vec3& n : normals) {
@@ -140,6 +139,10 @@ std::vector<Vec3> vertexNormals(const TriMesh& mesh) {
     if (len > 0.0) n /= len;
   }
   return normals;
+}
+
+std::vector<Vec3> vertexNormals(const TriMesh& mesh) {
+  return vertexNormals(mesh.vertices, mesh.faces);
 }
 
 }  // namespace galsculpt

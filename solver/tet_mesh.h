@@ -66,8 +66,10 @@ std::vector<Edge> uniqueEdges(const TetMesh& mesh);
 
 BoundingBox boundingBox(const std::vector<Vec3>& points);
 
-// Area-weighted vertex normals of a surface (zero for unused vertices).
+// Area-weighted vertex normals of a surface (zero for unused vertices); the second form uses
+// only the given faces (a subset of a surface's, e.g. one tag's).
 std::vector<Vec3> vertexNormals(const TriMesh& mesh);
+std::vector<Vec3> vertexNormals(const std::vector<Vec3>& vertices, const std::vector<Tri>& faces);
 
 // Mean-ratio quality in [0, 1]: 1 for a regular tet, 0 for a flat one (negative if inverted).
 double tetMeanRatio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);

@@ -1,0 +1,21 @@
+#include "app/snapshot_renderer.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace galsculpt {
+
+SnapshotRenderer::SnapshotRenderer(int width, int height) : width_(width), height_(height) {
+  std::string error;
+  context_ = OffscreenContext::create(width, height, &error);
+  if (!context_) throw std::runtime_error("offscreen rendering unavailable: " + error);
+  if (!renderer_.init(&error)) throw std::runtime_error(error);
+}
+
+void SnapshotRenderer::write(const OrbitCamera& camera, const std::filesystem::path& file) {
+  context_->bind();
+  renderer_.draw(camera, width_, height_);
+  writePng(file.string(), width_, height_, context_->readPixels());
+}
+
+}  // namespace galsculpt
