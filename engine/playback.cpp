@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "solver/atomic_file.h"
 #include "solver/input_error.h"
 
 namespace galsculpt {
@@ -25,17 +26,69 @@ std::pair<Vec3, Vec3> readBlade(JsonObject& o, const std::string& key) {
   return {readPoint(o, key, v[0]), readPoint(o, key, v[1])};
 }
 
+Symmetry readSymmetry(JsonObject& o) {
+  Symmetry s;
+  if (!o.has("symmetry")) return s;
+  JsonObject m = o.object("symmetry");
+  const std::string axis = m.string("axis", "", {"x", "y", "z"});
+  if (axis.empty()) m.fail("axis", "is required (x, y or z)");
+  s.axis = axis[0] - 'x';
+  s.offset = m.number("offset", 0.0, -1e9, 1e9);
+  m.rejectUnknownKeys();
+  return s;
+}
+
+Vec3 readUnit(JsonObject& o, const std::string& key) {
+  const Vec3 n = o.vec3(key, Vec3::UnitY());
+  if (!(n.norm() > 1e-12)) o.fail(key, "must be a non-zero direction");
+  return n.normalized();
+}
+
+void readStroke(JsonObject& o, ToolEvent& e) {
+  if (!o.has("center")) o.fail("center", "is required for a brush stroke");
+  e.center = o.vec3("center", Vec3::Zero());
+  e.normal = readUnit(o, "normal");
+  e.radius = o.requiredNumber("radius", 1e-9, 1e9);
+  e.strength = o.number("strength", 0.0, 0.0, 1e9);
+  e.seed = o.integer("seed", -1, 0, 2000000000);
+  e.end = o.integer("end", e.frame, e.frame, 100000000);
+  const auto moves = o.array("moves");
+  int last = e.frame;
+  for (size_t i = 0; i < moves.size(); ++i) {
+    JsonObject m(moves[i], o.childPath("moves") + "[" + std::to_string(i) + "]", o.file());
+    StrokeKey k;
+    k.frame = m.integer("frame", 0, 0, 100000000);
+    if (!m.has("frame")) m.fail("frame", "is required");
+    if (k.frame < last || k.frame > e.end)
+      m.fail("frame", "must not go back in time and must lie between the stroke's frame (" +
+                          std::to_string(e.frame) + ") and its end (" + std::to_string(e.end) +
+                          ")");
+    last = k.frame;
+    if (!m.has("center")) m.fail("center", "is required");
+    k.center = m.vec3("center", Vec3::Zero());
+    k.normal = readUnit(m, "normal");
+    m.rejectUnknownKeys();
+    e.moves.push_back(k);
+  }
+}
+
 ToolEvent readEvent(JsonObject o) {
   ToolEvent e;
   e.path = o.path();
-  const std::string tool = o.string("tool", "", {"knife", "brush", "anchor"});
-  if (tool.empty()) o.fail("tool", "is required (knife, brush or anchor)");
+  const std::string tool = o.string(
+      "tool", "", {"knife", "brush", "anchor", "grab", "push", "pull", "inflate", "pinch",
+                   "anchor_paint", "anchor_erase", "camera"});
+  if (tool.empty())
+    o.fail("tool",
+           "is required (knife, brush, anchor, grab, push, pull, inflate, pinch, anchor_paint, "
+           "anchor_erase or camera)");
   e.frame = o.integer("frame", 0, 0, 100000000);
   e.duration = o.integer("duration", 1, 1, 100000000);
   if (tool == "knife") {
     e.tool = ToolEvent::Tool::Knife;
     std::tie(e.from0, e.from1) = readBlade(o, "from");
     std::tie(e.to0, e.to1) = readBlade(o, "to");
+    e.symmetry = readSymmetry(o);
   } else if (tool == "brush") {
     e.tool = ToolEvent::Tool::Brush;
     if (!o.has("center")) o.fail("center", "is required for a brush");
@@ -43,7 +96,7 @@ ToolEvent readEvent(JsonObject o) {
     e.radius = o.requiredNumber("radius", 1e-9, 1e9);
     e.offset = o.vec3("offset", Vec3::Zero());
     e.hold = o.boolean("hold", false);
-  } else {
+  } else if (tool == "anchor") {
     e.tool = ToolEvent::Tool::Anchor;
     e.add = o.string("action", "add", {"add", "remove"}) == "add";
     e.name = o.string("name", "");
@@ -56,10 +109,31 @@ ToolEvent readEvent(JsonObject o) {
       if (e.name.empty() == (e.sceneAnchor < 0))
         o.fail("name", "give either the name of an added anchor or scene_anchor (an index)");
     }
+  } else if (tool == "anchor_paint" || tool == "anchor_erase") {
+    e.tool = ToolEvent::Tool::Paint;
+    e.erase = tool == "anchor_erase";
+    if (!o.has("center")) o.fail("center", "is required for anchor paint");
+    e.center = o.vec3("center", Vec3::Zero());
+    e.radius = o.requiredNumber("radius", 1e-9, 1e9);
+    e.seed = o.integer("seed", -1, 0, 2000000000);
+    e.symmetry = readSymmetry(o);
+  } else if (tool == "camera") {
+    e.tool = ToolEvent::Tool::Camera;
+    e.camera.target = o.vec3("target", Vec3::Zero());
+    e.camera.distance = o.requiredNumber("distance", 1e-9, 1e12);
+    e.camera.yaw = o.number("yaw", 0.0, -1e6, 1e6);
+    e.camera.pitch = o.number("pitch", 0.0, -1.6, 1.6);
+  } else {
+    e.tool = ToolEvent::Tool::Stroke;
+    e.brush = brushFromName(tool);
+    readStroke(o, e);
+    e.symmetry = readSymmetry(o);
   }
   o.rejectUnknownKeys();
   return e;
 }
+
+nlohmann::json point(const Vec3& p) { return nlohmann::json::array({p.x(), p.y(), p.z()}); }
 
 }  // namespace
 
@@ -104,23 +178,115 @@ PlaybackScript loadPlaybackScript(const fs::path& file) {
   return s;
 }
 
-Playback::Playback(const PlaybackScript& script, Simulation& sim) : script_(script), sim_(sim) {
+ToolEvent parseToolEvent(const nlohmann::json& value, const std::string& path,
+                         const std::string& file) {
+  return readEvent(JsonObject(value, path, file));
+}
+
+nlohmann::json toolEventJson(const ToolEvent& e) {
+  nlohmann::json j;
+  j["frame"] = e.frame;
+  auto symmetry = [&] {
+    if (e.symmetry.enabled())
+      j["symmetry"] = {{"axis", std::string(1, static_cast<char>('x' + e.symmetry.axis))},
+                       {"offset", e.symmetry.offset}};
+  };
+  switch (e.tool) {
+    case ToolEvent::Tool::Knife:
+      j["tool"] = "knife";
+      j["duration"] = e.duration;
+      j["from"] = {point(e.from0), point(e.from1)};
+      j["to"] = {point(e.to0), point(e.to1)};
+      symmetry();
+      break;
+    case ToolEvent::Tool::Brush:
+      j["tool"] = "brush";
+      j["duration"] = e.duration;
+      j["center"] = point(e.center);
+      j["radius"] = e.radius;
+      j["offset"] = point(e.offset);
+      if (e.hold) j["hold"] = true;
+      break;
+    case ToolEvent::Tool::Anchor:
+      throw std::invalid_argument("anchor events are written by hand, not recorded");
+    case ToolEvent::Tool::Stroke: {
+      j["tool"] = brushName(e.brush);
+      j["center"] = point(e.center);
+      j["normal"] = point(e.normal);
+      j["radius"] = e.radius;
+      j["strength"] = e.strength;
+      if (e.seed >= 0) j["seed"] = e.seed;
+      j["end"] = e.end;
+      nlohmann::json moves = nlohmann::json::array();
+      for (const StrokeKey& k : e.moves)
+        moves.push_back({{"frame", k.frame}, {"center", point(k.center)}, {"normal", point(k.normal)}});
+      j["moves"] = moves;
+      symmetry();
+      break;
+    }
+    case ToolEvent::Tool::Paint:
+      j["tool"] = e.erase ? "anchor_erase" : "anchor_paint";
+      j["center"] = point(e.center);
+      j["radius"] = e.radius;
+      if (e.seed >= 0) j["seed"] = e.seed;
+      symmetry();
+      break;
+    case ToolEvent::Tool::Camera:
+      j["tool"] = "camera";
+      j["target"] = point(e.camera.target);
+      j["distance"] = e.camera.distance;
+      j["yaw"] = e.camera.yaw;
+      j["pitch"] = e.camera.pitch;
+      break;
+  }
+  return j;
+}
+
+void writePlaybackScript(const fs::path& file, const fs::path& scene, int frames,
+                         const std::vector<ToolEvent>& events) {
+  nlohmann::json root;
+  const fs::path folder = fs::absolute(file).parent_path();
+  root["scene"] = fs::absolute(scene).lexically_relative(folder).generic_string();
+  root["frames"] = std::max(frames, 1);
+  nlohmann::json list = nlohmann::json::array();
+  for (const ToolEvent& e : events) list.push_back(toolEventJson(e));
+  root["events"] = list;
+  const std::string text = root.dump(1) + "\n";
+  writeFileAtomically(file, [&](std::ostream& out) { out << text; });
+}
+
+Playback::Playback(const PlaybackScript& script, Simulation& sim)
+    : script_(script), sim_(sim), tools_(sim, script.file.string()) {
   for (const ToolEvent& e : script_.events) {
     if (e.tool == ToolEvent::Tool::Anchor && e.add)
       sim_.selectVertices(e.shape, script_.file.string(), e.path + ".anchor");
   }
 }
 
-void Playback::apply(const ToolEvent& e, int step) {
+void ToolApplier::releaseExpired(int frame) {
+  for (auto it = releases_.begin(); it != releases_.end();) {
+    if (it->first <= frame) {
+      sim_.removeAnchor(it->second);
+      it = releases_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+}
+
+void ToolApplier::apply(const ToolEvent& e, int frame) {
+  const int step = frame - e.frame;
   const double dt = sim_.settings().dt;
   switch (e.tool) {
     case ToolEvent::Tool::Knife: {
+      if (step < 0 || step >= e.duration) break;
       // The blade moves linearly over the stroke; each frame cuts what it swept.
       const double u0 = static_cast<double>(step) / e.duration;
       const double u1 = static_cast<double>(step + 1) / e.duration;
       auto at = [](const Vec3& a, const Vec3& b, double u) { return Vec3((1.0 - u) * a + u * b); };
-      sim_.cut(sweptBladeSurface(at(e.from0, e.to0, u0), at(e.from1, e.to1, u0),
-                                 at(e.from0, e.to0, u1), at(e.from1, e.to1, u1)));
+      sculptor_.cut(sweptBladeSurface(at(e.from0, e.to0, u0), at(e.from1, e.to1, u0),
+                                      at(e.from0, e.to0, u1), at(e.from1, e.to1, u1)),
+                    e.symmetry);
       break;
     }
     case ToolEvent::Tool::Brush: {
@@ -134,8 +300,7 @@ void Playback::apply(const ToolEvent& e, int step) {
     case ToolEvent::Tool::Anchor: {
       if (step != 0) break;
       if (e.add) {
-        const int id =
-            sim_.addAnchor(sim_.selectVertices(e.shape, script_.file.string(), e.path + ".anchor"));
+        const int id = sim_.addAnchor(sim_.selectVertices(e.shape, file_, e.path + ".anchor"));
         if (!e.name.empty()) namedAnchors_[e.name] = id;
       } else if (!e.name.empty()) {
         sim_.removeAnchor(namedAnchors_.at(e.name));
@@ -145,23 +310,38 @@ void Playback::apply(const ToolEvent& e, int step) {
       }
       break;
     }
+    case ToolEvent::Tool::Stroke: {
+      if (frame < e.frame || frame > e.end) break;
+      if (step == 0) {
+        BrushStroke b;
+        b.kind = e.brush;
+        b.center = e.center;
+        b.normal = e.normal;
+        b.radius = e.radius;
+        b.strength = e.strength;
+        b.seed = e.seed;
+        b.symmetry = e.symmetry;
+        sculptor_.beginBrush(b);
+      }
+      for (const StrokeKey& k : e.moves)
+        if (k.frame == frame) sculptor_.moveBrush(k.center, k.normal);
+      if (frame == e.end) sculptor_.endBrush();
+      break;
+    }
+    case ToolEvent::Tool::Paint:
+      if (step == 0) sculptor_.paintAnchors(e.center, e.radius, e.seed, e.erase, e.symmetry);
+      break;
+    case ToolEvent::Tool::Camera:
+      if (step == 0) camera_ = e.camera;
+      break;
   }
 }
 
 FrameMetrics Playback::advance() {
   const int frame = sim_.frame();  // the frame about to be computed is frame + 1
-  for (auto it = releases_.begin(); it != releases_.end();) {
-    if (it->first <= frame) {
-      sim_.removeAnchor(it->second);
-      it = releases_.erase(it);
-    } else {
-      ++it;
-    }
-  }
-  for (const ToolEvent& e : script_.events) {
-    const int step = frame - e.frame;
-    if (step >= 0 && step < (e.tool == ToolEvent::Tool::Knife ? e.duration : 1)) apply(e, step);
-  }
+  tools_.releaseExpired(frame);
+  for (const ToolEvent& e : script_.events) tools_.apply(e, frame);
+  tools_.beforeStep();
   return sim_.advance();
 }
 

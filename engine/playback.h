@@ -5,16 +5,34 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/scene.h"
+#include "engine/sculptor.h"
 #include "engine/simulation.h"
 
 namespace galsculpt {
 
+// Where the camera looks from (the app's orbit camera, without the app).
+struct CameraPose {
+  Vec3 target = Vec3::Zero();
+  double distance = 1.0;
+  double yaw = 0.6, pitch = 0.35;  // radians
+};
+
+// A brush stroke's later position (app strokes: one per frame the cursor moved).
+struct StrokeKey {
+  int frame = 0;
+  Vec3 center = Vec3::Zero();
+  Vec3 normal = Vec3::UnitY();
+};
+
 struct ToolEvent {
-  enum class Tool { Knife, Brush, Anchor };
+  // Brush: a fixed drag by `offset` (scripts). Stroke: a brush of sculptor.h following moves
+  // (what the app records). Paint: anchor paint / erase. Camera: the view (no effect on physics).
+  enum class Tool { Knife, Brush, Anchor, Stroke, Paint, Camera };
   Tool tool = Tool::Knife;
   int frame = 0;     // acts on the frames after this one (0: from the start)
   int duration = 1;  // frames it lasts (knife sweep, brush drag)
@@ -32,6 +50,17 @@ struct ToolEvent {
   std::string name;
   AnchorDesc shape;
   int sceneAnchor = -1;
+  // Stroke and paint (center and radius above): the brush, its settings and its moves; the
+  // stroke ends (lets go) before frame `end` + 1.
+  BrushKind brush = BrushKind::Grab;
+  Vec3 normal = Vec3::UnitY();
+  double strength = 0.0;
+  int seed = -1;
+  std::vector<StrokeKey> moves;
+  int end = 0;
+  bool erase = false;
+  Symmetry symmetry;  // knife, stroke and paint
+  CameraPose camera;
 };
 
 struct PlaybackScript {
@@ -44,6 +73,36 @@ struct PlaybackScript {
 // Reads and validates a script (and its scene); throws InputError naming file and JSON path.
 PlaybackScript loadPlaybackScript(const std::filesystem::path& file);
 
+// Writes a script (the app's recording) atomically; the scene is referred to relative to the
+// script's folder. Numbers keep every digit, so a replay is exact.
+void writePlaybackScript(const std::filesystem::path& file, const std::filesystem::path& scene,
+                         int frames, const std::vector<ToolEvent>& events);
+nlohmann::json toolEventJson(const ToolEvent& e);
+// One event as a script holds it; throws InputError naming `file` and `path`.
+ToolEvent parseToolEvent(const nlohmann::json& value, const std::string& path,
+                         const std::string& file);
+
+// Applies one event's effect due at `frame` (the frame about to be computed is frame + 1):
+// the app calls it as the user acts, playback as the script says.
+class ToolApplier {
+ public:
+  ToolApplier(Simulation& sim, std::string file) : sim_(sim), sculptor_(sim), file_(std::move(file)) {}
+  // Before each frame, in this order: releaseExpired, apply (the events due), beforeStep.
+  void releaseExpired(int frame);  // script brushes whose drag is over let go
+  void apply(const ToolEvent& e, int frame);
+  void beforeStep() { sculptor_.beforeFrame(); }
+  Sculptor& sculptor() { return sculptor_; }
+  const std::optional<CameraPose>& camera() const { return camera_; }
+
+ private:
+  Simulation& sim_;
+  Sculptor sculptor_;
+  std::string file_;
+  std::map<std::string, int> namedAnchors_;
+  std::vector<std::pair<int, int>> releases_;  // (frame, anchor id) for brushes
+  std::optional<CameraPose> camera_;
+};
+
 class Playback {
  public:
   // Checks every anchor event's selection up front (InputError naming its JSON path).
@@ -51,14 +110,13 @@ class Playback {
   // Applies the tools due for the next frame, then steps it.
   FrameMetrics advance();
   bool finished() const { return sim_.frame() >= script_.frames; }
+  // The script's latest camera event so far, if any.
+  const std::optional<CameraPose>& camera() const { return tools_.camera(); }
 
  private:
-  void apply(const ToolEvent& e, int step);
-
   const PlaybackScript& script_;
   Simulation& sim_;
-  std::map<std::string, int> namedAnchors_;
-  std::vector<std::pair<int, int>> releases_;  // (frame, anchor id) for brushes
+  ToolApplier tools_;
 };
 
 }  // namespace galsculpt

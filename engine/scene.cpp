@@ -245,10 +245,12 @@ MaterialDesc materialPreset(const std::string& name) {
   return m;
 }
 
-SceneDescription loadScene(const fs::path& file) {
-  const nlohmann::json root = parseJsonFile(file);
+SceneDescription loadScene(const fs::path& file) { return parseScene(parseJsonFile(file), file); }
+
+SceneDescription parseScene(const nlohmann::json& root, const fs::path& file) {
   JsonObject o(root, "$", file.string());
   SceneDescription s;
+  s.source = root;
   s.file = fs::absolute(file);
   const fs::path dir = s.file.parent_path();
   s.name = o.string("name", file.stem().string());

@@ -112,6 +112,7 @@ struct MeasureDesc {
 
 struct SceneDescription {
   std::filesystem::path file;
+  nlohmann::json source;  // the scene as read (projects store it)
   std::string name;
   MeshSource mesh;
   MaterialDesc material;
@@ -132,5 +133,7 @@ AnchorDesc readAnchorDesc(JsonObject o);
 
 // Reads and validates a scene; throws InputError naming file and JSON path.
 SceneDescription loadScene(const std::filesystem::path& file);
+// The same for a scene already parsed; `file` names it in errors and anchors relative paths.
+SceneDescription parseScene(const nlohmann::json& root, const std::filesystem::path& file);
 
 }  // namespace galsculpt

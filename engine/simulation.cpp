@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "solver/damage_io.h"
@@ -228,6 +229,112 @@ std::vector<int> Simulation::verticesNear(const Vec3& center, double radius) con
   return out;
 }
 
+int Simulation::nearestVertex(const Vec3& point) const {
+  int best = 0;
+  double bestDistance = std::numeric_limits<double>::infinity();
+  for (int v = 0; v < model_.numVertices(); ++v) {
+    const double d = (state_.x[v] - point).squaredNorm();
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = v;
+    }
+  }
+  return best;
+}
+
+std::vector<double> Simulation::vertexDamage() const {
+  std::vector<double> damaged(model_.numVertices(), 0.0), total(model_.numVertices(), 0.0);
+  for (int e = 0; e < model_.numEdges(); ++e) {
+    for (int end : model_.edges[e]) {
+      total[end] += 1.0;
+      damaged[end] += state_.damaged[e];
+    }
+  }
+  for (int v = 0; v < model_.numVertices(); ++v)
+    if (total[v] > 0.0) damaged[v] /= total[v];
+  return damaged;
+}
+
+std::vector<double> Simulation::vertexStress() const {
+  // Von Mises stress of each intact tet's elastic deformation, the largest around each vertex.
+  std::vector<double> out(model_.numVertices(), 0.0);
+  const MaterialParams& m = model_.material;
+  for (int t = 0; t < model_.numTets(); ++t) {
+    const auto& edges = model_.tetEdges[t];
+    bool intact = true;
+    for (int e : edges) intact = intact && !state_.damaged[e];
+    if (!intact) continue;
+    const Tet& tet = model_.mesh.tets[t];
+    const TetPoints x{state_.x[tet[0]], state_.x[tet[1]], state_.x[tet[2]], state_.x[tet[3]]};
+    Eigen::Matrix3d f = deformationGradient(model_.rest[t], x);
+    if (!state_.plasticInverse.empty()) f = f * state_.plasticInverse[t];
+    const double j = f.determinant();
+    if (!(j > 1e-9)) continue;
+    const Eigen::Matrix3d sigma = firstPiolaStress(m.model, m.lame, f) * f.transpose() / j;
+    const Eigen::Matrix3d dev = sigma - sigma.trace() / 3.0 * Eigen::Matrix3d::Identity();
+    const double vonMises = std::sqrt(1.5 * dev.squaredNorm());
+    for (int v : tet) out[v] = std::max(out[v], vonMises);
+  }
+  return out;
+}
+
+std::size_t SimulationSnapshot::bytes() const {
+  std::size_t anchorBytes = 0;
+  for (const AnchorConstraint& a : anchors)
+    anchorBytes += a.vertices.size() * sizeof(int) + a.origin.size() * sizeof(Vec3) +
+                   a.path.size() * sizeof(AnchorKey);
+  return (x.size() + v.size()) * sizeof(Vec3) + damaged.size() +
+         plasticInverse.size() * sizeof(Eigen::Matrix3d) + plasticStrain.size() * sizeof(double) +
+         anchorBytes + sizeof(*this);
+}
+
+SimulationSnapshot Simulation::snapshot() const {
+  SimulationSnapshot s;
+  s.x = state_.x;
+  s.v = state_.v;
+  s.damaged = state_.damaged;
+  s.plasticInverse = state_.plasticInverse;
+  s.plasticStrain = state_.plasticStrain;
+  s.time = state_.time;
+  s.frame = frame_;
+  s.anchors = settings_.anchors;
+  s.anchorIds = anchorIds_;
+  s.nextAnchorId = nextAnchorId_;
+  s.toolDamage = toolDamage_;
+  return s;
+}
+
+void Simulation::restore(const SimulationSnapshot& s) {
+  if (s.x.size() != state_.x.size() || s.v.size() != state_.v.size() ||
+      s.damaged.size() != state_.damaged.size() ||
+      s.plasticInverse.size() != state_.plasticInverse.size() ||
+      s.plasticStrain.size() != state_.plasticStrain.size() ||
+      s.anchors.size() != s.anchorIds.size())
+    throw std::invalid_argument("the saved state does not fit this model (" +
+                                std::to_string(s.x.size()) + " vertices, " +
+                                std::to_string(s.damaged.size()) + " edges, " +
+                                (s.plasticInverse.empty() ? "elastic" : "plastic") + "; the model has " +
+                                std::to_string(state_.x.size()) + ", " +
+                                std::to_string(state_.damaged.size()) + ", " +
+                                (state_.plasticInverse.empty() ? "elastic" : "plastic") + ")");
+  state_.x = s.x;
+  state_.v = s.v;
+  if (state_.damaged != s.damaged) {
+    state_.damaged = s.damaged;
+    ++state_.damageRevision;
+  }
+  state_.plasticInverse = s.plasticInverse;
+  state_.plasticStrain = s.plasticStrain;
+  state_.time = s.time;
+  frame_ = s.frame;
+  settings_.anchors = s.anchors;
+  anchorIds_ = s.anchorIds;
+  nextAnchorId_ = s.nextAnchorId;
+  toolDamage_ = s.toolDamage;
+  surfaceFrame_ = -1;  // positions changed without a frame
+  updatePieces();
+}
+
 int Simulation::cut(const std::vector<BladeTriangle>& surface) {
   const int n = cutAlongSurface(model_, state_, surface);
   toolDamage_ += n;
@@ -243,6 +350,49 @@ int Simulation::addAnchor(const std::vector<int>& vertices, const std::vector<An
   settings_.anchors.push_back(std::move(a));
   anchorIds_.push_back(nextAnchorId_);
   return nextAnchorId_++;
+}
+
+void Simulation::setAnchorTargets(int id, const std::vector<Vec3>& targets) {
+  for (size_t i = 0; i < anchorIds_.size(); ++i) {
+    if (anchorIds_[i] != id) continue;
+    AnchorConstraint& a = settings_.anchors[i];
+    if (targets.size() != a.vertices.size())
+      throw std::invalid_argument("anchor targets: one per anchored vertex");
+    a.origin = targets;
+    a.path.clear();
+    return;
+  }
+  throw std::out_of_range("no anchor with id " + std::to_string(id));
+}
+
+int Simulation::unanchor(const std::vector<int>& vertices) {
+  std::vector<char> drop(model_.numVertices(), 0);
+  for (int v : vertices) drop[v] = 1;
+  int dropped = 0;
+  for (AnchorConstraint& a : settings_.anchors) {
+    size_t kept = 0;
+    for (size_t i = 0; i < a.vertices.size(); ++i) {
+      if (drop[a.vertices[i]]) {
+        ++dropped;
+        continue;
+      }
+      if (!a.origin.empty()) a.origin[kept] = a.origin[i];
+      a.vertices[kept++] = a.vertices[i];
+    }
+    a.vertices.resize(kept);
+    if (!a.origin.empty()) a.origin.resize(kept);
+  }
+  return dropped;
+}
+
+std::vector<int> Simulation::anchoredVertices() const {
+  std::vector<char> held(model_.numVertices(), 0);
+  for (const AnchorConstraint& a : settings_.anchors)
+    for (int v : a.vertices) held[v] = 1;
+  std::vector<int> out;
+  for (int v = 0; v < model_.numVertices(); ++v)
+    if (held[v]) out.push_back(v);
+  return out;
 }
 
 void Simulation::removeAnchor(int id) {

@@ -15,6 +15,22 @@ namespace galsculpt {
 
 enum class SolverChoice { FromScene, Reference };
 
+// Everything a sculpting action can change, for undo: positions, velocities, damage, plastic
+// state, time and the anchors (with their ids). Restoring one gives back that state exactly.
+struct SimulationSnapshot {
+  std::vector<Vec3> x, v;                       // (nVerts)
+  std::vector<std::uint8_t> damaged;            // (nEdges)
+  std::vector<Eigen::Matrix3d> plasticInverse;  // (nTets) or empty
+  std::vector<double> plasticStrain;            // (nTets) or empty
+  double time = 0.0;
+  int frame = 0;
+  std::vector<AnchorConstraint> anchors;
+  std::vector<int> anchorIds;
+  int nextAnchorId = 0;
+  int toolDamage = 0;
+  std::size_t bytes() const;
+};
+
 struct FrameMetrics {
   int frame = 0;
   double timeS = 0.0;
@@ -54,6 +70,14 @@ class Simulation {
   // Holds `vertices` where they are now, moved by `path` offsets (times from now); returns an
   // id for removeAnchor.
   int addAnchor(const std::vector<int>& vertices, const std::vector<AnchorKey>& path = {});
+  // Moves an anchor's vertices to `targets` (same order as its vertices) from the next frame
+  // on: brushes drag what they hold this way. Throws std::out_of_range for an unknown id.
+  void setAnchorTargets(int id, const std::vector<Vec3>& targets);
+  // Frees the given vertices from every anchor (scene, script and painted ones alike);
+  // returns how many anchor entries were dropped.
+  int unanchor(const std::vector<int>& vertices);
+  // Every vertex some anchor holds, ascending.
+  std::vector<int> anchoredVertices() const;
   // Removes an anchor added by addAnchor or, with id < 0, the scene's anchor -id - 1. Throws
   // std::out_of_range for an unknown id.
   void removeAnchor(int id);
@@ -63,6 +87,19 @@ class Simulation {
                                   const std::string& jsonPath) const;
   // Vertices within `radius` of `center` at the current positions.
   std::vector<int> verticesNear(const Vec3& center, double radius) const;
+  // The vertex nearest to `point` at the current positions.
+  int nearestVertex(const Vec3& point) const;
+  // A representative vertex of the piece (part joined by undamaged edges) `vertex` lies in.
+  int pieceOf(int vertex) const { return pieceOfVertex_[vertex]; }
+  // Per vertex, for the views: the fraction of its edges that are damaged, and the largest
+  // tensile edge normal stress (Pa) of the tets around it.
+  std::vector<double> vertexDamage() const;
+  std::vector<double> vertexStress() const;
+
+  // Undo support: the whole mutable state, and its exact restoration (the damage revision
+  // moves on, so that the surface and the solver see the change).
+  SimulationSnapshot snapshot() const;
+  void restore(const SimulationSnapshot& snapshot);
 
   const SimModel& model() const { return model_; }
   const SimState& state() const { return state_; }

@@ -1,0 +1,227 @@
+#include "sculpt_session.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace galsculpt {
+
+SculptSession::SculptSession(const SceneDescription& scene, const TetMesh& mesh)
+    : scene_(scene),
+      sim_(std::make_unique<Simulation>(scene, mesh)),
+      tools_(std::make_unique<ToolApplier>(*sim_, scene.file.string())),
+      initial_(sim_->snapshot()) {}
+
+void SculptSession::record(ToolEvent e) {
+  e.frame = sim_->frame();
+  e.path = "$.events[" + std::to_string(recording_.size()) + "]";
+  if (e.tool != ToolEvent::Tool::Camera) dirty_ = true;  // a view alone is no reason to save
+  recording_.push_back(std::move(e));
+}
+
+void SculptSession::beginAction(const std::string& label) {
+  endStroke();
+  Step s;
+  s.label = label;
+  s.state = sim_->snapshot();
+  s.recordMark = recording_.size();
+  historyBytes_ += s.bytes();
+  undo_.push_back(std::move(s));
+  for (const Step& r : redo_) historyBytes_ -= r.bytes();
+  redo_.clear();
+  trimHistory();
+}
+
+int SculptSession::knife(const Vec3& from0, const Vec3& from1, const Vec3& to0, const Vec3& to1,
+                         const Symmetry& symmetry) {
+  ToolEvent e;
+  e.tool = ToolEvent::Tool::Knife;
+  e.from0 = from0;
+  e.from1 = from1;
+  e.to0 = to0;
+  e.to1 = to1;
+  e.symmetry = symmetry;
+  const int before = sim_->frame();
+  const int damagedBefore = static_cast<int>(
+      std::count(sim_->state().damaged.begin(), sim_->state().damaged.end(), 1));
+  e.frame = before;
+  tools_->apply(e, before);
+  record(e);
+  return static_cast<int>(std::count(sim_->state().damaged.begin(), sim_->state().damaged.end(),
+                                     1)) -
+         damagedBefore;
+}
+
+void SculptSession::beginStroke(const BrushStroke& stroke) {
+  endStroke();
+  ToolEvent e;
+  e.tool = ToolEvent::Tool::Stroke;
+  e.brush = stroke.kind;
+  e.center = stroke.center;
+  e.normal = stroke.normal;
+  e.radius = stroke.radius;
+  e.strength = stroke.strength;
+  e.seed = stroke.seed;
+  e.symmetry = stroke.symmetry;
+  e.frame = sim_->frame();
+  e.end = std::numeric_limits<int>::max();  // open until endStroke
+  tools_->apply(e, e.frame);
+  record(e);
+  strokeEvent_ = static_cast<int>(recording_.size()) - 1;
+}
+
+void SculptSession::moveStroke(const Vec3& center, const Vec3& normal) {
+  if (strokeEvent_ < 0) return;
+  tools_->sculptor().moveBrush(center, normal);
+  recording_[strokeEvent_].moves.push_back({sim_->frame(), center, normal});
+  dirty_ = true;
+}
+
+void SculptSession::endStroke() {
+  if (strokeEvent_ < 0) return;
+  tools_->sculptor().endBrush();
+  recording_[strokeEvent_].end = sim_->frame();
+  strokeEvent_ = -1;
+}
+
+int SculptSession::paint(const Vec3& center, double radius, int seed, bool erase,
+                         const Symmetry& symmetry) {
+  ToolEvent e;
+  e.tool = ToolEvent::Tool::Paint;
+  e.center = center;
+  e.radius = radius;
+  e.seed = seed;
+  e.erase = erase;
+  e.symmetry = symmetry;
+  const int changed = tools_->sculptor().paintAnchors(center, radius, seed, erase, symmetry);
+  record(e);
+  return changed;
+}
+
+void SculptSession::setCamera(const CameraPose& pose) {
+  if (!recording_.empty()) {
+    ToolEvent& last = recording_.back();
+    if (last.tool == ToolEvent::Tool::Camera && last.frame == sim_->frame()) {
+      last.camera = pose;
+      return;
+    }
+  }
+  ToolEvent e;
+  e.tool = ToolEvent::Tool::Camera;
+  e.camera = pose;
+  record(e);
+}
+
+FrameMetrics SculptSession::step() {
+  tools_->releaseExpired(sim_->frame());
+  tools_->beforeStep();
+  dirty_ = true;
+  return sim_->advance();
+}
+
+void SculptSession::reset() {
+  beginAction("reset");
+  Step& step = undo_.back();
+  step.clearsRecording = true;
+  step.replaced = std::move(recording_);
+  historyBytes_ += step.replaced.size() * sizeof(ToolEvent);
+  tools_ = std::make_unique<ToolApplier>(*sim_, scene_.file.string());
+  sim_->restore(initial_);
+  recording_.clear();
+  dirty_ = true;
+}
+
+const std::string& SculptSession::undoLabel() const {
+  static const std::string none;
+  return undo_.empty() ? none : undo_.back().label;
+}
+
+const std::string& SculptSession::redoLabel() const {
+  static const std::string none;
+  return redo_.empty() ? none : redo_.back().label;
+}
+
+bool SculptSession::undo() {
+  endStroke();
+  if (undo_.empty()) return false;
+  Step back = std::move(undo_.back());
+  undo_.pop_back();
+  historyBytes_ -= back.bytes();
+  Step forward;
+  forward.label = back.label;
+  forward.state = sim_->snapshot();
+  forward.recordMark = back.recordMark;
+  forward.clearsRecording = back.clearsRecording;
+  if (back.clearsRecording) {
+    forward.redone = std::move(recording_);
+    recording_ = std::move(back.replaced);
+  } else {
+    forward.redone.assign(recording_.begin() + static_cast<long>(back.recordMark),
+                          recording_.end());
+    recording_.resize(back.recordMark);
+  }
+  sim_->restore(back.state);
+  tools_ = std::make_unique<ToolApplier>(*sim_, scene_.file.string());
+  historyBytes_ += forward.bytes();
+  redo_.push_back(std::move(forward));
+  dirty_ = true;
+  return true;
+}
+
+bool SculptSession::redo() {
+  endStroke();
+  if (redo_.empty()) return false;
+  Step forward = std::move(redo_.back());
+  redo_.pop_back();
+  historyBytes_ -= forward.bytes();
+  Step back;
+  back.label = forward.label;
+  back.state = sim_->snapshot();
+  back.recordMark = recording_.size();
+  back.clearsRecording = forward.clearsRecording;
+  sim_->restore(forward.state);
+  tools_ = std::make_unique<ToolApplier>(*sim_, scene_.file.string());
+  if (forward.clearsRecording) {
+    back.replaced = std::move(recording_);
+    recording_ = std::move(forward.redone);
+  } else {
+    recording_.insert(recording_.end(), forward.redone.begin(), forward.redone.end());
+  }
+  historyBytes_ += back.bytes();
+  undo_.push_back(std::move(back));
+  dirty_ = true;
+  return true;
+}
+
+void SculptSession::setHistoryBudget(std::size_t bytes) {
+  historyBudget_ = bytes;
+  trimHistory();
+}
+
+void SculptSession::trimHistory() {
+  // The oldest steps go first; the newest undo step always stays, even over the budget.
+  while (historyBytes_ > historyBudget_ && undo_.size() > 1) {
+    historyBytes_ -= undo_.front().bytes();
+    undo_.pop_front();
+  }
+  while (historyBytes_ > historyBudget_ && !redo_.empty()) {
+    historyBytes_ -= redo_.front().bytes();
+    redo_.pop_front();
+  }
+}
+
+void SculptSession::saveRecording(const std::filesystem::path& file) const {
+  writePlaybackScript(file, scene_.file, sim_->frame(), recording_);
+}
+
+void SculptSession::load(const SimulationSnapshot& state, std::vector<ToolEvent> recording) {
+  strokeEvent_ = -1;
+  sim_->restore(state);
+  tools_ = std::make_unique<ToolApplier>(*sim_, scene_.file.string());
+  recording_ = std::move(recording);
+  undo_.clear();
+  redo_.clear();
+  historyBytes_ = 0;
+  dirty_ = false;
+}
+
+}  // namespace galsculpt

@@ -1,0 +1,97 @@
+// What one sculpting session holds beyond the simulation: the tools, the recording of every
+// action as a playback script, and undo / redo.
+//
+// Every action goes through here so that it is applied, recorded and undoable in one place:
+// the recording is always the script that replays the current state from the scene's start
+// (an undone action's events leave it; a redone action's come back), and undo restores the
+// state before the action exactly (SimulationSnapshot). History is bounded by a memory budget:
+// the oldest steps are forgotten first.
+#pragma once
+
+#include <cstddef>
+#include <deque>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/playback.h"
+#include "engine/simulation.h"
+
+namespace galsculpt {
+
+class SculptSession {
+ public:
+  SculptSession(const SceneDescription& scene, const TetMesh& mesh);
+
+  Simulation& simulation() { return *sim_; }
+  const Simulation& simulation() const { return *sim_; }
+  const SceneDescription& scene() const { return scene_; }
+
+  // Starts an undoable action (a stroke from press to release, a reset): the state now is
+  // what undo returns to. Ends a brush stroke still held.
+  void beginAction(const std::string& label);
+
+  // Tools; each is applied at once and recorded at the current frame.
+  int knife(const Vec3& from0, const Vec3& from1, const Vec3& to0, const Vec3& to1,
+            const Symmetry& symmetry);
+  void beginStroke(const BrushStroke& stroke);
+  void moveStroke(const Vec3& center, const Vec3& normal);
+  void endStroke();
+  bool strokeActive() const { return strokeEvent_ >= 0; }
+  int paint(const Vec3& center, double radius, int seed, bool erase, const Symmetry& symmetry);
+  // The view, recorded once per frame (the last pose of each frame).
+  void setCamera(const CameraPose& pose);
+
+  // One frame: script brushes let go, held brushes act, the solver steps.
+  FrameMetrics step();
+
+  // Back to the scene's start, as an undoable action.
+  void reset();
+  bool canUndo() const { return !undo_.empty(); }
+  bool canRedo() const { return !redo_.empty(); }
+  const std::string& undoLabel() const;
+  const std::string& redoLabel() const;
+  bool undo();
+  bool redo();
+  std::size_t historyBytes() const { return historyBytes_; }
+  void setHistoryBudget(std::size_t bytes);
+
+  // The recording: events in the order they were applied.
+  const std::vector<ToolEvent>& recording() const { return recording_; }
+  // Writes it as a playback script of the frames run so far (docs/scripts.md).
+  void saveRecording(const std::filesystem::path& file) const;
+  // A project reopened: its state and recording replace the current ones (history cleared).
+  void load(const SimulationSnapshot& state, std::vector<ToolEvent> recording);
+  // Whether anything changed since the last markSaved (for autosave and the title bar).
+  bool dirty() const { return dirty_; }
+  void markSaved() { dirty_ = false; }
+
+ private:
+  struct Step {
+    std::string label;
+    SimulationSnapshot state;
+    std::size_t recordMark = 0;     // recording size at that state
+    std::vector<ToolEvent> redone;  // redo entries: the events the step brings back
+    // A reset empties the recording: its undo entry keeps the recording it replaced.
+    bool clearsRecording = false;
+    std::vector<ToolEvent> replaced;
+    std::size_t bytes() const {
+      return state.bytes() + (redone.size() + replaced.size()) * sizeof(ToolEvent);
+    }
+  };
+  void record(ToolEvent e);
+  void trimHistory();
+
+  SceneDescription scene_;
+  std::unique_ptr<Simulation> sim_;
+  std::unique_ptr<ToolApplier> tools_;
+  SimulationSnapshot initial_;
+  std::vector<ToolEvent> recording_;
+  int strokeEvent_ = -1;  // index of the open stroke's event in recording_
+  std::deque<Step> undo_, redo_;
+  std::size_t historyBytes_ = 0, historyBudget_ = std::size_t(1) << 30;
+  bool dirty_ = false;
+};
+
+}  // namespace galsculpt

@@ -1,0 +1,131 @@
+#include "engine/project_file.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "engine/scene_mesh.h"
+#include "solver/input_error.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SculptedBall {
+  SceneDescription scene =
+      loadScene(fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json");
+  SculptSession session{scene, loadSceneMesh(scene)};
+  SculptedBall() {
+    session.step();
+    session.knife(Vec3(0.05, 0.2, -0.2), Vec3(0.05, 0.2, 0.2), Vec3(0.05, 0.0, -0.2),
+                  Vec3(0.05, 0.0, 0.2), {});
+    BrushStroke push;
+    push.kind = BrushKind::Push;
+    push.center = Vec3(-0.02, 0.098, 0.0);
+    push.radius = 0.03;
+    push.strength = 0.2;
+    session.beginStroke(push);
+    for (int f = 0; f < 3; ++f) session.step();
+    session.endStroke();
+    session.paint(Vec3(0.1, 0.0, 0.0), 0.02, -1, false, {});
+    session.step();
+  }
+};
+
+TEST(ProjectFile, RoundTripRestoresTheSessionExactlyAndItRunsOnIdentically) {
+  test::TempDir dir;
+  SculptedBall ball;
+  const CameraPose pose{Vec3(0.01, 0.02, 0.03), 0.7, 0.4, 0.2};
+  writeProject(dir / "ball.gsproj", ball.session, pose);
+  EXPECT_TRUE(looksLikeProject(dir / "ball.gsproj"));
+  EXPECT_FALSE(looksLikeProject(fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" /
+                                "default.json"));
+
+  const Project p = readProject(dir / "ball.gsproj");
+  ASSERT_TRUE(p.camera.has_value());
+  EXPECT_EQ(p.camera->target, pose.target);
+  EXPECT_EQ(p.camera->distance, pose.distance);
+  EXPECT_EQ(p.mesh.vertices, ball.session.simulation().model().mesh.vertices);
+  EXPECT_EQ(p.recording.size(), ball.session.recording().size());
+  std::unique_ptr<SculptSession> reopened = sessionFromProject(p, dir / "ball.gsproj");
+  const SimulationSnapshot a = ball.session.simulation().snapshot();
+  const SimulationSnapshot b = reopened->simulation().snapshot();
+  EXPECT_EQ(a.frame, b.frame);
+  EXPECT_TRUE(a.x == b.x && a.v == b.v && a.damaged == b.damaged);
+  EXPECT_TRUE(a.plasticStrain == b.plasticStrain);
+  ASSERT_FALSE(a.plasticInverse.empty()) << "the clay ball has a plastic state to save";
+  for (size_t t = 0; t < a.plasticInverse.size(); ++t)
+    ASSERT_TRUE(a.plasticInverse[t] == b.plasticInverse[t]);
+  EXPECT_EQ(a.anchorIds, b.anchorIds);
+  EXPECT_EQ(reopened->simulation().anchoredVertices(), ball.session.simulation().anchoredVertices());
+  for (int f = 0; f < 3; ++f) {
+    ball.session.step();
+    reopened->step();
+  }
+  EXPECT_TRUE(ball.session.simulation().state().x == reopened->simulation().state().x)
+      << "the reopened project runs on exactly like the original";
+  // Its recording still replays from the scene's start.
+  reopened->saveRecording(dir / "replay.json");
+  const PlaybackScript script = loadPlaybackScript(dir / "replay.json");
+  EXPECT_EQ(script.frames, reopened->simulation().frame());
+}
+
+TEST(ProjectFile, MalformedProjectsGetClearErrors) {
+  test::TempDir dir;
+  SculptedBall ball;
+  writeProject(dir / "good.gsproj", ball.session, std::nullopt);
+  const std::string good = test::readText(dir / "good.gsproj");
+  auto errorOf = [&](const std::string& bytes) {
+    test::writeText(dir / "bad.gsproj", bytes);
+    try {
+      readProject(dir / "bad.gsproj");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string s = good;
+    const size_t at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return s.replace(at, from.size(), to);
+  };
+  EXPECT_NE(errorOf("hello").find("bad.gsproj:1: not a Galsculpt project"), std::string::npos);
+  EXPECT_NE(errorOf(replaced("PROJECT 1", "PROJECT 7")).find("made by a newer Galsculpt"),
+            std::string::npos);
+  EXPECT_NE(errorOf(good.substr(0, good.size() - 100)).find("truncated"), std::string::npos);
+  EXPECT_NE(errorOf(good.substr(0, 40)).find("truncated"), std::string::npos);
+  EXPECT_NE(errorOf(good + "x").find("unexpected data after byte"), std::string::npos);
+  // The header edited (its length line follows it).
+  auto withHeader = [&](const std::function<void(nlohmann::json&)>& edit) {
+    const size_t line1 = good.find('\n'), line2 = good.find('\n', line1 + 1);
+    const size_t length = std::stoull(good.substr(line1 + 1, line2 - line1 - 1));
+    nlohmann::json h = nlohmann::json::parse(good.substr(line2 + 1, length));
+    edit(h);
+    const std::string header = h.dump();
+    return good.substr(0, line1 + 1) + std::to_string(header.size()) + "\n" + header +
+           good.substr(line2 + 1 + length);
+  };
+  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) { h["anchors"][0]["vertices"][0] = 1 << 30; }))
+                .find("$.anchors[0].vertices: holds 1073741824, not a vertex of the mesh"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) { h["frxme"] = 1; })).find("$.frxme"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) { h["scene"]["material"]["preset"] = "cheese"; }))
+                .find("$.material.preset"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) { h["edges"] = h["edges"].get<int>() - 1; }))
+                .find("unexpected data"),
+            std::string::npos);
+  std::string damaged = good;
+  damaged[damaged.size() - 1 - 10 * ball.session.simulation().model().numTets() * 8] = 5;
+  const std::string message = errorOf(damaged);
+  EXPECT_TRUE(message.find("must be 0 or 1") != std::string::npos ||
+              message.find("not finite") != std::string::npos)
+      << message;
+}
+
+}  // namespace
+}  // namespace galsculpt
