@@ -66,3 +66,29 @@ void OrbitCamera::zoom(double factor) {
 }
 
 }  // namespace galsculpt
+
+namespace galsculpt {
+
+void OrbitCamera::ray(double px, double py, int width, int height, Eigen::Vector3d& origin,
+                      Eigen::Vector3d& direction) const {
+  const double aspect = static_cast<double>(width) / std::max(height, 1);
+  const double ndcX = 2.0 * px / std::max(width, 1) - 1.0;
+  const double ndcY = 1.0 - 2.0 * py / std::max(height, 1);
+  const double t = std::tan(fovY / 2.0);
+  const Eigen::Matrix3d rotation = view().cast<double>().topLeftCorner<3, 3>();
+  // View space: x right, y up, looking down -z; rows of `rotation` are those axes in world space.
+  const Eigen::Vector3d inView(ndcX * t * aspect, ndcY * t, -1.0);
+  origin = eye();
+  direction = (rotation.transpose() * inView).normalized();
+}
+
+Eigen::Vector3d OrbitCamera::project(const Eigen::Vector3d& point, int width, int height) const {
+  const Eigen::Vector4d v = view().cast<double>() * point.homogeneous();
+  const double aspect = static_cast<double>(width) / std::max(height, 1);
+  const double t = std::tan(fovY / 2.0);
+  const double depth = -v.z();
+  const double ndcX = v.x() / (depth * t * aspect), ndcY = v.y() / (depth * t);
+  return Eigen::Vector3d(0.5 * (ndcX + 1.0) * width, 0.5 * (1.0 - ndcY) * height, depth);
+}
+
+}  // namespace galsculpt

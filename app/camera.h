@@ -23,6 +23,15 @@ struct OrbitCamera {
   void pan(double dx, double dy);  // in units of the view height at the target
   void zoom(double factor);
 
+  // The ray through pixel (px, py) of a width x height view (y down): from the eye, unit
+  // direction.
+  void ray(double px, double py, int width, int height, Eigen::Vector3d& origin,
+           Eigen::Vector3d& direction) const;
+  // Pixel position (y down) and distance along the view axis of a world point.
+  Eigen::Vector3d project(const Eigen::Vector3d& point, int width, int height) const;
+  // Unit vector the camera looks along.
+  Eigen::Vector3d forward() const { return (target - eye()).normalized(); }
+
   // Standard views.
   void viewFront() {
     yaw = 0.0;

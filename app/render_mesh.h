@@ -26,4 +26,19 @@ RenderMesh makeRenderMesh(const TriMesh& mesh, const Vec3& color);
 RenderMesh makeRenderMesh(const VisualSurface& surface, const Vec3& outerColor,
                           const Vec3& crackColor);
 
+// What the surface's colour shows: the material, each vertex's damage (fraction of its
+// edges broken), or its stress (a heat map up to `scaleMax`).
+enum class SurfaceView { Shaded, Damage, Stress };
+struct SurfaceStyle {
+  SurfaceView view = SurfaceView::Shaded;
+  bool tintCracks = true;
+  double scaleMax = 1.0;  // the value shown as the hottest colour
+};
+// `values`: one per tet-mesh vertex (Damage, Stress); a surface vertex shows the mean over the
+// faces around it of their cell vertex's value.
+RenderMesh makeRenderMesh(const VisualSurface& surface, const SurfaceStyle& style,
+                          const std::vector<double>& values);
+// Blue - cyan - green - yellow - red for t in [0, 1] (clamped).
+Vec3 heatColor(double t);
+
 }  // namespace galsculpt

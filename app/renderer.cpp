@@ -61,6 +61,8 @@ Renderer::~Renderer() {
     glDeleteBuffers(4, buffers_);
     glDeleteVertexArrays(1, &vao_);
     glDeleteVertexArrays(1, &emptyVao_);
+    glDeleteBuffers(1, &pointBuffer_);
+    glDeleteVertexArrays(1, &pointVao_);
   }
 }
 
@@ -72,6 +74,8 @@ bool Renderer::init(std::string* error) {
   glGenVertexArrays(1, &vao_);
   glGenVertexArrays(1, &emptyVao_);
   glGenBuffers(4, buffers_);
+  glGenVertexArrays(1, &pointVao_);
+  glGenBuffers(1, &pointBuffer_);
   return true;
 }
 
@@ -91,6 +95,22 @@ void Renderer::setMesh(const RenderMesh& mesh) {
                GL_DYNAMIC_DRAW);
   glBindVertexArray(0);
   indexCount_ = static_cast<int>(mesh.indices.size());
+}
+
+void Renderer::setPoints(const std::vector<Vec3>& points, const Vec3& color) {
+  std::vector<float> data;
+  data.reserve(3 * points.size());
+  for (const Vec3& p : points)
+    for (int k = 0; k < 3; ++k) data.push_back(static_cast<float>(p[k]));
+  glBindVertexArray(pointVao_);
+  glBindBuffer(GL_ARRAY_BUFFER, pointBuffer_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data(),
+               GL_DYNAMIC_DRAW);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindVertexArray(0);
+  pointCount_ = static_cast<int>(points.size());
+  pointColor_ = color;
 }
 
 void Renderer::draw(const OrbitCamera& camera, int width, int height,
@@ -121,6 +141,7 @@ void Renderer::draw(const OrbitCamera& camera, int width, int height,
   glUniform3f(glGetUniformLocation(meshProgram_, "uKeyLightDir"), 0.4f, 0.7f, 0.6f);
   glUniform3f(glGetUniformLocation(meshProgram_, "uFillLightDir"), -0.6f, 0.2f, 0.4f);
   glUniform1f(glGetUniformLocation(meshProgram_, "uWireframe"), 0.0f);
+  glUniform1f(glGetUniformLocation(meshProgram_, "uPointSize"), options.pointSize);
   glBindVertexArray(vao_);
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.0f, 1.0f);
@@ -131,6 +152,18 @@ void Renderer::draw(const OrbitCamera& camera, int width, int height,
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  }
+  if (pointCount_ > 0) {
+    // Flat colour; the surface is drawn with a polygon offset, so dots on it pass the depth test
+    // and those inside the body stay hidden.
+    glUniform1f(glGetUniformLocation(meshProgram_, "uWireframe"), 2.0f);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glBindVertexArray(pointVao_);
+    glVertexAttrib3f(1, 0.0f, 0.0f, 1.0f);
+    glVertexAttrib3f(2, static_cast<float>(pointColor_.x()), static_cast<float>(pointColor_.y()),
+                     static_cast<float>(pointColor_.z()));
+    glDrawArrays(GL_POINTS, 0, pointCount_);
+    glDisable(GL_PROGRAM_POINT_SIZE);
   }
   glBindVertexArray(0);
 }

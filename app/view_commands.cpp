@@ -6,9 +6,11 @@
 #include "app/cli.h"
 #include "app/cli_args.h"
 #include "app/render_mesh.h"
+#include "app/sculpt_window.h"
 #include "app/snapshot_renderer.h"
 #include "app/view_content.h"
 #include "engine/mesh_files.h"
+#include "engine/project_file.h"
 #include "engine/scene.h"
 #include "engine/scene_mesh.h"
 #include "engine/surface_io.h"
@@ -39,6 +41,15 @@ ViewContent loadViewContent(const fs::path& file, std::ostream& log) {
   ViewContent c;
   c.title = file.filename().string();
   std::string ext = file.extension().string();
+  if (looksLikeProject(file)) {
+    const Project project = readProject(file);
+    const std::unique_ptr<SculptSession> session = sessionFromProject(project, file);
+    c.title = project.scene.name + " (project, frame " + std::to_string(project.state.frame) + ")";
+    c.surface = session->simulation().surface().mesh;
+    c.facts.push_back(std::to_string(project.mesh.numVertices()) + " vertices, " +
+                      std::to_string(project.mesh.numTets()) + " tets");
+    return c;
+  }
   if (ext == ".json") {
     const SceneDescription scene = loadScene(file);
     const TetMesh mesh =
@@ -106,20 +117,36 @@ int renderCommand(const std::vector<std::string>& args, std::ostream& out, std::
 }
 
 int openCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(args, {"--out", "--size"}, {"--headless"});
-  a.expectPositional(1, 1, "galsculpt open FILE [--headless] [--out DIR] [--size WxH]");
+  const CliArgs a(
+      args,
+      {"--out", "--size", "--input-script", "--save-project", "--save-recording", "--autosave"},
+      {"--headless", "--paused", "--no-recovery"});
+  a.expectPositional(1, 1,
+                     "galsculpt open FILE [--headless] [--out DIR] [--size WxH] [--paused] "
+                     "[--input-script FILE] [--save-project FILE] [--save-recording FILE] "
+                     "[--autosave SECONDS] [--no-recovery]");
   const fs::path file = a.positional()[0];
-  const ViewContent content = loadViewContent(file, err);
+  if (!fs::exists(file)) throw InputError(file.string() + ": no such file");
   bool headless = a.has("--headless");
   if (!headless && !haveDisplay()) {
     out << "no display found (DISPLAY and WAYLAND_DISPLAY are unset): running headless\n";
     headless = true;
   }
   if (!headless) {
+    SculptWindowOptions o;
+    o.file = file;
+    std::tie(o.width, o.height) = a.sizeValue("--size", {1280, 800});
+    if (a.has("--input-script")) o.inputScript = *a.value("--input-script");
+    if (a.has("--save-project")) o.saveProjectOnExit = *a.value("--save-project");
+    if (a.has("--save-recording")) o.saveRecordingOnExit = *a.value("--save-recording");
+    o.autosaveSeconds = a.doubleValue("--autosave", 60.0, 0.0, 1e9);
+    o.offerRecovery = !a.has("--no-recovery") && !o.inputScript;
+    o.startPlaying = !a.has("--paused");
     std::string error;
-    if (runViewerWindow(content, &error)) return kExitOk;
+    if (runSculptWindow(o, out, &error)) return kExitOk;
     out << "cannot open a window (" << error << "): running headless\n";
   }
+  const ViewContent content = loadViewContent(file, err);
   const fs::path outDir = a.value("--out").value_or("galsculpt-out");
   const auto [w, h] = a.sizeValue("--size", {1280, 800});
   const auto files = renderViewsOffscreen(content, outDir, w, h);

@@ -16,15 +16,13 @@ struct ViewContent {
   std::vector<std::string> facts;  // "12345 tets", "material: rubber", ...
 };
 
-// Loads a scene (.json), a tet mesh or a surface mesh for viewing; progress goes to `log`.
+// Loads a project (.gsproj), a scene (.json), a tet mesh or a surface mesh for viewing; progress
+// goes to `log`.
 ViewContent loadViewContent(const std::filesystem::path& file, std::ostream& log);
 
 // Renders standard views offscreen into `outDir`; returns the files written.
 std::vector<std::string> renderViewsOffscreen(const ViewContent& content,
                                               const std::filesystem::path& outDir, int width,
                                               int height);
-
-// Opens a window; returns false (with a reason) when no window can be opened.
-bool runViewerWindow(const ViewContent& content, std::string* error);
 
 }  // namespace galsculpt

@@ -1,6 +1,7 @@
 #include "playback.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "solver/atomic_file.h"
 #include "solver/input_error.h"
@@ -41,7 +42,9 @@ Symmetry readSymmetry(JsonObject& o) {
 Vec3 readUnit(JsonObject& o, const std::string& key) {
   const Vec3 n = o.vec3(key, Vec3::UnitY());
   if (!(n.norm() > 1e-12)) o.fail(key, "must be a non-zero direction");
-  return n.normalized();
+  // A recorded unit normal is kept bit for bit (normalizing it again can change its last bit,
+  // and a replay must be exact); a hand-written one is normalized.
+  return std::abs(n.norm() - 1.0) < 1e-12 ? n : Vec3(n.normalized());
 }
 
 void readStroke(JsonObject& o, ToolEvent& e) {
@@ -75,9 +78,9 @@ void readStroke(JsonObject& o, ToolEvent& e) {
 ToolEvent readEvent(JsonObject o) {
   ToolEvent e;
   e.path = o.path();
-  const std::string tool = o.string(
-      "tool", "", {"knife", "brush", "anchor", "grab", "push", "pull", "inflate", "pinch",
-                   "anchor_paint", "anchor_erase", "camera"});
+  const std::string tool = o.string("tool", "",
+                                    {"knife", "brush", "anchor", "grab", "push", "pull", "inflate",
+                                     "pinch", "anchor_paint", "anchor_erase", "camera"});
   if (tool.empty())
     o.fail("tool",
            "is required (knife, brush, anchor, grab, push, pull, inflate, pinch, anchor_paint, "
@@ -133,7 +136,9 @@ ToolEvent readEvent(JsonObject o) {
   return e;
 }
 
-nlohmann::json point(const Vec3& p) { return nlohmann::json::array({p.x(), p.y(), p.z()}); }
+nlohmann::json point(const Vec3& p) {
+  return nlohmann::json::array({p.x(), p.y(), p.z()});
+}
 
 }  // namespace
 
@@ -219,7 +224,8 @@ nlohmann::json toolEventJson(const ToolEvent& e) {
       j["end"] = e.end;
       nlohmann::json moves = nlohmann::json::array();
       for (const StrokeKey& k : e.moves)
-        moves.push_back({{"frame", k.frame}, {"center", point(k.center)}, {"normal", point(k.normal)}});
+        moves.push_back(
+            {{"frame", k.frame}, {"center", point(k.center)}, {"normal", point(k.normal)}});
       j["moves"] = moves;
       symmetry();
       break;

@@ -16,7 +16,9 @@ namespace {
 constexpr char kMagic[] = "GALSCULPT PROJECT";
 static_assert(std::endian::native == std::endian::little, "project files are little-endian");
 
-nlohmann::json vec(const Vec3& p) { return nlohmann::json::array({p.x(), p.y(), p.z()}); }
+nlohmann::json vec(const Vec3& p) {
+  return nlohmann::json::array({p.x(), p.y(), p.z()});
+}
 
 template <typename T>
 void writeArray(std::ostream& out, const std::vector<T>& values) {
@@ -33,8 +35,8 @@ class BinaryReader {
   void read(std::vector<T>& out, std::size_t count, const char* what) {
     const std::size_t bytes = count * sizeof(T);
     if (data_.size() - offset_ < bytes)
-      throw InputError(file_ + ": truncated at byte " + std::to_string(data_.size()) + ": " +
-                       what + " needs " + std::to_string(bytes) + " bytes from byte " +
+      throw InputError(file_ + ": truncated at byte " + std::to_string(data_.size()) + ": " + what +
+                       " needs " + std::to_string(bytes) + " bytes from byte " +
                        std::to_string(offset_));
     out.resize(count);
     std::memcpy(out.data(), data_.data() + offset_, bytes);
@@ -119,7 +121,8 @@ void writeProject(const fs::path& file, const SceneDescription& scene, const Sim
   tets.reserve(4 * model.mesh.tets.size());
   for (const Tet& t : model.mesh.tets) tets.insert(tets.end(), t.begin(), t.end());
   std::vector<double> plastic;
-  for (const Eigen::Matrix3d& m : state.plasticInverse) plastic.insert(plastic.end(), m.data(), m.data() + 9);
+  for (const Eigen::Matrix3d& m : state.plasticInverse)
+    plastic.insert(plastic.end(), m.data(), m.data() + 9);
   writeFileAtomically(file, [&](std::ostream& out) {
     out << kMagic << ' ' << kProjectVersion << '\n' << header.size() << '\n' << header;
     writeArray(out, flat(model.mesh.vertices));
@@ -136,7 +139,7 @@ void writeProject(const fs::path& file, const SceneDescription& scene, const Sim
 
 void writeProject(const fs::path& file, const SculptSession& session,
                   const std::optional<CameraPose>& camera) {
-  writeProject(file, session.scene(), session.simulation(), session.recording(), camera);
+  writeProject(file, session.scene(), session.simulation(), session.recordingSoFar(), camera);
 }
 
 std::unique_ptr<SculptSession> sessionFromProject(const Project& project, const fs::path& file) {
@@ -163,8 +166,9 @@ Project readProject(const fs::path& file) {
   // Line 1: magic and version; line 2: header length; then the header.
   const std::size_t line1 = data.find('\n');
   if (data.rfind(kMagic, 0) != 0 || line1 == std::string::npos)
-    throw InputError(name, 1, "not a Galsculpt project (it must start with '" +
-                                  std::string(kMagic) + " <version>')");
+    throw InputError(
+        name, 1,
+        "not a Galsculpt project (it must start with '" + std::string(kMagic) + " <version>')");
   int version = 0;
   try {
     version = std::stoi(data.substr(sizeof(kMagic), line1 - sizeof(kMagic)));
@@ -185,9 +189,10 @@ Project readProject(const fs::path& file) {
     throw InputError(name, 2, "the header length is missing or not a number");
   }
   if (data.size() - (line2 + 1) < headerBytes)
-    throw InputError(name, 3, "truncated: the header needs " + std::to_string(headerBytes) +
-                                  " bytes, the file has " +
-                                  std::to_string(data.size() - line2 - 1) + " after line 2");
+    throw InputError(name, 3,
+                     "truncated: the header needs " + std::to_string(headerBytes) +
+                         " bytes, the file has " + std::to_string(data.size() - line2 - 1) +
+                         " after line 2");
   nlohmann::json h;
   try {
     h = nlohmann::json::parse(data.substr(line2 + 1, headerBytes));
@@ -243,7 +248,8 @@ Project readProject(const fs::path& file) {
   }
   const auto events = o.array("recording");
   for (size_t i = 0; i < events.size(); ++i)
-    p.recording.push_back(parseToolEvent(events[i], "$.recording[" + std::to_string(i) + "]", name));
+    p.recording.push_back(
+        parseToolEvent(events[i], "$.recording[" + std::to_string(i) + "]", name));
   if (o.has("camera")) {
     JsonObject c = o.object("camera");
     CameraPose pose;
@@ -280,7 +286,8 @@ Project readProject(const fs::path& file) {
     in.read(inverse, 9 * static_cast<std::size_t>(nt), "plastic state");
     in.read(s.plasticStrain, static_cast<std::size_t>(nt), "plastic strain");
     checkFinite(inverse, name, "plastic state");
-    for (int t = 0; t < nt; ++t) s.plasticInverse.push_back(Eigen::Map<const Eigen::Matrix3d>(&inverse[9 * t]));
+    for (int t = 0; t < nt; ++t)
+      s.plasticInverse.push_back(Eigen::Map<const Eigen::Matrix3d>(&inverse[9 * t]));
   }
   if (!in.atEnd())
     throw InputError(name + ": unexpected data after byte " + std::to_string(in.offset()));

@@ -41,13 +41,13 @@ int SculptSession::knife(const Vec3& from0, const Vec3& from1, const Vec3& to0, 
   e.to1 = to1;
   e.symmetry = symmetry;
   const int before = sim_->frame();
-  const int damagedBefore = static_cast<int>(
-      std::count(sim_->state().damaged.begin(), sim_->state().damaged.end(), 1));
+  const int damagedBefore =
+      static_cast<int>(std::count(sim_->state().damaged.begin(), sim_->state().damaged.end(), 1));
   e.frame = before;
   tools_->apply(e, before);
   record(e);
-  return static_cast<int>(std::count(sim_->state().damaged.begin(), sim_->state().damaged.end(),
-                                     1)) -
+  return static_cast<int>(
+             std::count(sim_->state().damaged.begin(), sim_->state().damaged.end(), 1)) -
          damagedBefore;
 }
 
@@ -209,8 +209,14 @@ void SculptSession::trimHistory() {
   }
 }
 
+std::vector<ToolEvent> SculptSession::recordingSoFar() const {
+  std::vector<ToolEvent> events = recording_;
+  if (strokeEvent_ >= 0) events[strokeEvent_].end = sim_->frame();  // a held stroke ends here
+  return events;
+}
+
 void SculptSession::saveRecording(const std::filesystem::path& file) const {
-  writePlaybackScript(file, scene_.file, sim_->frame(), recording_);
+  writePlaybackScript(file, scene_.file, sim_->frame(), recordingSoFar());
 }
 
 void SculptSession::load(const SimulationSnapshot& state, std::vector<ToolEvent> recording) {

@@ -59,6 +59,9 @@ class SculptSession {
 
   // The recording: events in the order they were applied.
   const std::vector<ToolEvent>& recording() const { return recording_; }
+  // The recording with a stroke still held ending now (what files store; the app ends the
+  // stroke before it saves, so that the saved state and the recording agree).
+  std::vector<ToolEvent> recordingSoFar() const;
   // Writes it as a playback script of the frames run so far (docs/scripts.md).
   void saveRecording(const std::filesystem::path& file) const;
   // A project reopened: its state and recording replace the current ones (history cleared).

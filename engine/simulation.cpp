@@ -310,13 +310,12 @@ void Simulation::restore(const SimulationSnapshot& s) {
       s.plasticInverse.size() != state_.plasticInverse.size() ||
       s.plasticStrain.size() != state_.plasticStrain.size() ||
       s.anchors.size() != s.anchorIds.size())
-    throw std::invalid_argument("the saved state does not fit this model (" +
-                                std::to_string(s.x.size()) + " vertices, " +
-                                std::to_string(s.damaged.size()) + " edges, " +
-                                (s.plasticInverse.empty() ? "elastic" : "plastic") + "; the model has " +
-                                std::to_string(state_.x.size()) + ", " +
-                                std::to_string(state_.damaged.size()) + ", " +
-                                (state_.plasticInverse.empty() ? "elastic" : "plastic") + ")");
+    throw std::invalid_argument(
+        "the saved state does not fit this model (" + std::to_string(s.x.size()) + " vertices, " +
+        std::to_string(s.damaged.size()) + " edges, " +
+        (s.plasticInverse.empty() ? "elastic" : "plastic") + "; the model has " +
+        std::to_string(state_.x.size()) + ", " + std::to_string(state_.damaged.size()) + ", " +
+        (state_.plasticInverse.empty() ? "elastic" : "plastic") + ")");
   state_.x = s.x;
   state_.v = s.v;
   if (state_.damaged != s.damaged) {
@@ -332,6 +331,7 @@ void Simulation::restore(const SimulationSnapshot& s) {
   nextAnchorId_ = s.nextAnchorId;
   toolDamage_ = s.toolDamage;
   surfaceFrame_ = -1;  // positions changed without a frame
+  ++generation_;
   updatePieces();
 }
 
@@ -409,6 +409,7 @@ FrameMetrics Simulation::advance() {
   const auto start = std::chrono::steady_clock::now();
   const StepReport r = step(model_, state_, settings_);
   ++frame_;
+  ++generation_;
   FrameMetrics m;
   m.frame = frame_;
   m.timeS = state_.time;

@@ -107,6 +107,9 @@ class Simulation {
   // Notes for the user about how the scene is run (e.g. a solver that is not available yet).
   const std::vector<std::string>& notes() const { return notes_; }
   int frame() const { return frame_; }
+  // Changes whenever the positions may have changed (a frame, a restore): views and pick
+  // structures compare it to know when to refresh.
+  std::uint64_t generation() const { return generation_; }
   // The visualization surface (engine/surface_builder.h) at the current damage and positions,
   // brought up to date on each call; `stats` (optional) gets what that update cost.
   const VisualSurface& surface(SurfaceUpdateStats* stats = nullptr) const;
@@ -138,6 +141,7 @@ class Simulation {
   int loadCollider_ = -1;
   double restVolume_ = 0.0;
   int frame_ = 0;
+  std::uint64_t generation_ = 0;
 };
 
 }  // namespace galsculpt

@@ -93,8 +93,9 @@ std::array<unsigned, N> cornerGroups(const bool (&joined)[N][N]) {
 
 }  // namespace
 
-TriMesh facesWithTag(const VisualSurface& surface, SurfaceTag tag) {
+TriMesh facesWithTag(const VisualSurface& surface, SurfaceTag tag, std::vector<int>* source) {
   TriMesh out;
+  if (source) source->clear();
   std::vector<int> map(surface.mesh.vertices.size(), -1);
   for (size_t f = 0; f < surface.mesh.faces.size(); ++f) {
     if (surface.tags[f] != tag) continue;
@@ -103,6 +104,7 @@ TriMesh facesWithTag(const VisualSurface& surface, SurfaceTag tag) {
       if (map[v] < 0) {
         map[v] = out.numVertices();
         out.vertices.push_back(surface.mesh.vertices[v]);
+        if (source) source->push_back(v);
       }
       v = map[v];
     }

@@ -44,7 +44,9 @@ struct VisualSurface {
 
 // The faces of one tag with their own compact vertex numbering (shading and export use it so
 // that normals stay smooth within a tag and sharp where crack faces meet the outer surface).
-TriMesh facesWithTag(const VisualSurface& surface, SurfaceTag tag);
+// `source` (optional) gets each compact vertex's index in the surface.
+TriMesh facesWithTag(const VisualSurface& surface, SurfaceTag tag,
+                     std::vector<int>* source = nullptr);
 
 // Smooth shading normals that stay sharp where crack faces meet outer faces: per tag, the
 // area-weighted normal of each vertex over that tag's faces (zero where it has none). A face

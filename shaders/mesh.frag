@@ -6,11 +6,15 @@ in vec3 vColor;
 
 uniform vec3 uKeyLightDir;   // view space, towards the light
 uniform vec3 uFillLightDir;
-uniform float uWireframe;    // 1: flat colour (wireframe overlay)
+uniform float uWireframe;    // 1: dark flat colour (wireframe overlay); 2: flat colour (points)
 
 out vec4 fragColor;
 
 void main() {
+  if (uWireframe > 1.5) {
+    fragColor = vec4(pow(vColor, vec3(1.0 / 2.2)), 1.0);
+    return;
+  }
   if (uWireframe > 0.5) {
     fragColor = vec4(vColor * 0.25, 1.0);
     return;

@@ -6,6 +6,7 @@ layout(location = 2) in vec3 aColor;
 
 uniform mat4 uView;
 uniform mat4 uProjection;
+uniform float uPointSize;
 
 out vec3 vViewPosition;
 out vec3 vViewNormal;
@@ -17,4 +18,5 @@ void main() {
   vViewNormal = mat3(uView) * aNormal;
   vColor = aColor;
   gl_Position = uProjection * viewPosition;
+  gl_PointSize = uPointSize;
 }

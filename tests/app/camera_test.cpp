@@ -42,5 +42,35 @@ TEST(OrbitCamera, TopViewIsStillAValidMatrix) {
   EXPECT_TRUE(c.view().allFinite());
 }
 
+// A pixel's ray passes through the world points that project onto that pixel, and the projection
+// matches the OpenGL matrices the renderer uses.
+TEST(OrbitCamera, RaysAndProjectionAgreeWithTheRenderMatrices) {
+  OrbitCamera c;
+  c.target = Eigen::Vector3d(0.1, -0.2, 0.3);
+  c.distance = 2.0;
+  c.yaw = 0.7;
+  c.pitch = -0.3;
+  const int w = 800, h = 600;
+  const Eigen::Matrix4d m = (c.projection(double(w) / h) * c.view()).cast<double>();
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0.1, -0.2, 0.3), Eigen::Vector3d(0.5, 0.1, -0.2),
+                                   Eigen::Vector3d(-0.4, 0.3, 0.6)}) {
+    const Eigen::Vector4d clip = m * p.homogeneous();
+    const double px = 0.5 * (clip.x() / clip.w() + 1.0) * w;
+    const double py = 0.5 * (1.0 - clip.y() / clip.w()) * h;
+    const Eigen::Vector3d projected = c.project(p, w, h);
+    EXPECT_NEAR(projected.x(), px, 1e-3);
+    EXPECT_NEAR(projected.y(), py, 1e-3);
+    EXPECT_NEAR(projected.z(), (p - c.eye()).dot(c.forward()), 1e-6);  // float matrices
+    Eigen::Vector3d origin, dir;
+    c.ray(px, py, w, h, origin, dir);
+    EXPECT_NEAR(dir.norm(), 1.0, 1e-12);
+    const Eigen::Vector3d toPoint = p - origin;
+    EXPECT_NEAR((toPoint - toPoint.dot(dir) * dir).norm(), 0.0, 1e-5) << "the ray misses p";
+  }
+  Eigen::Vector3d origin, dir;
+  c.ray(w / 2.0, h / 2.0, w, h, origin, dir);
+  EXPECT_NEAR((dir - c.forward()).norm(), 0.0, 1e-6) << "the centre pixel looks forward";
+}
+
 }  // namespace
 }  // namespace galsculpt

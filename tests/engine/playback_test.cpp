@@ -196,5 +196,45 @@ TEST(Playback, MalformedScriptsNameTheJsonPath) {
   }
 }
 
+// A recorded stroke's unit normals come back bit for bit (normalizing them again on reading
+// changed their last bits and broke the exact replay of the app's recordings).
+TEST(Playback, RecordedEventsRoundTripBitForBit) {
+  ToolEvent e;
+  e.tool = ToolEvent::Tool::Stroke;
+  e.brush = BrushKind::Push;
+  e.frame = 3;
+  e.end = 9;
+  e.center = Vec3(0.1, 0.2, 0.3) / 7.0;
+  e.normal = Vec3(0.3, -0.7, 0.2).normalized();
+  e.radius = 0.1 / 3.0;
+  e.strength = 0.2 / 3.0;
+  e.seed = 12;
+  e.symmetry = {2, -0.25};
+  int changedByRenormalizing = 0;
+  for (int i = 0; i < 50; ++i) {
+    const Vec3 n = Vec3(std::sin(i), std::cos(3.0 * i), 0.3 + i).normalized();
+    changedByRenormalizing += Vec3(n.normalized()) != n;
+    e.moves.push_back({4 + i / 10, Vec3(i, -i, 0.5 * i) / 11.0, n});
+  }
+  ASSERT_GT(changedByRenormalizing, 0) << "some unit normals change when normalized again";
+  const ToolEvent back = parseToolEvent(toolEventJson(e), "$.events[0]", "x.json");
+  EXPECT_EQ(back.brush, e.brush);
+  EXPECT_EQ(back.frame, e.frame);
+  EXPECT_EQ(back.end, e.end);
+  EXPECT_EQ(back.center, e.center);
+  EXPECT_EQ(back.normal, e.normal);
+  EXPECT_EQ(back.radius, e.radius);
+  EXPECT_EQ(back.strength, e.strength);
+  EXPECT_EQ(back.seed, e.seed);
+  EXPECT_EQ(back.symmetry.axis, 2);
+  EXPECT_EQ(back.symmetry.offset, -0.25);
+  ASSERT_EQ(back.moves.size(), e.moves.size());
+  for (size_t i = 0; i < e.moves.size(); ++i) {
+    EXPECT_EQ(back.moves[i].frame, e.moves[i].frame);
+    EXPECT_EQ(back.moves[i].center, e.moves[i].center);
+    EXPECT_EQ(back.moves[i].normal, e.moves[i].normal) << "move " << i;
+  }
+}
+
 }  // namespace
 }  // namespace galsculpt

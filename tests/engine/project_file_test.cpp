@@ -40,8 +40,8 @@ TEST(ProjectFile, RoundTripRestoresTheSessionExactlyAndItRunsOnIdentically) {
   const CameraPose pose{Vec3(0.01, 0.02, 0.03), 0.7, 0.4, 0.2};
   writeProject(dir / "ball.gsproj", ball.session, pose);
   EXPECT_TRUE(looksLikeProject(dir / "ball.gsproj"));
-  EXPECT_FALSE(looksLikeProject(fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" /
-                                "default.json"));
+  EXPECT_FALSE(
+      looksLikeProject(fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json"));
 
   const Project p = readProject(dir / "ball.gsproj");
   ASSERT_TRUE(p.camera.has_value());
@@ -59,7 +59,8 @@ TEST(ProjectFile, RoundTripRestoresTheSessionExactlyAndItRunsOnIdentically) {
   for (size_t t = 0; t < a.plasticInverse.size(); ++t)
     ASSERT_TRUE(a.plasticInverse[t] == b.plasticInverse[t]);
   EXPECT_EQ(a.anchorIds, b.anchorIds);
-  EXPECT_EQ(reopened->simulation().anchoredVertices(), ball.session.simulation().anchoredVertices());
+  EXPECT_EQ(reopened->simulation().anchoredVertices(),
+            ball.session.simulation().anchoredVertices());
   for (int f = 0; f < 3; ++f) {
     ball.session.step();
     reopened->step();
@@ -108,16 +109,19 @@ TEST(ProjectFile, MalformedProjectsGetClearErrors) {
     return good.substr(0, line1 + 1) + std::to_string(header.size()) + "\n" + header +
            good.substr(line2 + 1 + length);
   };
-  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) { h["anchors"][0]["vertices"][0] = 1 << 30; }))
-                .find("$.anchors[0].vertices: holds 1073741824, not a vertex of the mesh"),
+  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) {
+              h["anchors"][0]["vertices"][0] = 1 << 30;
+            })).find("$.anchors[0].vertices: holds 1073741824, not a vertex of the mesh"),
             std::string::npos);
   EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) { h["frxme"] = 1; })).find("$.frxme"),
             std::string::npos);
-  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) { h["scene"]["material"]["preset"] = "cheese"; }))
-                .find("$.material.preset"),
+  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) {
+              h["scene"]["material"]["preset"] = "cheese";
+            })).find("$.material.preset"),
             std::string::npos);
-  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) { h["edges"] = h["edges"].get<int>() - 1; }))
-                .find("unexpected data"),
+  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) {
+              h["edges"] = h["edges"].get<int>() - 1;
+            })).find("unexpected data"),
             std::string::npos);
   std::string damaged = good;
   damaged[damaged.size() - 1 - 10 * ball.session.simulation().model().numTets() * 8] = 5;
@@ -125,6 +129,26 @@ TEST(ProjectFile, MalformedProjectsGetClearErrors) {
   EXPECT_TRUE(message.find("must be 0 or 1") != std::string::npos ||
               message.find("not finite") != std::string::npos)
       << message;
+}
+
+// Saved while a brush is still held: the file records the stroke as ending there (it once wrote
+// an end frame no reader accepts).
+TEST(ProjectFile, SavingDuringAStrokeWritesAReadableProject) {
+  test::TempDir dir;
+  SculptedBall ball;
+  BrushStroke grab;
+  grab.center = Vec3(0.0, 0.1, 0.0);
+  grab.radius = 0.02;
+  ball.session.beginStroke(grab);
+  ball.session.moveStroke(Vec3(0.0, 0.11, 0.0), Vec3::UnitY());
+  ball.session.step();
+  writeProject(dir / "held.gsproj", ball.session, std::nullopt);
+  const Project p = readProject(dir / "held.gsproj");
+  ASSERT_FALSE(p.recording.empty());
+  EXPECT_EQ(p.recording.back().end, ball.session.simulation().frame());
+  ball.session.saveRecording(dir / "held.json");
+  EXPECT_EQ(loadPlaybackScript(dir / "held.json").events.back().end,
+            ball.session.simulation().frame());
 }
 
 }  // namespace

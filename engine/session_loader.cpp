@@ -1,0 +1,45 @@
+#include "session_loader.h"
+
+#include "engine/mesh_files.h"
+#include "engine/project_file.h"
+#include "solver/input_error.h"
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+SceneDescription sceneForMesh(const fs::path& mesh, int importTets) {
+  const fs::path absolute = fs::absolute(mesh).lexically_normal();
+  nlohmann::json source = {{"name", mesh.stem().string()},
+                           {"material", {{"preset", "clay"}}},
+                           {"gravity", {0.0, 0.0, 0.0}},
+                           {"damping", {{"mass", 2.0}, {"stiffness", 0.01}}},
+                           {"solver", {{"type", "multigrid"}, {"grid", "50/all"}}}};
+  if (isTetMeshFile(absolute))
+    source["mesh"] = {{"file", absolute.string()}};
+  else
+    source["mesh"] = {{"import", absolute.string()}, {"tets", importTets}};
+  return parseScene(source, absolute.parent_path() / (mesh.stem().string() + ".scene.json"));
+}
+
+OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int importTets) {
+  if (!fs::exists(file)) throw InputError(file.string() + ": no such file");
+  OpenedSession opened;
+  if (looksLikeProject(file)) {
+    if (progress) progress("reading project " + file.string());
+    Project project = readProject(file);
+    opened.camera = project.camera;
+    opened.session = sessionFromProject(project, file);
+    return opened;
+  }
+  const std::string ext = file.extension().string();
+  SceneDescription scene = ext == ".json" ? loadScene(file) : sceneForMesh(file, importTets);
+  if (ext != ".json" && meshFileKind(file) == MeshFileKind::Unknown)
+    throw InputError(file.string() + ": not a project, scene or mesh file this version reads");
+  const TetMesh mesh = loadSceneMesh(scene, progress);
+  if (progress) progress("building the simulation (" + std::to_string(mesh.numTets()) + " tets)");
+  opened.session = std::make_unique<SculptSession>(scene, mesh);
+  return opened;
+}
+
+}  // namespace galsculpt
