@@ -8,9 +8,9 @@ namespace galsculpt {
 namespace {
 
 const std::vector<std::string> kCommands = {
-    "open",   "save_project", "save_recording", "export", "export_tets", "undo",
-    "redo",   "reset",        "play",           "pause",  "step",        "tool",
-    "radius", "strength",     "symmetry",       "view"};
+    "open",     "save_project", "save_recording", "export", "export_tets", "undo",   "redo",
+    "reset",    "play",         "pause",          "step",   "tool",        "radius", "strength",
+    "symmetry", "view",         "screenshot",     "preset", "grid"};
 
 MouseButton buttonNamed(JsonObject& o, const std::string& key) {
   const std::string name = o.string(key, "left", {"left", "right", "middle"});

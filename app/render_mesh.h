@@ -11,6 +11,7 @@ namespace galsculpt {
 // The body's colour and the tint of crack faces (linear RGB).
 inline const Vec3 kSurfaceColor(0.80, 0.55, 0.42);
 inline const Vec3 kCrackColor(0.75, 0.12, 0.10);
+inline const Vec3 kAnchorColor(0.15, 0.35, 1.0);  // anchored vertices, blue as in the paper
 
 struct RenderMesh {
   std::vector<float> positions;   // (3 nVerts)

@@ -59,16 +59,27 @@ struct RunOptions {
   SolverChoice solver = SolverChoice::FromScene;
 };
 
-// Offscreen snapshots of the visualization surface (crack faces tinted), framed on the body at
-// rest and seen from the standard perspective view (the camera's default angles).
+// Offscreen snapshots of the visualization surface (crack faces tinted, anchored vertices as
+// blue dots), framed on the body at rest and seen from the standard perspective view (the
+// camera's default angles) - or from a script's latest camera event.
 class FrameRenderer {
  public:
   FrameRenderer(const Simulation& sim, int width, int height) : snapshots_(width, height) {
     camera_.frame(boundingBox(sim.model().mesh.vertices));
   }
-  void write(const Simulation& sim, const fs::path& file) {
+  void write(const Simulation& sim, const fs::path& file, const std::optional<CameraPose>& pose) {
     snapshots_.setMesh(makeRenderMesh(sim.surface(), kSurfaceColor, kCrackColor));
-    snapshots_.write(camera_, file);
+    std::vector<Vec3> anchored;
+    for (int v : sim.anchoredVertices()) anchored.push_back(sim.state().x[v]);
+    snapshots_.setPoints(anchored, kAnchorColor);
+    OrbitCamera camera = camera_;
+    if (pose) {
+      camera.target = pose->target;
+      camera.distance = pose->distance;
+      camera.yaw = pose->yaw;
+      camera.pitch = pose->pitch;
+    }
+    snapshots_.write(camera, file);
   }
 
  private:
@@ -79,7 +90,9 @@ class FrameRenderer {
 // The frame loop shared by run and play: metrics CSV, surface exports, final.obj, summary.
 int simulateFrames(const std::string& name, int frames, Simulation& sim, const RunOptions& o,
                    const std::function<FrameMetrics()>& advance, std::ostream& out,
-                   std::ostream& err) {
+                   std::ostream& err,
+                   const std::function<std::optional<CameraPose>()>& camera = {}) {
+  auto pose = [&camera]() -> std::optional<CameraPose> { return camera ? camera() : std::nullopt; };
   const fs::path& outDir = o.outDir;
   const fs::path& metricsPath = o.metricsPath;
   const int exportEvery = o.exportEvery;
@@ -104,9 +117,9 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
     drawProgress(err, f, frames, msSum / f, interactive);
     if (exportEvery > 0 && f % exportEvery == 0)
       writeVisualSurface(outDir / frameName(f, o.exportFormat), sim.surface());
-    if (pictures && f % o.pngEvery == 0) pictures->write(sim, outDir / frameName(f, "png"));
+    if (pictures && f % o.pngEvery == 0) pictures->write(sim, outDir / frameName(f, "png"), pose());
   }
-  if (pictures) pictures->write(sim, outDir / "final.png");
+  if (pictures) pictures->write(sim, outDir / "final.png", pose());
   writeVisualSurface(outDir / "final.obj", sim.surface());
   if (o.exportFormat != "obj")
     writeVisualSurface(outDir / ("final." + o.exportFormat), sim.surface());
@@ -185,7 +198,7 @@ int playCommand(const std::vector<std::string>& args, std::ostream& out, std::os
   Playback playback(script, sim);
   return simulateFrames(
       script.scene.name, script.frames, sim, o, [&playback] { return playback.advance(); }, out,
-      err);
+      err, [&playback] { return playback.camera(); });
 }
 
 }  // namespace galsculpt

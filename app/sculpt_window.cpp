@@ -6,6 +6,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -17,11 +18,13 @@
 #include "app/camera.h"
 #include "app/gl.h"
 #include "app/input_script.h"
+#include "app/offscreen_context.h"
 #include "app/render_mesh.h"
 #include "app/renderer.h"
 #include "app/tool_controller.h"
 #include "engine/project_file.h"
 #include "engine/recovery.h"
+#include "engine/scene_edit.h"
 #include "engine/session_loader.h"
 #include "engine/surface_io.h"
 #include "solver/input_error.h"
@@ -33,8 +36,6 @@ namespace fs = std::filesystem;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-const Vec3 kAnchorColor(0.15, 0.35, 1.0);
 
 // One input event, from GLFW or from an input script.
 struct InputEvent {
@@ -73,6 +74,8 @@ class SculptApp {
   void drawMenu();
   void drawToolsPanel();
   void drawOverlay();
+  void drawScenePanel();
+  void applySceneSettings();
   void drawDialogs();
   void drawCursor();
   void autosave();
@@ -101,6 +104,9 @@ class SculptApp {
   // View.
   SurfaceStyle style_;
   bool wireframe_ = false;
+  bool autoStressScale_ = true;
+  SceneSettings editing_;  // the Scene panel's values, applied by restarting the simulation
+  char grid_[64] = {};
   bool playing_ = true;
   bool stepOnce_ = false;
   std::uint64_t shownGeneration_ = ~0ull, shownDamage_ = ~0ull;
@@ -128,7 +134,27 @@ class SculptApp {
   size_t scriptNext_ = 0;
   int scriptWait_ = 0;
   bool scripted_ = false;
+  std::string pendingScreenshot_;
+  void takeScreenshot(int width, int height);
 };
+
+void SculptApp::takeScreenshot(int width, int height) {
+  if (pendingScreenshot_.empty()) return;
+  std::vector<std::uint8_t> pixels(static_cast<size_t>(width) * height * 4), flipped(pixels.size());
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  const size_t row = static_cast<size_t>(width) * 4;
+  for (int y = 0; y < height; ++y)
+    std::memcpy(&flipped[y * row], &pixels[(height - 1 - y) * row], row);
+  try {
+    writePng(pendingScreenshot_, width, height, flipped);
+    report("wrote " + pendingScreenshot_);
+  } catch (const std::exception& e) {
+    fail(e.what());
+  }
+  pendingScreenshot_.clear();
+}
 
 bool SculptApp::init(std::string* error) {
   if (!renderer_.init(error)) return false;
@@ -204,6 +230,8 @@ void SculptApp::adopt(OpenedSession opened, const fs::path& file) {
   controller_->settings = toolSettings_;
   shownGeneration_ = ~0ull;
   metrics_ = FrameMetrics{};
+  editing_ = sceneSettings(session_->scene());
+  std::snprintf(grid_, sizeof grid_, "%s", editing_.solver.grid.c_str());
   const std::string title = "Galsculpt - " + session_->scene().name;
   glfwSetWindowTitle(window_, title.c_str());
   report("opened " + file.string() + " (" +
@@ -360,6 +388,14 @@ void SculptApp::runCommand(const std::string& command, const std::string& argume
       toolSettings_.symmetry = argument != "off";
       if (toolSettings_.symmetry)
         toolSettings_.symmetryAxis = argument == "y" ? 1 : argument == "z" ? 2 : 0;
+    } else if (command == "preset") {  // as the Scene settings panel: edit, then apply
+      editing_.material = materialPreset(argument);
+      applySceneSettings();
+    } else if (command == "grid") {
+      std::snprintf(grid_, sizeof grid_, "%s", argument.c_str());
+      applySceneSettings();
+    } else if (command == "screenshot") {
+      pendingScreenshot_ = argument;  // taken once this frame is drawn, panels included
     } else if (command == "view") {
       style_.view = argument == "damage"   ? SurfaceView::Damage
                     : argument == "stress" ? SurfaceView::Stress
@@ -457,6 +493,13 @@ void SculptApp::updateScene() {
     style_.scaleMax = 1.0;
   } else if (style_.view == SurfaceView::Stress) {
     values = sim.vertexStress();
+    if (autoStressScale_) {
+      // The hottest colour at the 98th percentile: a few peaks do not wash the rest out.
+      std::vector<double> sorted = values;
+      const size_t k = sorted.size() * 98 / 100;
+      std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(k), sorted.end());
+      style_.scaleMax = std::max(sorted[k], 1e-9);
+    }
   }
   renderer_.setMesh(makeRenderMesh(surface, style_, values));
   anchored_ = sim.anchoredVertices();
@@ -605,13 +648,81 @@ void SculptApp::drawOverlay() {
   ImGui::End();
 }
 
+void SculptApp::applySceneSettings() {
+  try {
+    SceneSettings s = editing_;
+    s.solver.grid = grid_;
+    const SceneDescription scene = editScene(session_->scene(), s);
+    const TetMesh mesh = session_->simulation().model().mesh;
+    OpenedSession opened;
+    opened.session = std::make_unique<SculptSession>(scene, mesh);
+    opened.session->markSceneEdited();
+    opened.camera = controller_->pose();
+    adopt(std::move(opened), currentFile_);
+    report("restarted with the new settings");
+  } catch (const std::exception& e) {
+    fail(std::string("scene settings: ") + e.what());  // the running session stays
+  }
+}
+
+void SculptApp::drawScenePanel() {
+  if (!session_) return;
+  ImGui::SetNextWindowPos(ImVec2(10, 470), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
+  ImGui::Begin("Scene settings", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  MaterialDesc& m = editing_.material;
+  static const char* presets[] = {"clay", "rubber", "flesh", "steel"};
+  static const char* models[] = {"corotational", "stvk", "stable_neo_hookean"};
+  int preset = 0, model = 0;
+  for (int i = 0; i < 4; ++i)
+    if (m.preset == presets[i]) preset = i;
+  for (int i = 0; i < 3; ++i)
+    if (m.model == models[i]) model = i;
+  if (ImGui::Combo("preset", &preset, presets, 4)) m = materialPreset(presets[preset]);
+  if (ImGui::Combo("model", &model, models, 3)) m.model = models[model];
+  ImGui::InputDouble("Young's modulus (Pa)", &m.youngsModulus, 0.0, 0.0, "%.4g");
+  ImGui::InputDouble("Poisson ratio", &m.poissonRatio, 0.0, 0.0, "%.4g");
+  ImGui::InputDouble("density (kg/m^3)", &m.density, 0.0, 0.0, "%.4g");
+  ImGui::InputDouble("yield stress (Pa, 0: elastic)", &m.yieldStress, 0.0, 0.0, "%.4g");
+  ImGui::InputDouble("hardening (Pa)", &m.hardening, 0.0, 0.0, "%.4g");
+  ImGui::Checkbox("fracture", &editing_.fracture);
+  if (editing_.fracture)
+    ImGui::InputDouble("threshold (Pa, 0: material's)", &editing_.fractureThreshold, 0.0, 0.0,
+                       "%.4g");
+  ImGui::Separator();
+  SolverDesc& v = editing_.solver;
+  static const char* types[] = {"multigrid", "reference"};
+  static const char* smoothers[] = {"gauss_seidel", "jacobi"};
+  static const char* coarse[] = {"cg", "cholesky"};
+  static const char* backends[] = {"auto", "cpu", "cuda"};
+  auto pick = [](const char* label, std::string& value, const char* const* names, int n) {
+    int i = 0;
+    for (int k = 0; k < n; ++k)
+      if (value == names[k]) i = k;
+    if (ImGui::Combo(label, &i, names, n)) value = names[i];
+  };
+  pick("solver", v.type, types, 2);
+  ImGui::InputText("grid (e.g. 50/1000/all)", grid_, sizeof grid_);
+  ImGui::InputInt("fine sweeps", &v.fineSweeps);
+  ImGui::InputInt("coarse iterations", &v.coarseIterations);
+  pick("smoother", v.smoother, smoothers, 2);
+  pick("coarse solver", v.coarseSolver, coarse, 2);
+  pick("backend", v.backend, backends, 3);
+  if (ImGui::Button("Apply (restarts the simulation)")) applySceneSettings();
+  ImGui::SameLine();
+  if (ImGui::Button("Revert")) {
+    editing_ = sceneSettings(session_->scene());
+    std::snprintf(grid_, sizeof grid_, "%s", editing_.solver.grid.c_str());
+  }
+  ImGui::End();
+}
+
 void SculptApp::drawCursor() {
-  if (!controller_ || ImGui::GetIO().WantCaptureMouse) return;
+  if (!controller_ || (ImGui::GetIO().WantCaptureMouse && !scripted_)) return;
   int width = 1, height = 1;
   glfwGetWindowSize(window_, &width, &height);
   ImDrawList* draw = ImGui::GetForegroundDrawList();
-  double x = 0.0, y = 0.0;
-  glfwGetCursorPos(window_, &x, &y);
+  const double x = controller_->cursorX(), y = controller_->cursorY();
   if (toolSettings_.tool == Tool::Knife) {
     draw->AddLine(ImVec2(float(x) - 8, float(y) + 8), ImVec2(float(x) + 8, float(y) - 8),
                   IM_COL32(255, 80, 60, 255), 2.0f);
@@ -726,6 +837,7 @@ void SculptApp::drawDialogs() {
 void SculptApp::drawUi() {
   drawMenu();
   drawToolsPanel();
+  drawScenePanel();
   drawOverlay();
   drawCursor();
   drawDialogs();
@@ -775,6 +887,7 @@ void SculptApp::run() {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     renderer_.draw(camera_, fbWidth, fbHeight, RenderOptions{wireframe_, 7.0f});
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    takeScreenshot(fbWidth, fbHeight);
     glfwSwapBuffers(window_);
     autosave();
   }

@@ -1,5 +1,6 @@
 #include "app/snapshot_renderer.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -14,7 +15,9 @@ SnapshotRenderer::SnapshotRenderer(int width, int height) : width_(width), heigh
 
 void SnapshotRenderer::write(const OrbitCamera& camera, const std::filesystem::path& file) {
   context_->bind();
-  renderer_.draw(camera, width_, height_);
+  // Anchor dots about as large relative to the image as in the window.
+  renderer_.draw(camera, width_, height_,
+                 RenderOptions{false, std::max(2.0f, static_cast<float>(width_) / 320.0f)});
   writePng(file.string(), width_, height_, context_->readPixels());
 }
 

@@ -18,6 +18,9 @@ class SnapshotRenderer {
   // Throws std::runtime_error (with the reason) when no offscreen context can be made.
   SnapshotRenderer(int width, int height);
   void setMesh(const RenderMesh& mesh) { renderer_.setMesh(mesh); }
+  void setPoints(const std::vector<Vec3>& points, const Vec3& color) {
+    renderer_.setPoints(points, color);
+  }
   // Renders the mesh from `camera` and writes the PNG atomically (OutputError on failure).
   void write(const OrbitCamera& camera, const std::filesystem::path& file);
 

@@ -47,6 +47,9 @@ class ToolController {
   // A tool in use when the window loses the mouse (or an undo comes) ends cleanly.
   void cancelStroke();
   bool strokeActive() const { return active_ != Active::None; }
+  // The last cursor position it was given (window pixels).
+  double cursorX() const { return x_; }
+  double cursorY() const { return y_; }
 
   // The surface point under the cursor (for the brush cursor), picked against the current
   // surface through a BVH kept in step with it.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "solver/atomic_file.h"
+
 namespace galsculpt {
 
 SculptSession::SculptSession(const SceneDescription& scene, const TetMesh& mesh)
@@ -216,7 +218,14 @@ std::vector<ToolEvent> SculptSession::recordingSoFar() const {
 }
 
 void SculptSession::saveRecording(const std::filesystem::path& file) const {
-  writePlaybackScript(file, scene_.file, sim_->frame(), recordingSoFar());
+  std::filesystem::path scene = scene_.file;
+  if (sceneEdited_) {
+    scene = file;
+    scene.replace_extension(".scene.json");
+    const std::string text = scene_.source.dump(1) + "\n";
+    writeFileAtomically(scene, [&](std::ostream& out) { out << text; });
+  }
+  writePlaybackScript(file, scene, sim_->frame(), recordingSoFar());
 }
 
 void SculptSession::load(const SimulationSnapshot& state, std::vector<ToolEvent> recording) {

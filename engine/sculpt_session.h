@@ -27,6 +27,9 @@ class SculptSession {
   Simulation& simulation() { return *sim_; }
   const Simulation& simulation() const { return *sim_; }
   const SceneDescription& scene() const { return scene_; }
+  // The scene was edited in the app (scene_edit.h): a saved recording then brings its scene
+  // along (RECORDING.scene.json beside it), since the scene file no longer describes it.
+  void markSceneEdited() { sceneEdited_ = true; }
 
   // Starts an undoable action (a stroke from press to release, a reset): the state now is
   // what undo returns to. Ends a brush stroke still held.
@@ -95,6 +98,7 @@ class SculptSession {
   std::deque<Step> undo_, redo_;
   std::size_t historyBytes_ = 0, historyBudget_ = std::size_t(1) << 30;
   bool dirty_ = false;
+  bool sceneEdited_ = false;
 };
 
 }  // namespace galsculpt

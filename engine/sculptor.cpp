@@ -35,7 +35,9 @@ Vec3 Symmetry::direction(const Vec3& d) const {
   return q;
 }
 
-const char* brushName(BrushKind kind) { return kBrushNames[static_cast<int>(kind)]; }
+const char* brushName(BrushKind kind) {
+  return kBrushNames[static_cast<int>(kind)];
+}
 
 BrushKind brushFromName(const std::string& name) {
   for (int i = 0; i < 5; ++i)
@@ -103,8 +105,7 @@ void Sculptor::moveBrush(const Vec3& center, const Vec3& normal) {
     if (stroke_.kind != BrushKind::Grab || side.anchor < 0) continue;
     const Vec3 offset = side.center - side.startCenter;
     std::vector<Vec3> targets(side.vertices.size());
-    for (size_t i = 0; i < side.vertices.size(); ++i)
-      targets[i] = side.start[i] + side.weights[i] * offset;
+    for (size_t i = 0; i < side.vertices.size(); ++i) targets[i] = side.start[i] + offset;
     sim_.setAnchorTargets(side.anchor, targets);
   }
 }

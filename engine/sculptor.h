@@ -3,11 +3,14 @@
 // symmetry plane. The app drives it from the mouse, playback from scripts: both make the same
 // calls at the same frames, so a recorded session replays exactly (engine/playback.h).
 //
-// Brushes act through the physics, never on the surface alone: they hold the vertices under the
-// brush (Dirichlet anchors) and move them; the solver moves the rest, so volume is kept where
-// the material keeps it, clay keeps a dent and rubber springs back once the brush lets go.
-//   - grab: the vertices within the radius (of the piece under the cursor) follow the cursor,
-//     each by the falloff weight w = (1 - (d / r)^2)^2 of its distance d from the centre;
+// Brushes act through the physics, never on the surface alone: they hold the vertices under
+// the brush (Dirichlet anchors) and move them; the solver moves the rest, so volume is kept
+// where the material keeps it, clay keeps a dent and rubber springs back once the brush lets
+// go. The shaping brushes weigh each vertex by w = (1 - (d / r)^2)^2 of its distance d from
+// the centre.
+//   - grab: the vertices within the radius (of the piece under the cursor) follow the cursor
+//     together, as if held in a hand; the falloff around them is the physics' (a falloff imposed
+//     inside the held region would strain it and, on a brittle body, tear it there);
 //   - push / pull: while the button is held, each frame moves the vertices under the brush by
 //     w * strength * dt against / along the surface normal;
 //   - inflate: the same, each vertex away from a point one radius below the surface;
@@ -40,11 +43,11 @@ BrushKind brushFromName(const std::string& name);
 
 struct BrushStroke {
   BrushKind kind = BrushKind::Grab;
-  Vec3 center = Vec3::Zero();  // on the surface, current positions
-  Vec3 normal = Vec3::UnitY(); // outward surface normal at the centre
-  double radius = 0.01;        // m
-  double strength = 0.1;       // m/s for push, pull, inflate and pinch; unused by grab
-  int seed = -1;               // a vertex of the piece to act on; -1: the vertex nearest centre
+  Vec3 center = Vec3::Zero();   // on the surface, current positions
+  Vec3 normal = Vec3::UnitY();  // outward surface normal at the centre
+  double radius = 0.01;         // m
+  double strength = 0.1;        // m/s for push, pull, inflate and pinch; unused by grab
+  int seed = -1;                // a vertex of the piece to act on; -1: the vertex nearest centre
   Symmetry symmetry;
 };
 

@@ -244,5 +244,26 @@ TEST(AppUi, TheAppsRecordingReplaysToTheSavedState) {
   EXPECT_EQ(playback.camera()->yaw, run.project.camera->yaw) << "the orbit was recorded";
 }
 
+// The Scene settings panel: a bad value is refused with its JSON path and the session stays;
+// a good one restarts the simulation with it, and the recording brings the edited scene along.
+TEST(AppUi, SceneSettingsRestartTheSimulationAndTravelWithTheRecording) {
+  test::TempDir dir;
+  const UiRun run = runApp(dir, std::string(R"({"command": "preset", "argument": "rubber"},
+      {"command": "grid", "argument": "all/50"}, {"key": "G"}, {"move": [0.5, 0.45]},
+      {"press": "left"}, {"move": [0.56, 0.38]}, )") +
+                                    kSteps + R"(, {"release": "left"})");
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  EXPECT_NE(run.log.find("$.solver.grid"), std::string::npos) << run.log;
+  EXPECT_NE(run.log.find("restarted with the new settings"), std::string::npos) << run.log;
+  EXPECT_EQ(run.project.scene.material.preset, "rubber");
+  ASSERT_TRUE(fs::exists(dir / "recording.scene.json"));
+  const PlaybackScript script = loadPlaybackScript(run.recording);
+  EXPECT_EQ(script.scene.material.preset, "rubber");
+  Simulation sim(script.scene, run.project.mesh);
+  Playback playback(script, sim);
+  while (!playback.finished()) playback.advance();
+  EXPECT_TRUE(sim.state().x == run.project.state.x) << "the edited scene replays exactly";
+}
+
 }  // namespace
 }  // namespace galsculpt
