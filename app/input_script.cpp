@@ -8,9 +8,10 @@ namespace galsculpt {
 namespace {
 
 const std::vector<std::string> kCommands = {
-    "open",     "save_project", "save_recording", "export", "export_tets", "undo",   "redo",
-    "reset",    "play",         "pause",          "step",   "tool",        "radius", "strength",
-    "symmetry", "view",         "screenshot",     "preset", "grid"};
+    "open",   "save_project", "save_recording", "export", "export_tets", "undo",
+    "redo",   "reset",        "play",           "pause",  "step",        "tool",
+    "radius", "strength",     "symmetry",       "view",   "screenshot",  "preset",
+    "grid",   "recover",      "frame_piece"};
 
 MouseButton buttonNamed(JsonObject& o, const std::string& key) {
   const std::string name = o.string(key, "left", {"left", "right", "middle"});

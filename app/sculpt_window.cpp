@@ -76,6 +76,7 @@ class SculptApp {
   void drawOverlay();
   void drawScenePanel();
   void applySceneSettings();
+  void frameHoveredPiece();
   void drawDialogs();
   void drawCursor();
   void autosave();
@@ -105,6 +106,7 @@ class SculptApp {
   SurfaceStyle style_;
   bool wireframe_ = false;
   bool autoStressScale_ = true;
+  int windowWidth_ = 1, windowHeight_ = 1;
   SceneSettings editing_;  // the Scene panel's values, applied by restarting the simulation
   char grid_[64] = {};
   bool playing_ = true;
@@ -289,7 +291,11 @@ void SculptApp::handleKey(int key, bool ctrl, bool shift) {
       toolSettings_.symmetry = !toolSettings_.symmetry;
       break;
     case 'F':
-      camera_.frame(boundingBox(session_->simulation().state().x));
+      if (shift) {
+        frameHoveredPiece();
+      } else {
+        camera_.frame(boundingBox(session_->simulation().state().x));
+      }
       break;
     case '1':
       camera_.viewFront();
@@ -394,6 +400,12 @@ void SculptApp::runCommand(const std::string& command, const std::string& argume
     } else if (command == "grid") {
       std::snprintf(grid_, sizeof grid_, "%s", argument.c_str());
       applySceneSettings();
+    } else if (command == "recover") {  // as the Recover button of the crash-recovery offer
+      const std::vector<fs::path> orphans = recovery_->orphans();
+      if (orphans.empty()) throw std::runtime_error("nothing to recover");
+      startLoading(orphans.front());
+    } else if (command == "frame_piece") {
+      frameHoveredPiece();
     } else if (command == "screenshot") {
       pendingScreenshot_ = argument;  // taken once this frame is drawn, panels included
     } else if (command == "view") {
@@ -648,6 +660,23 @@ void SculptApp::drawOverlay() {
   ImGui::End();
 }
 
+void SculptApp::frameHoveredPiece() {
+  // Shift+F: frame the piece under the cursor (after cuts, one fragment fills the view).
+  const Simulation& sim = session_->simulation();
+  Vec3 origin, direction;
+  camera_.ray(controller_->cursorX(), controller_->cursorY(), std::max(1, windowWidth_),
+              std::max(1, windowHeight_), origin, direction);
+  SurfaceBvh bvh;
+  bvh.build(sim.surface().mesh);
+  const std::optional<RayHit> hit = bvh.intersect(sim.surface().mesh, origin, direction);
+  if (!hit) return;
+  const int piece = sim.pieceOf(sim.surface().cellVertex[hit->face]);
+  std::vector<Vec3> points;
+  for (int v = 0; v < sim.model().numVertices(); ++v)
+    if (sim.pieceOf(v) == piece) points.push_back(sim.state().x[v]);
+  camera_.frame(boundingBox(points));
+}
+
 void SculptApp::applySceneSettings() {
   try {
     SceneSettings s = editing_;
@@ -876,6 +905,8 @@ void SculptApp::run() {
     int width = 1, height = 1;
     glfwGetWindowSize(window_, &width, &height);
     if (controller_) controller_->setViewport(width, height);
+    windowWidth_ = width;
+    windowHeight_ = height;
     if (controller_) controller_->settings = toolSettings_;
     processInput();
     advanceSimulation();

@@ -161,7 +161,7 @@ PlaybackScript loadPlaybackScript(const fs::path& file) {
   const auto events = o.array("events");
   for (size_t i = 0; i < events.size(); ++i) {
     s.events.push_back(
-        readEvent(JsonObject(events[i], "$.events[" + std::to_string(i) + "]", file.string())));
+        parseToolEvent(events[i], "$.events[" + std::to_string(i) + "]", file.string()));
   }
   std::stable_sort(s.events.begin(), s.events.end(),
                    [](const ToolEvent& a, const ToolEvent& b) { return a.frame < b.frame; });
@@ -185,7 +185,9 @@ PlaybackScript loadPlaybackScript(const fs::path& file) {
 
 ToolEvent parseToolEvent(const nlohmann::json& value, const std::string& path,
                          const std::string& file) {
-  return readEvent(JsonObject(value, path, file));
+  ToolEvent e = readEvent(JsonObject(value, path, file));
+  e.source = value;
+  return e;
 }
 
 nlohmann::json toolEventJson(const ToolEvent& e) {
@@ -213,7 +215,9 @@ nlohmann::json toolEventJson(const ToolEvent& e) {
       if (e.hold) j["hold"] = true;
       break;
     case ToolEvent::Tool::Anchor:
-      throw std::invalid_argument("anchor events are written by hand, not recorded");
+      // Written by hand in a script the app replayed: kept as written.
+      if (e.source.is_null()) throw std::invalid_argument("an anchor event with no source");
+      return e.source;
     case ToolEvent::Tool::Stroke: {
       j["tool"] = brushName(e.brush);
       j["center"] = point(e.center);

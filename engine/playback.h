@@ -61,6 +61,7 @@ struct ToolEvent {
   bool erase = false;
   Symmetry symmetry;  // knife, stroke and paint
   CameraPose camera;
+  nlohmann::json source;  // the event as read from a file (anchor events are written back so)
 };
 
 struct PlaybackScript {
@@ -86,7 +87,8 @@ ToolEvent parseToolEvent(const nlohmann::json& value, const std::string& path,
 // the app calls it as the user acts, playback as the script says.
 class ToolApplier {
  public:
-  ToolApplier(Simulation& sim, std::string file) : sim_(sim), sculptor_(sim), file_(std::move(file)) {}
+  ToolApplier(Simulation& sim, std::string file)
+      : sim_(sim), sculptor_(sim), file_(std::move(file)) {}
   // Before each frame, in this order: releaseExpired, apply (the events due), beforeStep.
   void releaseExpired(int frame);  // script brushes whose drag is over let go
   void apply(const ToolEvent& e, int frame);

@@ -25,7 +25,7 @@ void SculptSession::beginAction(const std::string& label) {
   Step s;
   s.label = label;
   s.state = sim_->snapshot();
-  s.recordMark = recording_.size();
+  s.keep = recording_.size();
   historyBytes_ += s.bytes();
   undo_.push_back(std::move(s));
   for (const Step& r : redo_) historyBytes_ -= r.bytes();
@@ -122,10 +122,10 @@ FrameMetrics SculptSession::step() {
 
 void SculptSession::reset() {
   beginAction("reset");
-  Step& step = undo_.back();
-  step.clearsRecording = true;
-  step.replaced = std::move(recording_);
-  historyBytes_ += step.replaced.size() * sizeof(ToolEvent);
+  Step& step = undo_.back();  // undoing the reset brings the whole recording back
+  step.keep = 0;
+  step.append = std::move(recording_);
+  historyBytes_ += step.append.size() * sizeof(ToolEvent);
   tools_ = std::make_unique<ToolApplier>(*sim_, scene_.file.string());
   sim_->restore(initial_);
   recording_.clear();
@@ -142,56 +142,39 @@ const std::string& SculptSession::redoLabel() const {
   return redo_.empty() ? none : redo_.back().label;
 }
 
-bool SculptSession::undo() {
-  endStroke();
-  if (undo_.empty()) return false;
-  Step back = std::move(undo_.back());
-  undo_.pop_back();
-  historyBytes_ -= back.bytes();
-  Step forward;
-  forward.label = back.label;
-  forward.state = sim_->snapshot();
-  forward.recordMark = back.recordMark;
-  forward.clearsRecording = back.clearsRecording;
-  if (back.clearsRecording) {
-    forward.redone = std::move(recording_);
-    recording_ = std::move(back.replaced);
-  } else {
-    forward.redone.assign(recording_.begin() + static_cast<long>(back.recordMark),
-                          recording_.end());
-    recording_.resize(back.recordMark);
-  }
-  sim_->restore(back.state);
+SculptSession::Step SculptSession::travel(Step target) {
+  Step back;
+  back.label = target.label;
+  back.state = sim_->snapshot();
+  back.keep = std::min(target.keep, recording_.size());
+  back.append.assign(recording_.begin() + static_cast<long>(back.keep), recording_.end());
+  recording_.resize(back.keep);
+  recording_.insert(recording_.end(), std::make_move_iterator(target.append.begin()),
+                    std::make_move_iterator(target.append.end()));
+  sim_->restore(target.state);
   tools_ = std::make_unique<ToolApplier>(*sim_, scene_.file.string());
-  historyBytes_ += forward.bytes();
-  redo_.push_back(std::move(forward));
   dirty_ = true;
+  return back;
+}
+
+bool SculptSession::moveAcross(std::deque<Step>& from, std::deque<Step>& to) {
+  endStroke();
+  if (from.empty()) return false;
+  Step target = std::move(from.back());
+  from.pop_back();
+  historyBytes_ -= target.bytes();
+  Step back = travel(std::move(target));
+  historyBytes_ += back.bytes();
+  to.push_back(std::move(back));
   return true;
 }
 
+bool SculptSession::undo() {
+  return moveAcross(undo_, redo_);
+}
+
 bool SculptSession::redo() {
-  endStroke();
-  if (redo_.empty()) return false;
-  Step forward = std::move(redo_.back());
-  redo_.pop_back();
-  historyBytes_ -= forward.bytes();
-  Step back;
-  back.label = forward.label;
-  back.state = sim_->snapshot();
-  back.recordMark = recording_.size();
-  back.clearsRecording = forward.clearsRecording;
-  sim_->restore(forward.state);
-  tools_ = std::make_unique<ToolApplier>(*sim_, scene_.file.string());
-  if (forward.clearsRecording) {
-    back.replaced = std::move(recording_);
-    recording_ = std::move(forward.redone);
-  } else {
-    recording_.insert(recording_.end(), forward.redone.begin(), forward.redone.end());
-  }
-  historyBytes_ += back.bytes();
-  undo_.push_back(std::move(back));
-  dirty_ = true;
-  return true;
+  return moveAcross(redo_, undo_);
 }
 
 void SculptSession::setHistoryBudget(std::size_t bytes) {
@@ -226,6 +209,26 @@ void SculptSession::saveRecording(const std::filesystem::path& file) const {
     writeFileAtomically(scene, [&](std::ostream& out) { out << text; });
   }
   writePlaybackScript(file, scene, sim_->frame(), recordingSoFar());
+}
+
+void SculptSession::replay(const PlaybackScript& script,
+                           const std::function<void(int, int)>& progress) {
+  tools_ = std::make_unique<ToolApplier>(*sim_, script.file.string());
+  for (const ToolEvent& e : script.events) {
+    if (e.tool == ToolEvent::Tool::Anchor && e.add)
+      sim_->selectVertices(e.shape, script.file.string(), e.path + ".anchor");
+  }
+  // The same order as Playback::advance, so the state is the one `play` reaches.
+  while (sim_->frame() < script.frames) {
+    const int frame = sim_->frame();
+    tools_->releaseExpired(frame);
+    for (const ToolEvent& e : script.events) tools_->apply(e, frame);
+    tools_->beforeStep();
+    sim_->advance();
+    if (progress) progress(sim_->frame(), script.frames);
+  }
+  recording_ = script.events;
+  dirty_ = true;
 }
 
 void SculptSession::load(const SimulationSnapshot& state, std::vector<ToolEvent> recording) {

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -67,6 +68,10 @@ class SculptSession {
   std::vector<ToolEvent> recordingSoFar() const;
   // Writes it as a playback script of the frames run so far (docs/scripts.md).
   void saveRecording(const std::filesystem::path& file) const;
+  // Runs a playback script from the scene's start (a fresh session of its scene) and keeps its
+  // events as the recording, so sculpting goes on from where the script ends; `progress` gets
+  // each frame. Throws InputError for anchors that select nothing (as `play` does).
+  void replay(const PlaybackScript& script, const std::function<void(int, int)>& progress = {});
   // A project reopened: its state and recording replace the current ones (history cleared).
   void load(const SimulationSnapshot& state, std::vector<ToolEvent> recording);
   // Whether anything changed since the last markSaved (for autosave and the title bar).
@@ -74,18 +79,17 @@ class SculptSession {
   void markSaved() { dirty_ = false; }
 
  private:
+  // One undo or redo entry: the state to go to, and the recording there: the current one
+  // cut to `keep` events, then `append`. Going there gives the entry that comes back.
   struct Step {
     std::string label;
     SimulationSnapshot state;
-    std::size_t recordMark = 0;     // recording size at that state
-    std::vector<ToolEvent> redone;  // redo entries: the events the step brings back
-    // A reset empties the recording: its undo entry keeps the recording it replaced.
-    bool clearsRecording = false;
-    std::vector<ToolEvent> replaced;
-    std::size_t bytes() const {
-      return state.bytes() + (redone.size() + replaced.size()) * sizeof(ToolEvent);
-    }
+    std::size_t keep = 0;
+    std::vector<ToolEvent> append;
+    std::size_t bytes() const { return state.bytes() + append.size() * sizeof(ToolEvent); }
   };
+  Step travel(Step target);
+  bool moveAcross(std::deque<Step>& from, std::deque<Step>& to);
   void record(ToolEvent e);
   void trimHistory();
 

@@ -33,6 +33,18 @@ OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int 
     return opened;
   }
   const std::string ext = file.extension().string();
+  if (ext == ".json" && parseJsonFile(file).contains("events")) {
+    // A playback script: its scene, replayed to the script's end, then sculpted on.
+    const PlaybackScript script = loadPlaybackScript(file);
+    const TetMesh mesh = loadSceneMesh(script.scene, progress);
+    opened.session = std::make_unique<SculptSession>(script.scene, mesh);
+    opened.session->replay(script, [&](int frame, int frames) {
+      if (progress && (frame % 10 == 0 || frame == frames))
+        progress("replaying " + file.filename().string() + ": frame " + std::to_string(frame) +
+                 " of " + std::to_string(frames));
+    });
+    return opened;
+  }
   SceneDescription scene = ext == ".json" ? loadScene(file) : sceneForMesh(file, importTets);
   if (ext != ".json" && meshFileKind(file) == MeshFileKind::Unknown)
     throw InputError(file.string() + ": not a project, scene or mesh file this version reads");

@@ -1,4 +1,5 @@
-// Opening anything as a sculpting session: a project (.gsproj), a scene (.json), a tet mesh
+// Opening anything as a sculpting session: a project (.gsproj), a scene (.json), a playback
+// script (.json with "events": replayed to its end, then sculpted on), a tet mesh
 // (.node/.ele/.msh) or a surface mesh (.obj/.ply/.stl/.gltf/.glb/.off, tetrahedralized with
 // TetGen). A bare mesh becomes a scene of its own: clay, no gravity, nothing anchored, the
 // multigrid solver; a surface is meshed to about `importTets` tets.

@@ -4,6 +4,9 @@
 // the effect on the mesh.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+
+#include <cerrno>
 #include <cstdlib>
 
 #include "engine/playback.h"
@@ -263,6 +266,63 @@ TEST(AppUi, SceneSettingsRestartTheSimulationAndTravelWithTheRecording) {
   Playback playback(script, sim);
   while (!playback.finished()) playback.advance();
   EXPECT_TRUE(sim.state().x == run.project.state.x) << "the edited scene replays exactly";
+}
+
+// A playback script opens in the window: replayed to its end, then sculpted on; a bad one is
+// reported and the app keeps running.
+TEST(AppUi, OpensAPlaybackScriptReplayedAndRefusesABadOne) {
+  test::TempDir dir;
+  const fs::path cut = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scripts" / "sphere_cut.json";
+  test::writeText(dir / "bad_script.json",
+                  "{\"scene\": \"" + kDefaultScene.string() +
+                      "\", \"frames\": 5, \"events\": [{\"tool\": \"saw\"}]}");
+  const UiRun run = runApp(dir,
+                           "{\"command\": \"open\", \"argument\": \"" +
+                               (dir / "bad_script.json").string() + "\"}, {\"wait\": 2}",
+                           cut);
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  EXPECT_NE(run.log.find("bad_script.json: $.events[0].tool"), std::string::npos) << run.log;
+  const PlaybackScript script = loadPlaybackScript(cut);
+  EXPECT_EQ(run.project.state.frame, script.frames) << "the script ran to its end";
+  EXPECT_EQ(pieces(run.project), 2) << "its knife cut the ball in two";
+  ASSERT_GE(run.project.recording.size(), script.events.size()) << "its events start the recording";
+  EXPECT_EQ(run.project.recording[0].tool, ToolEvent::Tool::Knife);
+}
+
+TEST(AppUi, ExportsFromTheMenuCommandsAreWritten) {
+  test::TempDir dir;
+  const UiRun run = runApp(dir, R"({"key": "K"}, {"move": [0.2, 0.52]}, {"press": "left"},
+      {"move": [[0.5, 0.52], [0.8, 0.52]]}, {"release": "left"}, {"command": "step"}, {"wait": 1},
+      {"command": "export", "argument": ")" +
+                                    (dir / "cut.glb").string() + R"("},
+      {"command": "export_tets", "argument": ")" +
+                                    (dir / "cut").string() + R"("})");
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  EXPECT_TRUE(fs::exists(dir / "cut.glb"));
+  for (const char* ext : {".node", ".ele", ".face", ".damage", ".vtk"})
+    EXPECT_TRUE(fs::exists(dir / (std::string("cut") + ext))) << ext;
+}
+
+// A file left in the recovery folder by a crashed run comes back as it was autosaved.
+TEST(AppUi, RecoversTheAutosaveOfACrashedRun) {
+  test::TempDir dir;
+  {
+    const SceneDescription scene = loadScene(kDefaultScene);
+    SculptSession crashed(scene, loadSceneMesh(scene));
+    for (int f = 0; f < 4; ++f) crashed.step();
+    crashed.knife(Vec3(0.02, 0.3, -0.3), Vec3(0.02, 0.3, 0.3), Vec3(0.02, -0.3, -0.3),
+                  Vec3(0.02, -0.3, 0.3), {});
+    crashed.step();
+    long dead = 4000000;
+    while (kill(static_cast<pid_t>(dead), 0) == 0 || errno == EPERM) ++dead;
+    fs::create_directories(dir / "recovery");
+    writeProject(dir / "recovery" / ("recovery-" + std::to_string(dead) + ".gsproj"), crashed,
+                 std::nullopt);
+  }
+  const UiRun run = runApp(dir, R"({"command": "recover"}, {"wait": 3})");
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  EXPECT_EQ(run.project.state.frame, 5);
+  EXPECT_EQ(pieces(run.project), 2);
 }
 
 }  // namespace

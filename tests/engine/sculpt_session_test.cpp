@@ -385,5 +385,37 @@ TEST(SculptSession, ARecordedSessionReplaysExactly) {
   EXPECT_EQ(playback.camera()->distance, 0.4);
 }
 
+// A script replayed into a session (opening it in the app) reaches the state `play` reaches,
+// keeps its events - hand-written anchor events too - and saves them back replayable.
+TEST(SculptSession, AReplayedScriptContinuesAndSavesBackExactly) {
+  test::TempDir dir;
+  test::writeText(dir / "s.json", "{\"scene\": \"" +
+                                      (kAssets / "scenes" / "default.json").string() +
+                                      R"(", "frames": 6, "events": [
+      {"frame": 1, "tool": "anchor", "name": "side", "anchor": {"sphere": {"center": [0.1, 0, 0], "radius": 0.03}}},
+      {"frame": 2, "tool": "knife", "from": [[0.03, 0.3, -0.3], [0.03, 0.3, 0.3]],
+       "to": [[0.03, -0.3, -0.3], [0.03, -0.3, 0.3]]},
+      {"frame": 4, "tool": "anchor", "action": "remove", "name": "side"}]})");
+  const PlaybackScript script = loadPlaybackScript(dir / "s.json");
+  SculptSession s(script.scene, clayBall().mesh);
+  int reported = 0;
+  s.replay(script, [&](int, int) { ++reported; });
+  EXPECT_EQ(reported, 6);
+  Simulation played(script.scene, clayBall().mesh);
+  Playback playback(script, played);
+  while (!playback.finished()) playback.advance();
+  expectSameState(s.simulation().snapshot(), played.snapshot());
+  // Sculpt on, save, replay the saved recording from scratch.
+  s.beginAction("paint");
+  s.paint(Vec3(-0.1, 0.0, 0.0), 0.02, -1, false, {});
+  s.step();
+  s.saveRecording(dir / "continued.json");
+  const PlaybackScript continued = loadPlaybackScript(dir / "continued.json");
+  Simulation again(continued.scene, clayBall().mesh);
+  Playback replay(continued, again);
+  while (!replay.finished()) replay.advance();
+  expectSameState(again.snapshot(), s.simulation().snapshot());
+}
+
 }  // namespace
 }  // namespace galsculpt
