@@ -35,10 +35,12 @@ int keyNamed(JsonObject& o) {
 
 }  // namespace
 
-std::vector<InputStep> loadInputScript(const std::filesystem::path& file) {
+InputScript loadInputScript(const std::filesystem::path& file) {
   const nlohmann::json root = parseJsonFile(file);
   JsonObject top(root, "$", file.string());
-  std::vector<InputStep> steps;
+  InputScript script;
+  std::vector<InputStep>& steps = script.steps;
+  script.realtime = top.boolean("realtime", false);
   const auto list = top.array("steps");
   if (!top.has("steps")) top.fail("steps", "is required (a list of input steps)");
   top.rejectUnknownKeys();
@@ -85,7 +87,7 @@ std::vector<InputStep> loadInputScript(const std::filesystem::path& file) {
     o.rejectUnknownKeys();
     steps.push_back(std::move(s));
   }
-  return steps;
+  return script;
 }
 
 }  // namespace galsculpt

@@ -28,7 +28,14 @@ struct InputStep {
 
 constexpr int kKeyEscape = 256;
 
+struct InputScript {
+  std::vector<InputStep> steps;
+  // false: each frame waits for its simulation step (frame counts are exact, for tests);
+  // true: the simulation runs on its worker thread as with a user at the mouse.
+  bool realtime = false;
+};
+
 // Throws InputError naming the file and the JSON path of a bad step.
-std::vector<InputStep> loadInputScript(const std::filesystem::path& file);
+InputScript loadInputScript(const std::filesystem::path& file);
 
 }  // namespace galsculpt

@@ -83,6 +83,10 @@ class SculptApp {
   void fail(const std::string& message);
   void report(const std::string& message);
   bool busy() const { return loading_.valid(); }
+  bool stepInFlight() const { return stepping_.valid(); }
+  bool navigationOnly(const InputEvent& e) const;
+  void finishStep();
+  void collectStep();
   void finish();
 
   GLFWwindow* window_;
@@ -115,6 +119,9 @@ class SculptApp {
   SurfaceStyle shownStyle_;
   std::vector<int> anchored_;
 
+  // The frame being computed on a worker thread, if any.
+  std::future<FrameMetrics> stepping_;
+
   // Overlay figures.
   FrameMetrics metrics_;
   double msSurface_ = 0.0;
@@ -136,6 +143,7 @@ class SculptApp {
   size_t scriptNext_ = 0;
   int scriptWait_ = 0;
   bool scripted_ = false;
+  bool realtime_ = false;  // a script that lets frames run on the worker as a user would
   std::string pendingScreenshot_;
   void takeScreenshot(int width, int height);
 };
@@ -167,7 +175,9 @@ bool SculptApp::init(std::string* error) {
     askRecovery_ = !recoverable_.empty();
   }
   if (options_.inputScript) {
-    script_ = loadInputScript(*options_.inputScript);  // bad scripts fail before the window
+    const InputScript script = loadInputScript(*options_.inputScript);
+    script_ = script.steps;
+    realtime_ = script.realtime;
     scripted_ = true;
   }
   startLoading(options_.file);
@@ -202,6 +212,7 @@ void SculptApp::startLoading(const fs::path& file) {
 
 void SculptApp::finishLoading() {
   if (!busy() || loading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+  finishStep();  // the old session's frame ends before the new session replaces it
   try {
     adopt(loading_.get(), loadingFile_);
   } catch (const std::exception& e) {
@@ -320,6 +331,8 @@ void SculptApp::handleKey(int key, bool ctrl, bool shift) {
 
 void SculptApp::handleEvent(const InputEvent& e) {
   const ImGuiIO& io = ImGui::GetIO();
+  // A key may have changed the tool since the last event of this same frame.
+  if (controller_) controller_->settings = toolSettings_;
   switch (e.kind) {
     case InputEvent::Kind::Move:
       if (controller_) controller_->mouseMove(e.x, e.y);
@@ -339,6 +352,7 @@ void SculptApp::handleEvent(const InputEvent& e) {
 }
 
 void SculptApp::runCommand(const std::string& command, const std::string& argument) {
+  finishStep();  // commands act between frames
   try {
     if (command == "open") {
       startLoading(argument);
@@ -469,25 +483,61 @@ void SculptApp::runScriptStep() {
   }
 }
 
+bool SculptApp::navigationOnly(const InputEvent& e) const {
+  switch (e.kind) {
+    case InputEvent::Kind::Scroll:
+      return true;
+    case InputEvent::Kind::Move:
+      return controller_->navigating();
+    case InputEvent::Kind::Button:
+      return e.pressed ? e.button != MouseButton::Left || toolSettings_.tool == Tool::Navigate
+                       : controller_->navigating();
+    case InputEvent::Kind::Key:
+      return false;
+  }
+  return false;
+}
+
 void SculptApp::processInput() {
   std::vector<InputEvent> events;
   events.swap(queue_);
-  for (const InputEvent& e : events) handleEvent(e);
+  size_t i = 0;
+  // While a frame is being computed only navigation goes through; the first event that would
+  // touch the session waits, with everything after it, for the frame to finish (so tools act
+  // between frames, exactly as recorded).
+  for (; i < events.size(); ++i) {
+    if (stepInFlight() && (!controller_ || !navigationOnly(events[i]))) break;
+    handleEvent(events[i]);
+  }
+  queue_.assign(events.begin() + static_cast<long>(i), events.end());
+}
+
+void SculptApp::finishStep() {
+  if (stepping_.valid()) metrics_ = stepping_.get();
+}
+
+void SculptApp::collectStep() {
+  if (stepInFlight() && stepping_.wait_for(std::chrono::seconds(0)) == std::future_status::ready)
+    finishStep();
 }
 
 void SculptApp::advanceSimulation() {
-  if (!session_ || busy()) return;
-  if (playing_ || stepOnce_) {
-    metrics_ = session_->step();
-    stepOnce_ = false;
-  }
-  const CameraPose pose = controller_->pose();
-  session_->setCamera(pose);
+  // Launch only: a finished frame is collected at the top of the loop, before input, so input
+  // that waited for it goes through before the next frame starts.
+  if (stepInFlight() || !session_ || busy()) return;
+  session_->setCamera(controller_->pose());
   controller_->settings = toolSettings_;
+  if (playing_ || stepOnce_) {
+    stepOnce_ = false;
+    // The frame runs on a worker thread: the window keeps drawing and navigating meanwhile.
+    SculptSession* session = session_.get();
+    stepping_ = std::async(std::launch::async, [session] { return session->step(); });
+    if (scripted_ && !realtime_) finishStep();  // scripted input counts frames exactly
+  }
 }
 
 void SculptApp::updateScene() {
-  if (!session_) return;
+  if (!session_ || stepInFlight()) return;  // the last frame's surface stays on screen
   const Simulation& sim = session_->simulation();
   const bool moved =
       sim.generation() != shownGeneration_ || sim.state().damageRevision != shownDamage_;
@@ -570,8 +620,10 @@ void SculptApp::drawMenu() {
     ImGui::MenuItem("Wireframe", "W", &wireframe_);
     ImGui::MenuItem("Tint crack faces", "C", &style_.tintCracks);
     ImGui::Separator();
-    if (ImGui::MenuItem("Frame", "F") && session_)
+    if (ImGui::MenuItem("Frame", "F") && session_) {
+      finishStep();
       camera_.frame(boundingBox(session_->simulation().state().x));
+    }
     if (ImGui::MenuItem("Front", "1")) camera_.viewFront();
     if (ImGui::MenuItem("Side", "3")) camera_.viewSide();
     if (ImGui::MenuItem("Top", "7")) camera_.viewTop();
@@ -641,7 +693,7 @@ void SculptApp::drawOverlay() {
     ImGui::Text("material: %s (%s)", scene.material.preset.c_str(), scene.material.model.c_str());
     ImGui::Text("solver: %s %s", scene.solver.type.c_str(), scene.solver.grid.c_str());
     ImGui::Separator();
-    ImGui::Text("frame %d  (%s)", sim.frame(), playing_ ? "playing" : "paused");
+    ImGui::Text("frame %d  (%s)", metrics_.frame, playing_ ? "playing" : "paused");
     ImGui::Text("ms: total %.1f  elements %.1f  solve %.1f", metrics_.msTotal, metrics_.msElements,
                 metrics_.msSolve);
     ImGui::Text("    fracture %.1f  plastic %.1f  surface %.1f", metrics_.msFracture,
@@ -678,6 +730,7 @@ void SculptApp::frameHoveredPiece() {
 }
 
 void SculptApp::applySceneSettings() {
+  finishStep();
   try {
     SceneSettings s = editing_;
     s.solver.grid = grid_;
@@ -757,6 +810,7 @@ void SculptApp::drawCursor() {
                   IM_COL32(255, 80, 60, 255), 2.0f);
     return;
   }
+  if (stepInFlight()) return;  // no pick while the surface is being recomputed
   const std::optional<RayHit> hit = controller_->hover();
   if (!hit) return;
   // The brush radius on screen: project a point one radius away on the plane facing the camera.
@@ -873,7 +927,7 @@ void SculptApp::drawUi() {
 }
 
 void SculptApp::autosave() {
-  if (!session_ || options_.autosaveSeconds <= 0.0 || !session_->dirty()) return;
+  if (!session_ || stepInFlight() || options_.autosaveSeconds <= 0.0 || !session_->dirty()) return;
   if (Clock::now() - lastAutosave_ < std::chrono::duration<double>(options_.autosaveSeconds))
     return;
   lastAutosave_ = Clock::now();
@@ -885,6 +939,7 @@ void SculptApp::autosave() {
 }
 
 void SculptApp::finish() {
+  finishStep();
   if (session_) {
     if (options_.saveProjectOnExit)
       runCommand("save_project", options_.saveProjectOnExit->string());
@@ -897,6 +952,7 @@ void SculptApp::finish() {
 void SculptApp::run() {
   while (!glfwWindowShouldClose(window_)) {
     glfwPollEvents();
+    collectStep();
     finishLoading();
     runScriptStep();
     ImGui_ImplOpenGL3_NewFrame();

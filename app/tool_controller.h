@@ -47,6 +47,10 @@ class ToolController {
   // A tool in use when the window loses the mouse (or an undo comes) ends cleanly.
   void cancelStroke();
   bool strokeActive() const { return active_ != Active::None; }
+  // Nothing under way but, at most, an orbit or a pan (which touch only the camera).
+  bool navigating() const {
+    return active_ == Active::None || active_ == Active::Orbit || active_ == Active::Pan;
+  }
   // The last cursor position it was given (window pixels).
   double cursorX() const { return x_; }
   double cursorY() const { return y_; }

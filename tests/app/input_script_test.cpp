@@ -10,13 +10,14 @@ namespace {
 
 TEST(InputScript, ReadsEveryKindOfStep) {
   test::TempDir dir;
-  test::writeText(dir / "s.json", R"({"steps": [
+  test::writeText(dir / "s.json", R"({"realtime": true, "steps": [
     {"wait": 3}, {"move": [0.5, 0.25]}, {"move": [[0.1, 0.2], [0.3, 0.4]]},
     {"press": "left", "shift": true}, {"release": "right"}, {"scroll": -2},
     {"key": "z", "ctrl": true}, {"key": "space"}, {"key": "escape"},
     {"command": "save_project", "argument": "out.gsproj"}]})");
-  const std::vector<InputStep> s = loadInputScript(dir / "s.json");
+  const std::vector<InputStep> s = loadInputScript(dir / "s.json").steps;
   ASSERT_EQ(s.size(), 10u);
+  EXPECT_TRUE(loadInputScript(dir / "s.json").realtime);
   EXPECT_EQ(s[0].kind, InputStep::Kind::Wait);
   EXPECT_EQ(s[0].frames, 3);
   EXPECT_EQ(s[1].points.size(), 1u);
