@@ -91,7 +91,9 @@ SubstepResult substep(const SimModel& model, SimState& state, const StepSettings
   };
   Eigen::VectorXd gradient(3 * n);
   const double modelSize = std::max(boundingBox(model.mesh.vertices).size().norm(), 1e-12);
-  const double weight = std::max(fext.norm(), 1e-12 * mass.sum());
+  // The residual's yardstick: the body's weight, or (without gravity) what it would weigh under
+  // standard gravity - the same number for a body under 1 g.
+  const double weight = std::max(fext.norm(), 9.81 * mass.norm() / std::sqrt(3.0));
 
   // Penalty contact with the colliders posed at the end of the sub-step (colliders.h).
   const double contactTime = state.time + h;
