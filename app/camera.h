@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 
+#include "engine/playback.h"
 #include "solver/tet_mesh.h"
 
 namespace galsculpt {
@@ -31,6 +32,15 @@ struct OrbitCamera {
   Eigen::Vector3d project(const Eigen::Vector3d& point, int width, int height) const;
   // Unit vector the camera looks along.
   Eigen::Vector3d forward() const { return (target - eye()).normalized(); }
+
+  // As scripts and projects record it.
+  CameraPose pose() const { return CameraPose{target, distance, yaw, pitch}; }
+  void setPose(const CameraPose& p) {
+    target = p.target;
+    distance = p.distance;
+    yaw = p.yaw;
+    pitch = p.pitch;
+  }
 
   // Standard views.
   void viewFront() {

@@ -26,10 +26,6 @@ std::string vec(const Vec3& v) {
   return s.str();
 }
 
-nlohmann::json toJson(const Vec3& v) {
-  return {v.x(), v.y(), v.z()};
-}
-
 int infoTet(const fs::path& file, bool json, std::ostream& out) {
   MeshReadReport report;
   const TetMesh mesh = readTetMesh(file, &report);
@@ -42,8 +38,8 @@ int infoTet(const fs::path& file, bool json, std::ostream& out) {
     j["tets"] = s.tets;
     j["edges"] = s.edges;
     j["boundary_faces"] = s.boundaryFaces;
-    j["bbox_min"] = toJson(s.box.min);
-    j["bbox_max"] = toJson(s.box.max);
+    j["bbox_min"] = vec3Json(s.box.min);
+    j["bbox_max"] = vec3Json(s.box.max);
     j["volume"] = s.volume;
     j["quality_min"] = s.minQuality;
     j["quality_mean"] = s.meanQuality;
@@ -90,8 +86,8 @@ int infoSurface(const fs::path& file, bool json, std::ostream& out) {
     j["kind"] = "surface";
     j["vertices"] = mesh.numVertices();
     j["faces"] = mesh.numFaces();
-    j["bbox_min"] = toJson(box.min);
-    j["bbox_max"] = toJson(box.max);
+    j["bbox_min"] = vec3Json(box.min);
+    j["bbox_max"] = vec3Json(box.max);
     j["volume"] = enclosedVolume(mesh);
     j["area"] = surfaceArea(mesh);
     j["watertight"] = watertight;

@@ -73,12 +73,7 @@ class FrameRenderer {
     for (int v : sim.anchoredVertices()) anchored.push_back(sim.state().x[v]);
     snapshots_.setPoints(anchored, kAnchorColor);
     OrbitCamera camera = camera_;
-    if (pose) {
-      camera.target = pose->target;
-      camera.distance = pose->distance;
-      camera.yaw = pose->yaw;
-      camera.pitch = pose->pitch;
-    }
+    if (pose) camera.setPose(*pose);
     snapshots_.write(camera, file);
   }
 

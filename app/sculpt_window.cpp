@@ -110,7 +110,6 @@ class SculptApp {
   SurfaceStyle style_;
   bool wireframe_ = false;
   bool autoStressScale_ = true;
-  int windowWidth_ = 1, windowHeight_ = 1;
   SceneSettings editing_;  // the Scene panel's values, applied by restarting the simulation
   char grid_[64] = {};
   bool playing_ = true;
@@ -225,22 +224,15 @@ void SculptApp::finishLoading() {
 void SculptApp::adopt(OpenedSession opened, const fs::path& file) {
   if (controller_) controller_->cancelStroke();
   session_ = std::move(opened.session);
-  controller_ = std::make_unique<ToolController>(*session_, camera_);
-  controller_->settings = toolSettings_;
+  controller_ = std::make_unique<ToolController>(*session_, camera_, toolSettings_);
   currentFile_ = file;
   projectFile_ = looksLikeProject(file) ? file : fs::path();
   camera_.frame(boundingBox(session_->simulation().state().x));
-  if (opened.camera) {
-    camera_.target = opened.camera->target;
-    camera_.distance = opened.camera->distance;
-    camera_.yaw = opened.camera->yaw;
-    camera_.pitch = opened.camera->pitch;
-  }
+  if (opened.camera) camera_.setPose(*opened.camera);
   // A sensible brush for this object: a tenth of its size.
   const double size = boundingBox(session_->simulation().state().x).size().norm();
   toolSettings_.radius = 0.1 * size;
   toolSettings_.strength = 0.5 * size;
-  controller_->settings = toolSettings_;
   shownGeneration_ = ~0ull;
   metrics_ = FrameMetrics{};
   editing_ = sceneSettings(session_->scene());
@@ -331,8 +323,6 @@ void SculptApp::handleKey(int key, bool ctrl, bool shift) {
 
 void SculptApp::handleEvent(const InputEvent& e) {
   const ImGuiIO& io = ImGui::GetIO();
-  // A key may have changed the tool since the last event of this same frame.
-  if (controller_) controller_->settings = toolSettings_;
   switch (e.kind) {
     case InputEvent::Kind::Move:
       if (controller_) controller_->mouseMove(e.x, e.y);
@@ -362,7 +352,7 @@ void SculptApp::runCommand(const std::string& command, const std::string& argume
     // A file holds whole actions: a stroke still held ends here.
     if (command == "save_project" || command == "save_recording") controller_->cancelStroke();
     if (command == "save_project") {
-      writeProject(argument, *session_, controller_->pose());
+      writeProject(argument, *session_, camera_.pose());
       projectFile_ = argument;
       session_->markSaved();
       report("saved project " + argument);
@@ -525,8 +515,7 @@ void SculptApp::advanceSimulation() {
   // Launch only: a finished frame is collected at the top of the loop, before input, so input
   // that waited for it goes through before the next frame starts.
   if (stepInFlight() || !session_ || busy()) return;
-  session_->setCamera(controller_->pose());
-  controller_->settings = toolSettings_;
+  session_->setCamera(camera_.pose());
   if (playing_ || stepOnce_) {
     stepOnce_ = false;
     // The frame runs on a worker thread: the window keeps drawing and navigating meanwhile.
@@ -715,12 +704,8 @@ void SculptApp::drawOverlay() {
 void SculptApp::frameHoveredPiece() {
   // Shift+F: frame the piece under the cursor (after cuts, one fragment fills the view).
   const Simulation& sim = session_->simulation();
-  Vec3 origin, direction;
-  camera_.ray(controller_->cursorX(), controller_->cursorY(), std::max(1, windowWidth_),
-              std::max(1, windowHeight_), origin, direction);
-  SurfaceBvh bvh;
-  bvh.build(sim.surface().mesh);
-  const std::optional<RayHit> hit = bvh.intersect(sim.surface().mesh, origin, direction);
+  const std::optional<RayHit> hit =
+      controller_->pick(controller_->cursorX(), controller_->cursorY());
   if (!hit) return;
   const int piece = sim.pieceOf(sim.surface().cellVertex[hit->face]);
   std::vector<Vec3> points;
@@ -739,7 +724,7 @@ void SculptApp::applySceneSettings() {
     OpenedSession opened;
     opened.session = std::make_unique<SculptSession>(scene, mesh);
     opened.session->markSceneEdited();
-    opened.camera = controller_->pose();
+    opened.camera = camera_.pose();
     adopt(std::move(opened), currentFile_);
     report("restarted with the new settings");
   } catch (const std::exception& e) {
@@ -932,7 +917,7 @@ void SculptApp::autosave() {
     return;
   lastAutosave_ = Clock::now();
   try {
-    recovery_->save(*session_, controller_->pose());
+    recovery_->save(*session_, camera_.pose());
   } catch (const std::exception& e) {
     status_ = std::string("autosave failed: ") + e.what();
   }
@@ -961,9 +946,6 @@ void SculptApp::run() {
     int width = 1, height = 1;
     glfwGetWindowSize(window_, &width, &height);
     if (controller_) controller_->setViewport(width, height);
-    windowWidth_ = width;
-    windowHeight_ = height;
-    if (controller_) controller_->settings = toolSettings_;
     processInput();
     advanceSimulation();
     updateScene();

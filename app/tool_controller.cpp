@@ -35,8 +35,9 @@ char toolKey(Tool tool) {
   return kToolKeys[static_cast<int>(tool)];
 }
 
-ToolController::ToolController(SculptSession& session, OrbitCamera& camera)
-    : session_(session), camera_(camera) {}
+ToolController::ToolController(SculptSession& session, OrbitCamera& camera,
+                               const ToolSettings& settings)
+    : session_(session), camera_(camera), settings_(settings) {}
 
 void ToolController::setViewport(int width, int height) {
   width_ = std::max(width, 1);
@@ -61,33 +62,29 @@ std::optional<RayHit> ToolController::pick(double x, double y) {
 }
 
 std::optional<RayHit> ToolController::hover() {
-  if (settings.tool == Tool::Navigate || settings.tool == Tool::Knife) return std::nullopt;
+  if (settings_.tool == Tool::Navigate || settings_.tool == Tool::Knife) return std::nullopt;
   return pick(x_, y_);
-}
-
-CameraPose ToolController::pose() const {
-  return CameraPose{camera_.target, camera_.distance, camera_.yaw, camera_.pitch};
 }
 
 void ToolController::cutTo(double x, double y) {
   Vec3 origin, direction;
   camera_.ray(x, y, width_, height_, origin, direction);
   const Vec3 nearPoint = origin + knifeNear_ * direction, farPoint = origin + knifeFar_ * direction;
-  session_.knife(bladeNear_, bladeFar_, nearPoint, farPoint, settings.plane());
+  session_.knife(bladeNear_, bladeFar_, nearPoint, farPoint, settings_.plane());
   bladeNear_ = nearPoint;
   bladeFar_ = farPoint;
 }
 
 void ToolController::paintTo(const RayHit& hit) {
   // Dabs at most half a radius apart from the last one to this hit.
-  const double spacing = 0.5 * settings.radius;
+  const double spacing = 0.5 * settings_.radius;
   const double length = (hit.point - lastDab_).norm();
   const int dabs = std::max(1, static_cast<int>(std::ceil(length / spacing)));
-  const bool erase = settings.tool == Tool::AnchorErase;
+  const bool erase = settings_.tool == Tool::AnchorErase;
   const Vec3 from = lastDab_;
   for (int i = 1; i <= dabs; ++i) {
     const Vec3 p = from + (hit.point - from) * (static_cast<double>(i) / dabs);
-    session_.paint(p, settings.radius, i == dabs ? paintSeed_ : -1, erase, settings.plane());
+    session_.paint(p, settings_.radius, i == dabs ? paintSeed_ : -1, erase, settings_.plane());
   }
   lastDab_ = hit.point;
 }
@@ -99,7 +96,7 @@ void ToolController::mouseButton(MouseButton button, bool pressed, bool shift) {
     return;
   }
   if (active_ != Active::None) return;  // one action at a time
-  const bool navigate = settings.tool == Tool::Navigate && button == MouseButton::Left;
+  const bool navigate = settings_.tool == Tool::Navigate && button == MouseButton::Left;
   if (button == MouseButton::Middle || (button == MouseButton::Right && shift)) {
     active_ = Active::Pan;
     return;
@@ -108,7 +105,7 @@ void ToolController::mouseButton(MouseButton button, bool pressed, bool shift) {
     active_ = Active::Orbit;
     return;
   }
-  switch (settings.tool) {
+  switch (settings_.tool) {
     case Tool::Navigate:
       break;
     case Tool::Knife: {
@@ -131,26 +128,26 @@ void ToolController::mouseButton(MouseButton button, bool pressed, bool shift) {
     case Tool::AnchorErase: {
       const std::optional<RayHit> hit = pick(x_, y_);
       if (!hit) break;
-      session_.beginAction(toolName(settings.tool));
+      session_.beginAction(toolName(settings_.tool));
       paintSeed_ = session_.simulation().surface().cellVertex[hit->face];
       lastDab_ = hit->point;
-      session_.paint(hit->point, settings.radius, paintSeed_, settings.tool == Tool::AnchorErase,
-                     settings.plane());
+      session_.paint(hit->point, settings_.radius, paintSeed_, settings_.tool == Tool::AnchorErase,
+                     settings_.plane());
       active_ = Active::Paint;
       break;
     }
     default: {
       const std::optional<RayHit> hit = pick(x_, y_);
       if (!hit) break;
-      session_.beginAction(toolName(settings.tool));
+      session_.beginAction(toolName(settings_.tool));
       BrushStroke stroke;
-      stroke.kind = brushOf(settings.tool);
+      stroke.kind = brushOf(settings_.tool);
       stroke.center = hit->point;
       stroke.normal = hit->normal;
-      stroke.radius = settings.radius;
-      stroke.strength = settings.strength;
+      stroke.radius = settings_.radius;
+      stroke.strength = settings_.strength;
       stroke.seed = session_.simulation().surface().cellVertex[hit->face];
-      stroke.symmetry = settings.plane();
+      stroke.symmetry = settings_.plane();
       session_.beginStroke(stroke);
       grabPoint_ = hit->point;
       grabNormal_ = camera_.forward();
@@ -180,7 +177,7 @@ void ToolController::mouseMove(double x, double y) {
       if (const std::optional<RayHit> hit = pick(x, y)) paintTo(*hit);
       break;
     case Active::Brush:
-      if (settings.tool == Tool::Grab) {
+      if (settings_.tool == Tool::Grab) {
         // The cursor drags the grabbed point on the plane through it that faces the camera.
         Vec3 origin, direction;
         camera_.ray(x, y, width_, height_, origin, direction);

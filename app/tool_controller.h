@@ -38,7 +38,8 @@ struct ToolSettings {
 
 class ToolController {
  public:
-  ToolController(SculptSession& session, OrbitCamera& camera);
+  // `settings` are the app's (panel, keys): read at each event, never copied.
+  ToolController(SculptSession& session, OrbitCamera& camera, const ToolSettings& settings);
 
   void setViewport(int width, int height);
   void mouseMove(double x, double y);
@@ -58,19 +59,17 @@ class ToolController {
   // The surface point under the cursor (for the brush cursor), picked against the current
   // surface through a BVH kept in step with it.
   std::optional<RayHit> hover();
-  // Camera pose for recording.
-  CameraPose pose() const;
-
-  ToolSettings settings;
+  // The surface point under pixel (x, y).
+  std::optional<RayHit> pick(double x, double y);
 
  private:
   enum class Active { None, Orbit, Pan, Knife, Brush, Paint };
-  std::optional<RayHit> pick(double x, double y);
   void cutTo(double x, double y);
   void paintTo(const RayHit& hit);
 
   SculptSession& session_;
   OrbitCamera& camera_;
+  const ToolSettings& settings_;
   int width_ = 1, height_ = 1;
   double x_ = 0.0, y_ = 0.0;
   Active active_ = Active::None;

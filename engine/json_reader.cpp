@@ -9,6 +9,10 @@
 
 namespace galsculpt {
 
+nlohmann::json vec3Json(const Eigen::Vector3d& v) {
+  return nlohmann::json::array({v.x(), v.y(), v.z()});
+}
+
 nlohmann::json parseJsonFile(const std::filesystem::path& path) {
   const std::string text = readWholeFile(path);
   try {

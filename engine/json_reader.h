@@ -14,6 +14,9 @@
 
 namespace galsculpt {
 
+// [x, y, z], every digit kept (what the readers' vec3 reads back exactly).
+nlohmann::json vec3Json(const Eigen::Vector3d& v);
+
 // Parses a file; syntax errors become InputError "file:line: JSON syntax error: ...".
 nlohmann::json parseJsonFile(const std::filesystem::path& path);
 

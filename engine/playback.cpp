@@ -122,10 +122,7 @@ ToolEvent readEvent(JsonObject o) {
     e.symmetry = readSymmetry(o);
   } else if (tool == "camera") {
     e.tool = ToolEvent::Tool::Camera;
-    e.camera.target = o.vec3("target", Vec3::Zero());
-    e.camera.distance = o.requiredNumber("distance", 1e-9, 1e12);
-    e.camera.yaw = o.number("yaw", 0.0, -1e6, 1e6);
-    e.camera.pitch = o.number("pitch", 0.0, -1.6, 1.6);
+    e.camera = readCameraPose(o);
   } else {
     e.tool = ToolEvent::Tool::Stroke;
     e.brush = brushFromName(tool);
@@ -136,14 +133,13 @@ ToolEvent readEvent(JsonObject o) {
   return e;
 }
 
-nlohmann::json point(const Vec3& p) {
-  return nlohmann::json::array({p.x(), p.y(), p.z()});
-}
-
 }  // namespace
 
 PlaybackScript loadPlaybackScript(const fs::path& file) {
-  const nlohmann::json root = parseJsonFile(file);
+  return parsePlaybackScript(parseJsonFile(file), file);
+}
+
+PlaybackScript parsePlaybackScript(const nlohmann::json& root, const fs::path& file) {
   JsonObject o(root, "$", file.string());
   PlaybackScript s;
   s.file = fs::absolute(file);
@@ -183,6 +179,22 @@ PlaybackScript loadPlaybackScript(const fs::path& file) {
   return s;
 }
 
+CameraPose readCameraPose(JsonObject& o) {
+  CameraPose pose;
+  pose.target = o.vec3("target", Vec3::Zero());
+  pose.distance = o.requiredNumber("distance", 1e-9, 1e12);
+  pose.yaw = o.number("yaw", 0.0, -1e6, 1e6);
+  pose.pitch = o.number("pitch", 0.0, -1.6, 1.6);
+  return pose;
+}
+
+nlohmann::json cameraPoseJson(const CameraPose& pose) {
+  return {{"target", vec3Json(pose.target)},
+          {"distance", pose.distance},
+          {"yaw", pose.yaw},
+          {"pitch", pose.pitch}};
+}
+
 ToolEvent parseToolEvent(const nlohmann::json& value, const std::string& path,
                          const std::string& file) {
   ToolEvent e = readEvent(JsonObject(value, path, file));
@@ -202,16 +214,16 @@ nlohmann::json toolEventJson(const ToolEvent& e) {
     case ToolEvent::Tool::Knife:
       j["tool"] = "knife";
       j["duration"] = e.duration;
-      j["from"] = {point(e.from0), point(e.from1)};
-      j["to"] = {point(e.to0), point(e.to1)};
+      j["from"] = {vec3Json(e.from0), vec3Json(e.from1)};
+      j["to"] = {vec3Json(e.to0), vec3Json(e.to1)};
       symmetry();
       break;
     case ToolEvent::Tool::Brush:
       j["tool"] = "brush";
       j["duration"] = e.duration;
-      j["center"] = point(e.center);
+      j["center"] = vec3Json(e.center);
       j["radius"] = e.radius;
-      j["offset"] = point(e.offset);
+      j["offset"] = vec3Json(e.offset);
       if (e.hold) j["hold"] = true;
       break;
     case ToolEvent::Tool::Anchor:
@@ -220,8 +232,8 @@ nlohmann::json toolEventJson(const ToolEvent& e) {
       return e.source;
     case ToolEvent::Tool::Stroke: {
       j["tool"] = brushName(e.brush);
-      j["center"] = point(e.center);
-      j["normal"] = point(e.normal);
+      j["center"] = vec3Json(e.center);
+      j["normal"] = vec3Json(e.normal);
       j["radius"] = e.radius;
       j["strength"] = e.strength;
       if (e.seed >= 0) j["seed"] = e.seed;
@@ -229,24 +241,21 @@ nlohmann::json toolEventJson(const ToolEvent& e) {
       nlohmann::json moves = nlohmann::json::array();
       for (const StrokeKey& k : e.moves)
         moves.push_back(
-            {{"frame", k.frame}, {"center", point(k.center)}, {"normal", point(k.normal)}});
+            {{"frame", k.frame}, {"center", vec3Json(k.center)}, {"normal", vec3Json(k.normal)}});
       j["moves"] = moves;
       symmetry();
       break;
     }
     case ToolEvent::Tool::Paint:
       j["tool"] = e.erase ? "anchor_erase" : "anchor_paint";
-      j["center"] = point(e.center);
+      j["center"] = vec3Json(e.center);
       j["radius"] = e.radius;
       if (e.seed >= 0) j["seed"] = e.seed;
       symmetry();
       break;
     case ToolEvent::Tool::Camera:
+      j.update(cameraPoseJson(e.camera));
       j["tool"] = "camera";
-      j["target"] = point(e.camera.target);
-      j["distance"] = e.camera.distance;
-      j["yaw"] = e.camera.yaw;
-      j["pitch"] = e.camera.pitch;
       break;
   }
   return j;
@@ -265,12 +274,22 @@ void writePlaybackScript(const fs::path& file, const fs::path& scene, int frames
   writeFileAtomically(file, [&](std::ostream& out) { out << text; });
 }
 
+void checkScriptAnchors(const PlaybackScript& script, const Simulation& sim) {
+  for (const ToolEvent& e : script.events) {
+    if (e.tool == ToolEvent::Tool::Anchor && e.add)
+      sim.selectVertices(e.shape, script.file.string(), e.path + ".anchor");
+  }
+}
+
 Playback::Playback(const PlaybackScript& script, Simulation& sim)
     : script_(script), sim_(sim), tools_(sim, script.file.string()) {
-  for (const ToolEvent& e : script_.events) {
-    if (e.tool == ToolEvent::Tool::Anchor && e.add)
-      sim_.selectVertices(e.shape, script_.file.string(), e.path + ".anchor");
-  }
+  checkScriptAnchors(script_, sim_);
+}
+
+void ToolApplier::prepareFrame(const std::vector<ToolEvent>& events, int frame) {
+  releaseExpired(frame);
+  for (const ToolEvent& e : events) apply(e, frame);
+  sculptor_.beforeFrame();
 }
 
 void ToolApplier::releaseExpired(int frame) {
@@ -284,7 +303,7 @@ void ToolApplier::releaseExpired(int frame) {
   }
 }
 
-void ToolApplier::apply(const ToolEvent& e, int frame) {
+int ToolApplier::apply(const ToolEvent& e, int frame) {
   const int step = frame - e.frame;
   const double dt = sim_.settings().dt;
   switch (e.tool) {
@@ -294,10 +313,9 @@ void ToolApplier::apply(const ToolEvent& e, int frame) {
       const double u0 = static_cast<double>(step) / e.duration;
       const double u1 = static_cast<double>(step + 1) / e.duration;
       auto at = [](const Vec3& a, const Vec3& b, double u) { return Vec3((1.0 - u) * a + u * b); };
-      sculptor_.cut(sweptBladeSurface(at(e.from0, e.to0, u0), at(e.from1, e.to1, u0),
-                                      at(e.from0, e.to0, u1), at(e.from1, e.to1, u1)),
-                    e.symmetry);
-      break;
+      return sculptor_.cut(sweptBladeSurface(at(e.from0, e.to0, u0), at(e.from1, e.to1, u0),
+                                             at(e.from0, e.to0, u1), at(e.from1, e.to1, u1)),
+                           e.symmetry);
     }
     case ToolEvent::Tool::Brush: {
       if (step != 0) break;
@@ -345,13 +363,12 @@ void ToolApplier::apply(const ToolEvent& e, int frame) {
       if (step == 0) camera_ = e.camera;
       break;
   }
+  return 0;
 }
 
 FrameMetrics Playback::advance() {
   const int frame = sim_.frame();  // the frame about to be computed is frame + 1
-  tools_.releaseExpired(frame);
-  for (const ToolEvent& e : script_.events) tools_.apply(e, frame);
-  tools_.beforeStep();
+  tools_.prepareFrame(script_.events, frame);
   return sim_.advance();
 }
 

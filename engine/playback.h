@@ -73,12 +73,17 @@ struct PlaybackScript {
 
 // Reads and validates a script (and its scene); throws InputError naming file and JSON path.
 PlaybackScript loadPlaybackScript(const std::filesystem::path& file);
+// The same for a script already parsed (`file` names it and anchors its scene's path).
+PlaybackScript parsePlaybackScript(const nlohmann::json& root, const std::filesystem::path& file);
 
 // Writes a script (the app's recording) atomically; the scene is referred to relative to the
 // script's folder. Numbers keep every digit, so a replay is exact.
 void writePlaybackScript(const std::filesystem::path& file, const std::filesystem::path& scene,
                          int frames, const std::vector<ToolEvent>& events);
 nlohmann::json toolEventJson(const ToolEvent& e);
+// A camera pose as scripts and projects hold it: target, distance, yaw, pitch.
+nlohmann::json cameraPoseJson(const CameraPose& pose);
+CameraPose readCameraPose(JsonObject& o);
 // One event as a script holds it; throws InputError naming `file` and `path`.
 ToolEvent parseToolEvent(const nlohmann::json& value, const std::string& path,
                          const std::string& file);
@@ -89,10 +94,12 @@ class ToolApplier {
  public:
   ToolApplier(Simulation& sim, std::string file)
       : sim_(sim), sculptor_(sim), file_(std::move(file)) {}
-  // Before each frame, in this order: releaseExpired, apply (the events due), beforeStep.
-  void releaseExpired(int frame);  // script brushes whose drag is over let go
-  void apply(const ToolEvent& e, int frame);
-  void beforeStep() { sculptor_.beforeFrame(); }
+  // Everything due before frame + 1, in order: script brushes whose drag is over let go, the
+  // events due apply, held brushes act. Playback, a replay into a session and the app's frames
+  // all go through it, so they act alike.
+  void prepareFrame(const std::vector<ToolEvent>& events, int frame);
+  // One event's effect due at `frame`; returns the edges it cut (knife), else 0.
+  int apply(const ToolEvent& e, int frame);
   Sculptor& sculptor() { return sculptor_; }
   const std::optional<CameraPose>& camera() const { return camera_; }
 
@@ -103,7 +110,12 @@ class ToolApplier {
   std::map<std::string, int> namedAnchors_;
   std::vector<std::pair<int, int>> releases_;  // (frame, anchor id) for brushes
   std::optional<CameraPose> camera_;
+  void releaseExpired(int frame);
 };
+
+// Checks up front that every anchor a script adds selects something (InputError naming its
+// JSON path otherwise).
+void checkScriptAnchors(const PlaybackScript& script, const Simulation& sim);
 
 class Playback {
  public:

@@ -16,10 +16,6 @@ namespace {
 constexpr char kMagic[] = "GALSCULPT PROJECT";
 static_assert(std::endian::native == std::endian::little, "project files are little-endian");
 
-nlohmann::json vec(const Vec3& p) {
-  return nlohmann::json::array({p.x(), p.y(), p.z()});
-}
-
 template <typename T>
 void writeArray(std::ostream& out, const std::vector<T>& values) {
   out.write(reinterpret_cast<const char*>(values.data()),
@@ -100,8 +96,9 @@ void writeProject(const fs::path& file, const SceneDescription& scene, const Sim
     j["id"] = state.anchorIds[i];
     j["vertices"] = a.vertices;
     nlohmann::json origin = nlohmann::json::array(), path = nlohmann::json::array();
-    for (const Vec3& p : a.origin) origin.push_back(vec(p));
-    for (const AnchorKey& k : a.path) path.push_back({{"time", k.time}, {"offset", vec(k.offset)}});
+    for (const Vec3& p : a.origin) origin.push_back(vec3Json(p));
+    for (const AnchorKey& k : a.path)
+      path.push_back({{"time", k.time}, {"offset", vec3Json(k.offset)}});
     j["origin"] = origin;
     j["path"] = path;
     anchors.push_back(j);
@@ -110,11 +107,7 @@ void writeProject(const fs::path& file, const SceneDescription& scene, const Sim
   nlohmann::json events = nlohmann::json::array();
   for (const ToolEvent& e : recording) events.push_back(toolEventJson(e));
   h["recording"] = events;
-  if (camera)
-    h["camera"] = {{"target", vec(camera->target)},
-                   {"distance", camera->distance},
-                   {"yaw", camera->yaw},
-                   {"pitch", camera->pitch}};
+  if (camera) h["camera"] = cameraPoseJson(*camera);
   const std::string header = h.dump();
 
   std::vector<int> tets;
@@ -252,13 +245,8 @@ Project readProject(const fs::path& file) {
         parseToolEvent(events[i], "$.recording[" + std::to_string(i) + "]", name));
   if (o.has("camera")) {
     JsonObject c = o.object("camera");
-    CameraPose pose;
-    pose.target = readVec(c, "target");
-    pose.distance = c.requiredNumber("distance", 1e-12, 1e12);
-    pose.yaw = c.number("yaw", 0.0, -1e6, 1e6);
-    pose.pitch = c.number("pitch", 0.0, -1.6, 1.6);
+    p.camera = readCameraPose(c);
     c.rejectUnknownKeys();
-    p.camera = pose;
   }
   o.rejectUnknownKeys();
 

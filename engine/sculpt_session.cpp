@@ -42,15 +42,10 @@ int SculptSession::knife(const Vec3& from0, const Vec3& from1, const Vec3& to0, 
   e.to0 = to0;
   e.to1 = to1;
   e.symmetry = symmetry;
-  const int before = sim_->frame();
-  const int damagedBefore =
-      static_cast<int>(std::count(sim_->state().damaged.begin(), sim_->state().damaged.end(), 1));
-  e.frame = before;
-  tools_->apply(e, before);
+  e.frame = sim_->frame();
+  const int cut = tools_->apply(e, e.frame);
   record(e);
-  return static_cast<int>(
-             std::count(sim_->state().damaged.begin(), sim_->state().damaged.end(), 1)) -
-         damagedBefore;
+  return cut;
 }
 
 void SculptSession::beginStroke(const BrushStroke& stroke) {
@@ -114,8 +109,7 @@ void SculptSession::setCamera(const CameraPose& pose) {
 }
 
 FrameMetrics SculptSession::step() {
-  tools_->releaseExpired(sim_->frame());
-  tools_->beforeStep();
+  tools_->prepareFrame({}, sim_->frame());  // the user's events were applied as they came
   dirty_ = true;
   return sim_->advance();
 }
@@ -214,16 +208,9 @@ void SculptSession::saveRecording(const std::filesystem::path& file) const {
 void SculptSession::replay(const PlaybackScript& script,
                            const std::function<void(int, int)>& progress) {
   tools_ = std::make_unique<ToolApplier>(*sim_, script.file.string());
-  for (const ToolEvent& e : script.events) {
-    if (e.tool == ToolEvent::Tool::Anchor && e.add)
-      sim_->selectVertices(e.shape, script.file.string(), e.path + ".anchor");
-  }
-  // The same order as Playback::advance, so the state is the one `play` reaches.
+  checkScriptAnchors(script, *sim_);
   while (sim_->frame() < script.frames) {
-    const int frame = sim_->frame();
-    tools_->releaseExpired(frame);
-    for (const ToolEvent& e : script.events) tools_->apply(e, frame);
-    tools_->beforeStep();
+    tools_->prepareFrame(script.events, sim_->frame());  // as Playback::advance
     sim_->advance();
     if (progress) progress(sim_->frame(), script.frames);
   }

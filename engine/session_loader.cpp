@@ -33,9 +33,10 @@ OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int 
     return opened;
   }
   const std::string ext = file.extension().string();
-  if (ext == ".json" && parseJsonFile(file).contains("events")) {
+  const nlohmann::json json = ext == ".json" ? parseJsonFile(file) : nlohmann::json();
+  if (json.contains("events")) {
     // A playback script: its scene, replayed to the script's end, then sculpted on.
-    const PlaybackScript script = loadPlaybackScript(file);
+    const PlaybackScript script = parsePlaybackScript(json, file);
     const TetMesh mesh = loadSceneMesh(script.scene, progress);
     opened.session = std::make_unique<SculptSession>(script.scene, mesh);
     opened.session->replay(script, [&](int frame, int frames) {
@@ -45,7 +46,7 @@ OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int 
     });
     return opened;
   }
-  SceneDescription scene = ext == ".json" ? loadScene(file) : sceneForMesh(file, importTets);
+  SceneDescription scene = ext == ".json" ? parseScene(json, file) : sceneForMesh(file, importTets);
   if (ext != ".json" && meshFileKind(file) == MeshFileKind::Unknown)
     throw InputError(file.string() + ": not a project, scene or mesh file this version reads");
   const TetMesh mesh = loadSceneMesh(scene, progress);
