@@ -8,17 +8,12 @@
 #include <Eigen/Dense>
 #include <string>
 
-namespace galsculpt {
+#include "material_types.h"
 
-enum class MaterialModel { Corotational, StVK, StableNeoHookean };
+namespace galsculpt {
 
 // Parses "corotational", "stvk", "stable_neo_hookean"; throws std::invalid_argument.
 MaterialModel materialModelFromName(const std::string& name);
-
-struct Lame {
-  double mu = 0.0;      // shear modulus (Pa)
-  double lambda = 0.0;  // first Lame parameter (Pa)
-};
 
 Lame lameFromYoungPoisson(double youngsModulus, double poissonRatio);
 

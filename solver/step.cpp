@@ -1,5 +1,6 @@
 #include "step.h"
 
+#include "frame_loop.h"
 #include "plasticity.h"
 
 #include <Eigen/CholmodSupport>
@@ -40,21 +41,10 @@ void unflatten(const Eigen::VectorXd& in, std::vector<Vec3>& v) {
   for (size_t i = 0; i < v.size(); ++i) v[i] = in.segment<3>(3 * i);
 }
 
-struct SubstepResult {
-  bool ok = true;
-  int iterations = 0;
-  int backtracks = 0;
-  double residual = 0.0;
-  double energy = 0.0;
-  double msElements = 0.0, msSolve = 0.0;
-  double linearResidualReduction = 0.0;
-  std::vector<Vec3> contactForces;
-};
-
 // One backward-Euler sub-step of length h from `state`; false when it failed (NaN, no descent).
-SubstepResult substep(const SimModel& model, SimState& state, const StepSettings& s, double h,
-                      StepWorkspace& ws) {
-  SubstepResult result;
+SubstepOutcome substep(const SimModel& model, SimState& state, const StepSettings& s, double h,
+                       StepWorkspace& ws) {
+  SubstepOutcome result;
   const int n = model.numVertices();
   const Eigen::VectorXd xn = flatten(state.x);
   const Eigen::VectorXd vn = flatten(state.v);
@@ -351,70 +341,44 @@ double assembleElastic(const SimModel& model, const std::vector<Vec3>& x, const 
   return total;
 }
 
-StepReport step(const SimModel& model, SimState& state, const StepSettings& settings) {
-  const auto start = Clock::now();
-  if (!state.workspace) state.workspace = std::make_shared<StepWorkspace>();
-  StepReport report;
-  const double frameEnd = state.time + settings.dt;
-  int pieces = std::max(1, settings.substeps);
-  double h = settings.dt / pieces;
-  int redo = 0;  // fracture re-solves of the current sub-step
-  while (state.time < frameEnd - 1e-12 * settings.dt) {
-    h = std::min(h, frameEnd - state.time);
-    const SimState saved = state;
-    const SubstepResult r = substep(model, state, settings, h, *state.workspace);
-    if (!r.ok) {
+namespace {
+
+// The CPU backend's operations for the shared frame loop (frame_loop.h).
+struct CpuFrameOps {
+  const SimModel& model;
+  SimState& state;
+  const StepSettings& settings;
+
+  SimState save() const { return state; }
+  void restore(const SimState& saved, bool keepDamage) {
+    if (!keepDamage) {
       state = saved;
-      if (report.retries >= settings.maxRetries) {
-        // Give up on this frame: keep the state as it was, count the warning, and let time move
-        // on so that the caller is never stuck.
-        state.time = frameEnd;
-        ++report.retries;
-        break;
-      }
-      ++report.retries;
-      h *= 0.5;
-      continue;
+      return;
     }
-    if (!state.plasticInverse.empty()) {
-      const auto t0 = Clock::now();
-      report.plasticElements += plasticUpdate(model, state);
-      report.msPlastic += msSince(t0);
-    }
-    if (settings.fracture) {
-      const auto t0 = Clock::now();
-      const FractureReport fr =
-          fracturePass(model, *settings.fracture, state, settings.compressionResists);
-      report.newlyDamaged += fr.newlyDamaged;
-      report.maxStressRatio = fr.maxStressRatio;
-      report.msFracture += msSince(t0);
-      if (fr.newlyDamaged > 0 && redo + 1 < settings.fractureIterations) {
-        // Let the crack run within the sub-step: solve it again from its start with the new
-        // damage (kept), until no edge breaks or the iterations are spent.
-        ++redo;
-        ++report.fractureRedos;
-        report.msElements += r.msElements;
-        report.msSolve += r.msSolve;
-        std::vector<std::uint8_t> damaged = std::move(state.damaged);
-        const std::uint64_t revision = state.damageRevision;
-        state = saved;
-        state.damaged = std::move(damaged);
-        state.damageRevision = revision;
-        continue;
-      }
-    }
-    redo = 0;
-    report.contactForces = r.contactForces;
-    report.linearResidualReduction = r.linearResidualReduction;
-    report.newtonIterations += r.iterations;
-    report.backtracks += r.backtracks;
-    report.residual = r.residual;
-    report.elasticEnergy = r.energy;
-    report.msElements += r.msElements;
-    report.msSolve += r.msSolve;
+    std::vector<std::uint8_t> damaged = std::move(state.damaged);
+    const std::uint64_t revision = state.damageRevision;
+    state = saved;
+    state.damaged = std::move(damaged);
+    state.damageRevision = revision;
   }
-  report.msTotal = msSince(start);
-  return report;
+  SubstepOutcome substep(double h) {
+    return galsculpt::substep(model, state, settings, h, *state.workspace);
+  }
+  bool plastic() const { return !state.plasticInverse.empty(); }
+  int plasticUpdate() { return galsculpt::plasticUpdate(model, state); }
+  FractureReport fracturePass() {
+    return galsculpt::fracturePass(model, *settings.fracture, state, settings.compressionResists);
+  }
+  double time() const { return state.time; }
+  void setTime(double t) { state.time = t; }
+};
+
+}  // namespace
+
+StepReport step(const SimModel& model, SimState& state, const StepSettings& settings) {
+  if (!state.workspace) state.workspace = std::make_shared<StepWorkspace>();
+  CpuFrameOps ops{model, state, settings};
+  return runFrame(ops, settings);
 }
 
 }  // namespace galsculpt

@@ -10,13 +10,15 @@
 // St. Venant-Kirchhoff in the masked strain, Psi = 1/2 eps~^T K eps~ with K = B^-T C B^-1. A
 // vertex whose edges are all damaged then enters no strain at all: it exerts and receives no
 // elastic force. Damaged edges keep resisting compression unless told otherwise.
-// docs/physics.md has the derivations.
+// docs/physics.md has the derivations. The arithmetic lives in element_kernels.h, shared with the
+// CUDA backend; these are its Eigen-typed entry points.
 #pragma once
 
 #include <Eigen/Dense>
 #include <array>
 #include <cstdint>
 
+#include "element_kernels.h"
 #include "isotropic_material.h"
 
 namespace galsculpt {
@@ -30,13 +32,9 @@ using TetPoints = std::array<Eigen::Vector3d, 4>;
 inline constexpr int kTetEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 inline constexpr std::uint8_t kAllEdgesIntact = 0x3f;
 
-// Rest-shape data computed once per element.
-struct TetRest {
-  Eigen::Matrix3d dmInverse;                    // inverse of [X1-X0, X2-X0, X3-X0]
-  double volume = 0.0;                          // rest volume (m^3)
-  std::array<double, 6> restLengthSq{};         // |D_k|^2
-  Eigen::Matrix<double, 6, 6> strainFromEdges;  // B^-1: (E11,E22,E33,E12,E13,E23) from eps
-};
+// Rest-shape data computed once per element: the shared kernels' plain struct (inverse rest
+// edge matrix, rest volume, squared rest edge lengths, edge strains -> Green strain).
+using TetRest = kernels::RestData;
 
 // Throws std::invalid_argument for a degenerate (zero-volume) rest tet.
 TetRest computeTetRest(const TetPoints& rest);

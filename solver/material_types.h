@@ -1,0 +1,14 @@
+// The material model and Lame parameters as plain types: shared by the CPU solver and the CUDA
+// kernels (no Eigen, nothing a device compiler cannot take).
+#pragma once
+
+namespace galsculpt {
+
+enum class MaterialModel { Corotational, StVK, StableNeoHookean };
+
+struct Lame {
+  double mu = 0.0;      // shear modulus (Pa)
+  double lambda = 0.0;  // first Lame parameter (Pa)
+};
+
+}  // namespace galsculpt
