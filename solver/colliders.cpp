@@ -25,45 +25,31 @@ Vec3 colliderTranslation(const Collider& c, double time) {
   return Vec3::Zero();
 }
 
-ContactSample colliderDistance(const Collider& c, const Vec3& p, double time) {
-  const Eigen::Matrix3d r = colliderRotation(c, time);
-  const Vec3 t = colliderTranslation(c, time);
-  const Vec3 local = r.transpose() * (p - t);  // the point in the collider's frame at time 0
-  ContactSample s;
-  switch (c.type) {
-    case Collider::Type::Plane: {
-      const Vec3 n = c.normal.normalized();
-      s.distance = (local - c.point).dot(n);
-      s.normal = r * n;
-      break;
-    }
-    case Collider::Type::Sphere: {
-      const Vec3 d = local - c.center;
-      const double len = d.norm();
-      s.distance = len - c.radius;
-      s.normal = r * (len > 0.0 ? Vec3(d / len) : Vec3::UnitY());
-      break;
-    }
-    case Collider::Type::Box: {
-      const Vec3 d = local - c.center;
-      const Vec3 q = d.cwiseAbs() - c.halfExtents;
-      if ((q.array() > 0.0).any()) {
-        const Vec3 outside = q.cwiseMax(0.0);
-        s.distance = outside.norm();
-        Vec3 n = outside.cwiseProduct(d.cwiseSign());
-        s.normal = r * (n.norm() > 0.0 ? Vec3(n.normalized()) : Vec3::UnitY());
-      } else {
-        // Inside: push out through the nearest face.
-        int axis = 0;
-        q.maxCoeff(&axis);
-        s.distance = q[axis];
-        Vec3 n = Vec3::Zero();
-        n[axis] = d[axis] >= 0.0 ? 1.0 : -1.0;
-        s.normal = r * n;
-      }
-      break;
-    }
+kernels::ColliderPose colliderPose(const Collider& c, double time) {
+  kernels::ColliderPose pose;
+  pose.type = static_cast<int>(c.type);
+  const Vec3 n = c.normal.normalized();
+  for (int i = 0; i < 3; ++i) {
+    pose.point[i] = c.point[i];
+    pose.normal[i] = n[i];
+    pose.center[i] = c.center[i];
+    pose.halfExtents[i] = c.halfExtents[i];
   }
+  pose.radius = c.radius;
+  const Eigen::Matrix3d r = colliderRotation(c, time);
+  for (int i = 0; i < 9; ++i) pose.rotation.a[i] = r.data()[i];
+  const Vec3 t = colliderTranslation(c, time);
+  for (int i = 0; i < 3; ++i) pose.translation[i] = t[i];
+  pose.contactStiffness = c.contactStiffness;
+  return pose;
+}
+
+ContactSample colliderDistance(const Collider& c, const Vec3& p, double time) {
+  const kernels::ColliderPose pose = colliderPose(c, time);
+  ContactSample s;
+  double normal[3];
+  s.distance = kernels::colliderDistance(pose, p.data(), normal);
+  s.normal = Vec3(normal[0], normal[1], normal[2]);
   return s;
 }
 

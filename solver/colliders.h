@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "collider_kernels.h"
 #include "tet_mesh.h"
 
 namespace galsculpt {
@@ -37,12 +38,16 @@ struct ContactSample {
   Vec3 normal = Vec3::UnitY();  // outward, unit
 };
 
-// Signed distance and outward normal of `p` against the collider posed at `time`.
+// Signed distance and outward normal of `p` against the collider posed at `time`
+// (collider_kernels.h computes it, for both backends).
 ContactSample colliderDistance(const Collider& c, const Vec3& p, double time);
 
 // The collider's rigid pose at `time`: x_world = rotation * x_body + translation, where the
 // body frame is the collider at time 0.
 Eigen::Matrix3d colliderRotation(const Collider& c, double time);
 Vec3 colliderTranslation(const Collider& c, double time);
+
+// The collider at `time` as the shared kernel takes it.
+kernels::ColliderPose colliderPose(const Collider& c, double time);
 
 }  // namespace galsculpt

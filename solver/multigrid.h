@@ -104,6 +104,19 @@ class Multigrid {
   // Dense coarse operator of level l (for tests).
   Eigen::MatrixXd coarseMatrix(int l) const;
 
+  // Read access for device backends, which mirror the hierarchy (gpu/device_layout.h).
+  const std::vector<std::vector<int>>& fineColors() const { return fineColors_; }
+  const std::vector<Vec3>& restPositions() const { return rest_; }
+  const std::vector<int>& fragmentStart() const { return fragmentStart_; }  // CSR over fragments
+  const std::vector<int>& fragmentVertices() const { return fragmentVertices_; }
+  Vec3 fragmentCenter(int f) const { return fragments_[f].center; }
+  double fragmentScale(int f) const { return fragments_[f].scale; }
+  // Pieces of the coarsest handles (0 unless two or more pieces hold handles), each handle's
+  // piece and its affine map from the piece's frame.
+  int pieceCount() const { return pieceCount_; }
+  const std::vector<int>& pieceOfHandle() const { return piece_; }
+  const std::vector<Eigen::Matrix<double, 12, 12>>& pieceMaps() const { return pieceMap_; }
+
  private:
   void vcycle(const BlockSparseMatrix& fine, int level, const Eigen::VectorXd& b,
               Eigen::VectorXd& x, const MultigridSettings& s) const;

@@ -1,0 +1,96 @@
+// The device backend's executor on the CPU: buffers are vectors, a launch is a loop. The device
+// solver (device_solver.h) runs on it unchanged, so every kernel and the whole frame are tested
+// on machines without a GPU against the CPU backend. Reductions add fixed blocks of 256 items
+// and then the block sums in order, as the CUDA executor does, so the results do not depend on
+// the thread count.
+#pragma once
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+namespace galsculpt::gpu {
+
+class HostExecutor {
+ public:
+  static constexpr const char* kName = "host";
+
+  template <typename T>
+  class Buffer {
+   public:
+    T* data() { return v_.data(); }
+    const T* data() const { return v_.data(); }
+    size_t size() const { return v_.size(); }
+    void resize(size_t n) { v_.assign(n, T{}); }  // zeroed
+    void upload(const T* src, size_t n) { v_.assign(src, src + n); }
+    void upload(const std::vector<T>& src) { upload(src.data(), src.size()); }
+    void download(T* dst, size_t n) const { std::copy(v_.begin(), v_.begin() + n, dst); }
+
+   private:
+    std::vector<T> v_;
+  };
+
+  template <typename F>
+  void forEach(int n, const F& f) const {
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (int i = 0; i < n; ++i) f(i);
+  }
+  // *out = sum of f(i) over i < n.
+  template <typename F>
+  void sum(int n, const F& f, double* out) const {
+    reduce(n, f, out, 0.0, [](double a, double b) { return a + b; });
+  }
+  // *out = max of f(i) over i < n (-infinity when n is 0).
+  template <typename F>
+  void maximum(int n, const F& f, double* out) const {
+    reduce(n, f, out, -std::numeric_limits<double>::infinity(),
+           [](double a, double b) { return a > b ? a : b; });
+  }
+  template <typename T>
+  void copy(T* dst, const T* src, size_t n) const {
+    std::memmove(dst, src, n * sizeof(T));
+  }
+  void read(const double* deviceValues, double* host, int n) const {
+    std::copy(deviceValues, deviceValues + n, host);
+  }
+  // In-place dense Cholesky (lower, column-major); false when not positive definite.
+  bool denseCholesky(int n, double* a) const {
+    Eigen::Map<Eigen::MatrixXd> m(a, n, n);
+    Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(m);
+    return llt.info() == Eigen::Success;
+  }
+  void denseCholeskySolve(int n, const double* l, double* b) const {
+    const Eigen::Map<Eigen::MatrixXd> m(const_cast<double*>(l), n, n);  // read only
+    Eigen::Map<Eigen::VectorXd> x(b, n);
+    m.triangularView<Eigen::Lower>().solveInPlace(x);
+    m.triangularView<Eigen::Lower>().transpose().solveInPlace(x);
+  }
+  // A section of launches the CUDA executor captures as one graph; here it just runs.
+  template <typename Body>
+  void captured(int /*slot*/, std::uint64_t /*key*/, const Body& body) {
+    body();
+  }
+  void synchronize() const {}
+
+ private:
+  template <typename F, typename Op>
+  void reduce(int n, const F& f, double* out, double identity, const Op& op) const {
+    constexpr int kBlock = 256;
+    const int blocks = (n + kBlock - 1) / kBlock;
+    std::vector<double> partial(blocks, identity);
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (int b = 0; b < blocks; ++b) {
+      double acc = identity;
+      const int end = std::min(n, (b + 1) * kBlock);
+      for (int i = b * kBlock; i < end; ++i) acc = op(acc, f(i));
+      partial[b] = acc;
+    }
+    double total = identity;
+    for (double p : partial) total = op(total, p);
+    *out = total;
+  }
+};
+
+}  // namespace galsculpt::gpu
