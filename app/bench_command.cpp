@@ -95,6 +95,7 @@ void applyRandomCuts(Simulation& sim, int cuts) {
 nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
                        const Setting& setting, int frames, const fs::path& referencePositions) {
   SceneDescription scene = baseScene;
+  if (setting.reference) scene.solver.backend = "cpu";  // the direct solve has no device path
   scene.solver.type = setting.reference ? "reference" : "multigrid";
   scene.solver.grid = setting.grid;
   scene.solver.fineSweeps = setting.fineSweeps;
@@ -130,6 +131,10 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
     r["pcg_tolerance"] = setting.pcgTolerance;
     r["cycles"] = setting.cycles;
     r["coarse_solver"] = setting.coarseCholesky ? "cholesky" : "cg";
+  }
+  r["backend"] = sim.backendName();
+  for (const std::string& note : sim.notes()) {
+    if (note.find("running on the CPU") != std::string::npos) r["backend_note"] = note;
   }
   r["frames"] = frames;
   r["ms_per_frame"] = median;
@@ -231,17 +236,19 @@ std::string row(const nlohmann::json& r) {
     << std::setprecision(3) << 100.0 * r["rel_position_error"].get<double>() << std::setw(10)
     << std::setprecision(3) << r["volume_change_pct"].get<double>() << std::setw(8)
     << std::setprecision(2) << r["ms_surface"].get<double>() << std::setw(8)
-    << r["ms_surface_max"].get<double>();
+    << r["ms_surface_max"].get<double>() << "  " << r.value("backend", std::string("cpu"));
   return s.str();
 }
 
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(args, {"--scene", "--json", "--frames"}, {"--quick", "--sweep", "--cracks"});
+  const CliArgs a(args, {"--scene", "--json", "--frames", "--backend"},
+                  {"--quick", "--sweep", "--cracks"});
   a.expectPositional(0, 0,
                      "galsculpt bench [--scene NAME] [--quick] [--sweep] [--cracks] [--frames N] "
-                     "[--json FILE]");
+                     "[--json FILE] [--backend auto|cpu|cuda]");
+  const std::string backend = backendOption(a);
   const bool quick = a.has("--quick");
   const int frames = a.intValue("--frames", quick ? 20 : 60, 1, 100000);
   std::vector<BenchScene> scenes;
@@ -263,9 +270,10 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
 
   nlohmann::json results = nlohmann::json::array();
   out << "scene     tets    solver    grid                 fine coarse  ms/frame      fps  peak MB "
-         " pos err %  vol chg %  surf ms    max\n";
+         " pos err %  vol chg %  surf ms    max  backend\n";
   for (const BenchScene& bs : scenes) {
-    const SceneDescription scene = loadScene(fs::path(assetDirectory()) / "scenes" / bs.file);
+    SceneDescription scene = loadScene(fs::path(assetDirectory()) / "scenes" / bs.file);
+    if (!backend.empty()) scene.solver.backend = backend;
     TetMesh mesh;
     try {
       mesh = loadSceneMesh(scene, [&err](const std::string& line) { err << line << '\n'; });

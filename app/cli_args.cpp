@@ -89,4 +89,12 @@ void CliArgs::expectPositional(size_t min, size_t max, const std::string& usage)
   if (positional_.size() < min || positional_.size() > max) throw UsageError("usage: " + usage);
 }
 
+std::string backendOption(const CliArgs& args) {
+  const auto v = args.value("--backend");
+  if (!v) return {};
+  if (*v != "auto" && *v != "cpu" && *v != "cuda")
+    throw UsageError("--backend must be auto, cpu or cuda, got '" + *v + "'");
+  return *v;
+}
+
 }  // namespace galsculpt

@@ -37,4 +37,7 @@ class CliArgs {
   std::map<std::string, std::string> values_;
 };
 
+// --backend auto|cpu|cuda (run, play, bench, open): empty when absent, UsageError otherwise.
+std::string backendOption(const CliArgs& args);
+
 }  // namespace galsculpt

@@ -162,17 +162,19 @@ TetMesh loadMeshReporting(const SceneDescription& scene, std::ostream& err) {
 int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args,
                   {"--frames", "--solver", "--out", "--metrics", "--export-every",
-                   "--export-format", "--png-every", "--size"},
+                   "--export-format", "--png-every", "--size", "--backend"},
                   {"--export-tets"});
   a.expectPositional(
       1, 1,
       "galsculpt run SCENE --frames N [--solver reference] --out DIR --metrics FILE.csv "
       "[--export-every K] [--export-format obj|ply|stl|gltf|glb] [--export-tets] "
-      "[--png-every K] [--size WxH]");
+      "[--png-every K] [--size WxH] [--backend auto|cpu|cuda]");
   const RunOptions o = readRunOptions(a, "run");
   const int frames = a.intValue("--frames", 0, 1, 10000000);
   if (!a.has("--frames")) throw UsageError("run needs --frames N");
-  const SceneDescription scene = loadScene(a.positional()[0]);
+  SceneDescription scene = loadScene(a.positional()[0]);
+  if (const std::string backend = backendOption(a); !backend.empty())
+    scene.solver.backend = backend;
   Simulation sim(scene, loadMeshReporting(scene, err), o.solver);
   return simulateFrames(
       scene.name, frames, sim, o, [&sim] { return sim.advance(); }, out, err);
@@ -181,14 +183,16 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
 int playCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args,
                   {"--out", "--metrics", "--export-every", "--solver", "--export-format",
-                   "--png-every", "--size"},
+                   "--png-every", "--size", "--backend"},
                   {"--export-tets"});
   a.expectPositional(1, 1,
                      "galsculpt play SCRIPT --out DIR [--export-every K] [--metrics FILE.csv] "
                      "[--solver reference] [--export-format obj|ply|stl|gltf|glb] "
-                     "[--export-tets] [--png-every K] [--size WxH]");
+                     "[--export-tets] [--png-every K] [--size WxH] [--backend auto|cpu|cuda]");
   const RunOptions o = readRunOptions(a, "play");
-  const PlaybackScript script = loadPlaybackScript(a.positional()[0]);
+  PlaybackScript script = loadPlaybackScript(a.positional()[0]);
+  if (const std::string backend = backendOption(a); !backend.empty())
+    script.scene.solver.backend = backend;
   Simulation sim(script.scene, loadMeshReporting(script.scene, err), o.solver);
   Playback playback(script, sim);
   return simulateFrames(

@@ -202,10 +202,13 @@ void SculptApp::startLoading(const fs::path& file) {
     progress_ = "opening " + file.string();
   }
   loading_ = std::async(std::launch::async, [this, file] {
-    return openSession(file, [this](const std::string& line) {
-      std::lock_guard<std::mutex> lock(progressMutex_);
-      progress_ = line;
-    });
+    return openSession(
+        file,
+        [this](const std::string& line) {
+          std::lock_guard<std::mutex> lock(progressMutex_);
+          progress_ = line;
+        },
+        20000, options_.backend);
   });
 }
 

@@ -20,6 +20,7 @@ struct SculptWindowOptions {
   double autosaveSeconds = 60.0;  // 0: never
   bool offerRecovery = true;      // ask about files left by a crash
   bool startPlaying = true;
+  std::string backend;  // auto | cpu | cuda for every file opened; empty: the scene's own
 };
 
 // Runs until the window closes; returns false (with a reason) when no window can be opened.

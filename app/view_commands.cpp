@@ -117,14 +117,14 @@ int renderCommand(const std::vector<std::string>& args, std::ostream& out, std::
 }
 
 int openCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(
-      args,
-      {"--out", "--size", "--input-script", "--save-project", "--save-recording", "--autosave"},
-      {"--headless", "--paused", "--no-recovery"});
+  const CliArgs a(args,
+                  {"--out", "--size", "--input-script", "--save-project", "--save-recording",
+                   "--autosave", "--backend"},
+                  {"--headless", "--paused", "--no-recovery"});
   a.expectPositional(1, 1,
                      "galsculpt open FILE [--headless] [--out DIR] [--size WxH] [--paused] "
                      "[--input-script FILE] [--save-project FILE] [--save-recording FILE] "
-                     "[--autosave SECONDS] [--no-recovery]");
+                     "[--autosave SECONDS] [--no-recovery] [--backend auto|cpu|cuda]");
   const fs::path file = a.positional()[0];
   if (!fs::exists(file)) throw InputError(file.string() + ": no such file");
   bool headless = a.has("--headless");
@@ -142,6 +142,7 @@ int openCommand(const std::vector<std::string>& args, std::ostream& out, std::os
     o.autosaveSeconds = a.doubleValue("--autosave", 60.0, 0.0, 1e9);
     o.offerRecovery = !a.has("--no-recovery") && !o.inputScript;
     o.startPlaying = !a.has("--paused");
+    o.backend = backendOption(a);
     std::string error;
     if (runSculptWindow(o, out, &error)) return kExitOk;
     out << "cannot open a window (" << error << "): running headless\n";

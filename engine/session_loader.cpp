@@ -22,12 +22,14 @@ SceneDescription sceneForMesh(const fs::path& mesh, int importTets) {
   return parseScene(source, absolute.parent_path() / (mesh.stem().string() + ".scene.json"));
 }
 
-OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int importTets) {
+OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int importTets,
+                          const std::string& backend) {
   if (!fs::exists(file)) throw InputError(file.string() + ": no such file");
   OpenedSession opened;
   if (looksLikeProject(file)) {
     if (progress) progress("reading project " + file.string());
     Project project = readProject(file);
+    if (!backend.empty()) project.scene.solver.backend = backend;
     opened.camera = project.camera;
     opened.session = sessionFromProject(project, file);
     return opened;
@@ -36,7 +38,8 @@ OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int 
   const nlohmann::json json = ext == ".json" ? parseJsonFile(file) : nlohmann::json();
   if (json.contains("events")) {
     // A playback script: its scene, replayed to the script's end, then sculpted on.
-    const PlaybackScript script = parsePlaybackScript(json, file);
+    PlaybackScript script = parsePlaybackScript(json, file);
+    if (!backend.empty()) script.scene.solver.backend = backend;
     const TetMesh mesh = loadSceneMesh(script.scene, progress);
     opened.session = std::make_unique<SculptSession>(script.scene, mesh);
     opened.session->replay(script, [&](int frame, int frames) {
@@ -49,6 +52,7 @@ OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int 
   SceneDescription scene = ext == ".json" ? parseScene(json, file) : sceneForMesh(file, importTets);
   if (ext != ".json" && meshFileKind(file) == MeshFileKind::Unknown)
     throw InputError(file.string() + ": not a project, scene or mesh file this version reads");
+  if (!backend.empty()) scene.solver.backend = backend;
   const TetMesh mesh = loadSceneMesh(scene, progress);
   if (progress) progress("building the simulation (" + std::to_string(mesh.numTets()) + " tets)");
   opened.session = std::make_unique<SculptSession>(scene, mesh);

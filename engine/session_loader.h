@@ -23,7 +23,8 @@ struct OpenedSession {
 SceneDescription sceneForMesh(const std::filesystem::path& mesh, int importTets);
 
 // Throws InputError for a file that cannot be opened (naming it and the problem).
+// `backend` (auto | cpu | cuda), when not empty, replaces the scene's solver.backend.
 OpenedSession openSession(const std::filesystem::path& file, const ProgressFn& progress = {},
-                          int importTets = 20000);
+                          int importTets = 20000, const std::string& backend = {});
 
 }  // namespace galsculpt

@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "backend_select.h"
 #include "solver/damage_io.h"
 #include "solver/input_error.h"
 #include "solver/tetgen_io.h"
@@ -132,8 +133,9 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     settings_.fracture = std::make_shared<FractureField>(buildFractureField(model_, f));
     settings_.fractureIterations = scene.fracture.iterations;
   }
-  if (scene.solver.backend == "cuda")
-    notes_.push_back("the CUDA backend is not built yet: running on the CPU");
+  BackendChoice backend = chooseBackend(scene.solver.backend, model_, settings_);
+  backend_ = std::move(backend.backend);
+  if (!backend.note.empty()) notes_.push_back(backend.note);
   for (const Vec3& p : scene.measure.opening) {
     int best = 0;
     for (int v = 1; v < mesh.numVertices(); ++v) {
@@ -407,7 +409,18 @@ void Simulation::removeAnchor(int id) {
 
 FrameMetrics Simulation::advance() {
   const auto start = std::chrono::steady_clock::now();
-  const StepReport r = step(model_, state_, settings_);
+  StepReport r;
+  try {
+    r = backend_->step(state_, settings_);
+  } catch (const std::exception& e) {
+    // A device failure (lost GPU, out of memory) throws before the state is written back: the
+    // frame runs again on the CPU, and so does the rest of the session.
+    if (backend_->name() == "cpu") throw;
+    notes_.push_back("the " + backend_->name() + " backend failed (" + e.what() +
+                     "): running on the CPU from frame " + std::to_string(frame_));
+    backend_ = std::make_unique<CpuStepBackend>(model_);
+    r = backend_->step(state_, settings_);
+  }
   ++frame_;
   ++generation_;
   FrameMetrics m;

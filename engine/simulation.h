@@ -10,6 +10,7 @@
 #include "engine/surface_builder.h"
 #include "solver/knife.h"
 #include "solver/step.h"
+#include "solver/step_backend.h"
 
 namespace galsculpt {
 
@@ -61,6 +62,9 @@ class Simulation {
   // name vertices that do not exist.
   Simulation(const SceneDescription& scene, const TetMesh& mesh,
              SolverChoice choice = SolverChoice::FromScene);
+  // The backend refers to the model: a simulation stays where it was made.
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
 
   FrameMetrics advance();
 
@@ -104,6 +108,8 @@ class Simulation {
   const SimModel& model() const { return model_; }
   const SimState& state() const { return state_; }
   const StepSettings& settings() const { return settings_; }
+  // The backend computing the frames: "cpu" or "cuda" (the notes say why, if not as asked).
+  std::string backendName() const { return backend_->name(); }
   // Notes for the user about how the scene is run (e.g. a solver that is not available yet).
   const std::vector<std::string>& notes() const { return notes_; }
   int frame() const { return frame_; }
@@ -125,6 +131,7 @@ class Simulation {
   SimModel model_;
   SimState state_;
   StepSettings settings_;
+  std::unique_ptr<StepBackend> backend_;
   std::vector<std::string> notes_;
   mutable SurfaceBuilder surfaceBuilder_;
   mutable int surfaceFrame_ = -1;  // the state the surface was last brought up to

@@ -69,8 +69,11 @@ class DeviceSolver {
     vertexSlots_.upload(layout_.vertexSlots);
     blockSlotStart_.upload(layout_.blockSlotStart);
     blockSlots_.upload(layout_.blockSlots);
-    for (Buffer<double>* b : {&x_, &v_, &xn_, &vn_, &xhat_, &grad_, &trialGrad_, &acceptedGrad_,
-                              &g_, &delta_, &trial_, &dampedK_, &tmp_, &savedX_, &savedV_})
+    // Every per-vertex buffer up front: nothing may allocate inside a captured section.
+    for (Buffer<double>* b :
+         {&x_,    &v_,     &xn_,    &vn_,      &xhat_, &grad_,   &trialGrad_, &acceptedGrad_,
+          &g_,    &delta_, &trial_, &dampedK_, &tmp_,  &savedX_, &savedV_,    &pcgB_,
+          &pcgR_, &pcgZ_,  &pcgP_,  &pcgAp_})
       b->resize(3 * n_);
     fixed_.resize(n_);
     damaged_.resize(layout_.edges);
@@ -429,57 +432,45 @@ class DeviceSolver {
     double* sc = scalars_.data();
     const double sufficient = s.lineSearch ? 1e-4 : 0.0;
     for (int it = 0; it < s.newtonIterations; ++it) {
-      auto t0 = Clock::now();
-      elementPass(x, true, grad_.data(), kElastic);
-      if (it == 0 && s.newtonIterations > 1) {
-        ex_.copy(frozen_.data(), k_.data(), k_.size());
-        frozenIsK_ = false;
-      }
-      contact(x, grad_.data(), kContact);
-      ex_.synchronize();
-      result.msElements += ms(t0);
-      t0 = Clock::now();
-      dampedProduct(x, dampedK_.data());
-      backwardEulerGradient(x, grad_.data(), dampedK_.data(), g_.data());
-      buildSystem(x);
+      const auto t0 = Clock::now();
+      // Structural changes first (host): the hierarchy follows the damage.
       if (s.multigridSettings.splitAggregates &&
-          multigrid_->updateDamage(model_.edges, hostDamaged_, damageRevision_))
+          multigrid_->updateDamage(model_.edges, hostDamaged_, damageRevision_)) {
         mg_.upload(buildMultigridLayout(*multigrid_, model_.pattern));
-      mg_.refresh(h_.data(), s.multigridSettings.coarseCholesky);
-      const double linearReduction = solveLinear();
-      result.linearResidualReduction = linearReduction;
-      ex_.synchronize();
-      result.msSolve += ms(t0);
+        ++mgRevision_;
+      }
+      // The Newton step and its full-length trial: launches only, captured as one graph and
+      // replayed, unless a dense Cholesky or PCG needs host reads in between.
+      const bool frozenCopy = it == 0 && s.newtonIterations > 1;
+      auto newtonStep = [&] {
+        elementPass(x, true, grad_.data(), kElastic);
+        if (frozenCopy) ex_.copy(frozen_.data(), k_.data(), k_.size());
+        frozenIsK_ = !(frozenCopy || (it > 0 && s.newtonIterations > 1));
+        contact(x, grad_.data(), kContact);
+        dampedProduct(x, dampedK_.data());
+        backwardEulerGradient(x, grad_.data(), dampedK_.data(), g_.data());
+        buildSystem(x);
+        mg_.refresh(h_.data(), s.multigridSettings.coarseCholesky);
+        solveLinear();
+        stepMeasures();
+        evaluateTrial(1.0);
+      };
+      const bool capturable = !s.multigridSettings.coarseCholesky && !s.multigridSettings.pcg;
+      if (capturable) {
+        ex_.captured(0, graphKey(h, it), newtonStep);
+      } else {
+        newtonStep();
+      }
       ++result.iterations;
-      // e0, slope, |delta|_inf, finiteness of g and the elastic energy.
-      objective(x, kElastic, kContact, dampedK_.data(), kE0);
-      const double* g = g_.data();
-      const double* delta = delta_.data();
-      ex_.sum(
-          3 * n_, [=] GALSCULPT_LAMBDA(int i) { return g[i] * delta[i]; }, sc + kSlope);
-      ex_.sum(
-          3 * n_,
-          [=] GALSCULPT_LAMBDA(int i) {
-            return g[i] == g[i] && fabs(g[i]) <= 1.7e308 && delta[i] == delta[i] &&
-                           fabs(delta[i]) <= 1.7e308
-                       ? 0.0
-                       : 1.0;
-          },
-          sc + kBad);
-      ex_.maximum(
-          3 * n_, [=] GALSCULPT_LAMBDA(int i) { return fabs(delta[i]); }, sc + kDeltaMax);
       double stepLength = 1.0;
       bool failed = false;
       while (true) {
-        double* trial = trial_.data();
-        const double len = stepLength;
-        ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { trial[i] = x[i] + len * delta[i]; });
-        elementPass(trial, false, trialGrad_.data(), kTrialElastic);
-        dampedProduct(trial, tmp_.data());
-        contact(trial, nullptr, kTrialContact);
-        objective(trial, kTrialElastic, kTrialContact, tmp_.data(), kE1);
         double read[kScalars];
         ex_.read(sc, read, kScalars);
+        if (stepLength == 1.0)
+          result.linearResidualReduction =
+              s.multigridSettings.pcg ? pcgReduction_
+                                      : (read[kR0] > 0.0 ? std::sqrt(read[kR1] / read[kR0]) : 0.0);
         if (read[kBad] > 0.0 || !std::isfinite(read[kElastic])) {
           failed = true;
           break;
@@ -491,7 +482,10 @@ class DeviceSolver {
         stepLength *= 0.5;
         ++result.backtracks;
         if (stepLength < 1e-8) break;
+        evaluateTrial(stepLength);
       }
+      // The device does not split its phases (they run as one graph): all of it is "solve".
+      result.msSolve += ms(t0);
       if (failed) {
         result.ok = false;
         return result;
@@ -504,11 +498,12 @@ class DeviceSolver {
         break;
       }
       const double len = stepLength;
+      const double* delta = delta_.data();
       ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { x[i] += len * delta[i]; });
+      ex_.copy(acceptedGrad_.data(), trialGrad_.data(), 3 * n_);
       double read[kScalars];
       ex_.read(sc, read, kScalars);
       result.energy = read[kTrialElastic];
-      std::swap(acceptedGrad_, trialGrad_);
       if (read[kDeltaMax] * stepLength < s.tolerance * modelSize_) break;
     }
     // Residual at the accepted positions, relative to the body's (1 g) weight.
@@ -540,8 +535,79 @@ class DeviceSolver {
     return result;
   }
 
-  // delta = A^-1 (-g) by the multigrid (V-cycles or PCG); returns |r_final| / |r_initial|.
-  double solveLinear() {
+  // The Newton step's measures: e0 (kE0), the slope g.delta (kSlope), |delta|_inf
+  // (kDeltaMax), and whether g or delta holds a NaN or infinity (kBad).
+  void stepMeasures() {
+    double* sc = scalars_.data();
+    const double* x = x_.data();
+    objective(x, kElastic, kContact, dampedK_.data(), kE0);
+    const double* g = g_.data();
+    const double* delta = delta_.data();
+    ex_.sum(
+        3 * n_, [=] GALSCULPT_LAMBDA(int i) { return g[i] * delta[i]; }, sc + kSlope);
+    ex_.sum(
+        3 * n_,
+        [=] GALSCULPT_LAMBDA(int i) {
+          return g[i] == g[i] && fabs(g[i]) <= 1.7e308 && delta[i] == delta[i] &&
+                         fabs(delta[i]) <= 1.7e308
+                     ? 0.0
+                     : 1.0;
+        },
+        sc + kBad);
+    ex_.maximum(
+        3 * n_, [=] GALSCULPT_LAMBDA(int i) { return fabs(delta[i]); }, sc + kDeltaMax);
+  }
+
+  // Elastic and contact energies and the potential at x + length delta (slots kTrialElastic,
+  // kTrialContact, kE1), with the trial's gradient.
+  void evaluateTrial(double length) {
+    double* trial = trial_.data();
+    const double* x = x_.data();
+    const double* delta = delta_.data();
+    ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { trial[i] = x[i] + length * delta[i]; });
+    elementPass(trial, false, trialGrad_.data(), kTrialElastic);
+    dampedProduct(trial, tmp_.data());
+    contact(trial, nullptr, kTrialContact);
+    objective(trial, kTrialElastic, kTrialContact, tmp_.data(), kE1);
+  }
+
+  // Everything a captured Newton step bakes in: a replay is valid only for the same key.
+  std::uint64_t graphKey(double h, int iteration) const {
+    const StepSettings& s = *settings_;
+    const MultigridSettings& m = s.multigridSettings;
+    std::uint64_t key = 1469598103934665603ull;
+    auto mix = [&](std::uint64_t v) { key = (key ^ v) * 1099511628211ull; };
+    auto mixDouble = [&](double d) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &d, sizeof bits);
+      mix(bits);
+    };
+    mixDouble(h);
+    mix(static_cast<std::uint64_t>(iteration));
+    mix(static_cast<std::uint64_t>(s.newtonIterations));
+    mix(mgRevision_);
+    mix(anchorCount_);
+    mix(poses_.size());
+    mix(reinterpret_cast<std::uintptr_t>(anchorVertices_.data()));
+    mix(reinterpret_cast<std::uintptr_t>(anchorTargets_.data()));
+    mix(reinterpret_cast<std::uintptr_t>(poseBuffer_.data()));
+    mix(reinterpret_cast<std::uintptr_t>(fp_.data()));
+    mix(plastic_);
+    mix(s.compressionResists);
+    mixDouble(s.dampingMass);
+    mixDouble(s.dampingStiffness);
+    for (int i = 0; i < 3; ++i) mixDouble(s.gravity[i]);
+    mix(static_cast<std::uint64_t>(m.preSweeps) << 32 | static_cast<std::uint32_t>(m.postSweeps));
+    mix(static_cast<std::uint64_t>(m.coarseIterations) << 32 |
+        static_cast<std::uint32_t>(m.cycles));
+    mix(m.jacobi);
+    mixDouble(m.jacobiWeight);
+    return key;
+  }
+
+  // delta = A^-1 (-g) by the multigrid: V-cycles (the residual norms go to slots kR0, kR1; no
+  // host read) or PCG (host reads; its reduction in pcgReduction_).
+  void solveLinear() {
     const StepSettings& s = *settings_;
     const MultigridSettings& ms = s.multigridSettings;
     typename DeviceMultigrid<Exec>::Settings mgs;
@@ -566,16 +632,12 @@ class DeviceSolver {
     double* ap = pcgAp_.data();
     ex_.sum(
         3 * n_, [=] GALSCULPT_LAMBDA(int i) { return b[i] * b[i]; }, sc + kR0);
-    double reduction = 0.0;
     if (!ms.pcg) {
       mg_.cycles(a, b, delta, mgs);
       mg_.multiplyFine(a, delta, ap);
       ex_.sum(
           3 * n_, [=] GALSCULPT_LAMBDA(int i) { return (b[i] - ap[i]) * (b[i] - ap[i]); },
           sc + kR1);
-      double read[kScalars];
-      ex_.read(sc, read, kScalars);
-      reduction = read[kR0] > 0.0 ? std::sqrt(read[kR1] / read[kR0]) : 0.0;
     } else {
       // CG preconditioned by one V-cycle per iteration (a host read per iteration).
       double* z = pcgZ_.data();
@@ -620,12 +682,11 @@ class DeviceSolver {
         rz = read[kRz];
         ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { p[i] = z[i] + beta * p[i]; });
       }
-      reduction = bnorm > 0.0 ? rnorm / bnorm : 0.0;
+      pcgReduction_ = bnorm > 0.0 ? rnorm / bnorm : 0.0;
     }
     ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
       if (fixed[i / 3]) delta[i] = 0.0;
     });
-    return reduction;
   }
 
   // Force of each collider on the body at y.
@@ -847,6 +908,7 @@ class DeviceSolver {
     if (s.multigridSettings.splitAggregates)
       multigrid_->updateDamage(model_.edges, hostDamaged_, damageRevision_);
     mg_.upload(buildMultigridLayout(*multigrid_, model_.pattern));
+    ++mgRevision_;
   }
 
   void uploadFracture(const FractureField& field) {
@@ -902,12 +964,7 @@ class DeviceSolver {
     if (!poses.empty()) poseBuffer_.upload(poses);
   }
 
-  double* rhs() {
-    if (pcgB_.size() != static_cast<size_t>(3 * n_)) {
-      for (Buffer<double>* b : {&pcgB_, &pcgR_, &pcgZ_, &pcgP_, &pcgAp_}) b->resize(3 * n_);
-    }
-    return pcgB_.data();
-  }
+  double* rhs() { return pcgB_.data(); }
   const double* frozenBlocks() const { return frozenIsK_ ? k_.data() : frozen_.data(); }
 
   template <typename V>
@@ -958,7 +1015,8 @@ class DeviceSolver {
   std::vector<int> gridHandles_;
   const StepSettings* settings_ = nullptr;
   int n_ = 0, tets_ = 0;
-  double time_ = 0.0, h_step_ = 0.0, modelSize_ = 1.0, massNorm_ = 0.0;
+  double time_ = 0.0, h_step_ = 0.0, modelSize_ = 1.0, massNorm_ = 0.0, pcgReduction_ = 0.0;
+  std::uint64_t mgRevision_ = 0;  // bumped whenever the hierarchy is uploaded again
   bool plastic_ = false, frozenIsK_ = true;
   Buffer<int> tetVertices_, tetEdges_, rowStart_, columns_, diagonal_, blockRow_;
   Buffer<int> vertexSlotStart_, vertexSlots_, blockSlotStart_, blockSlots_;

@@ -9,9 +9,20 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace galsculpt::gpu {
+
+namespace detail {
+// Set while a captured section runs: what the CUDA executor records as a graph may not read
+// from the device, allocate or wait, and the host executor enforces that for the tests.
+inline thread_local bool capturing = false;
+inline void forbidInCapture(const char* what) {
+  if (capturing) throw std::logic_error(std::string(what) + " inside a captured section");
+}
+}  // namespace detail
 
 class HostExecutor {
  public:
@@ -23,10 +34,19 @@ class HostExecutor {
     T* data() { return v_.data(); }
     const T* data() const { return v_.data(); }
     size_t size() const { return v_.size(); }
-    void resize(size_t n) { v_.assign(n, T{}); }  // zeroed
-    void upload(const T* src, size_t n) { v_.assign(src, src + n); }
+    void resize(size_t n) {  // zeroed
+      detail::forbidInCapture("an allocation");
+      v_.assign(n, T{});
+    }
+    void upload(const T* src, size_t n) {
+      detail::forbidInCapture("an upload");
+      v_.assign(src, src + n);
+    }
     void upload(const std::vector<T>& src) { upload(src.data(), src.size()); }
-    void download(T* dst, size_t n) const { std::copy(v_.begin(), v_.begin() + n, dst); }
+    void download(T* dst, size_t n) const {
+      detail::forbidInCapture("a download");
+      std::copy(v_.begin(), v_.begin() + n, dst);
+    }
 
    private:
     std::vector<T> v_;
@@ -53,10 +73,12 @@ class HostExecutor {
     std::memmove(dst, src, n * sizeof(T));
   }
   void read(const double* deviceValues, double* host, int n) const {
+    detail::forbidInCapture("a host read");
     std::copy(deviceValues, deviceValues + n, host);
   }
   // In-place dense Cholesky (lower, column-major); false when not positive definite.
   bool denseCholesky(int n, double* a) const {
+    detail::forbidInCapture("a dense factorization (it waits for its status)");
     Eigen::Map<Eigen::MatrixXd> m(a, n, n);
     Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(m);
     return llt.info() == Eigen::Success;
@@ -70,6 +92,10 @@ class HostExecutor {
   // A section of launches the CUDA executor captures as one graph; here it just runs.
   template <typename Body>
   void captured(int /*slot*/, std::uint64_t /*key*/, const Body& body) {
+    struct Flag {
+      Flag() { detail::capturing = true; }
+      ~Flag() { detail::capturing = false; }
+    } flag;
     body();
   }
   void synchronize() const {}

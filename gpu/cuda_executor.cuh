@@ -1,0 +1,311 @@
+// The device solver's executor on a CUDA GPU: buffers in device memory, a launch per forEach
+// (256 threads a block), deterministic two-pass reductions (a fixed grid, then one block), the
+// dense coarse Cholesky through cuSOLVER, reads through a pinned staging buffer, and captured
+// sections recorded once as CUDA graphs and replayed while their key holds. Everything runs on
+// the per-thread default stream (capturable, and no stream handle to pass to buffers).
+//
+// Every CUDA call is checked: a failure throws CudaError naming the call, file and line.
+#pragma once
+
+#include <cuda_runtime.h>
+#include <cusolverDn.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace galsculpt::gpu {
+
+class CudaError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+inline void checkCuda(cudaError_t status, const char* call, const char* file, int line) {
+  if (status == cudaSuccess) return;
+  throw CudaError(std::string(file) + ":" + std::to_string(line) + ": " + call + ": " +
+                  cudaGetErrorString(status));
+}
+inline void checkCusolver(cusolverStatus_t status, const char* call, const char* file, int line) {
+  if (status == CUSOLVER_STATUS_SUCCESS) return;
+  throw CudaError(std::string(file) + ":" + std::to_string(line) + ": " + call +
+                  ": cuSOLVER status " + std::to_string(static_cast<int>(status)));
+}
+#define GALSCULPT_CUDA_CHECK(call) ::galsculpt::gpu::checkCuda((call), #call, __FILE__, __LINE__)
+#define GALSCULPT_CUSOLVER_CHECK(call) \
+  ::galsculpt::gpu::checkCusolver((call), #call, __FILE__, __LINE__)
+
+// The per-thread default stream: capturable, and no handle to pass around (a macro in the CUDA
+// headers, hence one here).
+#define GALSCULPT_CUDA_STREAM cudaStreamPerThread
+inline constexpr int kThreads = 256;
+inline constexpr int kReduceBlocks = 1024;
+
+template <typename F>
+__global__ void forEachKernel(int n, F f) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) f(i);
+}
+
+// Pass one: each block reduces a fixed, strided share of the items into partial[block].
+template <typename F, typename Op>
+__global__ void reduceKernel(int n, F f, Op op, double identity, double* partial) {
+  __shared__ double shared[kThreads];
+  double acc = identity;
+  for (int i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x)
+    acc = op(acc, f(i));
+  shared[threadIdx.x] = acc;
+  __syncthreads();
+  for (int stride = blockDim.x / 2; stride > 0; stride /= 2) {
+    if (threadIdx.x < stride)
+      shared[threadIdx.x] = op(shared[threadIdx.x], shared[threadIdx.x + stride]);
+    __syncthreads();
+  }
+  if (threadIdx.x == 0) partial[blockIdx.x] = shared[0];
+}
+
+// Pass two: one block reduces the partials in a fixed order.
+template <typename Op>
+__global__ void finishKernel(int blocks, const double* partial, Op op, double identity,
+                             double* out) {
+  __shared__ double shared[kThreads];
+  double acc = identity;
+  for (int i = threadIdx.x; i < blocks; i += blockDim.x) acc = op(acc, partial[i]);
+  shared[threadIdx.x] = acc;
+  __syncthreads();
+  for (int stride = blockDim.x / 2; stride > 0; stride /= 2) {
+    if (threadIdx.x < stride)
+      shared[threadIdx.x] = op(shared[threadIdx.x], shared[threadIdx.x + stride]);
+    __syncthreads();
+  }
+  if (threadIdx.x == 0) *out = shared[0];
+}
+
+struct AddOp {
+  __host__ __device__ double operator()(double a, double b) const { return a + b; }
+};
+struct MaxOp {
+  __host__ __device__ double operator()(double a, double b) const { return a > b ? a : b; }
+};
+
+// Pinned host memory for device-to-host copies (positions every frame, scalars every Newton
+// iteration): DMA straight into it, then one memcpy.
+class PinnedStaging {
+ public:
+  ~PinnedStaging() {
+    if (data_) cudaFreeHost(data_);
+  }
+  void* get(size_t bytes) {
+    if (bytes > bytes_) {
+      if (data_) GALSCULPT_CUDA_CHECK(cudaFreeHost(data_));
+      data_ = nullptr;
+      GALSCULPT_CUDA_CHECK(cudaMallocHost(&data_, bytes));
+      bytes_ = bytes;
+    }
+    return data_;
+  }
+
+ private:
+  void* data_ = nullptr;
+  size_t bytes_ = 0;
+};
+
+inline PinnedStaging& pinnedStaging() {
+  thread_local PinnedStaging staging;  // one per thread, like the stream it serves
+  return staging;
+}
+
+class CudaExecutor {
+ public:
+  static constexpr const char* kName = "cuda";
+
+  template <typename T>
+  class Buffer {
+   public:
+    Buffer() = default;
+    Buffer(const Buffer&) = delete;
+    Buffer& operator=(const Buffer&) = delete;
+    Buffer(Buffer&& other) noexcept : p_(other.p_), n_(other.n_) {
+      other.p_ = nullptr;
+      other.n_ = 0;
+    }
+    Buffer& operator=(Buffer&& other) noexcept {
+      std::swap(p_, other.p_);
+      std::swap(n_, other.n_);
+      return *this;
+    }
+    ~Buffer() {
+      if (p_) cudaFree(p_);
+    }
+    T* data() { return p_; }
+    const T* data() const { return p_; }
+    size_t size() const { return n_; }
+    // Setup only (never inside a captured section): synchronous, so that a frame launched later
+    // from another thread (the app's worker) sees the zeros.
+    void resize(size_t n) {
+      allocate(n);
+      if (n) GALSCULPT_CUDA_CHECK(cudaMemsetAsync(p_, 0, n * sizeof(T), GALSCULPT_CUDA_STREAM));
+      GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
+    }
+    void upload(const T* src, size_t n) {
+      allocate(n);
+      if (n)
+        GALSCULPT_CUDA_CHECK(
+            cudaMemcpyAsync(p_, src, n * sizeof(T), cudaMemcpyHostToDevice, GALSCULPT_CUDA_STREAM));
+      GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));  // src may go away
+    }
+    void upload(const std::vector<T>& src) { upload(src.data(), src.size()); }
+    void download(T* dst, size_t n) const {
+      if (!n) return;
+      void* pinned = pinnedStaging().get(n * sizeof(T));
+      GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(pinned, p_, n * sizeof(T), cudaMemcpyDeviceToHost,
+                                           GALSCULPT_CUDA_STREAM));
+      GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
+      std::memcpy(static_cast<void*>(dst), pinned, n * sizeof(T));
+    }
+
+   private:
+    void allocate(size_t n) {
+      if (n == n_) return;
+      if (p_) GALSCULPT_CUDA_CHECK(cudaFree(p_));
+      p_ = nullptr;
+      n_ = n;
+      if (n) GALSCULPT_CUDA_CHECK(cudaMalloc(&p_, n * sizeof(T)));
+    }
+    T* p_ = nullptr;
+    size_t n_ = 0;
+  };
+
+  CudaExecutor() {
+    GALSCULPT_CUDA_CHECK(cudaMalloc(&partial_, kReduceBlocks * sizeof(double)));
+    GALSCULPT_CUSOLVER_CHECK(cusolverDnCreate(&solver_));
+    GALSCULPT_CUSOLVER_CHECK(cusolverDnSetStream(solver_, GALSCULPT_CUDA_STREAM));
+    GALSCULPT_CUDA_CHECK(cudaMalloc(&info_, sizeof(int)));
+    const char* graphs = std::getenv("GALSCULPT_CUDA_GRAPHS");
+    graphs_ = !(graphs && std::string(graphs) == "0");
+  }
+  ~CudaExecutor() {
+    for (Graph& g : slots_)
+      if (g.exec) cudaGraphExecDestroy(g.exec);
+    if (workspace_) cudaFree(workspace_);
+    cudaFree(info_);
+    cudaFree(partial_);
+    cusolverDnDestroy(solver_);
+  }
+  CudaExecutor(const CudaExecutor&) = delete;
+  CudaExecutor& operator=(const CudaExecutor&) = delete;
+
+  template <typename F>
+  void forEach(int n, const F& f) const {
+    if (n <= 0) return;
+    forEachKernel<<<(n + kThreads - 1) / kThreads, kThreads, 0, GALSCULPT_CUDA_STREAM>>>(n, f);
+    GALSCULPT_CUDA_CHECK(cudaGetLastError());
+  }
+  template <typename F>
+  void sum(int n, const F& f, double* out) const {
+    reduce(n, f, AddOp{}, 0.0, out);
+  }
+  template <typename F>
+  void maximum(int n, const F& f, double* out) const {
+    reduce(n, f, MaxOp{}, -std::numeric_limits<double>::infinity(), out);
+  }
+  template <typename T>
+  void copy(T* dst, const T* src, size_t n) const {
+    if (n)
+      GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(dst, src, n * sizeof(T), cudaMemcpyDeviceToDevice,
+                                           GALSCULPT_CUDA_STREAM));
+  }
+  void read(const double* deviceValues, double* host, int n) const {
+    void* pinned = pinnedStaging().get(n * sizeof(double));
+    GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(pinned, deviceValues, n * sizeof(double),
+                                         cudaMemcpyDeviceToHost, GALSCULPT_CUDA_STREAM));
+    GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
+    std::memcpy(host, pinned, n * sizeof(double));
+  }
+  bool denseCholesky(int n, double* a) {
+    int lwork = 0;
+    GALSCULPT_CUSOLVER_CHECK(
+        cusolverDnDpotrf_bufferSize(solver_, CUBLAS_FILL_MODE_LOWER, n, a, n, &lwork));
+    if (static_cast<size_t>(lwork) > workspaceSize_) {
+      if (workspace_) GALSCULPT_CUDA_CHECK(cudaFree(workspace_));
+      GALSCULPT_CUDA_CHECK(cudaMalloc(&workspace_, lwork * sizeof(double)));
+      workspaceSize_ = lwork;
+    }
+    GALSCULPT_CUSOLVER_CHECK(
+        cusolverDnDpotrf(solver_, CUBLAS_FILL_MODE_LOWER, n, a, n, workspace_, lwork, info_));
+    int info = 0;
+    GALSCULPT_CUDA_CHECK(
+        cudaMemcpyAsync(&info, info_, sizeof(int), cudaMemcpyDeviceToHost, GALSCULPT_CUDA_STREAM));
+    GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
+    return info == 0;
+  }
+  void denseCholeskySolve(int n, const double* l, double* b) {
+    GALSCULPT_CUSOLVER_CHECK(
+        cusolverDnDpotrs(solver_, CUBLAS_FILL_MODE_LOWER, n, 1, l, n, b, n, info_));
+  }
+  // Runs `body` (launches only, no host reads) as a CUDA graph: recorded on first use or when
+  // the key changes, replayed otherwise. GALSCULPT_CUDA_GRAPHS=0 runs it directly.
+  template <typename Body>
+  void captured(int slot, std::uint64_t key, const Body& body) {
+    if (!graphs_) {
+      body();
+      return;
+    }
+    if (slot >= static_cast<int>(slots_.size())) slots_.resize(slot + 1);
+    Graph& g = slots_[slot];
+    if (!g.exec || g.key != key) {
+      if (g.exec) GALSCULPT_CUDA_CHECK(cudaGraphExecDestroy(g.exec));
+      g.exec = nullptr;
+      cudaGraph_t graph = nullptr;
+      GALSCULPT_CUDA_CHECK(
+          cudaStreamBeginCapture(GALSCULPT_CUDA_STREAM, cudaStreamCaptureModeThreadLocal));
+      try {
+        body();
+      } catch (...) {
+        cudaStreamEndCapture(GALSCULPT_CUDA_STREAM, &graph);
+        if (graph) cudaGraphDestroy(graph);
+        throw;
+      }
+      GALSCULPT_CUDA_CHECK(cudaStreamEndCapture(GALSCULPT_CUDA_STREAM, &graph));
+      GALSCULPT_CUDA_CHECK(cudaGraphInstantiate(&g.exec, graph, 0));
+      GALSCULPT_CUDA_CHECK(cudaGraphDestroy(graph));
+      g.key = key;
+      ++graphsRecorded_;
+    }
+    GALSCULPT_CUDA_CHECK(cudaGraphLaunch(g.exec, GALSCULPT_CUDA_STREAM));
+    ++graphsLaunched_;
+  }
+  void synchronize() const { GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM)); }
+  long graphsRecorded() const { return graphsRecorded_; }
+  long graphsLaunched() const { return graphsLaunched_; }
+
+ private:
+  template <typename F, typename Op>
+  void reduce(int n, const F& f, Op op, double identity, double* out) const {
+    const int blocks = n <= 0 ? 1 : std::min(kReduceBlocks, (n + kThreads - 1) / kThreads);
+    reduceKernel<<<blocks, kThreads, 0, GALSCULPT_CUDA_STREAM>>>(n, f, op, identity, partial_);
+    GALSCULPT_CUDA_CHECK(cudaGetLastError());
+    finishKernel<<<1, kThreads, 0, GALSCULPT_CUDA_STREAM>>>(blocks, partial_, op, identity, out);
+    GALSCULPT_CUDA_CHECK(cudaGetLastError());
+  }
+  struct Graph {
+    std::uint64_t key = 0;
+    cudaGraphExec_t exec = nullptr;
+  };
+  double* partial_ = nullptr;
+  cusolverDnHandle_t solver_ = nullptr;
+  int* info_ = nullptr;
+  double* workspace_ = nullptr;
+  size_t workspaceSize_ = 0;
+  bool graphs_ = true;
+  std::vector<Graph> slots_;
+  long graphsRecorded_ = 0, graphsLaunched_ = 0;
+};
+
+}  // namespace galsculpt::gpu

@@ -1,0 +1,20 @@
+// The CUDA backend's entry points in builds without nvcc: it is not there, and says so.
+#include "cuda_step_backend.h"
+
+#include "device_solver.h"
+
+namespace galsculpt::gpu {
+
+bool cudaBackendBuilt() {
+  return false;
+}
+
+std::unique_ptr<StepBackend> makeCudaStepBackend(const SimModel&, const StepSettings& settings,
+                                                 std::string& reason) {
+  reason = deviceUnsupportedReason(settings);
+  if (reason.empty())
+    reason = "this build has no CUDA backend (nvcc was not found when it was configured)";
+  return nullptr;
+}
+
+}  // namespace galsculpt::gpu
