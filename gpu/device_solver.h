@@ -464,8 +464,8 @@ class DeviceSolver {
       ++result.iterations;
       double stepLength = 1.0;
       bool failed = false;
+      double read[kScalars];
       while (true) {
-        double read[kScalars];
         ex_.read(sc, read, kScalars);
         if (stepLength == 1.0)
           result.linearResidualReduction =
@@ -497,16 +497,41 @@ class DeviceSolver {
         }
         break;
       }
+      // Accept: the trial just evaluated is the new iterate (its energy and gradient too).
       const double len = stepLength;
       const double* delta = delta_.data();
       ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { x[i] += len * delta[i]; });
       ex_.copy(acceptedGrad_.data(), trialGrad_.data(), 3 * n_);
-      double read[kScalars];
-      ex_.read(sc, read, kScalars);
       result.energy = read[kTrialElastic];
       if (read[kDeltaMax] * stepLength < s.tolerance * modelSize_) break;
     }
-    // Residual at the accepted positions, relative to the body's (1 g) weight.
+    // The sub-step's end, one captured section and one read: the residual at the accepted
+    // positions (relative to the body's 1 g weight), contact forces, finiteness, velocities.
+    ex_.captured(1, graphKey(h, -1), [&] { finishSubstep(h); });
+    double read[kScalars];
+    ex_.read(sc, read, kScalars);
+    double fextNorm = 0.0;
+    for (double m : model_.mass) fextNorm += m * m;
+    fextNorm = std::sqrt(fextNorm) * settings_->gravity.norm();
+    const double weight = std::max(fextNorm, 9.81 * massNorm_ / std::sqrt(3.0));
+    result.residual = std::sqrt(read[kResidual]) / weight;
+    result.contactForces.assign(poses_.size(), Vec3::Zero());
+    for (size_t c = 0; c < poses_.size(); ++c)
+      result.contactForces[c] =
+          Vec3(read[kForce + 3 * c], read[kForce + 3 * c + 1], read[kForce + 3 * c + 2]);
+    if (read[kBad] > 0.0 || !std::isfinite(result.energy)) {
+      result.ok = false;  // the caller restores x and v
+      return result;
+    }
+    time_ += h;
+    return result;
+  }
+
+  void finishSubstep(double h) {
+    double* sc = scalars_.data();
+    const double* x = x_.data();
+    const double* xn = xn_.data();
+    double* v = v_.data();
     dampedProduct(x, dampedK_.data());
     ex_.copy(tmp_.data(), acceptedGrad_.data(), 3 * n_);
     contact(x, tmp_.data(), kContact);
@@ -518,21 +543,8 @@ class DeviceSolver {
         3 * n_,
         [=] GALSCULPT_LAMBDA(int i) { return x[i] == x[i] && fabs(x[i]) <= 1.7e308 ? 0.0 : 1.0; },
         sc + kBad);
-    contactForces(x, result.contactForces);
-    double read[kScalars];
-    ex_.read(sc, read, kScalars);
-    double fextNorm = 0.0;
-    for (double m : model_.mass) fextNorm += m * m;
-    fextNorm = std::sqrt(fextNorm) * settings_->gravity.norm();
-    const double weight = std::max(fextNorm, 9.81 * massNorm_ / std::sqrt(3.0));
-    result.residual = std::sqrt(read[kResidual]) / weight;
-    if (read[kBad] > 0.0 || !std::isfinite(result.energy)) {
-      result.ok = false;
-      return result;
-    }
+    contactForces(x);
     ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { v[i] = (x[i] - xn[i]) / h; });
-    time_ += h;
-    return result;
   }
 
   // The Newton step's measures: e0 (kE0), the slope g.delta (kSlope), |delta|_inf
@@ -689,9 +701,8 @@ class DeviceSolver {
     });
   }
 
-  // Force of each collider on the body at y.
-  void contactForces(const double* y, std::vector<Vec3>& out) {
-    out.assign(poses_.size(), Vec3::Zero());
+  // Force of each collider on the body at y, into slots kForce + 3 c + k.
+  void contactForces(const double* y) {
     const kernels::ColliderPose* poses = poseBuffer_.data();
     const std::uint8_t* fixed = fixed_.data();
     const double* mass = mass_.data();
@@ -712,11 +723,6 @@ class DeviceSolver {
             sc + kForce + 3 * ci + k);
       }
     }
-    if (poses_.empty()) return;
-    double read[kScalars];
-    ex_.read(sc, read, kScalars);
-    for (size_t c = 0; c < poses_.size(); ++c)
-      out[c] = Vec3(read[kForce + 3 * c], read[kForce + 3 * c + 1], read[kForce + 3 * c + 2]);
   }
 
   // ---- plasticity and fracture --------------------------------------------------------------

@@ -125,6 +125,29 @@ TEST(DeviceSolver, SolverOptionsMatchTheCpu) {
 namespace galsculpt::gpu {
 namespace {
 
+// A NaN velocity: every sub-step fails, is rolled back and retried with half the step, and the
+// frame gives up with the positions of the last good state, as on the CPU.
+TEST(DeviceSolver, FailedSubstepsAreRolledBackAndCountedAsOnTheCpu) {
+  const SceneDescription scene = sceneNamed("hanging_sphere", 6000);
+  const Simulation sim(scene, loadSceneMesh(scene));
+  SimState device = sim.state();
+  device.workspace = nullptr;
+  device.v[3] = Vec3(std::nan(""), 0, 0);
+  const std::vector<Vec3> before = device.x;
+  StepSettings settings = sim.settings();
+  settings.maxRetries = 3;
+  HostExecutor ex;
+  DeviceSolver<HostExecutor> solver(ex, sim.model());
+  const StepReport r = solver.step(device, settings);
+  EXPECT_EQ(r.retries, settings.maxRetries + 1);
+  EXPECT_NEAR(device.time, settings.dt, 1e-15);
+  EXPECT_EQ(device.x, before);
+  // The next frame starts from the host's state again (a tool fixed the velocity).
+  device.v[3] = Vec3::Zero();
+  EXPECT_EQ(solver.step(device, settings).retries, 0);
+  EXPECT_NE(device.x, before);
+}
+
 // What the CUDA executor records as a graph may not read, allocate or wait; the host executor
 // refuses those inside captured(), so the frame tests above check the CUDA path's discipline.
 TEST(HostExecutor, CapturedSectionsMayNotReadAllocateOrWait) {
