@@ -44,6 +44,39 @@ inline std::string deviceUnsupportedReason(const StepSettings& s) {
   return "";
 }
 
+// What one thread needs to set an element up: its corners' positions, its intact-edge mask
+// and its rest data (the plastic rest shape where it has flowed). Plain pointers: captured by
+// value into the element, plasticity and fracture launches.
+struct ElementInputs {
+  const int* tetVertices;         // (4 nTets)
+  const int* tetEdges;            // (6 nTets)
+  const std::uint8_t* damaged;    // (nEdges)
+  const kernels::RestData* rest;  // (nTets)
+  const double* plasticInverse;   // (9 nTets) or null: elastic
+
+  GALSCULPT_HD void load(int t, const double* y, double x12[12], std::uint8_t& intact,
+                         kernels::RestData& r) const {
+    for (int a = 0; a < 4; ++a)
+      for (int k = 0; k < 3; ++k) x12[3 * a + k] = y[3 * tetVertices[4 * t + a] + k];
+    intact = 0;
+    for (int e = 0; e < 6; ++e)
+      if (!damaged[tetEdges[6 * t + e]]) intact |= static_cast<std::uint8_t>(1u << e);
+    r = rest[t];
+    if (plasticInverse && !isIdentity(plasticInverse + 9 * t)) {
+      kernels::M3 f;
+      for (int i = 0; i < 9; ++i) f.a[i] = plasticInverse[9 * t + i];
+      kernels::RestData plasticShape;
+      if (kernels::plasticRest(rest[t], f, plasticShape)) r = plasticShape;
+    }
+  }
+  GALSCULPT_HD static bool isIdentity(const double* m) {
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r)
+        if (m[r + 3 * c] != (r == c ? 1.0 : 0.0)) return false;
+    return true;
+  }
+};
+
 template <typename Exec>
 class DeviceSolver {
  public:
@@ -196,11 +229,7 @@ class DeviceSolver {
   // Energies, forces and (withHessian) stiffnesses of every element at positions y, gathered
   // into `gradient` (3n) and, with the Hessian, into k_. The total energy goes to scalar slot.
   void elementPass(const double* y, bool withHessian, double* gradient, int energySlot) {
-    const int* tv = tetVertices_.data();
-    const int* te = tetEdges_.data();
-    const kernels::RestData* rest = rest_.data();
-    const std::uint8_t* damaged = damaged_.data();
-    const double* fp = plastic_ ? fp_.data() : nullptr;
+    const ElementInputs in = elementInputs();
     double* energy = elemEnergy_.data();
     double* eg = elemGrad_.data();
     double* eh = elemHess_.data();
@@ -211,18 +240,9 @@ class DeviceSolver {
         withHessian ? kernels::Hessian::ProjectedSpd : kernels::Hessian::None;
     ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
       double x12[12];
-      for (int a = 0; a < 4; ++a)
-        for (int k = 0; k < 3; ++k) x12[3 * a + k] = y[3 * tv[4 * t + a] + k];
-      std::uint8_t intact = 0;
-      for (int e = 0; e < 6; ++e)
-        if (!damaged[te[6 * t + e]]) intact |= static_cast<std::uint8_t>(1u << e);
-      kernels::RestData r = rest[t];
-      if (fp && !isIdentity(fp + 9 * t)) {
-        kernels::M3 f;
-        for (int i = 0; i < 9; ++i) f.a[i] = fp[9 * t + i];
-        kernels::RestData plasticShape;
-        if (kernels::plasticRest(rest[t], f, plasticShape)) r = plasticShape;
-      }
+      std::uint8_t intact;
+      kernels::RestData r;
+      in.load(t, y, x12, intact, r);
       kernels::evaluateElement(model, lame, r, x12, intact, resists, mode, energy[t], eg + 12 * t,
                                eh + 144 * static_cast<size_t>(t));
     });
@@ -254,11 +274,9 @@ class DeviceSolver {
     });
   }
 
-  GALSCULPT_HD static bool isIdentity(const double* m) {
-    for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 3; ++r)
-        if (m[r + 3 * c] != (r == c ? 1.0 : 0.0)) return false;
-    return true;
+  ElementInputs elementInputs() const {
+    return {tetVertices_.data(), tetEdges_.data(), damaged_.data(), rest_.data(),
+            plastic_ ? fp_.data() : nullptr};
   }
 
   // out = beta K0 (y - x_n).
@@ -762,11 +780,8 @@ class DeviceSolver {
     FractureReport report;
     const int edges = layout_.edges;
     // Element edge stresses into slots 6 t + k.
-    const int* tv = tetVertices_.data();
-    const int* te = tetEdges_.data();
-    const kernels::RestData* rest = rest_.data();
+    const ElementInputs in = elementInputs();
     const std::uint8_t* damaged = damaged_.data();
-    const double* fp = plastic_ ? fp_.data() : nullptr;
     const double* x = x_.data();
     double* slot = slotStress_.data();
     const MaterialModel model = model_.material.model;
@@ -774,18 +789,9 @@ class DeviceSolver {
     const bool resists = settings_->compressionResists;
     ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
       double x12[12];
-      for (int a = 0; a < 4; ++a)
-        for (int k = 0; k < 3; ++k) x12[3 * a + k] = x[3 * tv[4 * t + a] + k];
-      std::uint8_t intact = 0;
-      for (int e = 0; e < 6; ++e)
-        if (!damaged[te[6 * t + e]]) intact |= static_cast<std::uint8_t>(1u << e);
-      kernels::RestData r = rest[t];
-      if (fp && !isIdentity(fp + 9 * t)) {
-        kernels::M3 f;
-        for (int i = 0; i < 9; ++i) f.a[i] = fp[9 * t + i];
-        kernels::RestData plasticShape;
-        if (kernels::plasticRest(rest[t], f, plasticShape)) r = plasticShape;
-      }
+      std::uint8_t intact;
+      kernels::RestData r;
+      in.load(t, x, x12, intact, r);
       kernels::edgeNormalStress(model, lame, r, x12, intact, resists, slot + 6 * t);
     });
     const int* slotStart = edgeSlotStart_.data();
