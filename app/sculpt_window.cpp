@@ -123,6 +123,8 @@ class SculptApp {
 
   // Overlay figures.
   FrameMetrics metrics_;
+  std::string backendName_;         // as of the last finished frame
+  std::vector<std::string> notes_;  // the simulation's notes, as of the last finished frame
   double msSurface_ = 0.0;
 
   // Dialogs and messages.
@@ -507,6 +509,11 @@ void SculptApp::processInput() {
 
 void SculptApp::finishStep() {
   if (stepping_.valid()) metrics_ = stepping_.get();
+  // Read between frames: a frame in flight may change the backend (a device failure) and notes.
+  if (session_) {
+    backendName_ = session_->simulation().backendName();
+    notes_ = session_->simulation().notes();
+  }
 }
 
 void SculptApp::collectStep() {
@@ -683,7 +690,9 @@ void SculptApp::drawOverlay() {
     ImGui::Text("%s: %d vertices, %d tets", scene.name.c_str(), sim.model().numVertices(),
                 sim.model().numTets());
     ImGui::Text("material: %s (%s)", scene.material.preset.c_str(), scene.material.model.c_str());
-    ImGui::Text("solver: %s %s", scene.solver.type.c_str(), scene.solver.grid.c_str());
+    ImGui::Text("solver: %s %s on the %s backend", scene.solver.type.c_str(),
+                scene.solver.grid.c_str(),
+                (stepInFlight() ? backendName_ : sim.backendName()).c_str());
     ImGui::Separator();
     ImGui::Text("frame %d  (%s)", metrics_.frame, playing_ ? "playing" : "paused");
     ImGui::Text("ms: total %.1f  elements %.1f  solve %.1f", metrics_.msTotal, metrics_.msElements,
@@ -698,7 +707,8 @@ void SculptApp::drawOverlay() {
       ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "step retries: %d", metrics_.warnings);
     ImGui::Text("history %.1f MB, %zu recorded events", session_->historyBytes() / 1048576.0,
                 session_->recording().size());
-    for (const std::string& note : sim.notes()) ImGui::TextDisabled("%s", note.c_str());
+    for (const std::string& note : stepInFlight() ? notes_ : sim.notes())
+      ImGui::TextDisabled("%s", note.c_str());
   }
   if (!status_.empty()) ImGui::TextDisabled("%s", status_.c_str());
   ImGui::End();

@@ -125,6 +125,7 @@ int openCommand(const std::vector<std::string>& args, std::ostream& out, std::os
                      "galsculpt open FILE [--headless] [--out DIR] [--size WxH] [--paused] "
                      "[--input-script FILE] [--save-project FILE] [--save-recording FILE] "
                      "[--autosave SECONDS] [--no-recovery] [--backend auto|cpu|cuda]");
+  const std::string backend = backendOption(a);
   const fs::path file = a.positional()[0];
   if (!fs::exists(file)) throw InputError(file.string() + ": no such file");
   bool headless = a.has("--headless");
@@ -142,7 +143,7 @@ int openCommand(const std::vector<std::string>& args, std::ostream& out, std::os
     o.autosaveSeconds = a.doubleValue("--autosave", 60.0, 0.0, 1e9);
     o.offerRecovery = !a.has("--no-recovery") && !o.inputScript;
     o.startPlaying = !a.has("--paused");
-    o.backend = backendOption(a);
+    o.backend = backend;
     std::string error;
     if (runSculptWindow(o, out, &error)) return kExitOk;
     out << "cannot open a window (" << error << "): running headless\n";

@@ -110,6 +110,8 @@ class Simulation {
   const StepSettings& settings() const { return settings_; }
   // The backend computing the frames: "cpu" or "cuda" (the notes say why, if not as asked).
   std::string backendName() const { return backend_->name(); }
+  // Replaces the backend that computes the frames (tests; an application with its own).
+  void setBackend(std::unique_ptr<StepBackend> backend) { backend_ = std::move(backend); }
   // Notes for the user about how the scene is run (e.g. a solver that is not available yet).
   const std::vector<std::string>& notes() const { return notes_; }
   int frame() const { return frame_; }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "engine/surface_io.h"
+#include "gpu/cuda_step_backend.h"
 #include "solver/shape_generators.h"
 #include "tests/test_util.h"
 
@@ -189,9 +190,50 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   }
   EXPECT_EQ(j["results"][0]["solver"], "reference");
   EXPECT_EQ(j["results"][1]["solver"], "multigrid");
+  EXPECT_EQ(j["results"][0]["backend"], "cpu") << "the reference always runs on the CPU";
+  EXPECT_TRUE(j["results"][1]["backend"] == "cpu" || j["results"][1]["backend"] == "cuda");
+  if (j["results"][1]["backend"] == "cpu") {
+    EXPECT_TRUE(j["results"][1].contains("backend_note")) << "auto says why it is not on a GPU";
+  }
   EXPECT_GT(j["results"][1]["rel_position_error"].get<double>(), 0.0);
   EXPECT_LT(j["results"][1]["rel_position_error"].get<double>(), 1.0);
   EXPECT_EQ(run({"bench", "--scene", "moon"}).code, kExitUsage);
+}
+
+// --backend on run (and play, bench, open): cpu runs without a note; cuda runs on the GPU or
+// says why not; anything else is a usage error.
+TEST(Cli, BackendFlag) {
+  test::TempDir dir;
+  const fs::path scene = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
+  const CliRun cpu = run(
+      {"run", scene.string(), "--frames", "1", "--out", (dir / "a").string(), "--backend", "cpu"});
+  ASSERT_EQ(cpu.code, kExitOk) << cpu.err;
+  EXPECT_EQ(cpu.err.find("running on the CPU"), std::string::npos) << cpu.err;
+  const CliRun cuda = run(
+      {"run", scene.string(), "--frames", "1", "--out", (dir / "b").string(), "--backend", "cuda"});
+  ASSERT_EQ(cuda.code, kExitOk) << cuda.err;
+  std::string reason;
+  const SimModel probe = buildSimModel(test::gridBar(1, 1, 1, 0.1), MaterialParams{});
+  StepSettings multigrid;
+  multigrid.multigrid = true;
+  if (!gpu::makeCudaStepBackend(probe, multigrid, reason)) {
+    EXPECT_NE(cuda.err.find("note: the CUDA backend is not available (" + reason + ")"),
+              std::string::npos)
+        << cuda.err;
+  }
+  const fs::path script = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scripts" / "sphere_cut.json";
+  const std::vector<std::vector<std::string>> bad = {
+      {"run", scene.string(), "--frames", "1", "--out", (dir / "c").string()},
+      {"play", script.string(), "--out", (dir / "c").string()},
+      {"bench"},
+      {"open", scene.string(), "--headless", "--out", (dir / "c").string()}};
+  for (std::vector<std::string> args : bad) {
+    args.insert(args.end(), {"--backend", "gpu"});
+    const CliRun r = run(args);
+    EXPECT_EQ(r.code, kExitUsage) << args[0];
+    EXPECT_NE(r.err.find("--backend must be auto, cpu or cuda"), std::string::npos)
+        << args[0] << ": " << r.err;
+  }
 }
 
 TEST(Cli, SceneCheck) {

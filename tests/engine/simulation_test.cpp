@@ -179,3 +179,37 @@ TEST(Simulation, TetMeshWithDamageRoundTrips) {
 
 }  // namespace
 }  // namespace galsculpt
+
+namespace galsculpt {
+namespace {
+
+// A device that fails mid-frame (lost GPU, out of memory) throws before writing the state back.
+class FailingBackend final : public StepBackend {
+ public:
+  std::string name() const override { return "cuda"; }
+  StepReport step(SimState&, const StepSettings&) override {
+    throw std::runtime_error("device lost");
+  }
+};
+
+// The frame runs again on the CPU, which computes the rest of the session, and a note says so.
+TEST(Simulation, ADeviceFailureFallsBackToTheCpuAndSaysSo) {
+  test::TempDir dir;
+  const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + "}");
+  Simulation sim(scene, loadSceneMesh(scene));
+  Simulation reference(scene, loadSceneMesh(scene));
+  reference.setBackend(std::make_unique<CpuStepBackend>(reference.model()));
+  sim.setBackend(std::make_unique<FailingBackend>());
+  sim.advance();
+  reference.advance();
+  EXPECT_EQ(sim.backendName(), "cpu");
+  bool noted = false;
+  for (const std::string& n : sim.notes())
+    noted = noted || n == "the cuda backend failed (device lost): running on the CPU from frame 0";
+  EXPECT_TRUE(noted);
+  EXPECT_EQ(sim.frame(), 1);
+  EXPECT_EQ(sim.state().x, reference.state().x) << "the failed frame was computed in full";
+}
+
+}  // namespace
+}  // namespace galsculpt
