@@ -292,6 +292,12 @@ void ToolApplier::prepareFrame(const std::vector<ToolEvent>& events, int frame) 
   sculptor_.beforeFrame();
 }
 
+void ToolApplier::applyTrailing(const std::vector<ToolEvent>& events, int lastFrame) {
+  for (const ToolEvent& e : events) {
+    if (e.tool == ToolEvent::Tool::Knife && e.frame == lastFrame) apply(e, lastFrame);
+  }
+}
+
 void ToolApplier::releaseExpired(int frame) {
   for (auto it = releases_.begin(); it != releases_.end();) {
     if (it->first <= frame) {
@@ -369,7 +375,10 @@ int ToolApplier::apply(const ToolEvent& e, int frame) {
 FrameMetrics Playback::advance() {
   const int frame = sim_.frame();  // the frame about to be computed is frame + 1
   tools_.prepareFrame(script_.events, frame);
-  return sim_.advance();
+  const FrameMetrics m = sim_.advance();
+  // The metrics are the frame's; trailing cuts show in the state (and the final surface).
+  if (finished()) tools_.applyTrailing(script_.events, sim_.frame());
+  return m;
 }
 
 }  // namespace galsculpt

@@ -100,6 +100,10 @@ class ToolApplier {
   void prepareFrame(const std::vector<ToolEvent>& events, int frame);
   // One event's effect due at `frame`; returns the edges it cut (knife), else 0.
   int apply(const ToolEvent& e, int frame);
+  // A script's end: the knife events recorded at its last frame (cuts made after the last
+  // computed frame, which show in the state with no frame after them). Cutting is idempotent,
+  // so a session that goes on and prepares that frame again changes nothing.
+  void applyTrailing(const std::vector<ToolEvent>& events, int lastFrame);
   Sculptor& sculptor() { return sculptor_; }
   const std::optional<CameraPose>& camera() const { return camera_; }
 
@@ -121,7 +125,8 @@ class Playback {
  public:
   // Checks every anchor event's selection up front (InputError naming its JSON path).
   Playback(const PlaybackScript& script, Simulation& sim);
-  // Applies the tools due for the next frame, then steps it.
+  // Applies the tools due for the next frame, then steps it; after the last frame, the cuts
+  // recorded at it (ToolApplier::applyTrailing).
   FrameMetrics advance();
   bool finished() const { return sim_.frame() >= script_.frames; }
   // The script's latest camera event so far, if any.

@@ -214,6 +214,7 @@ void SculptSession::replay(const PlaybackScript& script,
     sim_->advance();
     if (progress) progress(sim_->frame(), script.frames);
   }
+  tools_->applyTrailing(script.events, sim_->frame());  // as Playback::advance at the end
   recording_ = script.events;
   dirty_ = true;
 }

@@ -462,20 +462,28 @@ void Multigrid::correctFragments(const BlockSparseMatrix& a, const Eigen::Vector
   // Galerkin correction in each fragment's own affine modes (what a coarse handle would give,
   // without growing the coarse levels: a fragment is its own piece, so nothing couples it to
   // the handles but contact): with U the fragment's modes, solve (U^T A U) e = U^T (b - A x)
-  // (factored in factorFragments) and add U e.
+  // (factored in factorFragments) and add U e. The residuals of all fragment vertices are
+  // taken before any fragment moves: a fragment's rows reach into its neighbours, and reading
+  // them while other threads move them made the result depend on the thread count.
   const BlockPattern& p = *finePattern_;
+  Eigen::VectorXd residual(3 * static_cast<Eigen::Index>(fragmentVertices_.size()));
+  const int vertices = static_cast<int>(fragmentVertices_.size());
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < vertices; ++i) {
+    const int r = fragmentVertices_[i];
+    Eigen::Vector3d res = b.segment<3>(3 * r);
+    for (int k = p.rowStart[r]; k < p.rowStart[r + 1]; ++k)
+      res.noalias() -= a.blocks[k] * x.segment<3>(3 * p.columns[k]);
+    residual.segment<3>(3 * i) = res;
+  }
   const int count = static_cast<int>(fragments_.size());
 #pragma omp parallel for schedule(dynamic, 16)
   for (int f = 0; f < count; ++f) {
     const FragmentCorrection& fc = fragments_[f];
     Vec12 rhs = Vec12::Zero();
     for (int i = fragmentStart_[f]; i < fragmentStart_[f + 1]; ++i) {
-      const int r = fragmentVertices_[i];
-      Eigen::Vector3d residual = b.segment<3>(3 * r);
-      for (int k = p.rowStart[r]; k < p.rowStart[r + 1]; ++k)
-        residual.noalias() -= a.blocks[k] * x.segment<3>(3 * p.columns[k]);
-      const Eigen::Vector4d y = fragmentModes(f, r);
-      for (int j = 0; j < 4; ++j) rhs.segment<3>(3 * j) += y[j] * residual;
+      const Eigen::Vector4d y = fragmentModes(f, fragmentVertices_[i]);
+      for (int j = 0; j < 4; ++j) rhs.segment<3>(3 * j) += y[j] * residual.segment<3>(3 * i);
     }
     Vec12 e = Vec12::Zero();
     if (fc.affine) {

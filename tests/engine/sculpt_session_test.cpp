@@ -419,3 +419,32 @@ TEST(SculptSession, AReplayedScriptContinuesAndSavesBackExactly) {
 
 }  // namespace
 }  // namespace galsculpt
+
+namespace galsculpt {
+namespace {
+
+// A cut made after the last frame (the user cuts, then saves without playing on) is in the
+// saved state and at the recording's last frame: `play`, and a replay into a session, must
+// apply it too (the app's recording replayed without the final cut before).
+TEST(SculptSession, ACutAfterTheLastFrameReplays) {
+  test::TempDir dir;
+  SculptSession s(clayBall().scene, clayBall().mesh);
+  for (int f = 0; f < 3; ++f) s.step();
+  s.beginAction("knife");
+  ASSERT_GT(s.knife(Vec3(0.03, 0.3, -0.3), Vec3(0.03, 0.3, 0.3), Vec3(0.03, -0.3, -0.3),
+                    Vec3(0.03, -0.3, 0.3), {}),
+            0);
+  s.saveRecording(dir / "session.json");
+  const PlaybackScript script = loadPlaybackScript(dir / "session.json");
+  ASSERT_EQ(script.frames, 3);
+  Simulation played(script.scene, clayBall().mesh);
+  Playback playback(script, played);
+  while (!playback.finished()) playback.advance();
+  expectSameState(played.snapshot(), s.simulation().snapshot());
+  SculptSession reopened(script.scene, clayBall().mesh);
+  reopened.replay(script);
+  expectSameState(reopened.simulation().snapshot(), s.simulation().snapshot());
+}
+
+}  // namespace
+}  // namespace galsculpt

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <omp.h>
 #include <Eigen/SparseCholesky>
 
 #include "solver/sim_model.h"
@@ -238,6 +239,39 @@ TEST(Multigrid, DamageSplitsAggregatesAndLeavesLooseVerticesToTheSmoother) {
   std::fill(damaged.begin(), damaged.end(), 0);
   EXPECT_TRUE(mg.updateDamage(s.model.edges, damaged, 3));
   EXPECT_EQ(mg.level(0).handles, baseHandles);
+}
+
+// Many small fragments next to each other (slices cut off the top of a bar): their corrections
+// run in parallel, and each reads its neighbours' positions, so they must not depend on which
+// thread moved a neighbour first. The same solve with 1 and 2 threads, bit for bit (an app
+// session replayed headless differed in its last bits before).
+TEST(Multigrid, FragmentCorrectionsDoNotDependOnTheThreadCount) {
+  const System s = elasticitySystem(3, 200, 3);
+  Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {20});
+  std::vector<std::uint8_t> damaged(s.model.numEdges(), 0);
+  for (int e = 0; e < s.model.numEdges(); ++e) {
+    const double y0 = s.model.mesh.vertices[s.model.edges[e][0]].y();
+    const double y1 = s.model.mesh.vertices[s.model.edges[e][1]].y();
+    for (int cut = 0; cut < 90; ++cut) {
+      const double y = 0.3 + 0.04 * cut + 0.01;  // between vertex layers, every second one
+      if ((y0 - y) * (y1 - y) < 0.0) damaged[e] = 1;
+    }
+  }
+  ASSERT_TRUE(mg.updateDamage(s.model.edges, damaged, 1));
+  ASSERT_GE(mg.fragmentStart().size(), 80u) << "many fragments, more than a thread's chunk";
+  MultigridSettings settings;
+  mg.refresh(s.a, settings);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  Eigen::VectorXd serial = Eigen::VectorXd::Zero(s.b.size());
+  mg.solve(s.a, s.b, serial, settings);
+  omp_set_num_threads(2);
+  for (int run = 0; run < 20; ++run) {
+    Eigen::VectorXd parallel = Eigen::VectorXd::Zero(s.b.size());
+    mg.solve(s.a, s.b, parallel, settings);
+    EXPECT_TRUE(parallel == serial) << "run " << run << ": " << (parallel - serial).norm();
+  }
+  omp_set_num_threads(threads);
 }
 
 }  // namespace
