@@ -52,8 +52,19 @@ class HostExecutor {
     std::vector<T> v_;
   };
 
+  // What a frame costs in launches: counted here, so that the CUDA path's launch and
+  // synchronization counts are known without a GPU (docs/benchmarks.md).
+  struct Counters {
+    long launches = 0;    // forEach (kernels)
+    long reductions = 0;  // sum / maximum (two kernels each on the GPU)
+    long reads = 0;       // host reads (a synchronization each)
+    long copies = 0;      // device-to-device copies
+  };
+  const Counters& counters() const { return counters_; }
+
   template <typename F>
   void forEach(int n, const F& f) const {
+    ++counters_.launches;
 #pragma omp parallel for schedule(static) if (n > 4096)
     for (int i = 0; i < n; ++i) f(i);
   }
@@ -70,10 +81,12 @@ class HostExecutor {
   }
   template <typename T>
   void copy(T* dst, const T* src, size_t n) const {
+    ++counters_.copies;
     std::memmove(dst, src, n * sizeof(T));
   }
   void read(const double* deviceValues, double* host, int n) const {
     detail::forbidInCapture("a host read");
+    ++counters_.reads;
     std::copy(deviceValues, deviceValues + n, host);
   }
   // In-place dense Cholesky (lower, column-major); false when not positive definite.
@@ -101,8 +114,11 @@ class HostExecutor {
   void synchronize() const {}
 
  private:
+  mutable Counters counters_;
+
   template <typename F, typename Op>
   void reduce(int n, const F& f, double* out, double identity, const Op& op) const {
+    ++counters_.reductions;
     constexpr int kBlock = 256;
     const int blocks = (n + kBlock - 1) / kBlock;
     std::vector<double> partial(blocks, identity);

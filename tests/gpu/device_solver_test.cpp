@@ -147,6 +147,32 @@ TEST(DeviceSolver, FailedSubstepsAreRolledBackAndCountedAsOnTheCpu) {
   EXPECT_NE(device.x, before);
 }
 
+// The launch budget of a frame (what the CUDA executor issues, mostly inside graphs), measured
+// on the host executor for the hanging sphere's setting: printed for docs/benchmarks.md, and
+// bounded so that a change that multiplies launches or host synchronizations shows.
+TEST(DeviceSolver, LaunchesAndHostReadsPerFrame) {
+  const SceneDescription scene = sceneNamed("hanging_sphere", 6000);
+  const Simulation sim(scene, loadSceneMesh(scene));
+  SimState state = sim.state();
+  state.workspace = nullptr;
+  HostExecutor ex;
+  DeviceSolver<HostExecutor> solver(ex, sim.model());
+  solver.step(state, sim.settings());  // uploads and the first hierarchy
+  const HostExecutor::Counters before = ex.counters();
+  const int frames = 10;
+  for (int f = 0; f < frames; ++f) solver.step(state, sim.settings());
+  const HostExecutor::Counters& after = ex.counters();
+  const double launches = double(after.launches - before.launches) / frames;
+  const double reductions = double(after.reductions - before.reductions) / frames;
+  const double reads = double(after.reads - before.reads) / frames;
+  std::printf(
+      "per frame (50/all, 3+3 GS sweeps, 20 coarse CG): %.0f launches, %.0f reductions, "
+      "%.1f host reads\n",
+      launches, reductions, reads);
+  EXPECT_LE(reads, 3.0) << "one per Newton iteration and one per sub-step end (+ backtracks)";
+  EXPECT_LT(launches + 2 * reductions, 600.0);
+}
+
 // What the CUDA executor records as a graph may not read, allocate or wait; the host executor
 // refuses those inside captured(), so the frame tests above check the CUDA path's discipline.
 TEST(HostExecutor, CapturedSectionsMayNotReadAllocateOrWait) {
