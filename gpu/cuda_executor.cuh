@@ -95,9 +95,13 @@ struct MaxOp {
 };
 
 // Pinned host memory for device-to-host copies (positions every frame, scalars every Newton
-// iteration): DMA straight into it, then one memcpy.
+// iteration): DMA straight into it, then one memcpy. Owned by the executor: the app runs each
+// frame on a fresh worker thread, and pinning memory per thread would cost milliseconds a frame.
 class PinnedStaging {
  public:
+  PinnedStaging() = default;
+  PinnedStaging(const PinnedStaging&) = delete;
+  PinnedStaging& operator=(const PinnedStaging&) = delete;
   ~PinnedStaging() {
     if (data_) cudaFreeHost(data_);
   }
@@ -115,11 +119,6 @@ class PinnedStaging {
   void* data_ = nullptr;
   size_t bytes_ = 0;
 };
-
-inline PinnedStaging& pinnedStaging() {
-  thread_local PinnedStaging staging;  // one per thread, like the stream it serves
-  return staging;
-}
 
 class CudaExecutor {
  public:
@@ -161,13 +160,12 @@ class CudaExecutor {
       GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));  // src may go away
     }
     void upload(const std::vector<T>& src) { upload(src.data(), src.size()); }
+    // Setup and rare transfers; per-frame ones go through CudaExecutor::download (pinned).
     void download(T* dst, size_t n) const {
       if (!n) return;
-      void* pinned = pinnedStaging().get(n * sizeof(T));
-      GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(pinned, p_, n * sizeof(T), cudaMemcpyDeviceToHost,
-                                           GALSCULPT_CUDA_STREAM));
+      GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(static_cast<void*>(dst), p_, n * sizeof(T),
+                                           cudaMemcpyDeviceToHost, GALSCULPT_CUDA_STREAM));
       GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
-      std::memcpy(static_cast<void*>(dst), pinned, n * sizeof(T));
     }
 
    private:
@@ -222,11 +220,17 @@ class CudaExecutor {
                                            GALSCULPT_CUDA_STREAM));
   }
   void read(const double* deviceValues, double* host, int n) const {
-    void* pinned = pinnedStaging().get(n * sizeof(double));
-    GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(pinned, deviceValues, n * sizeof(double),
-                                         cudaMemcpyDeviceToHost, GALSCULPT_CUDA_STREAM));
+    download(deviceValues, host, static_cast<size_t>(n));
+  }
+  // Device to host through the pinned staging buffer (one DMA, one wait, one memcpy).
+  template <typename T>
+  void download(const T* device, T* host, size_t n) const {
+    if (!n) return;
+    void* pinned = staging_.get(n * sizeof(T));
+    GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(pinned, device, n * sizeof(T), cudaMemcpyDeviceToHost,
+                                         GALSCULPT_CUDA_STREAM));
     GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
-    std::memcpy(host, pinned, n * sizeof(double));
+    std::memcpy(static_cast<void*>(host), pinned, n * sizeof(T));
   }
   bool denseCholesky(int n, double* a) {
     int lwork = 0;
@@ -304,6 +308,7 @@ class CudaExecutor {
   double* workspace_ = nullptr;
   size_t workspaceSize_ = 0;
   bool graphs_ = true;
+  mutable PinnedStaging staging_;
   std::vector<Graph> slots_;
   long graphsRecorded_ = 0, graphsLaunched_ = 0;
 };

@@ -167,9 +167,9 @@ class DeviceSolver {
     }
     if (plastic_) {
       hostFp_.resize(9 * static_cast<size_t>(tets_));
-      fp_.download(hostFp_.data(), hostFp_.size());
+      ex_.download(fp_.data(), hostFp_.data(), hostFp_.size());
       hostStrain_.resize(tets_);
-      strain_.download(hostStrain_.data(), hostStrain_.size());
+      ex_.download(strain_.data(), hostStrain_.data(), hostStrain_.size());
       for (int t = 0; t < tets_; ++t)
         state.plasticInverse[t] = Eigen::Map<const Eigen::Matrix3d>(&hostFp_[9 * t]);
       state.plasticStrain = hostStrain_;
@@ -993,7 +993,7 @@ class DeviceSolver {
   template <typename V>
   void download(const Buffer<double>& src, std::vector<double>& shadow, std::vector<V>& dst) {
     shadow.resize(3 * dst.size());
-    src.download(shadow.data(), shadow.size());
+    ex_.download(src.data(), shadow.data(), shadow.size());
     std::memcpy(static_cast<void*>(dst.data()), shadow.data(), shadow.size() * sizeof(double));
   }
 

@@ -89,6 +89,12 @@ class HostExecutor {
     ++counters_.reads;
     std::copy(deviceValues, deviceValues + n, host);
   }
+  // Device to host (the CUDA executor's pinned path).
+  template <typename T>
+  void download(const T* device, T* host, size_t n) const {
+    detail::forbidInCapture("a download");
+    std::copy(device, device + n, host);
+  }
   // In-place dense Cholesky (lower, column-major); false when not positive definite.
   bool denseCholesky(int n, double* a) const {
     detail::forbidInCapture("a dense factorization (it waits for its status)");
