@@ -255,7 +255,7 @@ class DeviceMultigrid {
     Buffer<double> blocks, diagonalFactor;
     Buffer<double> b, x, ax;  // the right-hand side, solution and product of this level's rows
   };
-  enum Scalar { kRr, kPap, kAlpha, kRrNew, kStop, kDone, kBB, kBad, kScalars };
+  enum Scalar { kRr, kPap, kRrNew, kStop, kDone, kBB, kBad, kScalars };
 
   void smoothFine(const double* a, const double* b, double* x, int sweeps, bool reverse,
                   const Settings& s) {
@@ -454,33 +454,36 @@ class DeviceMultigrid {
       sc[kStop] = 1e-30 * fmax(sc[kBB], 1e-300);
       sc[kDone] = 0.0;
     });
+    // Each launch of an iteration decides alone whether the iteration is live, from scalars no
+    // launch of that iteration writes before the last one: 3 launches and 2 reductions each.
     for (int it = 0; it < s.coarseIterations; ++it) {
       multiplyCoarse(numLevels() - 1, p, ap);
       ex_.sum(
           n, [=] GALSCULPT_LAMBDA(int i) { return p[i] * ap[i]; }, sc + kPap);
-      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
-        if (sc[kDone] != 0.0) return;
-        if (!(sc[kRr] > sc[kStop]) || !(sc[kPap] > 0.0)) {
-          sc[kDone] = 1.0;
-          return;
-        }
-        sc[kAlpha] = sc[kRr] / sc[kPap];
-      });
       ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
-        if (sc[kDone] != 0.0) return;
-        x[i] += sc[kAlpha] * p[i];
-        r[i] -= sc[kAlpha] * ap[i];
+        if (!cgLive(sc)) return;
+        const double alpha = sc[kRr] / sc[kPap];
+        x[i] += alpha * p[i];
+        r[i] -= alpha * ap[i];
       });
       ex_.sum(
           n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * r[i]; }, sc + kRrNew);
       ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
-        if (sc[kDone] != 0.0) return;
-        p[i] = r[i] + (sc[kRrNew] / sc[kRr]) * p[i];
+        if (cgLive(sc)) p[i] = r[i] + (sc[kRrNew] / sc[kRr]) * p[i];
       });
       ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
-        if (sc[kDone] == 0.0) sc[kRr] = sc[kRrNew];
+        if (cgLive(sc)) {
+          sc[kRr] = sc[kRrNew];
+        } else {
+          sc[kDone] = 1.0;  // stopped for good, as the CPU's loop breaks
+        }
       });
     }
+  }
+
+  // Whether this coarse CG iteration runs: not stopped, residual above the stop, p^T A p > 0.
+  GALSCULPT_HD static bool cgLive(const double* sc) {
+    return sc[kDone] == 0.0 && sc[kRr] > sc[kStop] && sc[kPap] > 0.0;
   }
 
   void factorPieces() {
