@@ -53,13 +53,10 @@ __global__ void forEachKernel(int n, F f) {
   if (i < n) f(i);
 }
 
-// Pass one: each block reduces a fixed, strided share of the items into partial[block].
-template <typename F, typename Op>
-__global__ void reduceKernel(int n, F f, Op op, double identity, double* partial) {
+// A block's threads combine their values in a fixed tree; thread 0 gets the result.
+template <typename Op>
+__device__ double blockReduce(double acc, Op op) {
   __shared__ double shared[kThreads];
-  double acc = identity;
-  for (int i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x)
-    acc = op(acc, f(i));
   shared[threadIdx.x] = acc;
   __syncthreads();
   for (int stride = blockDim.x / 2; stride > 0; stride /= 2) {
@@ -67,24 +64,27 @@ __global__ void reduceKernel(int n, F f, Op op, double identity, double* partial
       shared[threadIdx.x] = op(shared[threadIdx.x], shared[threadIdx.x + stride]);
     __syncthreads();
   }
-  if (threadIdx.x == 0) partial[blockIdx.x] = shared[0];
+  return shared[0];
+}
+
+// Pass one: each block reduces a fixed, strided share of the items into partial[block].
+template <typename F, typename Op>
+__global__ void reduceKernel(int n, F f, Op op, double identity, double* partial) {
+  double acc = identity;
+  for (int i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x)
+    acc = op(acc, f(i));
+  const double total = blockReduce(acc, op);
+  if (threadIdx.x == 0) partial[blockIdx.x] = total;
 }
 
 // Pass two: one block reduces the partials in a fixed order.
 template <typename Op>
 __global__ void finishKernel(int blocks, const double* partial, Op op, double identity,
                              double* out) {
-  __shared__ double shared[kThreads];
   double acc = identity;
   for (int i = threadIdx.x; i < blocks; i += blockDim.x) acc = op(acc, partial[i]);
-  shared[threadIdx.x] = acc;
-  __syncthreads();
-  for (int stride = blockDim.x / 2; stride > 0; stride /= 2) {
-    if (threadIdx.x < stride)
-      shared[threadIdx.x] = op(shared[threadIdx.x], shared[threadIdx.x + stride]);
-    __syncthreads();
-  }
-  if (threadIdx.x == 0) *out = shared[0];
+  const double total = blockReduce(acc, op);
+  if (threadIdx.x == 0) *out = total;
 }
 
 struct AddOp {
