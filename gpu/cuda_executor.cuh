@@ -1,14 +1,14 @@
 // The device solver's executor on a CUDA GPU: buffers in device memory, a launch per forEach
 // (256 threads a block), deterministic two-pass reductions (a fixed grid, then one block), the
-// dense coarse Cholesky through cuSOLVER, reads through a pinned staging buffer, and captured
-// sections recorded once as CUDA graphs and replayed while their key holds. Everything runs on
-// the per-thread default stream (capturable, and no stream handle to pass to buffers).
+// dense coarse Cholesky through cuSOLVER (loaded on first use), reads through a pinned staging
+// buffer, and captured sections recorded once as CUDA graphs and replayed while their key holds.
+// Everything runs on the per-thread default stream (capturable, and no stream handle to pass to
+// buffers).
 //
 // Every CUDA call is checked: a failure throws CudaError naming the call, file and line.
 #pragma once
 
 #include <cuda_runtime.h>
-#include <cusolverDn.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -19,6 +19,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "cusolver_loader.h"
 
 namespace galsculpt::gpu {
 
@@ -182,8 +184,6 @@ class CudaExecutor {
 
   CudaExecutor() {
     GALSCULPT_CUDA_CHECK(cudaMalloc(&partial_, kReduceBlocks * sizeof(double)));
-    GALSCULPT_CUSOLVER_CHECK(cusolverDnCreate(&solver_));
-    GALSCULPT_CUSOLVER_CHECK(cusolverDnSetStream(solver_, GALSCULPT_CUDA_STREAM));
     GALSCULPT_CUDA_CHECK(cudaMalloc(&info_, sizeof(int)));
     const char* graphs = std::getenv("GALSCULPT_CUDA_GRAPHS");
     graphs_ = !(graphs && std::string(graphs) == "0");
@@ -194,7 +194,6 @@ class CudaExecutor {
     if (workspace_) cudaFree(workspace_);
     cudaFree(info_);
     cudaFree(partial_);
-    cusolverDnDestroy(solver_);
   }
   CudaExecutor(const CudaExecutor&) = delete;
   CudaExecutor& operator=(const CudaExecutor&) = delete;
@@ -232,17 +231,18 @@ class CudaExecutor {
     GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
     std::memcpy(static_cast<void*>(host), pinned, n * sizeof(T));
   }
+  // In-place dense Cholesky through cuSOLVER (loaded on first use); false when the matrix is
+  // not positive definite or cuSOLVER is not there (cusolverReason() says why).
   bool denseCholesky(int n, double* a) {
+    if (!cusolver_.load(GALSCULPT_CUDA_STREAM, cusolverReason_)) return false;
     int lwork = 0;
-    GALSCULPT_CUSOLVER_CHECK(
-        cusolverDnDpotrf_bufferSize(solver_, CUBLAS_FILL_MODE_LOWER, n, a, n, &lwork));
+    GALSCULPT_CUSOLVER_CHECK(cusolver_.bufferSize(n, a, &lwork));
     if (static_cast<size_t>(lwork) > workspaceSize_) {
       if (workspace_) GALSCULPT_CUDA_CHECK(cudaFree(workspace_));
       GALSCULPT_CUDA_CHECK(cudaMalloc(&workspace_, lwork * sizeof(double)));
       workspaceSize_ = lwork;
     }
-    GALSCULPT_CUSOLVER_CHECK(
-        cusolverDnDpotrf(solver_, CUBLAS_FILL_MODE_LOWER, n, a, n, workspace_, lwork, info_));
+    GALSCULPT_CUSOLVER_CHECK(cusolver_.potrf(n, a, workspace_, lwork, info_));
     int info = 0;
     GALSCULPT_CUDA_CHECK(
         cudaMemcpyAsync(&info, info_, sizeof(int), cudaMemcpyDeviceToHost, GALSCULPT_CUDA_STREAM));
@@ -250,9 +250,9 @@ class CudaExecutor {
     return info == 0;
   }
   void denseCholeskySolve(int n, const double* l, double* b) {
-    GALSCULPT_CUSOLVER_CHECK(
-        cusolverDnDpotrs(solver_, CUBLAS_FILL_MODE_LOWER, n, 1, l, n, b, n, info_));
+    GALSCULPT_CUSOLVER_CHECK(cusolver_.potrs(n, l, b, info_));
   }
+  const std::string& cusolverReason() const { return cusolverReason_; }
   // Runs `body` (launches only, no host reads) as a CUDA graph: recorded on first use or when
   // the key changes, replayed otherwise. GALSCULPT_CUDA_GRAPHS=0 runs it directly.
   template <typename Body>
@@ -303,7 +303,8 @@ class CudaExecutor {
     cudaGraphExec_t exec = nullptr;
   };
   double* partial_ = nullptr;
-  cusolverDnHandle_t solver_ = nullptr;
+  CusolverLibrary cusolver_;
+  std::string cusolverReason_;
   int* info_ = nullptr;
   double* workspace_ = nullptr;
   size_t workspaceSize_ = 0;
