@@ -5,25 +5,6 @@
 
 namespace galsculpt::gpu {
 
-namespace {
-
-class CudaStepBackend final : public StepBackend {
- public:
-  explicit CudaStepBackend(const SimModel& model) : solver_(executor_, model) {}
-  std::string name() const override { return "cuda"; }
-  // A CUDA error mid-frame throws before the state is written back: the caller may run the
-  // frame again elsewhere.
-  StepReport step(SimState& state, const StepSettings& settings) override {
-    return solver_.step(state, settings);
-  }
-
- private:
-  CudaExecutor executor_;
-  DeviceSolver<CudaExecutor> solver_;
-};
-
-}  // namespace
-
 bool cudaBackendBuilt() {
   return true;
 }
@@ -44,7 +25,7 @@ std::unique_ptr<StepBackend> makeCudaStepBackend(const SimModel& model,
     return nullptr;
   }
   try {
-    return std::make_unique<CudaStepBackend>(model);
+    return std::make_unique<DeviceStepBackend<CudaExecutor>>(model);
   } catch (const std::exception& e) {
     reason = std::string("the CUDA backend could not start: ") + e.what();
     return nullptr;

@@ -257,6 +257,20 @@ class DeviceMultigrid {
   };
   enum Scalar { kRr, kPap, kRrNew, kStop, kDone, kBB, kBad, kScalars };
 
+  // Gauss-Seidel order: colour by colour (backwards when reversed, for the symmetric cycle), the
+  // rows of one colour at once (no two share a block).
+  template <typename RowUpdate>
+  void forEachColour(const std::vector<int>& colorStart, const int* colorRows, bool reverse,
+                     const RowUpdate& update) {
+    const int colors = static_cast<int>(colorStart.size()) - 1;
+    for (int ci = 0; ci < colors; ++ci) {
+      const int color = reverse ? colors - 1 - ci : ci;
+      const int* rowsOf = colorRows + colorStart[color];
+      ex_.forEach(colorStart[color + 1] - colorStart[color],
+                  [=] GALSCULPT_LAMBDA(int i) { update(rowsOf[i]); });
+    }
+  }
+
   void smoothFine(const double* a, const double* b, double* x, int sweeps, bool reverse,
                   const Settings& s) {
     const int* rowStart = fineRowStart_.data();
@@ -275,19 +289,12 @@ class DeviceMultigrid {
         });
         continue;
       }
-      const int colors = static_cast<int>(fineColorStart_.size()) - 1;
-      for (int ci = 0; ci < colors; ++ci) {
-        const int color = reverse ? colors - 1 - ci : ci;
-        const int begin = fineColorStart_[color];
-        const int* rowsOf = fineColorRows_.data() + begin;
-        ex_.forEach(fineColorStart_[color + 1] - begin, [=] GALSCULPT_LAMBDA(int i) {
-          const int r = rowsOf[i];
-          double rhs[3] = {b[3 * r], b[3 * r + 1], b[3 * r + 2]};
-          for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
-            if (columns[k] != r) subtractMultiply3(a + 9 * k, x + 3 * columns[k], rhs);
-          solve3(a + 9 * diagonal[r], rhs, x + 3 * r);
-        });
-      }
+      forEachColour(fineColorStart_, fineColorRows_.data(), reverse, [=] GALSCULPT_LAMBDA(int r) {
+        double rhs[3] = {b[3 * r], b[3 * r + 1], b[3 * r + 2]};
+        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
+          if (columns[k] != r) subtractMultiply3(a + 9 * k, x + 3 * columns[k], rhs);
+        solve3(a + 9 * diagonal[r], rhs, x + 3 * r);
+      });
     }
   }
 
@@ -312,25 +319,18 @@ class DeviceMultigrid {
         });
         continue;
       }
-      const int colors = static_cast<int>(d.colorStart.size()) - 1;
-      for (int ci = 0; ci < colors; ++ci) {
-        const int color = reverse ? colors - 1 - ci : ci;
-        const int begin = d.colorStart[color];
-        const int* rowsOf = d.colorRows.data() + begin;
-        ex_.forEach(d.colorStart[color + 1] - begin, [=] GALSCULPT_LAMBDA(int i) {
-          const int r = rowsOf[i];
-          double rhs[12];
-          for (int j = 0; j < 12; ++j) rhs[j] = b[12 * r + j];
-          for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
-            if (columns[k] == r) continue;
-            double t[12] = {};
-            addMultiply12(blocks + 144 * k, x + 12 * columns[k], t);
-            for (int j = 0; j < 12; ++j) rhs[j] -= t[j];
-          }
-          choleskySolve(12, factor + 144 * r, rhs);
-          for (int j = 0; j < 12; ++j) x[12 * r + j] = rhs[j];
-        });
-      }
+      forEachColour(d.colorStart, d.colorRows.data(), reverse, [=] GALSCULPT_LAMBDA(int r) {
+        double rhs[12];
+        for (int j = 0; j < 12; ++j) rhs[j] = b[12 * r + j];
+        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
+          if (columns[k] == r) continue;
+          double t[12] = {};
+          addMultiply12(blocks + 144 * k, x + 12 * columns[k], t);
+          for (int j = 0; j < 12; ++j) rhs[j] -= t[j];
+        }
+        choleskySolve(12, factor + 144 * r, rhs);
+        for (int j = 0; j < 12; ++j) x[12 * r + j] = rhs[j];
+      });
     }
   }
 

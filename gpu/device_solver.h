@@ -32,6 +32,7 @@
 #include "solver/collider_kernels.h"
 #include "solver/frame_loop.h"
 #include "solver/step.h"
+#include "solver/step_backend.h"
 
 namespace galsculpt::gpu {
 
@@ -137,17 +138,13 @@ class DeviceSolver {
     }
     plastic_ = !state.plasticInverse.empty();
     if (plastic_) {
-      std::vector<double> fp(9 * static_cast<size_t>(tets_));
-      for (int t = 0; t < tets_; ++t)
-        std::memcpy(&fp[9 * t], state.plasticInverse[t].data(), 9 * sizeof(double));
-      if (fp != hostFp_ || state.plasticStrain != hostStrain_) {
-        hostFp_ = std::move(fp);
-        hostStrain_ = state.plasticStrain;
-        fp_.upload(hostFp_);
-        strain_.upload(hostStrain_);
-        savedFp_.resize(hostFp_.size());
-        savedStrain_.resize(hostStrain_.size());
+      uploadIfChanged(state.plasticInverse, hostFp_, fp_);
+      uploadIfChanged(state.plasticStrain, hostStrain_, strain_);
+      if (savedFp_.size() != fp_.size()) {
+        savedFp_.resize(fp_.size());
+        savedStrain_.resize(strain_.size());
       }
+      plasticFlowed_ = false;
     }
     time_ = state.time;
     settings_ = &settings;
@@ -165,14 +162,9 @@ class DeviceSolver {
       state.damaged = hostDamaged_;
       state.damageRevision = damageRevision_;
     }
-    if (plastic_) {
-      hostFp_.resize(9 * static_cast<size_t>(tets_));
-      ex_.download(fp_.data(), hostFp_.data(), hostFp_.size());
-      hostStrain_.resize(tets_);
-      ex_.download(strain_.data(), hostStrain_.data(), hostStrain_.size());
-      for (int t = 0; t < tets_; ++t)
-        state.plasticInverse[t] = Eigen::Map<const Eigen::Matrix3d>(&hostFp_[9 * t]);
-      state.plasticStrain = hostStrain_;
+    if (plasticFlowed_) {  // otherwise the host's plastic state is still the device's
+      download(fp_, hostFp_, state.plasticInverse);
+      download(strain_, hostStrain_, state.plasticStrain);
     }
     state.time = time_;
   }
@@ -528,10 +520,9 @@ class DeviceSolver {
     ex_.captured(1, graphKey(h, -1), [&] { finishSubstep(h); });
     double read[kScalars];
     ex_.read(sc, read, kScalars);
-    double fextNorm = 0.0;
-    for (double m : model_.mass) fextNorm += m * m;
-    fextNorm = std::sqrt(fextNorm) * settings_->gravity.norm();
-    const double weight = std::max(fextNorm, 9.81 * massNorm_ / std::sqrt(3.0));
+    // |f_ext| = |g| |m| over the vertices, massNorm_ over the 3n DOFs: |m| sqrt 3.
+    const double perDofMass = massNorm_ / std::sqrt(3.0);
+    const double weight = std::max(settings_->gravity.norm() * perDofMass, 9.81 * perDofMass);
     result.residual = std::sqrt(read[kResidual]) / weight;
     result.contactForces.assign(poses_.size(), Vec3::Zero());
     for (size_t c = 0; c < poses_.size(); ++c)
@@ -772,7 +763,9 @@ class DeviceSolver {
         tets_, [=] GALSCULPT_LAMBDA(int t) { return flowed[t]; }, sc + kCount);
     double read[kScalars];
     ex_.read(sc, read, kScalars);
-    return static_cast<int>(read[kCount]);
+    const int count = static_cast<int>(read[kCount]);
+    plasticFlowed_ = plasticFlowed_ || count > 0;
+    return count;
   }
 
   FractureReport fracturePass() {
@@ -979,20 +972,25 @@ class DeviceSolver {
   double* rhs() { return pcgB_.data(); }
   const double* frozenBlocks() const { return frozenIsK_ ? k_.data() : frozen_.data(); }
 
+  // Host arrays of plain doubles (Vec3, Matrix3d, double) copied to and from device buffers;
+  // `shadow` is what the device holds, so an upload happens only when the host changed it.
   template <typename V>
-  void uploadIfChanged(const std::vector<V>& src, std::vector<double>& shadow,
+  bool uploadIfChanged(const std::vector<V>& src, std::vector<double>& shadow,
                        Buffer<double>& dst) {
-    const size_t n = 3 * src.size();
+    static_assert(sizeof(V) % sizeof(double) == 0, "an array of doubles");
+    const size_t n = src.size() * (sizeof(V) / sizeof(double));
     if (shadow.size() == n &&
         std::memcmp(shadow.data(), static_cast<const void*>(src.data()), n * sizeof(double)) == 0)
-      return;
+      return false;
     shadow.resize(n);
     std::memcpy(shadow.data(), static_cast<const void*>(src.data()), n * sizeof(double));
     dst.upload(shadow);
+    return true;
   }
   template <typename V>
   void download(const Buffer<double>& src, std::vector<double>& shadow, std::vector<V>& dst) {
-    shadow.resize(3 * dst.size());
+    static_assert(sizeof(V) % sizeof(double) == 0, "an array of doubles");
+    shadow.resize(dst.size() * (sizeof(V) / sizeof(double)));
     ex_.download(src.data(), shadow.data(), shadow.size());
     std::memcpy(static_cast<void*>(dst.data()), shadow.data(), shadow.size() * sizeof(double));
   }
@@ -1030,6 +1028,7 @@ class DeviceSolver {
   double time_ = 0.0, h_step_ = 0.0, modelSize_ = 1.0, massNorm_ = 0.0, pcgReduction_ = 0.0;
   std::uint64_t mgRevision_ = 0;  // bumped whenever the hierarchy is uploaded again
   bool plastic_ = false, frozenIsK_ = true;
+  bool plasticFlowed_ = false;  // an element flowed this frame: the plastic state goes back
   Buffer<int> tetVertices_, tetEdges_, rowStart_, columns_, diagonal_, blockRow_;
   Buffer<int> vertexSlotStart_, vertexSlots_, blockSlotStart_, blockSlots_;
   Buffer<kernels::RestData> rest_;
@@ -1057,6 +1056,23 @@ class DeviceSolver {
   std::vector<std::uint8_t> hostDamaged_, hostFixed_;
   std::vector<int> hostAnchorVertices_;
   std::uint64_t damageRevision_ = ~std::uint64_t{0};
+};
+
+// The device solver on its own executor, behind the solver's StepBackend interface ("cuda" on the
+// GPU; "host" in the tests). A device error mid-frame throws before the state is written back,
+// so the caller may run the frame again elsewhere.
+template <typename Exec>
+class DeviceStepBackend final : public StepBackend {
+ public:
+  explicit DeviceStepBackend(const SimModel& model) : solver_(executor_, model) {}
+  std::string name() const override { return Exec::kName; }
+  StepReport step(SimState& state, const StepSettings& settings) override {
+    return solver_.step(state, settings);
+  }
+
+ private:
+  Exec executor_;
+  DeviceSolver<Exec> solver_;
 };
 
 }  // namespace galsculpt::gpu

@@ -15,22 +15,8 @@
 namespace galsculpt::gpu {
 namespace {
 
-// The device solver on the host executor, as a StepBackend.
-class HostDeviceBackend final : public StepBackend {
- public:
-  explicit HostDeviceBackend(const SimModel& model) : solver_(executor_, model) {}
-  std::string name() const override { return "host"; }
-  StepReport step(SimState& state, const StepSettings& settings) override {
-    return solver_.step(state, settings);
-  }
-
- private:
-  HostExecutor executor_;
-  DeviceSolver<HostExecutor> solver_;
-};
-
 Comparison compare(const Simulation& sim, int frames, StepSettings settings = {}) {
-  HostDeviceBackend backend(sim.model());
+  DeviceStepBackend<HostExecutor> backend(sim.model());
   return compareWithCpu(sim, backend, frames, settings);
 }
 
