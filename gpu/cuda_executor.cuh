@@ -280,14 +280,10 @@ class CudaExecutor {
       GALSCULPT_CUDA_CHECK(cudaGraphInstantiate(&g.exec, graph, 0));
       GALSCULPT_CUDA_CHECK(cudaGraphDestroy(graph));
       g.key = key;
-      ++graphsRecorded_;
     }
     GALSCULPT_CUDA_CHECK(cudaGraphLaunch(g.exec, GALSCULPT_CUDA_STREAM));
-    ++graphsLaunched_;
   }
   void synchronize() const { GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM)); }
-  long graphsRecorded() const { return graphsRecorded_; }
-  long graphsLaunched() const { return graphsLaunched_; }
 
  private:
   template <typename F, typename Op>
@@ -311,7 +307,6 @@ class CudaExecutor {
   bool graphs_ = true;
   mutable PinnedStaging staging_;
   std::vector<Graph> slots_;
-  long graphsRecorded_ = 0, graphsLaunched_ = 0;
 };
 
 }  // namespace galsculpt::gpu

@@ -231,14 +231,6 @@ class DeviceMultigrid {
   }
 
   int numLevels() const { return static_cast<int>(levels_.size()); }
-  bool coarsestFactored() const { return factored_; }
-  // The coarse operator of level l (1-based as in Multigrid::coarseMatrix), for tests.
-  std::vector<double> coarseBlocks(int l) const {
-    const Level& d = levels_[l - 1];
-    std::vector<double> out(144 * static_cast<size_t>(d.nnz));
-    d.blocks.download(out.data(), out.size());
-    return out;
-  }
 
   // Everything below is public only because CUDA's extended lambdas cannot live in private
   // member functions; the data members stay private.

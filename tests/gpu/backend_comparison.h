@@ -28,7 +28,6 @@ inline SceneDescription sceneNamed(const std::string& name, int tets) {
 struct Comparison {
   double maxRelativeError = 0.0;  // largest |x_dev - x_cpu| over the largest displacement
   int cpuDamaged = 0, deviceDamaged = 0;
-  int frames = 0;
 };
 
 // Runs `frames` frames on both backends from the same state; positions are compared after
@@ -58,7 +57,6 @@ inline Comparison compareWithCpu(const Simulation& sim, StepBackend& backend, in
     }
     c.maxRelativeError = std::max(c.maxRelativeError, error / displacement);
     EXPECT_NEAR(cpu.time, device.time, 1e-12);
-    ++c.frames;
   }
   double moved = 0.0;
   for (size_t v = 0; v < cpu.x.size(); ++v) moved = std::max(moved, (cpu.x[v] - start[v]).norm());
