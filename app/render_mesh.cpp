@@ -22,15 +22,51 @@ RenderMesh makeRenderMesh(const TriMesh& mesh, const Vec3& color) {
   return r;
 }
 
+namespace {
+
+// Appends the faces of one tag. Outer faces are smooth (shared vertices, area-weighted
+// normals); crack faces are flat (three vertices a face, the face's own normal): a cut is a
+// plane the blade left, and smoothing across its facets would round the cut's edges off.
+// `colorOf` gives each surface vertex's colour.
+template <typename ColorOf>
+void appendTag(RenderMesh& out, const VisualSurface& surface, SurfaceTag tag, ColorOf colorOf) {
+  std::vector<int> source;
+  const TriMesh part = facesWithTag(surface, tag, &source);
+  const unsigned base = static_cast<unsigned>(out.positions.size() / 3);
+  auto push = [&](const Vec3& p, const Vec3& n, const Vec3& c) {
+    for (int k = 0; k < 3; ++k) {
+      out.positions.push_back(static_cast<float>(p[k]));
+      out.normals.push_back(static_cast<float>(n[k]));
+      out.colors.push_back(static_cast<float>(c[k]));
+    }
+  };
+  if (tag == SurfaceTag::Outer) {
+    const std::vector<Vec3> normals = vertexNormals(part);
+    for (size_t i = 0; i < part.vertices.size(); ++i)
+      push(part.vertices[i], normals[i], colorOf(source[i]));
+    for (const Tri& f : part.faces)
+      for (int k = 0; k < 3; ++k) out.indices.push_back(base + static_cast<unsigned>(f[k]));
+    return;
+  }
+  unsigned next = base;
+  for (const Tri& f : part.faces) {
+    const Vec3 n = (part.vertices[f[1]] - part.vertices[f[0]])
+                       .cross(part.vertices[f[2]] - part.vertices[f[0]])
+                       .stableNormalized();
+    for (int k = 0; k < 3; ++k) {
+      push(part.vertices[f[k]], n, colorOf(source[f[k]]));
+      out.indices.push_back(next++);
+    }
+  }
+}
+
+}  // namespace
+
 RenderMesh makeRenderMesh(const VisualSurface& surface, const Vec3& outerColor,
                           const Vec3& crackColor) {
-  RenderMesh out = makeRenderMesh(facesWithTag(surface, SurfaceTag::Outer), outerColor);
-  const RenderMesh crack = makeRenderMesh(facesWithTag(surface, SurfaceTag::Crack), crackColor);
-  const unsigned offset = static_cast<unsigned>(out.positions.size() / 3);
-  out.positions.insert(out.positions.end(), crack.positions.begin(), crack.positions.end());
-  out.normals.insert(out.normals.end(), crack.normals.begin(), crack.normals.end());
-  out.colors.insert(out.colors.end(), crack.colors.begin(), crack.colors.end());
-  for (unsigned i : crack.indices) out.indices.push_back(offset + i);
+  RenderMesh out;
+  appendTag(out, surface, SurfaceTag::Outer, [&](int) { return outerColor; });
+  appendTag(out, surface, SurfaceTag::Crack, [&](int) { return crackColor; });
   return out;
 }
 
@@ -60,23 +96,13 @@ RenderMesh makeRenderMesh(const VisualSurface& surface, const SurfaceStyle& styl
     }
   }
   const double scale = style.scaleMax > 0.0 ? 1.0 / style.scaleMax : 0.0;
+  auto heat = [&](int v) { return heatColor(count[v] > 0.0 ? scale * sum[v] / count[v] : 0.0); };
   RenderMesh out;
-  for (SurfaceTag tag : {SurfaceTag::Outer, SurfaceTag::Crack}) {
-    std::vector<int> source;
-    const TriMesh part = facesWithTag(surface, tag, &source);
-    RenderMesh r = makeRenderMesh(part, kSurfaceColor);
-    for (size_t i = 0; i < source.size(); ++i) {
-      const int v = source[i];
-      const Vec3 c = tag == SurfaceTag::Crack && style.tintCracks
-                         ? kCrackColor
-                         : heatColor(count[v] > 0.0 ? scale * sum[v] / count[v] : 0.0);
-      for (int k = 0; k < 3; ++k) r.colors[3 * i + k] = static_cast<float>(c[k]);
-    }
-    const unsigned offset = static_cast<unsigned>(out.positions.size() / 3);
-    out.positions.insert(out.positions.end(), r.positions.begin(), r.positions.end());
-    out.normals.insert(out.normals.end(), r.normals.begin(), r.normals.end());
-    out.colors.insert(out.colors.end(), r.colors.begin(), r.colors.end());
-    for (unsigned i : r.indices) out.indices.push_back(offset + i);
+  appendTag(out, surface, SurfaceTag::Outer, heat);
+  if (style.tintCracks) {
+    appendTag(out, surface, SurfaceTag::Crack, [](int) { return kCrackColor; });
+  } else {
+    appendTag(out, surface, SurfaceTag::Crack, heat);
   }
   return out;
 }

@@ -23,7 +23,8 @@ struct RenderMesh {
 RenderMesh makeRenderMesh(const TriMesh& mesh, const Vec3& color);
 
 // The visualization surface with crack faces tinted: each tag gets its own vertices, so normals
-// are smooth within a tag and sharp where crack faces meet the outer surface.
+// are sharp where crack faces meet the outer surface; outer faces are shaded smooth, crack
+// faces flat (each face its own three vertices and normal).
 RenderMesh makeRenderMesh(const VisualSurface& surface, const Vec3& outerColor,
                           const Vec3& crackColor);
 

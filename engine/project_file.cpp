@@ -123,6 +123,7 @@ void writeProject(const fs::path& file, const SceneDescription& scene, const Sim
     writeArray(out, flat(state.x));
     writeArray(out, flat(state.v));
     writeArray(out, state.damaged);
+    writeArray(out, state.crossing);
     if (!state.plasticInverse.empty()) {
       writeArray(out, plastic);
       writeArray(out, state.plasticStrain);
@@ -162,12 +163,15 @@ Project readProject(const fs::path& file) {
     throw InputError(
         name, 1,
         "not a Galsculpt project (it must start with '" + std::string(kMagic) + " <version>')");
-  int version = 0;
-  try {
-    version = std::stoi(data.substr(sizeof(kMagic), line1 - sizeof(kMagic)));
-  } catch (const std::exception&) {
-    throw InputError(name, 1, "the format version is not a number");
-  }
+  // The whole rest of line 1 is the version: digits only ("1garbage" and "1.9" are not 1).
+  const std::string versionText =
+      line1 > sizeof(kMagic) ? data.substr(sizeof(kMagic), line1 - sizeof(kMagic)) : "";
+  if (data[sizeof(kMagic) - 1] != ' ' || versionText.empty() || versionText.size() > 9 ||
+      versionText.find_first_not_of("0123456789") != std::string::npos)
+    throw InputError(name, 1,
+                     "the format version is not a whole number ('" + std::string(kMagic) +
+                         " <version>' expected)");
+  const int version = std::stoi(versionText);
   if (version < 1) throw InputError(name, 1, "bad format version " + std::to_string(version));
   if (version > kProjectVersion)
     throw InputError(name, 1,
@@ -258,6 +262,11 @@ Project readProject(const fs::path& file) {
   in.read(x, 3 * static_cast<std::size_t>(nv), "positions");
   in.read(v, 3 * static_cast<std::size_t>(nv), "velocities");
   in.read(s.damaged, static_cast<std::size_t>(ne), "damage");
+  if (version >= 2) {
+    in.read(s.crossing, static_cast<std::size_t>(ne), "blade crossings");
+  } else {
+    s.crossing.assign(static_cast<std::size_t>(ne), kNoCrossing);
+  }
   checkFinite(rest, name, "rest vertices");
   checkFinite(x, name, "positions");
   checkFinite(v, name, "velocities");
@@ -269,6 +278,12 @@ Project readProject(const fs::path& file) {
     if (s.damaged[e] > 1)
       throw InputError(name + ": damage of edge " + std::to_string(e) + " is " +
                        std::to_string(s.damaged[e]) + " (must be 0 or 1)");
+  for (size_t e = 0; e < s.crossing.size(); ++e)
+    if (s.crossing[e] != kNoCrossing && !(s.damaged[e] && hasCrossing(s.crossing[e])))
+      throw InputError(name + ": blade crossing of edge " + std::to_string(e) + " is " +
+                       std::to_string(s.crossing[e]) +
+                       (s.damaged[e] ? " (must be -1 or a fraction in [0, 1])"
+                                     : " on an undamaged edge (must be -1)"));
   if (plastic) {
     std::vector<double> inverse;
     in.read(inverse, 9 * static_cast<std::size_t>(nt), "plastic state");

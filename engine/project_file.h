@@ -3,10 +3,12 @@
 // One file, written atomically: a text line naming the format and its version, a JSON header
 // (the scene as it was read, the frame and time, the anchors, the camera and the recording of
 // every action so far), then the arrays in binary, little-endian: rest vertices, tets,
-// positions, velocities, damage per edge, and the plastic state when the material has one.
+// positions, velocities, damage per edge, where knife blades crossed each edge (float per edge,
+// -1 for none; since version 2), and the plastic state when the material has one.
 // The tet mesh is stored, not referred to, so a project opens without its scene's mesh source.
 //
-// Versions: this build writes version 1 and reads versions up to 1; a newer file is refused
+// Versions: this build writes version 2 and reads versions 1 and 2 (a version 1 file has no
+// crossings: its cuts show today's crack faces, at edge midpoints); a newer file is refused
 // with a message saying so. Every malformed file gets an InputError naming the file and what
 // is wrong (a header key with its JSON path, or the byte offset of a bad array).
 #pragma once
@@ -22,7 +24,7 @@
 
 namespace galsculpt {
 
-constexpr int kProjectVersion = 1;
+constexpr int kProjectVersion = 2;
 
 struct Project {
   SceneDescription scene;

@@ -203,7 +203,7 @@ void Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
   TetMesh now = model_.mesh;
   now.vertices = state_.x;
   writeTetGen(stem, now);
-  writeDamage(stem.string() + ".damage", model_.edges, state_.damaged);
+  writeDamage(stem.string() + ".damage", model_.edges, state_.damaged, state_.crossing);
   // Piece of each tet: numbered in tet order when all four corners share it, otherwise -1.
   std::vector<int> label(model_.numVertices(), -1);
   int pieces = 0;
@@ -285,7 +285,7 @@ std::size_t SimulationSnapshot::bytes() const {
   for (const AnchorConstraint& a : anchors)
     anchorBytes += a.vertices.size() * sizeof(int) + a.origin.size() * sizeof(Vec3) +
                    a.path.size() * sizeof(AnchorKey);
-  return (x.size() + v.size()) * sizeof(Vec3) + damaged.size() +
+  return (x.size() + v.size()) * sizeof(Vec3) + damaged.size() + crossing.size() * sizeof(float) +
          plasticInverse.size() * sizeof(Eigen::Matrix3d) + plasticStrain.size() * sizeof(double) +
          anchorBytes + sizeof(*this);
 }
@@ -295,6 +295,7 @@ SimulationSnapshot Simulation::snapshot() const {
   s.x = state_.x;
   s.v = state_.v;
   s.damaged = state_.damaged;
+  s.crossing = state_.crossing;
   s.plasticInverse = state_.plasticInverse;
   s.plasticStrain = state_.plasticStrain;
   s.time = state_.time;
@@ -308,7 +309,7 @@ SimulationSnapshot Simulation::snapshot() const {
 
 void Simulation::restore(const SimulationSnapshot& s) {
   if (s.x.size() != state_.x.size() || s.v.size() != state_.v.size() ||
-      s.damaged.size() != state_.damaged.size() ||
+      s.damaged.size() != state_.damaged.size() || s.crossing.size() != state_.crossing.size() ||
       s.plasticInverse.size() != state_.plasticInverse.size() ||
       s.plasticStrain.size() != state_.plasticStrain.size() ||
       s.anchors.size() != s.anchorIds.size())
@@ -320,8 +321,10 @@ void Simulation::restore(const SimulationSnapshot& s) {
         (state_.plasticInverse.empty() ? "elastic" : "plastic") + ")");
   state_.x = s.x;
   state_.v = s.v;
-  if (state_.damaged != s.damaged) {
+  // No NaN is ever stored in crossings, so == compares them exactly.
+  if (state_.damaged != s.damaged || state_.crossing != s.crossing) {
     state_.damaged = s.damaged;
+    state_.crossing = s.crossing;
     ++state_.damageRevision;
   }
   state_.plasticInverse = s.plasticInverse;

@@ -21,6 +21,7 @@ enum class SolverChoice { FromScene, Reference };
 struct SimulationSnapshot {
   std::vector<Vec3> x, v;                       // (nVerts)
   std::vector<std::uint8_t> damaged;            // (nEdges)
+  std::vector<float> crossing;                  // (nEdges) where blades crossed, or kNoCrossing
   std::vector<Eigen::Matrix3d> plasticInverse;  // (nTets) or empty
   std::vector<double> plasticStrain;            // (nTets) or empty
   double time = 0.0;

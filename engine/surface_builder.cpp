@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 
 #include "solver/union_find.h"
 
@@ -91,6 +92,21 @@ std::array<unsigned, N> cornerGroups(const bool (&joined)[N][N]) {
   return mask;
 }
 
+// Where the blade crossed damaged edge e, if a blade did (SimState::crossing).
+bool bladeCrossing(const SimModel& model, const SimState& state, int e, Vec3& point) {
+  if (!state.damaged[e] || static_cast<size_t>(e) >= state.crossing.size() ||
+      !hasCrossing(state.crossing[e]))
+    return false;
+  const Vec3& a = model.mesh.vertices[model.edges[e][0]];
+  const Vec3& b = model.mesh.vertices[model.edges[e][1]];
+  point = a + static_cast<double>(state.crossing[e]) * (b - a);
+  return true;
+}
+
+float crossingSeen(const SimState& state, int e) {
+  return static_cast<size_t>(e) < state.crossing.size() ? state.crossing[e] : kNoCrossing;
+}
+
 }  // namespace
 
 TriMesh facesWithTag(const VisualSurface& surface, SurfaceTag tag, std::vector<int>* source) {
@@ -153,6 +169,16 @@ SurfaceBuilder::SurfaceBuilder(const SimModel& model) {
     while (j < refs.size() && refs[j].key == refs[i].key) ++j;
     const int face = static_cast<int>(faceCorners_.size());
     faceCorners_.push_back(refs[i].key);
+    {
+      const int t = refs[i].tet, opposite = refs[i].corner;
+      std::array<int, 3> edges{};
+      int n = 0;
+      for (int k = 0; k < 6; ++k) {
+        if (kTetEdges[k][0] != opposite && kTetEdges[k][1] != opposite)
+          edges[n++] = model.tetEdges[t][k];
+      }
+      faceEdges_.push_back(edges);
+    }
     for (size_t k = i; k < j; ++k) faceOfTet_[refs[k].tet][refs[k].corner] = face;
     if (j - i == 1) {
       const int t = refs[i].tet;
@@ -190,11 +216,12 @@ SurfaceBuilder::SurfaceBuilder(const SimModel& model) {
   buildCsr(model.numVertices(), vertexEdgePairs, vertexEdgeStart_, vertexEdges_);
 
   damagedSeen_.assign(model.numEdges(), 0);
+  crossingSeen_.assign(model.numEdges(), kNoCrossing);
   slotOfOwner_.assign(boundary_.size() + static_cast<size_t>(nT), -1);
   deformation_.resize(model.numVertices());
 }
 
-std::int64_t SurfaceBuilder::acquirePoint(std::uint64_t key) {
+std::int64_t SurfaceBuilder::acquirePoint(std::uint64_t key, const Vec3& rest) {
   const auto [it, inserted] = pointOfKey_.emplace(key, 0);
   if (inserted) {
     if (!freePoints_.empty()) {
@@ -206,10 +233,74 @@ std::int64_t SurfaceBuilder::acquirePoint(std::uint64_t key) {
       it->second = static_cast<std::int64_t>(pointKey_.size());
       pointKey_.push_back(key);
       pointRefs_.push_back(0);
+      pointRest_.emplace_back();
     }
   }
+  // Every owner using this point is regenerated whenever what places it changes (the damage
+  // and crossings of its edge, face or tet), so the latest acquire is up to date.
+  pointRest_[it->second] = rest;
   ++pointRefs_[it->second];
   return it->second;
+}
+
+Vec3 SurfaceBuilder::restPoint(const SimModel& model, const SimState& state,
+                               std::uint64_t key) const {
+  const int index = keyIndex(key);
+  const std::vector<Vec3>& X = model.mesh.vertices;
+  switch (keyKind(key)) {
+    case kEdgePoint: {
+      Vec3 p;
+      if (bladeCrossing(model, state, index, p)) return p;
+      return 0.5 * (X[model.edges[index][0]] + X[model.edges[index][1]]);
+    }
+    case kFacePoint: {
+      // Two damaged edges, both crossed: the blade's trace on this face is the segment between
+      // the crossings.
+      Vec3 sum = Vec3::Zero(), p;
+      int damaged = 0, crossed = 0;
+      for (int e : faceEdges_[index]) {
+        damaged += state.damaged[e];
+        if (bladeCrossing(model, state, e, p)) {
+          sum += p;
+          ++crossed;
+        }
+      }
+      if (damaged == 2 && crossed == 2) return 0.5 * sum;
+      const std::array<int, 3>& c = faceCorners_[index];
+      return (X[c[0]] + X[c[1]] + X[c[2]]) / 3.0;
+    }
+    case kTetPoint: {
+      // A clean split (every damaged edge joins the two groups of corners, so the damage is the
+      // set of edges a plane through the tet would cut), all crossed: the crossings' mean.
+      const Tet& tet = model.mesh.tets[index];
+      bool joined[4][4] = {};
+      for (int k = 0; k < 6; ++k) {
+        const bool intact = !state.damaged[model.tetEdges[index][k]];
+        joined[kTetEdges[k][0]][kTetEdges[k][1]] = joined[kTetEdges[k][1]][kTetEdges[k][0]] =
+            intact;
+      }
+      const std::array<unsigned, 4> group = cornerGroups<4>(joined);
+      bool clean = group[0] != 0xFu;  // not one group of all four
+      for (int i = 0; i < 4 && clean; ++i)
+        clean = group[i] == group[0] || group[i] == (0xFu & ~group[0]);  // two groups only
+      Vec3 sum = Vec3::Zero(), p;
+      int crossed = 0;
+      for (int k = 0; k < 6 && clean; ++k) {
+        const int e = model.tetEdges[index][k];
+        if (!state.damaged[e]) continue;
+        if (group[kTetEdges[k][0]] == group[kTetEdges[k][1]] ||
+            !bladeCrossing(model, state, e, p)) {
+          clean = false;
+          break;
+        }
+        sum += p;
+        ++crossed;
+      }
+      if (clean && crossed > 0) return sum / crossed;
+      return 0.25 * (X[tet[0]] + X[tet[1]] + X[tet[2]] + X[tet[3]]);
+    }
+  }
+  return Vec3::Zero();
 }
 
 void SurfaceBuilder::releasePoint(std::int64_t corner) {
@@ -318,19 +409,21 @@ void SurfaceBuilder::emitTet(const SimModel& model, const std::vector<std::uint8
   }
 }
 
-void SurfaceBuilder::regenerateOwner(const SimModel& model,
-                                     const std::vector<std::uint8_t>& damaged, int owner) {
+void SurfaceBuilder::regenerateOwner(const SimModel& model, const SimState& state, int owner) {
   std::vector<PendingTri> tris;
   const int nB = static_cast<int>(boundary_.size());
   if (owner < nB) {
-    emitBoundaryFace(model, damaged, owner, tris);
+    emitBoundaryFace(model, state.damaged, owner, tris);
   } else {
-    emitTet(model, damaged, owner - nB, tris);
+    emitTet(model, state.damaged, owner - nB, tris);
   }
   // Emitters name points by key; stored triangles hold counted point slots.
   for (PendingTri& tri : tris) {
     for (std::int64_t& c : tri.corner) {
-      if (c >= 0) c = acquirePoint(static_cast<std::uint64_t>(c));
+      if (c >= 0) {
+        const auto key = static_cast<std::uint64_t>(c);
+        c = acquirePoint(key, restPoint(model, state, key));
+      }
     }
   }
   int& slot = slotOfOwner_[owner];
@@ -475,9 +568,7 @@ void SurfaceBuilder::evaluatePositions(const SimModel& model, const SimState& st
       out[i] = sum / n;
       continue;
     }
-    Vec3 restPoint = Vec3::Zero();
-    for (int k = 0; k < n; ++k) restPoint += X[support[k]];
-    restPoint /= n;
+    const Vec3& restPoint = pointRest_[source];
     Vec3 sum = Vec3::Zero();
     int held = 0;
     for (int k = 0; k < n; ++k) {
@@ -498,8 +589,13 @@ SurfaceUpdateStats SurfaceBuilder::update(const SimModel& model, const SimState&
     std::vector<int> owners;
     const int nB = static_cast<int>(boundary_.size());
     for (int e = 0; e < model.numEdges(); ++e) {
-      if (state.damaged[e] == damagedSeen_[e]) continue;
+      // Crossings compared bit for bit: an undo may bring back the same damage, crossed elsewhere.
+      const float crossing = crossingSeen(state, e);
+      if (state.damaged[e] == damagedSeen_[e] &&
+          std::memcmp(&crossing, &crossingSeen_[e], sizeof(float)) == 0)
+        continue;
       damagedSeen_[e] = state.damaged[e];
+      crossingSeen_[e] = crossing;
       for (int k = edgeBoundaryStart_[e]; k < edgeBoundaryStart_[e + 1]; ++k)
         owners.push_back(edgeBoundary_[k]);
       for (int k = edgeTetStart_[e]; k < edgeTetStart_[e + 1]; ++k)
@@ -507,7 +603,7 @@ SurfaceUpdateStats SurfaceBuilder::update(const SimModel& model, const SimState&
     }
     std::sort(owners.begin(), owners.end());
     owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
-    for (int owner : owners) regenerateOwner(model, state.damaged, owner);
+    for (int owner : owners) regenerateOwner(model, state, owner);
     stats.rebuiltOwners = static_cast<int>(owners.size());
     stats.topologyChanged = first || !owners.empty();
     if (stats.topologyChanged) {

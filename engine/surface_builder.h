@@ -20,6 +20,14 @@
 // its own side: each corner v it holds places it at x_v + F_v (X_p - X_v), F_v being v's local
 // deformation fitted over its undamaged edges, so no triangle stretches across an opened crack.
 //
+// Knife cuts: X_p follows the blade. A damaged edge that a blade crossed (SimState::crossing)
+// has its point where the blade crossed it instead of at its midpoint; a face with exactly two
+// damaged edges, both crossed, has its point half way between their crossings; a tet whose
+// damaged edges split its corners cleanly into two groups, all of them crossed, has its centre
+// at the mean of their crossings. The crack faces of such a tet then tile the polygon through
+// the crossing points (marching tetrahedra on the blade's side), so a planar blade leaves planar
+// crack faces. Only positions change: the topology, and every guarantee above, stay as they are.
+//
 // Cost: topology work is limited to the tets and boundary faces around edges damaged since the
 // previous update; every frame re-evaluates the positions of the surface's vertices.
 #pragma once
@@ -90,12 +98,13 @@ class SurfaceBuilder {
     int cellVertex;
   };
 
-  void regenerateOwner(const SimModel& model, const std::vector<std::uint8_t>& damaged, int owner);
+  void regenerateOwner(const SimModel& model, const SimState& state, int owner);
   void emitBoundaryFace(const SimModel& model, const std::vector<std::uint8_t>& damaged, int b,
                         std::vector<PendingTri>& out);
   void emitTet(const SimModel& model, const std::vector<std::uint8_t>& damaged, int t,
                std::vector<PendingTri>& out);
-  std::int64_t acquirePoint(std::uint64_t key);
+  std::int64_t acquirePoint(std::uint64_t key, const Vec3& rest);
+  Vec3 restPoint(const SimModel& model, const SimState& state, std::uint64_t key) const;
   void releasePoint(std::int64_t corner);
   void renumber();
   void evaluatePositions(const SimModel& model, const SimState& state);
@@ -107,12 +116,14 @@ class SurfaceBuilder {
   std::vector<BoundaryFace> boundary_;                 // (nBoundary)
   std::vector<std::array<int, 4>> faceOfTet_;          // (nTets) face opposite each local corner
   std::vector<std::array<int, 3>> faceCorners_;        // (nFaces) sorted
+  std::vector<std::array<int, 3>> faceEdges_;          // (nFaces) its three global edges
   std::vector<int> edgeTetStart_, edgeTets_;           // CSR: tets around each edge
   std::vector<int> edgeBoundaryStart_, edgeBoundary_;  // CSR: boundary faces on each edge
   std::vector<int> vertexEdgeStart_, vertexEdges_;     // CSR: edges at each vertex
 
   // Topology, kept between updates. Owners: boundary faces [0, nB), then tets.
   std::vector<std::uint8_t> damagedSeen_;  // (nEdges) the damage of the last update
+  std::vector<float> crossingSeen_;        // (nEdges) the crossings of the last update
   std::uint64_t revisionSeen_ = ~0ull;
   std::vector<int> slotOfOwner_;  // (nB + nTets) index into ownerTris_, -1: default or empty
   std::vector<std::vector<PendingTri>> ownerTris_;
@@ -120,6 +131,7 @@ class SurfaceBuilder {
   std::unordered_map<std::uint64_t, std::int64_t> pointOfKey_;
   std::vector<std::uint64_t> pointKey_;  // (nSlots)
   std::vector<int> pointRefs_;           // (nSlots)
+  std::vector<Vec3> pointRest_;          // (nSlots) X_p, the point's rest position
   std::vector<std::int64_t> freePoints_;
 
   // Output numbering: each surface vertex is a point slot (>= 0) or a mesh vertex -(v + 1).

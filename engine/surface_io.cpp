@@ -209,29 +209,38 @@ const char* checkedFormat(const fs::path& path) {
 
 // OBJ by hand: assimp's OBJ exporter merges vertices that share a position, which would weld
 // the two sides of a crack that has not opened yet. One vertex list for the whole surface, so
-// outer and crack faces stay connected; a normal list per tag keeps crack edges sharp.
+// outer and crack faces stay connected; outer faces take smooth per-vertex normals, crack faces
+// one normal each (flat, as the app shades them), so crack edges stay sharp.
 void writeObj(const fs::path& path, const VisualSurface& s) {
   checkedOutputDir(path);
-  const ShadingNormals normals = shadingNormals(s);
+  const std::vector<Vec3> outerNormals = shadingNormals(s).outer;
   const int n = s.mesh.numVertices();
   writeFileAtomically(path, [&](std::ostream& out) {
     out << "# galsculpt visualization surface: " << n << " vertices, " << s.mesh.numFaces()
         << " faces; groups 'outer' (the body's surface) and 'crack' (crack faces)\n";
     out << std::setprecision(9);
-    for (const Vec3& p : s.mesh.vertices)
-      out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-    for (const std::vector<Vec3>* list : {&normals.outer, &normals.crack}) {
-      for (const Vec3& p : *list) out << "vn " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    auto vector = [&](const char* kind, const Vec3& p) {
+      out << kind << ' ' << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    };
+    for (const Vec3& p : s.mesh.vertices) vector("v", p);
+    for (const Vec3& p : outerNormals) vector("vn", p);
+    for (size_t f = 0; f < s.mesh.faces.size(); ++f) {
+      if (s.tags[f] != SurfaceTag::Crack) continue;
+      const Tri& t = s.mesh.faces[f];
+      const std::vector<Vec3>& x = s.mesh.vertices;
+      vector("vn", (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).stableNormalized());
     }
     for (SurfaceTag tag : {SurfaceTag::Outer, SurfaceTag::Crack}) {
       bool header = false;
-      const int normalBase = tag == SurfaceTag::Crack ? n : 0;
+      int crackNormal = n;  // crack faces' normals follow the per-vertex ones, in face order
       for (size_t f = 0; f < s.mesh.faces.size(); ++f) {
         if (s.tags[f] != tag) continue;
         if (!header) out << (tag == SurfaceTag::Crack ? "g crack\n" : "g outer\n");
         header = true;
         out << 'f';
-        for (int v : s.mesh.faces[f]) out << ' ' << v + 1 << "//" << normalBase + v + 1;
+        const int flat = ++crackNormal;
+        for (int v : s.mesh.faces[f])
+          out << ' ' << v + 1 << "//" << (tag == SurfaceTag::Crack ? flat : v + 1);
         out << '\n';
       }
     }

@@ -1,6 +1,7 @@
 #include "damage_io.h"
 
 #include <algorithm>
+#include <iomanip>
 #include <sstream>
 
 #include "atomic_file.h"
@@ -10,21 +11,27 @@
 namespace galsculpt {
 
 void writeDamage(const std::filesystem::path& path, const std::vector<Edge>& edges,
-                 const std::vector<std::uint8_t>& damaged) {
+                 const std::vector<std::uint8_t>& damaged, const std::vector<float>& crossing) {
   if (damaged.size() != edges.size()) {
     throw OutputError("cannot write " + path.string() + ": one damage flag per edge is needed");
   }
+  if (!crossing.empty() && crossing.size() != edges.size()) {
+    throw OutputError("cannot write " + path.string() + ": one crossing per edge is needed");
+  }
   const auto count = std::count_if(damaged.begin(), damaged.end(), [](auto d) { return d != 0; });
   writeFileAtomically(path, [&](std::ostream& out) {
-    out << "# galsculpt damage 1\n" << count << '\n';
+    // 9 significant digits bring a float back bit for bit.
+    out << std::setprecision(9) << "# galsculpt damage 2\n" << count << '\n';
     for (size_t e = 0; e < edges.size(); ++e) {
-      if (damaged[e]) out << edges[e][0] << ' ' << edges[e][1] << '\n';
+      if (!damaged[e]) continue;
+      out << edges[e][0] << ' ' << edges[e][1];
+      if (!crossing.empty() && hasCrossing(crossing[e])) out << ' ' << crossing[e];
+      out << '\n';
     }
   });
 }
 
-std::vector<std::uint8_t> readDamage(const std::filesystem::path& path,
-                                     const std::vector<Edge>& edges) {
+EdgeDamageState readDamage(const std::filesystem::path& path, const std::vector<Edge>& edges) {
   const std::string text = readWholeFile(path);  // TextLines keeps views into it
   TextLines lines(path.string(), text);
   const TextLine& header = lines.next("the number of damaged edges");
@@ -34,13 +41,25 @@ std::vector<std::uint8_t> readDamage(const std::filesystem::path& path,
     lines.fail(header.number, "the mesh has " + std::to_string(edges.size()) +
                                   " edges; cannot damage " + std::to_string(count));
   }
-  std::vector<std::uint8_t> damaged(edges.size(), 0);
+  EdgeDamageState state{std::vector<std::uint8_t>(edges.size(), 0),
+                        std::vector<float>(edges.size(), kNoCrossing)};
   for (long long i = 0; i < count; ++i) {
     const TextLine& line = lines.next("a damaged edge (two vertex numbers)");
-    if (line.tokens.size() != 2) lines.fail(line.number, "expected two vertex numbers");
+    if (line.tokens.size() != 2 && line.tokens.size() != 3)
+      lines.fail(line.number, "expected two vertex numbers and, optionally, where a blade crossed");
     long long a = lines.parseInt(line, 0, "a vertex number");
     long long b = lines.parseInt(line, 1, "a vertex number");
-    if (a > b) std::swap(a, b);
+    float at = kNoCrossing;
+    if (line.tokens.size() == 3) {
+      const double value = lines.parseDouble(line, 2, "where a blade crossed the edge");
+      if (!(value >= 0.0 && value <= 1.0))
+        lines.fail(line.number, "where a blade crossed the edge must be a fraction in [0, 1]");
+      at = static_cast<float>(value);
+    }
+    if (a > b) {
+      std::swap(a, b);
+      if (hasCrossing(at)) at = 1.0f - at;
+    }
     const Edge key{static_cast<int>(a), static_cast<int>(b)};
     const auto it = std::lower_bound(edges.begin(), edges.end(), key);
     if (a < 0 || it == edges.end() || *it != key) {
@@ -48,15 +67,16 @@ std::vector<std::uint8_t> readDamage(const std::filesystem::path& path,
       what << '(' << a << ", " << b << ") is not an edge of the mesh";
       lines.fail(line.number, what.str());
     }
-    std::uint8_t& flag = damaged[it - edges.begin()];
+    std::uint8_t& flag = state.damaged[it - edges.begin()];
     if (flag) lines.fail(line.number, "edge listed twice");
     flag = 1;
+    state.crossing[it - edges.begin()] = at;
   }
   if (!lines.atEnd()) {
     lines.fail(lines.peek()->number,
                "more edges than the count on line " + std::to_string(header.number) + " says");
   }
-  return damaged;
+  return state;
 }
 
 std::vector<double> tetDamageFraction(const std::vector<std::array<int, 6>>& tetEdges,

@@ -41,8 +41,18 @@ bool segmentCrossesTriangle(const Vec3& p, const Vec3& q, const BladeTriangle& t
   return !(anyPositive && anyNegative);
 }
 
-std::vector<int> edgesCrossingSurface(const std::vector<Vec3>& x, const std::vector<Edge>& edges,
-                                      const std::vector<BladeTriangle>& surface) {
+double crossingFraction(const Vec3& p, const Vec3& q, const BladeTriangle& t) {
+  const Vec3 n = (t.b - t.a).cross(t.c - t.a);
+  const double dp = n.dot(p - t.a), dq = n.dot(q - t.a);
+  // dp and dq have opposite signs (or one is zero) for a crossing edge, so the quotient is in
+  // [0, 1] up to rounding; an edge in the plane crosses nothing, but stay defined for it.
+  const double at = dp != dq ? dp / (dp - dq) : 0.5;
+  return std::clamp(at, kCrossingMargin, 1.0 - kCrossingMargin);
+}
+
+std::vector<EdgeCrossing> edgesCrossingSurface(const std::vector<Vec3>& x,
+                                               const std::vector<Edge>& edges,
+                                               const std::vector<BladeTriangle>& surface) {
   struct Box {
     Vec3 lo, hi;
   };
@@ -54,7 +64,7 @@ std::vector<int> edgesCrossingSurface(const std::vector<Vec3>& x, const std::vec
     all.lo = all.lo.cwiseMin(boxes[i].lo);
     all.hi = all.hi.cwiseMax(boxes[i].hi);
   }
-  std::vector<char> crosses(edges.size(), 0);
+  std::vector<float> crossing(edges.size(), -1.0f);
   const int n = static_cast<int>(edges.size());
 #pragma omp parallel for schedule(static)
   for (int e = 0; e < n; ++e) {
@@ -66,14 +76,14 @@ std::vector<int> edgesCrossingSurface(const std::vector<Vec3>& x, const std::vec
       if ((hi.array() < boxes[i].lo.array()).any() || (lo.array() > boxes[i].hi.array()).any())
         continue;
       if (segmentCrossesTriangle(p, q, surface[i])) {
-        crosses[e] = 1;
+        crossing[e] = static_cast<float>(crossingFraction(p, q, surface[i]));
         break;
       }
     }
   }
-  std::vector<int> out;
+  std::vector<EdgeCrossing> out;
   for (int e = 0; e < n; ++e) {
-    if (crosses[e]) out.push_back(e);
+    if (crossing[e] >= 0.0f) out.push_back({e, crossing[e]});
   }
   return out;
 }
@@ -81,9 +91,12 @@ std::vector<int> edgesCrossingSurface(const std::vector<Vec3>& x, const std::vec
 int cutAlongSurface(const SimModel& model, SimState& state,
                     const std::vector<BladeTriangle>& surface) {
   int cut = 0;
-  for (int e : edgesCrossingSurface(state.x, model.edges, surface)) {
-    if (!state.damaged[e]) {
-      state.damaged[e] = 1;
+  if (state.crossing.size() != state.damaged.size())
+    state.crossing.assign(state.damaged.size(), kNoCrossing);
+  for (const EdgeCrossing& c : edgesCrossingSurface(state.x, model.edges, surface)) {
+    if (!state.damaged[c.edge]) {
+      state.damaged[c.edge] = 1;
+      state.crossing[c.edge] = c.at;
       ++cut;
     }
   }

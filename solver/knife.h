@@ -35,12 +35,28 @@ std::vector<BladeTriangle> extrudedStrokeSurface(const std::vector<Vec3>& nearPo
 // Whether segment pq crosses the closed triangle, by the rules above.
 bool segmentCrossesTriangle(const Vec3& p, const Vec3& q, const BladeTriangle& t);
 
-// Indices of the edges (positions x) that cross any triangle of the surface, ascending.
-std::vector<int> edgesCrossingSurface(const std::vector<Vec3>& x, const std::vector<Edge>& edges,
-                                      const std::vector<BladeTriangle>& surface);
+// Where segment pq meets the plane of a triangle it crosses (segmentCrossesTriangle), as a
+// fraction from p to q, kept kCrossingMargin away from both ends: a crossing at an end would
+// give the crack surface triangles of zero area there.
+inline constexpr double kCrossingMargin = 0.01;
+double crossingFraction(const Vec3& p, const Vec3& q, const BladeTriangle& t);
+
+// An edge the surface crosses, and where: a fraction along edges[edge] from its first vertex to
+// its second (of the first triangle, in surface order, that it crosses).
+struct EdgeCrossing {
+  int edge = -1;
+  float at = 0.5f;
+};
+
+// The edges (positions x) that cross any triangle of the surface, by ascending edge index.
+std::vector<EdgeCrossing> edgesCrossingSurface(const std::vector<Vec3>& x,
+                                               const std::vector<Edge>& edges,
+                                               const std::vector<BladeTriangle>& surface);
 
 // Damages every undamaged edge of the state that crosses the surface at the current
-// positions; returns how many were newly damaged (and bumps state.damageRevision if any).
+// positions and records where the blade crossed it (state.crossing); returns how many were
+// newly damaged (and bumps state.damageRevision if any). Edges damaged before keep their
+// crossing: damage is for good.
 int cutAlongSurface(const SimModel& model, SimState& state,
                     const std::vector<BladeTriangle>& surface);
 

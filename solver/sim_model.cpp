@@ -76,6 +76,7 @@ SimState initialState(const SimModel& model) {
   s.x = model.mesh.vertices;
   s.v.assign(model.mesh.vertices.size(), Vec3::Zero());
   s.damaged.assign(model.edges.size(), 0);
+  s.crossing.assign(model.edges.size(), kNoCrossing);
   if (model.material.plastic.yieldStress > 0.0) {
     s.plasticInverse.assign(model.mesh.tets.size(), Eigen::Matrix3d::Identity());
     s.plasticStrain.assign(model.mesh.tets.size(), 0.0);

@@ -45,13 +45,23 @@ struct SimModel {
 // Throws std::invalid_argument for a degenerate tet.
 SimModel buildSimModel(const TetMesh& mesh, const MaterialParams& material);
 
+// A damaged edge that no blade crossed (SimState::crossing).
+inline constexpr float kNoCrossing = -1.0f;
+inline bool hasCrossing(float at) {
+  return at >= 0.0f && at <= 1.0f;
+}
+
 struct StepWorkspace;  // solver scratch kept between frames (factorization pattern, buffers)
 
 struct SimState {
-  std::vector<Vec3> x;                          // (nVerts) positions, m
-  std::vector<Vec3> v;                          // (nVerts) velocities, m/s
-  std::vector<std::uint8_t> damaged;            // (nEdges) 1 = damaged for good
-  std::uint64_t damageRevision = 0;             // bumped whenever `damaged` changes
+  std::vector<Vec3> x;                // (nVerts) positions, m
+  std::vector<Vec3> v;                // (nVerts) velocities, m/s
+  std::vector<std::uint8_t> damaged;  // (nEdges) 1 = damaged for good
+  // (nEdges) where a knife crossed a damaged edge, as a fraction along edges[e] from its first
+  // vertex to its second (rest configuration); kNoCrossing where no blade crossed it (fracture,
+  // or not damaged). The surface puts crack faces through these points (engine/surface_builder).
+  std::vector<float> crossing;
+  std::uint64_t damageRevision = 0;             // bumped whenever `damaged` or `crossing` changes
   std::vector<Eigen::Matrix3d> plasticInverse;  // (nTets) Fp^-1; empty for elastic materials
   std::vector<double> plasticStrain;            // (nTets) accumulated, for hardening
   double time = 0.0;                            // s

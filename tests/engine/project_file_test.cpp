@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <functional>
 
 #include "engine/scene_mesh.h"
@@ -54,6 +57,9 @@ TEST(ProjectFile, RoundTripRestoresTheSessionExactlyAndItRunsOnIdentically) {
   const SimulationSnapshot b = reopened->simulation().snapshot();
   EXPECT_EQ(a.frame, b.frame);
   EXPECT_TRUE(a.x == b.x && a.v == b.v && a.damaged == b.damaged);
+  EXPECT_EQ(a.crossing, b.crossing);
+  EXPECT_GT(std::count_if(a.crossing.begin(), a.crossing.end(), hasCrossing), 0)
+      << "the knife's crossings are saved";
   EXPECT_TRUE(a.plasticStrain == b.plasticStrain);
   ASSERT_FALSE(a.plasticInverse.empty()) << "the clay ball has a plastic state to save";
   for (size_t t = 0; t < a.plasticInverse.size(); ++t)
@@ -94,7 +100,7 @@ TEST(ProjectFile, MalformedProjectsGetClearErrors) {
     return s.replace(at, from.size(), to);
   };
   EXPECT_NE(errorOf("hello").find("bad.gsproj:1: not a Galsculpt project"), std::string::npos);
-  EXPECT_NE(errorOf(replaced("PROJECT 1", "PROJECT 7")).find("made by a newer Galsculpt"),
+  EXPECT_NE(errorOf(replaced("PROJECT 2", "PROJECT 7")).find("made by a newer Galsculpt"),
             std::string::npos);
   EXPECT_NE(errorOf(good.substr(0, good.size() - 100)).find("truncated"), std::string::npos);
   EXPECT_NE(errorOf(good.substr(0, 40)).find("truncated"), std::string::npos);
@@ -119,16 +125,61 @@ TEST(ProjectFile, MalformedProjectsGetClearErrors) {
               h["scene"]["material"]["preset"] = "cheese";
             })).find("$.material.preset"),
             std::string::npos);
-  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) {
-              h["edges"] = h["edges"].get<int>() - 1;
-            })).find("unexpected data"),
-            std::string::npos);
+  const std::string fewerEdges =
+      errorOf(withHeader([](nlohmann::json& h) { h["edges"] = h["edges"].get<int>() - 1; }));
+  EXPECT_TRUE(fewerEdges.find("unexpected data") != std::string::npos ||
+              fewerEdges.find("blade crossing of edge") != std::string::npos)
+      << fewerEdges;
+  const SimModel& model = ball.session.simulation().model();
+  // Arrays from the end: plastic state (10 doubles a tet), crossings (a float an edge), damage.
+  const size_t crossingEnd = good.size() - 10 * static_cast<size_t>(model.numTets()) * 8;
+  const size_t damageEnd = crossingEnd - 4 * static_cast<size_t>(model.numEdges());
   std::string damaged = good;
-  damaged[damaged.size() - 1 - 10 * ball.session.simulation().model().numTets() * 8] = 5;
-  const std::string message = errorOf(damaged);
-  EXPECT_TRUE(message.find("must be 0 or 1") != std::string::npos ||
-              message.find("not finite") != std::string::npos)
-      << message;
+  damaged[damageEnd - 1] = 5;
+  EXPECT_NE(errorOf(damaged).find("must be 0 or 1"), std::string::npos) << errorOf(damaged);
+  // A crossing out of range, and one on an undamaged edge.
+  const SimulationSnapshot state = ball.session.simulation().snapshot();
+  auto withCrossing = [&](int edge, float value) {
+    std::string s = good;
+    std::memcpy(&s[damageEnd + 4 * static_cast<size_t>(edge)], &value, sizeof(float));
+    return s;
+  };
+  const int cutEdge =
+      static_cast<int>(std::find_if(state.crossing.begin(), state.crossing.end(), hasCrossing) -
+                       state.crossing.begin());
+  const int intactEdge = static_cast<int>(std::find(state.damaged.begin(), state.damaged.end(), 0) -
+                                          state.damaged.begin());
+  EXPECT_NE(errorOf(withCrossing(cutEdge, 1.5f)).find("blade crossing of edge"), std::string::npos);
+  EXPECT_NE(errorOf(withCrossing(cutEdge, std::nanf(""))).find("blade crossing of edge"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withCrossing(intactEdge, 0.5f)).find("on an undamaged edge"),
+            std::string::npos);
+  // The version is a whole number and nothing else.
+  for (const char* version : {"1garbage", "1.9", "", "-2", "2 ", "99999999999"}) {
+    EXPECT_NE(errorOf(replaced("PROJECT 2\n", std::string("PROJECT ") + version + "\n"))
+                  .find("bad.gsproj:1: the format version is not a whole number"),
+              std::string::npos)
+        << version;
+  }
+}
+
+// Version 1 files (before blade crossings were saved) still open: their cuts have no crossings.
+TEST(ProjectFile, Version1ProjectsStillOpen) {
+  test::TempDir dir;
+  SculptedBall ball;
+  writeProject(dir / "new.gsproj", ball.session, std::nullopt);
+  std::string bytes = test::readText(dir / "new.gsproj");
+  const SimModel& model = ball.session.simulation().model();
+  const size_t crossingEnd = bytes.size() - 10 * static_cast<size_t>(model.numTets()) * 8;
+  const size_t crossingBytes = 4 * static_cast<size_t>(model.numEdges());
+  bytes.erase(crossingEnd - crossingBytes, crossingBytes);
+  bytes.replace(bytes.find("PROJECT 2\n"), 10, "PROJECT 1\n");
+  test::writeText(dir / "old.gsproj", bytes);
+  const Project p = readProject(dir / "old.gsproj");
+  EXPECT_EQ(p.state.damaged, ball.session.simulation().state().damaged);
+  EXPECT_EQ(p.state.crossing, std::vector<float>(model.numEdges(), kNoCrossing));
+  std::unique_ptr<SculptSession> reopened = sessionFromProject(p, dir / "old.gsproj");
+  EXPECT_EQ(reopened->simulation().state().x, ball.session.simulation().state().x);
 }
 
 // Saved while a brush is still held: the file records the stroke as ending there (it once wrote

@@ -55,6 +55,7 @@ void expectSameState(const SimulationSnapshot& a, const SimulationSnapshot& b) {
   EXPECT_TRUE(a.x == b.x) << "positions differ";
   EXPECT_TRUE(a.v == b.v) << "velocities differ";
   EXPECT_TRUE(a.damaged == b.damaged) << "damage differs";
+  EXPECT_TRUE(a.crossing == b.crossing) << "where blades crossed differs";
   EXPECT_TRUE(a.plasticStrain == b.plasticStrain) << "plastic strain differs";
   ASSERT_EQ(a.plasticInverse.size(), b.plasticInverse.size());
   for (size_t t = 0; t < a.plasticInverse.size(); ++t)
@@ -279,6 +280,8 @@ TEST(SculptSession, UndoAndRedoReturnTheExactStates) {
   cutThrough(s, 0.02);
   for (int f = 0; f < 3; ++f) s.step();
   const SimulationSnapshot b = s.simulation().snapshot();
+  ASSERT_GT(std::count_if(b.crossing.begin(), b.crossing.end(), hasCrossing), 0)
+      << "the knife recorded where it crossed";
   const size_t recordedB = s.recording().size();
   s.beginAction("push");
   s.beginStroke(brushAt(BrushKind::Push, Vec3(-0.02, 0.098, 0.0), Vec3::UnitY(), 0.03, 0.2));

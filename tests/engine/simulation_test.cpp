@@ -171,7 +171,9 @@ TEST(Simulation, TetMeshWithDamageRoundTrips) {
     EXPECT_LT((back.vertices[v] - sim.state().x[v]).norm(), 1e-12) << "current positions";
   }
   EXPECT_EQ(back.tets, sim.model().mesh.tets);
-  EXPECT_EQ(readDamage(dir / "cut.damage", uniqueEdges(back)), sim.state().damaged);
+  const EdgeDamageState damage = readDamage(dir / "cut.damage", uniqueEdges(back));
+  EXPECT_EQ(damage.damaged, sim.state().damaged);
+  EXPECT_EQ(damage.crossing, sim.state().crossing) << "where the blade crossed, bit for bit";
   const std::string vtk = test::readText(dir / "cut.vtk");
   EXPECT_NE(vtk.find("SCALARS damage double 1"), std::string::npos);
   EXPECT_NE(vtk.find("SCALARS piece double 1"), std::string::npos);

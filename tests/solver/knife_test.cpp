@@ -70,6 +70,64 @@ TEST(Knife, APlanarCutThroughVerticesGivesExactlyTwoPieces) {
   EXPECT_EQ(b.state.damageRevision, 1u);
 }
 
+TEST(Knife, CrossingFractionIsWhereTheEdgeMeetsTheBladePlane) {
+  EXPECT_DOUBLE_EQ(crossingFraction(Vec3(0.2, 0.2, 1), Vec3(0.2, 0.2, -3), kUnit), 0.25);
+  EXPECT_DOUBLE_EQ(crossingFraction(Vec3(0.2, 0.2, -1), Vec3(0.2, 0.2, 1), kUnit), 0.5);
+  // Ends on the plane are kept off the vertex.
+  EXPECT_DOUBLE_EQ(crossingFraction(Vec3(0.2, 0.2, 0), Vec3(0.2, 0.3, -1), kUnit), kCrossingMargin);
+  EXPECT_DOUBLE_EQ(crossingFraction(Vec3(0.2, 0.2, 1), Vec3(0.2, 0.3, 0), kUnit),
+                   1.0 - kCrossingMargin);
+}
+
+TEST(Knife, ACutRecordsWhereTheBladeCrossedEachEdge) {
+  Bar b = makeBar();
+  ASSERT_EQ(b.state.crossing, std::vector<float>(b.model.numEdges(), kNoCrossing));
+  // Oblique plane through no vertex: every crossing lies on it (float precision).
+  const Vec3 normal = Vec3(0.2, 1.0, 0.3).normalized();
+  const Vec3 center(0.1, 0.43, 0.1);
+  const Vec3 t1 = normal.unitOrthogonal(), t2 = normal.cross(t1);
+  const int cut =
+      cutAlongSurface(b.model, b.state,
+                      sweptBladeSurface(center - 3 * t1 - 3 * t2, center + 3 * t1 - 3 * t2,
+                                        center - 3 * t1 + 3 * t2, center + 3 * t1 + 3 * t2));
+  ASSERT_GT(cut, 0);
+  int crossed = 0;
+  for (int e = 0; e < b.model.numEdges(); ++e) {
+    ASSERT_EQ(b.state.damaged[e] != 0, hasCrossing(b.state.crossing[e])) << e;
+    if (!b.state.damaged[e]) continue;
+    const Vec3& p = b.state.x[b.model.edges[e][0]];
+    const Vec3& q = b.state.x[b.model.edges[e][1]];
+    const Vec3 at = p + static_cast<double>(b.state.crossing[e]) * (q - p);
+    // On the plane, or kept the margin away from a vertex next to it.
+    const float f = b.state.crossing[e];
+    const bool atMargin =
+        f == static_cast<float>(kCrossingMargin) || f == static_cast<float>(1.0 - kCrossingMargin);
+    EXPECT_LT(std::abs(normal.dot(at - center)),
+              (atMargin ? kCrossingMargin + 1e-6 : 1e-6) * (q - p).norm())
+        << e;
+    ++crossed;
+  }
+  EXPECT_EQ(crossed, cut);
+  // Damage is for good, and so is where it was cut: a second blade leaves the crossings.
+  const std::vector<float> first = b.state.crossing;
+  cutAlongSurface(b.model, b.state, planarCut(0.43));
+  for (int e = 0; e < b.model.numEdges(); ++e) {
+    if (hasCrossing(first[e])) {
+      EXPECT_EQ(b.state.crossing[e], first[e]) << e;
+    }
+  }
+  // Through a layer of vertices (y = 0.4): crossings at the margin, next to the vertex.
+  Bar layer = makeBar();
+  cutAlongSurface(layer.model, layer.state, planarCut(0.4));
+  for (int e = 0; e < layer.model.numEdges(); ++e) {
+    if (!layer.state.damaged[e]) continue;
+    const float at = layer.state.crossing[e];
+    EXPECT_TRUE(std::abs(at - kCrossingMargin) < 1e-7 ||
+                std::abs(at - (1 - kCrossingMargin)) < 1e-7)
+        << at;
+  }
+}
+
 TEST(Knife, APartialCutLeavesASlitAndAnObliqueStrokeSevers) {
   Bar b = makeBar();
   // The blade reaches half way through the bar's depth: a slit, still one piece.
