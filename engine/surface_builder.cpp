@@ -221,7 +221,7 @@ SurfaceBuilder::SurfaceBuilder(const SimModel& model) {
   deformation_.resize(model.numVertices());
 }
 
-std::int64_t SurfaceBuilder::acquirePoint(std::uint64_t key, const Vec3& rest) {
+std::int64_t SurfaceBuilder::acquirePoint(std::uint64_t key) {
   const auto [it, inserted] = pointOfKey_.emplace(key, 0);
   if (inserted) {
     if (!freePoints_.empty()) {
@@ -233,12 +233,16 @@ std::int64_t SurfaceBuilder::acquirePoint(std::uint64_t key, const Vec3& rest) {
       it->second = static_cast<std::int64_t>(pointKey_.size());
       pointKey_.push_back(key);
       pointRefs_.push_back(0);
-      pointRest_.emplace_back();
+      pointRest_.emplace_back(Vec3::Zero());
     }
   }
   // Every owner using this point is regenerated whenever what places it changes (the damage
-  // and crossings of its edge, face or tet), so the latest acquire is up to date.
-  pointRest_[it->second] = rest;
+  // and crossings of its edge, face or tet): its rest position is refreshed once per update.
+  if (pointStamp_.size() < pointKey_.size()) pointStamp_.resize(pointKey_.size(), 0);
+  if (pointStamp_[it->second] != updateStamp_) {
+    pointStamp_[it->second] = updateStamp_;
+    acquiredPoints_.push_back(it->second);
+  }
   ++pointRefs_[it->second];
   return it->second;
 }
@@ -420,10 +424,7 @@ void SurfaceBuilder::regenerateOwner(const SimModel& model, const SimState& stat
   // Emitters name points by key; stored triangles hold counted point slots.
   for (PendingTri& tri : tris) {
     for (std::int64_t& c : tri.corner) {
-      if (c >= 0) {
-        const auto key = static_cast<std::uint64_t>(c);
-        c = acquirePoint(key, restPoint(model, state, key));
-      }
+      if (c >= 0) c = acquirePoint(static_cast<std::uint64_t>(c));
     }
   }
   int& slot = slotOfOwner_[owner];
@@ -504,19 +505,30 @@ int SurfaceBuilder::supportOf(const SimModel& model, std::uint64_t key, int (&su
   return n;
 }
 
-void SurfaceBuilder::collectDeformedVertices(const SimModel& model) {
-  // The corners of copies that hold only part of their point's support: they need F_v.
+void SurfaceBuilder::preparePlacements(const SimModel& model) {
+  // What each surface vertex's position is made of, in output order, so that the per-frame pass
+  // reads it sequentially; and the corners of copies that hold only part of their point's
+  // support, which need F_v.
   deformedVertices_.clear();
   std::vector<char> seen(model.numVertices(), 0);
-  for (std::int64_t source : outSource_) {
-    if (source < 0) continue;
+  placements_.resize(outSource_.size());
+  for (size_t i = 0; i < outSource_.size(); ++i) {
+    const std::int64_t source = outSource_[i];
+    Placement& p = placements_[i];
+    if (source < 0) {
+      p.count = 0;
+      p.support[0] = static_cast<int>(-source - 1);
+      continue;
+    }
     const std::uint64_t key = pointKey_[source];
     int support[4];
-    const int n = supportOf(model, key, support);
-    const unsigned mask = keyMask(key);
-    if (mask == (1u << n) - 1) continue;
-    for (int k = 0; k < n; ++k) {
-      if ((mask & (1u << k)) && !seen[support[k]]) {
+    p.count = supportOf(model, key, support);
+    std::copy(support, support + p.count, p.support.begin());
+    p.mask = keyMask(key);
+    p.rest = pointRest_[source];
+    if (p.mask == (1u << p.count) - 1) continue;
+    for (int k = 0; k < p.count; ++k) {
+      if ((p.mask & (1u << k)) && !seen[support[k]]) {
         seen[support[k]] = 1;
         deformedVertices_.push_back(support[k]);
       }
@@ -551,30 +563,25 @@ void SurfaceBuilder::evaluatePositions(const SimModel& model, const SimState& st
   std::vector<Vec3>& out = surface_.mesh.vertices;
   out.resize(outSource_.size());
   const std::vector<Vec3>& X = model.mesh.vertices;
-  const size_t count = outSource_.size();
+  const size_t count = placements_.size();
   for (size_t i = 0; i < count; ++i) {
-    const std::int64_t source = outSource_[i];
-    if (source < 0) {
-      out[i] = state.x[-source - 1];
+    const Placement& p = placements_[i];
+    if (p.count == 0) {
+      out[i] = state.x[p.support[0]];
       continue;
     }
-    const std::uint64_t key = pointKey_[source];
-    int support[4];
-    const int n = supportOf(model, key, support);
-    const unsigned mask = keyMask(key);
-    if (mask == (1u << n) - 1) {
+    if (p.mask == (1u << p.count) - 1) {
       Vec3 sum = Vec3::Zero();
-      for (int k = 0; k < n; ++k) sum += state.x[support[k]];
-      out[i] = sum / n;
+      for (int k = 0; k < p.count; ++k) sum += state.x[p.support[k]];
+      out[i] = sum / p.count;
       continue;
     }
-    const Vec3& restPoint = pointRest_[source];
     Vec3 sum = Vec3::Zero();
     int held = 0;
-    for (int k = 0; k < n; ++k) {
-      if (!(mask & (1u << k))) continue;
-      const int v = support[k];
-      sum += state.x[v] + deformation_[v] * (restPoint - X[v]);
+    for (int k = 0; k < p.count; ++k) {
+      if (!(p.mask & (1u << k))) continue;
+      const int v = p.support[k];
+      sum += state.x[v] + deformation_[v] * (p.rest - X[v]);
       ++held;
     }
     out[i] = sum / held;
@@ -590,6 +597,7 @@ SurfaceUpdateStats SurfaceBuilder::update(const SimModel& model, const SimState&
     const int nB = static_cast<int>(boundary_.size());
     for (int e = 0; e < model.numEdges(); ++e) {
       // Crossings compared bit for bit: an undo may bring back the same damage, crossed elsewhere.
+      if (state.damaged[e] == damagedSeen_[e] && !state.damaged[e]) continue;
       const float crossing = crossingSeen(state, e);
       if (state.damaged[e] == damagedSeen_[e] &&
           std::memcmp(&crossing, &crossingSeen_[e], sizeof(float)) == 0)
@@ -603,12 +611,17 @@ SurfaceUpdateStats SurfaceBuilder::update(const SimModel& model, const SimState&
     }
     std::sort(owners.begin(), owners.end());
     owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
+    ++updateStamp_;
+    acquiredPoints_.clear();
     for (int owner : owners) regenerateOwner(model, state, owner);
+    for (std::int64_t slot : acquiredPoints_) {
+      if (pointRefs_[slot] > 0) pointRest_[slot] = restPoint(model, state, pointKey_[slot]);
+    }
     stats.rebuiltOwners = static_cast<int>(owners.size());
     stats.topologyChanged = first || !owners.empty();
     if (stats.topologyChanged) {
       renumber();
-      collectDeformedVertices(model);
+      preparePlacements(model);
     }
     revisionSeen_ = state.damageRevision;
   }

@@ -103,13 +103,13 @@ class SurfaceBuilder {
                         std::vector<PendingTri>& out);
   void emitTet(const SimModel& model, const std::vector<std::uint8_t>& damaged, int t,
                std::vector<PendingTri>& out);
-  std::int64_t acquirePoint(std::uint64_t key, const Vec3& rest);
+  std::int64_t acquirePoint(std::uint64_t key);
   Vec3 restPoint(const SimModel& model, const SimState& state, std::uint64_t key) const;
   void releasePoint(std::int64_t corner);
   void renumber();
   void evaluatePositions(const SimModel& model, const SimState& state);
   int supportOf(const SimModel& model, std::uint64_t key, int (&support)[4]) const;
-  void collectDeformedVertices(const SimModel& model);
+  void preparePlacements(const SimModel& model);
   Eigen::Matrix3d fitDeformation(const SimModel& model, const SimState& state, int v) const;
 
   // Mesh adjacency, built once.
@@ -132,11 +132,24 @@ class SurfaceBuilder {
   std::vector<std::uint64_t> pointKey_;  // (nSlots)
   std::vector<int> pointRefs_;           // (nSlots)
   std::vector<Vec3> pointRest_;          // (nSlots) X_p, the point's rest position
+  // Points acquired during the current update, their rest positions refreshed once at its end.
+  std::vector<std::int64_t> acquiredPoints_;
+  std::vector<std::uint32_t> pointStamp_;  // (nSlots) the update that last listed the point
+  std::uint32_t updateStamp_ = 0;
   std::vector<std::int64_t> freePoints_;
 
   // Output numbering: each surface vertex is a point slot (>= 0) or a mesh vertex -(v + 1).
   std::vector<std::int64_t> outSource_;
-  std::vector<int> vertexOut_, pointOut_;     // renumbering scratch
+  std::vector<int> vertexOut_, pointOut_;  // renumbering scratch
+  // How each surface vertex is placed: a mesh vertex (count 0, support[0]), or a point copy: its
+  // support, the corners it holds (mask) and its rest position.
+  struct Placement {
+    std::array<int, 4> support{};
+    int count = 0;
+    unsigned mask = 0;
+    Vec3 rest = Vec3::Zero();
+  };
+  std::vector<Placement> placements_;         // (nSurfaceVertices)
   std::vector<int> deformedVertices_;         // vertices whose F_v some copy needs
   std::vector<Eigen::Matrix3d> deformation_;  // (nVerts) F_v, refreshed for those each update
 

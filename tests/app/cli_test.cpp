@@ -180,6 +180,12 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
             c["results"][1]["damaged_edges"].get<int>());
   EXPECT_GT(c["results"][1]["damaged_edges"].get<int>(), 0);
   EXPECT_TRUE(c["results"][2]["rel_position_error"].is_null());
+  // The surface brought up to date after each cut: measured when there are cuts.
+  EXPECT_EQ(c["results"][0]["ms_surface_cut"].get<double>(), 0.0);
+  EXPECT_GT(c["results"][2]["ms_surface_cut"].get<double>(), 0.0);
+  EXPECT_GE(c["results"][2]["ms_surface_cut_max"].get<double>(),
+            c["results"][2]["ms_surface_cut"].get<double>());
+  EXPECT_NE(cracks.out.find("ms surface per cut"), std::string::npos) << cracks.out;
   ASSERT_EQ(r.code, kExitOk) << r.err;
   const auto j = nlohmann::json::parse(test::readText(dir / "b.json"));
   ASSERT_EQ(j["results"].size(), 2u);
