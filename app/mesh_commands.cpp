@@ -10,9 +10,11 @@
 #include "engine/scene_mesh.h"
 #include "engine/surface_io.h"
 #include "engine/tetrahedralize.h"
+#include "solver/damage_io.h"
 #include "solver/input_error.h"
 #include "solver/mesh_stats.h"
 #include "solver/surface_checks.h"
+#include "solver/tetgen_io.h"
 
 namespace galsculpt {
 
@@ -26,9 +28,33 @@ std::string vec(const Vec3& v) {
   return s.str();
 }
 
+// The damage written beside a TetGen mesh (stem.damage), checked to be of the same write.
+struct DamageBeside {
+  bool present = false;
+  int damaged = 0, crossed = 0;
+};
+DamageBeside readDamageBeside(const fs::path& file, const TetMesh& mesh,
+                              const MeshReadReport& report) {
+  DamageBeside d;
+  if (meshFileKind(file) != MeshFileKind::TetGen) return d;
+  const fs::path stem = tetgenStem(file);
+  const fs::path damagePath = fs::path(stem).concat(".damage");
+  std::error_code ec;
+  if (!fs::exists(damagePath, ec)) return d;
+  const EdgeDamageState state = readDamage(damagePath, uniqueEdges(mesh));
+  checkSameSet(fs::path(stem).concat(".node"), report.setStamp, damagePath, state.setStamp);
+  d.present = true;
+  for (size_t e = 0; e < state.damaged.size(); ++e) {
+    d.damaged += state.damaged[e];
+    d.crossed += hasCrossing(state.crossing[e]);
+  }
+  return d;
+}
+
 int infoTet(const fs::path& file, bool json, std::ostream& out) {
   MeshReadReport report;
   const TetMesh mesh = readTetMesh(file, &report);
+  const DamageBeside damage = readDamageBeside(file, mesh, report);
   const TetMeshStats s = computeStats(mesh);
   if (json) {
     nlohmann::json j;
@@ -48,6 +74,10 @@ int infoTet(const fs::path& file, bool json, std::ostream& out) {
     j["pieces"] = s.pieces;
     j["reoriented_tets"] = report.reorientedTets;
     j["unused_vertices"] = report.unusedVertices;
+    if (damage.present) {
+      j["damaged_edges"] = damage.damaged;
+      j["blade_crossings"] = damage.crossed;
+    }
     out << j.dump(2) << '\n';
     return kExitOk;
   }
@@ -66,6 +96,8 @@ int infoTet(const fs::path& file, bool json, std::ostream& out) {
   out << "pieces: " << s.pieces << '\n';
   out << "reoriented_tets: " << report.reorientedTets
       << "\nunused_vertices: " << report.unusedVertices << '\n';
+  if (damage.present)
+    out << "damaged_edges: " << damage.damaged << "\nblade_crossings: " << damage.crossed << '\n';
   return kExitOk;
 }
 
@@ -133,12 +165,17 @@ void writeAny(const fs::path& path, const TetMesh& mesh, std::ostream& out) {
       << " tets)\n";
 }
 
-void checkOutputKind(const fs::path& path) {
+// The output as given, or, without an extension, a TetGen basename (OUT -> OUT.node, .ele,
+// .face), as TetGen's own tools take it.
+fs::path checkedOutput(const fs::path& path) {
+  if (path.extension().empty() && !path.filename().empty()) return fs::path(path).concat(".node");
   const MeshFileKind k = meshFileKind(path);
   if (k == MeshFileKind::Unknown) {
     throw UsageError("unknown output format '" + path.extension().string() +
-                     "' (use .node, .msh, .vtk, .obj, .ply, .stl, .gltf or .glb)");
+                     "' (use .node, .msh, .vtk, .obj, .ply, .stl, .gltf or .glb, or a basename "
+                     "without extension for .node/.ele/.face)");
   }
+  return path;
 }
 
 }  // namespace
@@ -151,7 +188,10 @@ int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::os
   if (sub == "info") {
     const CliArgs a(rest, {}, {"--json"});
     a.expectPositional(1, 1, "galsculpt mesh info FILE [--json]");
-    const fs::path file = a.positional()[0];
+    fs::path file = a.positional()[0];
+    // A .damage file is read with the mesh it belongs to (stem.node/.ele beside it).
+    if (file.extension() == ".damage")
+      file = fs::path(tetgenStem(file.replace_extension())).concat(".node");
     const MeshFileKind kind = meshFileKind(file);
     if (kind == MeshFileKind::Surface) return infoSurface(file, a.has("--json"), out);
     if (kind == MeshFileKind::Vtk)
@@ -163,8 +203,7 @@ int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::os
   if (sub == "convert") {
     const CliArgs a(rest, {"--tets", "--timeout", "--tolerance", "--quality"}, {});
     a.expectPositional(2, 2, "galsculpt mesh convert IN OUT [--tets N]");
-    const fs::path in = a.positional()[0], outPath = a.positional()[1];
-    checkOutputKind(outPath);
+    const fs::path in = a.positional()[0], outPath = checkedOutput(a.positional()[1]);
     const bool outSurface = meshFileKind(outPath) == MeshFileKind::Surface;
     if (meshFileKind(in) == MeshFileKind::Surface) {
       const TriMesh surface = readSurface(in);
@@ -190,8 +229,7 @@ int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::os
     a.expectPositional(2, 2, "galsculpt mesh import SURFACE OUT --tets N");
     if (!a.has("--tets")) throw UsageError("mesh import needs --tets N");
     a.intValue("--tets", 0, 1, 50000000);  // a malformed count is a usage error before any I/O
-    const fs::path in = a.positional()[0], outPath = a.positional()[1];
-    checkOutputKind(outPath);
+    const fs::path in = a.positional()[0], outPath = checkedOutput(a.positional()[1]);
     if (meshFileKind(outPath) == MeshFileKind::Surface)
       throw UsageError("mesh import writes a tet mesh: use .node, .msh or .vtk");
     if (meshFileKind(in) != MeshFileKind::Surface) {
@@ -211,8 +249,7 @@ int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::os
     if (name != "sphere" && name != "charpy" && name != "steak") {
       throw UsageError("unknown shape '" + name + "' (sphere, charpy or steak)");
     }
-    const fs::path outPath = a.positional()[1];
-    checkOutputKind(outPath);
+    const fs::path outPath = checkedOutput(a.positional()[1]);
     // A surface alone (no --tets) gets the resolution of the paper's scene.
     const int tets = a.intValue("--tets", name == "steak" ? 186000 : 35000, 1, 50000000);
     const TriMesh surface = generatorSurface(name, a.doubleValue("--radius", 0.1, 1e-6, 1e6), tets);

@@ -13,6 +13,8 @@
 #include "engine/project_file.h"
 #include "engine/scene.h"
 #include "engine/scene_mesh.h"
+#include "engine/session_loader.h"
+#include "engine/simulation.h"
 #include "engine/surface_io.h"
 #include "solver/input_error.h"
 
@@ -41,7 +43,7 @@ ViewContent loadViewContent(const fs::path& file, std::ostream& log) {
   ViewContent c;
   c.title = file.filename().string();
   std::string ext = file.extension().string();
-  if (looksLikeProject(file)) {
+  if (looksLikeProject(file) || file.extension() == ".gsproj") {
     const Project project = readProject(file);
     const std::unique_ptr<SculptSession> session = sessionFromProject(project, file);
     c.title = project.scene.name + " (project, frame " + std::to_string(project.state.frame) + ")";
@@ -148,7 +150,34 @@ int openCommand(const std::vector<std::string>& args, std::ostream& out, std::os
     if (runSculptWindow(o, out, &error)) return kExitOk;
     out << "cannot open a window (" << error << "): running headless\n";
   }
-  const ViewContent content = loadViewContent(file, err);
+  if (a.has("--input-script"))
+    throw UsageError(
+        "--input-script drives the window: it cannot run headless (no display, or "
+        "--headless)");
+  // A playback script is replayed, and a session is saved, as in the window: both need the
+  // whole session, not just the mesh.
+  const bool script = file.extension() == ".json" && !looksLikeProject(file) &&
+                      parseJsonFile(file).contains("events");
+  ViewContent content;
+  if (script || a.has("--save-project") || a.has("--save-recording")) {
+    OpenedSession opened = openSession(
+        file, [&err](const std::string& line) { err << line << '\n'; }, 20000, backend);
+    const Simulation& sim = opened.session->simulation();
+    content.title = opened.session->scene().name + " (frame " + std::to_string(sim.frame()) + ")";
+    content.surface = sim.surface().mesh;
+    content.facts.push_back(std::to_string(sim.model().numVertices()) + " vertices, " +
+                            std::to_string(sim.model().numTets()) + " tets");
+    if (auto project = a.value("--save-project")) {
+      writeProject(*project, *opened.session, opened.camera);
+      out << "wrote project " << *project << '\n';
+    }
+    if (auto recording = a.value("--save-recording")) {
+      opened.session->saveRecording(*recording);
+      out << "wrote recording " << *recording << '\n';
+    }
+  } else {
+    content = loadViewContent(file, err);
+  }
   const fs::path outDir = a.value("--out").value_or("galsculpt-out");
   const auto [w, h] = a.sizeValue("--size", {1280, 800});
   const auto files = renderViewsOffscreen(content, outDir, w, h);
@@ -173,6 +202,7 @@ int sceneCommand(const std::vector<std::string>& args, std::ostream& out, std::o
   out << "time_step: " << s.timeStep << " s x " << s.substeps << " substep(s)\n";
   if (a.has("--load-mesh")) {
     const TetMesh mesh = loadSceneMesh(s, [&err](const std::string& line) { err << line << '\n'; });
+    checkSceneAnchors(s, mesh);  // what run would refuse, refused here too
     out << "mesh: " << mesh.numVertices() << " vertices, " << mesh.numTets() << " tets\n";
   }
   out << "ok\n";

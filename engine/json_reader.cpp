@@ -13,19 +13,71 @@ nlohmann::json vec3Json(const Eigen::Vector3d& v) {
   return nlohmann::json::array({v.x(), v.y(), v.z()});
 }
 
-nlohmann::json parseJsonFile(const std::filesystem::path& path) {
-  const std::string text = readWholeFile(path);
+namespace {
+
+int lineAt(const std::string& text, size_t offset) {
+  offset = std::min(offset, text.size());
+  return 1 +
+         static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(offset), '\n'));
+}
+
+// The first place where arrays and objects nest deeper than kMaxJsonDepth (outside strings), or
+// npos. The parser and the value's destructor would otherwise recurse once a level: a file of
+// a few hundred thousand brackets overflows the stack.
+size_t tooDeepAt(const std::string& text) {
+  int depth = 0;
+  bool inString = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inString) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        inString = false;
+      }
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) return i;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return std::string::npos;
+}
+
+}  // namespace
+
+nlohmann::json parseJsonText(const std::string& text, const std::string& file, int firstLine) {
+  if (const size_t at = tooDeepAt(text); at != std::string::npos)
+    throw InputError(file, firstLine - 1 + lineAt(text, at),
+                     "JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels");
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    const size_t offset = std::min<size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
-    const int line = 1 + static_cast<int>(std::count(
-                             text.begin(), text.begin() + static_cast<long>(offset), '\n'));
+    const size_t offset = e.byte > 0 ? e.byte - 1 : 0;
     std::string what = e.what();
     const size_t colon = what.find("parse error");
     if (colon != std::string::npos) what = what.substr(colon);
-    throw InputError(path.string(), line, "JSON syntax error: " + what);
+    throw InputError(file, firstLine - 1 + lineAt(text, offset), "JSON syntax error: " + what);
+  } catch (const nlohmann::json::exception& e) {
+    // A number beyond the range of a double (1e999): the library names the literal but not
+    // where it is.
+    std::string what = e.what();
+    const size_t open = what.find('\''), close = what.rfind('\'');
+    int line = 0;
+    if (open != std::string::npos && close > open) {
+      const size_t at = text.find(what.substr(open + 1, close - open - 1));
+      if (at != std::string::npos) line = firstLine - 1 + lineAt(text, at);
+      what =
+          "the number " + what.substr(open, close - open + 1) + " is beyond the range of a double";
+    }
+    throw InputError(file, line, "JSON: " + what);
   }
+}
+
+nlohmann::json parseJsonFile(const std::filesystem::path& path) {
+  return parseJsonText(readWholeFile(path), path.string());
 }
 
 JsonObject::JsonObject(const nlohmann::json& value, std::string path, std::string file)
@@ -41,6 +93,7 @@ void JsonObject::fail(const std::string& key, const std::string& message) const 
 }
 
 const nlohmann::json& JsonObject::raw(const std::string& key) {
+  if (!has(key)) fail(key, "is required");
   seen_.insert(key);
   return value_.at(key);
 }
@@ -73,6 +126,10 @@ int JsonObject::integer(const std::string& key, int fallback, int min, int max) 
   if (!has(key)) return fallback;
   const nlohmann::json& v = raw(key);
   if (!v.is_number_integer()) fail(key, std::string("expected an integer, got ") + v.type_name());
+  // Unsigned values above the signed range would read back negative.
+  if (v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(max))
+    fail(key, "must be at most " + std::to_string(max) + ", got " +
+                  std::to_string(v.get<unsigned long long>()));
   const long long x = v.get<long long>();
   if (x < min) fail(key, "must be at least " + std::to_string(min) + ", got " + std::to_string(x));
   if (x > max) fail(key, "must be at most " + std::to_string(max) + ", got " + std::to_string(x));

@@ -17,8 +17,15 @@ namespace galsculpt {
 // [x, y, z], every digit kept (what the readers' vec3 reads back exactly).
 nlohmann::json vec3Json(const Eigen::Vector3d& v);
 
-// Parses a file; syntax errors become InputError "file:line: JSON syntax error: ...".
+// Documents nesting deeper than this are refused before parsing (no scene, script or project
+// nests more than a handful of levels).
+inline constexpr int kMaxJsonDepth = 256;
+
+// Parses a file; syntax errors become InputError "file:line: JSON syntax error: ...", numbers
+// beyond a double's range and nesting deeper than kMaxJsonDepth are refused with file and line.
 nlohmann::json parseJsonFile(const std::filesystem::path& path);
+// The same for text that starts at line `firstLine` of `file` (a project's header).
+nlohmann::json parseJsonText(const std::string& text, const std::string& file, int firstLine = 1);
 
 class JsonObject {
  public:

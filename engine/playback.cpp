@@ -278,6 +278,11 @@ void checkScriptAnchors(const PlaybackScript& script, const Simulation& sim) {
   for (const ToolEvent& e : script.events) {
     if (e.tool == ToolEvent::Tool::Anchor && e.add)
       sim.selectVertices(e.shape, script.file.string(), e.path + ".anchor");
+    if (e.seed >= sim.model().numVertices())
+      throw InputError(script.file.string(), 0,
+                       e.path + ".seed: " + std::to_string(e.seed) +
+                           " is not a vertex of the mesh (it has " +
+                           std::to_string(sim.model().numVertices()) + ")");
   }
 }
 

@@ -117,8 +117,8 @@ class ToolApplier {
   void releaseExpired(int frame);
 };
 
-// Checks up front that every anchor a script adds selects something (InputError naming its
-// JSON path otherwise).
+// Checks up front that every anchor a script adds selects something and that every brush or
+// anchor-paint `seed` is a vertex of the mesh (InputError naming its JSON path otherwise).
 void checkScriptAnchors(const PlaybackScript& script, const Simulation& sim);
 
 class Playback {

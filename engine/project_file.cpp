@@ -190,17 +190,17 @@ Project readProject(const fs::path& file) {
                      "truncated: the header needs " + std::to_string(headerBytes) +
                          " bytes, the file has " + std::to_string(data.size() - line2 - 1) +
                          " after line 2");
-  nlohmann::json h;
-  try {
-    h = nlohmann::json::parse(data.substr(line2 + 1, headerBytes));
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(name, 3, std::string("header: JSON syntax error: ") + e.what());
-  }
+  const nlohmann::json h = parseJsonText(data.substr(line2 + 1, headerBytes), name, 3);
   JsonObject o(h, "$", name);
   Project p;
   if (!o.has("scene")) o.fail("scene", "is required");
   const fs::path sceneFile = o.string("scene_file", "scene.json");
-  p.scene = parseScene(o.raw("scene"), sceneFile);
+  try {
+    p.scene = parseScene(o.raw("scene"), sceneFile);
+  } catch (const InputError& e) {
+    // The scene is the project's copy: name the project, then what the scene reader said.
+    throw InputError(name + ": $.scene (saved from " + sceneFile.string() + "): " + e.what());
+  }
   SimulationSnapshot& s = p.state;
   s.frame = o.integer("frame", 0, 0, 2000000000);
   s.time = o.number("time", 0.0, 0.0, 1e12);
@@ -289,6 +289,10 @@ Project readProject(const fs::path& file) {
     in.read(inverse, 9 * static_cast<std::size_t>(nt), "plastic state");
     in.read(s.plasticStrain, static_cast<std::size_t>(nt), "plastic strain");
     checkFinite(inverse, name, "plastic state");
+    checkFinite(s.plasticStrain, name, "plastic strain");
+    for (size_t t = 0; t < s.plasticStrain.size(); ++t)
+      if (s.plasticStrain[t] < 0.0)
+        throw InputError(name + ": plastic strain: value " + std::to_string(t) + " is negative");
     for (int t = 0; t < nt; ++t)
       s.plasticInverse.push_back(Eigen::Map<const Eigen::Matrix3d>(&inverse[9 * t]));
   }

@@ -85,6 +85,10 @@ TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress)
   const MeshSource& m = scene.mesh;
   switch (m.kind) {
     case MeshSource::Kind::File: {
+      std::error_code ec;
+      if (!fs::exists(m.path, ec) && !fs::exists(fs::path(m.path).concat(".node"), ec))
+        throw InputError(scene.file.string(), 0,
+                         "$.mesh.file: " + m.path.string() + " does not exist");
       TetMesh mesh = readTetMesh(m.path);
       for (Vec3& v : mesh.vertices) v = v * m.scale + m.translate;
       return mesh;
@@ -116,6 +120,10 @@ TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress)
                                "libcgal-demo and unpacks its meshes)");
         }
       }
+      std::error_code ec;
+      if (!fs::exists(source, ec))
+        throw InputError(scene.file.string(), 0,
+                         "$.mesh.import: " + source.string() + " does not exist");
       TriMesh surface = readSurface(source);
       transformSurface(surface, m);
       std::ostringstream key;

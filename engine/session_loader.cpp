@@ -26,7 +26,9 @@ OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int 
                           const std::string& backend) {
   if (!fs::exists(file)) throw InputError(file.string() + ": no such file");
   OpenedSession opened;
-  if (looksLikeProject(file)) {
+  // By content, or by name: a .gsproj whose magic is broken is a broken project, not an
+  // unknown mesh format.
+  if (looksLikeProject(file) || file.extension() == ".gsproj") {
     if (progress) progress("reading project " + file.string());
     Project project = readProject(file);
     if (!backend.empty()) project.scene.solver.backend = backend;

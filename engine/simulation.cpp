@@ -71,6 +71,12 @@ Collider colliderFromScene(const ColliderDesc& d) {
 
 }  // namespace
 
+void checkSceneAnchors(const SceneDescription& scene, const TetMesh& mesh) {
+  for (size_t i = 0; i < scene.anchors.size(); ++i)
+    selectAnchorVertices(scene.anchors[i], mesh, scene.file.string(),
+                         "$.anchors[" + std::to_string(i) + "]");
+}
+
 MaterialParams materialFromScene(const MaterialDesc& m) {
   MaterialParams p;
   try {
@@ -202,8 +208,11 @@ const VisualSurface& Simulation::surface(SurfaceUpdateStats* stats) const {
 void Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
   TetMesh now = model_.mesh;
   now.vertices = state_.x;
-  writeTetGen(stem, now);
-  writeDamage(stem.string() + ".damage", model_.edges, state_.damaged, state_.crossing);
+  // The mesh and its damage are one set: committed together, stamped alike.
+  FileSet set;
+  addTetGen(set, stem, now);
+  addDamage(set, stem.string() + ".damage", model_.edges, state_.damaged, state_.crossing);
+  set.commit();
   // Piece of each tet: numbered in tet order when all four corners share it, otherwise -1.
   std::vector<int> label(model_.numVertices(), -1);
   int pieces = 0;

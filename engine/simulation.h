@@ -54,6 +54,10 @@ struct FrameMetrics {
 std::string metricsCsvHeader();
 std::string metricsCsvRow(const FrameMetrics& m);
 
+// Checks the scene's anchors against a mesh as the simulation will use them: each selects at
+// least one vertex and names only vertices that exist (InputError with the JSON path otherwise).
+void checkSceneAnchors(const SceneDescription& scene, const TetMesh& mesh);
+
 // Solver-side material from a scene material; throws InputError for an unknown model.
 MaterialParams materialFromScene(const MaterialDesc& m);
 

@@ -5,13 +5,18 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <algorithm>
+#include <assimp/DefaultLogger.hpp>
 #include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <iomanip>
 #include <map>
 #include <memory>
+#include <mutex>
 
+#include "engine/off_ply_reader.h"
 #include "solver/atomic_file.h"
 #include "solver/input_error.h"
 
@@ -37,10 +42,17 @@ const char* exportFormatFor(const std::string& ext) {
   return nullptr;
 }
 
-void appendNode(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent,
-                std::vector<Vec3>& positions, std::vector<Tri>& faces) {
+// assimp's scene, checked as it is walked: it hands over indices as the file wrote them.
+void appendNode(const std::string& file, const aiScene* scene, const aiNode* node,
+                const aiMatrix4x4& parent, std::vector<Vec3>& positions, std::vector<Tri>& faces,
+                int depth) {
+  if (depth > 256) throw InputError(file, 0, "the scene's node tree nests deeper than 256 levels");
   const aiMatrix4x4 transform = parent * node->mTransformation;
   for (unsigned m = 0; m < node->mNumMeshes; ++m) {
+    if (node->mMeshes[m] >= scene->mNumMeshes || !scene->mMeshes[node->mMeshes[m]])
+      throw InputError(file, 0,
+                       "a node names mesh " + std::to_string(node->mMeshes[m]) + " (the file has " +
+                           std::to_string(scene->mNumMeshes) + ")");
     const aiMesh* mesh = scene->mMeshes[node->mMeshes[m]];
     const int offset = static_cast<int>(positions.size());
     for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
@@ -50,13 +62,89 @@ void appendNode(const aiScene* scene, const aiNode* node, const aiMatrix4x4& par
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
       const aiFace& face = mesh->mFaces[f];
       if (face.mNumIndices != 3) continue;  // points and lines are not part of a surface
+      for (unsigned k = 0; k < 3; ++k) {
+        if (face.mIndices[k] >= mesh->mNumVertices)
+          throw InputError(file, 0,
+                           "face " + std::to_string(f) + " of mesh " +
+                               std::to_string(node->mMeshes[m]) + " names vertex " +
+                               std::to_string(face.mIndices[k]) + " (the mesh has " +
+                               std::to_string(mesh->mNumVertices) + ")");
+      }
       faces.push_back({offset + static_cast<int>(face.mIndices[0]),
                        offset + static_cast<int>(face.mIndices[1]),
                        offset + static_cast<int>(face.mIndices[2])});
     }
   }
   for (unsigned c = 0; c < node->mNumChildren; ++c) {
-    appendNode(scene, node->mChildren[c], transform, positions, faces);
+    appendNode(file, scene, node->mChildren[c], transform, positions, faces, depth + 1);
+  }
+}
+
+// assimp's warnings during one import. Some of its readers drop what is malformed with a
+// warning only (glTF 2 skips a face whose index is out of range): those warnings are errors
+// here. assimp's logger is process-wide, hence one import at a time.
+class ImportWarnings : public Assimp::LogStream {
+ public:
+  ImportWarnings() {
+    Assimp::DefaultLogger::create("", Assimp::Logger::NORMAL, 0);
+    Assimp::DefaultLogger::get()->attachStream(this, Assimp::Logger::Warn | Assimp::Logger::Err);
+  }
+  ~ImportWarnings() override {
+    Assimp::DefaultLogger::get()->detachStream(this, Assimp::Logger::Warn | Assimp::Logger::Err);
+    Assimp::DefaultLogger::kill();
+  }
+  ImportWarnings(const ImportWarnings&) = delete;
+  ImportWarnings& operator=(const ImportWarnings&) = delete;
+  void write(const char* message) override { messages.emplace_back(message); }
+  std::vector<std::string> messages;
+};
+
+std::mutex& importMutex() {
+  static std::mutex m;
+  return m;
+}
+
+// The warnings that mean the file's data was dropped or altered, not merely unusual.
+const std::string* droppedData(const std::vector<std::string>& warnings) {
+  for (const std::string& w : warnings) {
+    std::string lower = w;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    for (const char* sign : {"out of range", "out-of-range", "dropped", "invalid", "overflow"}) {
+      if (lower.find(sign) != std::string::npos) return &w;
+    }
+  }
+  return nullptr;
+}
+
+// GLB's own header, checked before assimp reads it: assimp trusts the length fields.
+void checkGlbHeader(const fs::path& path) {
+  const std::string data = readWholeFile(path);
+  auto u32 = [&](size_t at) {
+    std::uint32_t v = 0;
+    std::memcpy(&v, data.data() + at, 4);
+    return v;
+  };
+  const std::string name = path.string();
+  if (data.size() < 12)
+    throw InputError(name + ": byte " + std::to_string(data.size()) +
+                     ": truncated (a GLB header is 12 bytes)");
+  if (data.compare(0, 4, "glTF") != 0)
+    throw InputError(name + ": byte 0: not a GLB file (it must start with 'glTF')");
+  if (u32(4) != 2)
+    throw InputError(name + ": byte 4: GLB version " + std::to_string(u32(4)) +
+                     " (only version 2 is read)");
+  if (u32(8) != data.size())
+    throw InputError(name + ": byte 8: the header's length " + std::to_string(u32(8)) +
+                     " is not the file's size " + std::to_string(data.size()));
+  for (size_t at = 12; at < data.size();) {
+    if (data.size() - at < 8)
+      throw InputError(name + ": byte " + std::to_string(at) + ": truncated chunk header");
+    const std::uint32_t length = u32(at);
+    if (length > data.size() - at - 8)
+      throw InputError(name + ": byte " + std::to_string(at) + ": a chunk of " +
+                       std::to_string(length) + " bytes runs past the end of the file");
+    at += 8 + length;
   }
 }
 
@@ -71,17 +159,36 @@ bool isSurfaceFile(const fs::path& path) {
 TriMesh readSurface(const fs::path& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw InputError(path.string(), 0, "file not found");
-  Assimp::Importer importer;
-  const aiScene* scene =
-      importer.ReadFile(path.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                           aiProcess_SortByPType);
-  if (!scene || !scene->mRootNode) {
-    throw InputError(path.string(), 0,
-                     std::string("cannot read surface: ") + importer.GetErrorString());
-  }
   std::vector<Vec3> positions;
   std::vector<Tri> faces;
-  appendNode(scene, scene->mRootNode, aiMatrix4x4(), positions, faces);
+  const std::string ext = lowerExtension(path);
+  if (ext == ".off" || ext == ".ply") {
+    // Our strict readers (off_ply_reader.h: assimp clamps or misreads what is malformed).
+    RawSurface raw = ext == ".off" ? readOff(path) : readPly(path);
+    positions = std::move(raw.vertices);
+    faces = std::move(raw.faces);
+  } else {
+    if (ext == ".glb") checkGlbHeader(path);
+    const std::lock_guard<std::mutex> lock(importMutex());
+    ImportWarnings warnings;
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile(
+        path.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                           aiProcess_SortByPType | aiProcess_ValidateDataStructure);
+    if (!scene || !scene->mRootNode) {
+      throw InputError(path.string(), 0,
+                       std::string("cannot read surface: ") + importer.GetErrorString());
+    }
+    if (const std::string* w = droppedData(warnings.messages)) {
+      std::string message = *w;
+      if (const size_t colon = message.find(": "); colon != std::string::npos && colon < 16)
+        message = message.substr(colon + 2);  // "Warn,  T0: " prefix
+      while (!message.empty() && (message.back() == '\n' || message.back() == '\r'))
+        message.pop_back();
+      throw InputError(path.string(), 0, "malformed data (assimp: " + message + ")");
+    }
+    appendNode(path.string(), scene, scene->mRootNode, aiMatrix4x4(), positions, faces, 0);
+  }
   if (faces.empty()) throw InputError(path.string(), 0, "the file holds no triangles");
   for (const Vec3& p : positions) {
     if (!p.allFinite()) throw InputError(path.string(), 0, "non-finite vertex coordinate");

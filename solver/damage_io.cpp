@@ -10,16 +10,46 @@
 
 namespace galsculpt {
 
-void writeDamage(const std::filesystem::path& path, const std::vector<Edge>& edges,
-                 const std::vector<std::uint8_t>& damaged, const std::vector<float>& crossing) {
+namespace {
+
+void writeDamageTo(std::ostream& out, const std::vector<Edge>& edges,
+                   const std::vector<std::uint8_t>& damaged, const std::vector<float>& crossing,
+                   const std::string& stampLine);
+
+void checkSizes(const std::filesystem::path& path, const std::vector<Edge>& edges,
+                const std::vector<std::uint8_t>& damaged, const std::vector<float>& crossing) {
   if (damaged.size() != edges.size()) {
     throw OutputError("cannot write " + path.string() + ": one damage flag per edge is needed");
   }
   if (!crossing.empty() && crossing.size() != edges.size()) {
     throw OutputError("cannot write " + path.string() + ": one crossing per edge is needed");
   }
+}
+
+}  // namespace
+
+void writeDamage(const std::filesystem::path& path, const std::vector<Edge>& edges,
+                 const std::vector<std::uint8_t>& damaged, const std::vector<float>& crossing) {
+  checkSizes(path, edges, damaged, crossing);
+  writeFileAtomically(path,
+                      [&](std::ostream& out) { writeDamageTo(out, edges, damaged, crossing, ""); });
+}
+
+void addDamage(FileSet& set, const std::filesystem::path& path, const std::vector<Edge>& edges,
+               const std::vector<std::uint8_t>& damaged, const std::vector<float>& crossing) {
+  checkSizes(path, edges, damaged, crossing);
+  set.add(path, [&](std::ostream& out) {
+    writeDamageTo(out, edges, damaged, crossing, set.stampLine());
+  });
+}
+
+namespace {
+
+void writeDamageTo(std::ostream& out, const std::vector<Edge>& edges,
+                   const std::vector<std::uint8_t>& damaged, const std::vector<float>& crossing,
+                   const std::string& stampLine) {
   const auto count = std::count_if(damaged.begin(), damaged.end(), [](auto d) { return d != 0; });
-  writeFileAtomically(path, [&](std::ostream& out) {
+  {
     // 9 significant digits bring a float back bit for bit.
     out << std::setprecision(9) << "# galsculpt damage 2\n" << count << '\n';
     for (size_t e = 0; e < edges.size(); ++e) {
@@ -28,12 +58,16 @@ void writeDamage(const std::filesystem::path& path, const std::vector<Edge>& edg
       if (!crossing.empty() && hasCrossing(crossing[e])) out << ' ' << crossing[e];
       out << '\n';
     }
-  });
+    out << stampLine;
+  }
 }
+
+}  // namespace
 
 EdgeDamageState readDamage(const std::filesystem::path& path, const std::vector<Edge>& edges) {
   const std::string text = readWholeFile(path);  // TextLines keeps views into it
   TextLines lines(path.string(), text);
+  const std::string stamp = findSetStamp(text);
   const TextLine& header = lines.next("the number of damaged edges");
   if (header.tokens.size() != 1) lines.fail(header.number, "expected the number of damaged edges");
   const long long count = lines.parseInt(header, 0, "the number of damaged edges");
@@ -42,7 +76,7 @@ EdgeDamageState readDamage(const std::filesystem::path& path, const std::vector<
                                   " edges; cannot damage " + std::to_string(count));
   }
   EdgeDamageState state{std::vector<std::uint8_t>(edges.size(), 0),
-                        std::vector<float>(edges.size(), kNoCrossing)};
+                        std::vector<float>(edges.size(), kNoCrossing), stamp};
   for (long long i = 0; i < count; ++i) {
     const TextLine& line = lines.next("a damaged edge (two vertex numbers)");
     if (line.tokens.size() != 2 && line.tokens.size() != 3)

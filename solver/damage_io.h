@@ -14,8 +14,10 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
+#include "atomic_file.h"
 #include "sim_model.h"
 #include "tet_mesh.h"
 
@@ -25,12 +27,17 @@ namespace galsculpt {
 struct EdgeDamageState {
   std::vector<std::uint8_t> damaged;  // (nEdges) 1 = damaged
   std::vector<float> crossing;        // (nEdges) fraction along the edge, or kNoCrossing
+  std::string setStamp;               // the file set it was written with, or empty
 };
 
 // `edges` sorted and unique (SimModel::edges, uniqueEdges); `damaged` one flag per edge;
 // `crossing` one entry per edge (kNoCrossing where none) or empty for none at all.
 void writeDamage(const std::filesystem::path& path, const std::vector<Edge>& edges,
                  const std::vector<std::uint8_t>& damaged, const std::vector<float>& crossing = {});
+
+// The same as a member of a file set (written with the set's stamp, committed by the caller).
+void addDamage(FileSet& set, const std::filesystem::path& path, const std::vector<Edge>& edges,
+               const std::vector<std::uint8_t>& damaged, const std::vector<float>& crossing);
 
 // One flag and one crossing per entry of `edges` (sorted and unique).
 EdgeDamageState readDamage(const std::filesystem::path& path, const std::vector<Edge>& edges);

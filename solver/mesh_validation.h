@@ -17,6 +17,7 @@ struct MeshReadReport {
   int reorientedTets = 0;          // inverted tets that were flipped
   int unusedVertices = 0;          // vertices no tet references
   std::vector<std::string> notes;  // human-readable remarks (reorientation, ignored data)
+  std::string setStamp;            // the file set's stamp (atomic_file.h FileSet), or empty
 };
 
 // Checks range of indices, repeated vertices, zero volume and duplicates; reorients inverted tets.

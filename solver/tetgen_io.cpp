@@ -39,8 +39,9 @@ void expectEnd(TextLines& lines, long long count, const char* what) {
   }
 }
 
-int readNodes(const fs::path& path, TetMesh& mesh) {
+int readNodes(const fs::path& path, TetMesh& mesh, std::string& stamp) {
   const std::string text = readWholeFile(path);
+  stamp = findSetStamp(text);
   TextLines lines(path.string(), text);
   const TextLine& header = lines.next("the .node header '<points> 3 <attributes> <markers>'");
   if (header.tokens.size() < 1 || header.tokens.size() > 4) {
@@ -86,9 +87,10 @@ int readNodes(const fs::path& path, TetMesh& mesh) {
   return base;
 }
 
-std::vector<int> readElements(const fs::path& path, int base, TetMesh& mesh,
-                              MeshReadReport& report) {
+std::vector<int> readElements(const fs::path& path, int base, TetMesh& mesh, MeshReadReport& report,
+                              std::string& stamp) {
   const std::string text = readWholeFile(path);
+  stamp = findSetStamp(text);
   TextLines lines(path.string(), text);
   const TextLine& header = lines.next("the .ele header '<tets> <4|10> <attributes>'");
   if (header.tokens.size() < 1 || header.tokens.size() > 3) {
@@ -149,8 +151,9 @@ std::vector<int> readElements(const fs::path& path, int base, TetMesh& mesh,
   return tetLines;
 }
 
-void readFaces(const fs::path& path, int base, TetMesh& mesh) {
+void readFaces(const fs::path& path, int base, TetMesh& mesh, std::string& stamp) {
   const std::string text = readWholeFile(path);
+  stamp = findSetStamp(text);
   TextLines lines(path.string(), text);
   const TextLine& header = lines.next("the .face header '<faces> <markers>'");
   if (header.tokens.size() < 1 || header.tokens.size() > 2) {
@@ -186,6 +189,20 @@ void readFaces(const fs::path& path, int base, TetMesh& mesh) {
 
 }  // namespace
 
+void checkSameSet(const fs::path& first, const std::string& firstStamp, const fs::path& other,
+                  const std::string& otherStamp) {
+  if (firstStamp == otherStamp) return;
+  auto shown = [](const std::string& stamp) {
+    return stamp.empty() ? std::string("none") : "'" + stamp + "'";
+  };
+  throw InputError(other.string(), 0,
+                   "belongs to another write than " + first.filename().string() + " (set stamp " +
+                       shown(otherStamp) + ", " + first.filename().string() + " has " +
+                       shown(firstStamp) +
+                       "): the set was not written whole, e.g. an export was killed; write it "
+                       "again");
+}
+
 fs::path tetgenStem(const fs::path& path) {
   const std::string ext = path.extension().string();
   if (ext == ".node" || ext == ".ele" || ext == ".face") return fs::path(path).replace_extension();
@@ -203,26 +220,32 @@ TetMesh readTetGen(const fs::path& path, MeshReadReport* reportOut) {
 
   MeshReadReport report;
   TetMesh mesh;
-  report.indexBase = readNodes(nodePath, mesh);
-  const std::vector<int> tetLines = readElements(elePath, report.indexBase, mesh, report);
+  std::string eleStamp;
+  report.indexBase = readNodes(nodePath, mesh, report.setStamp);
+  const std::vector<int> tetLines = readElements(elePath, report.indexBase, mesh, report, eleStamp);
+  checkSameSet(nodePath, report.setStamp, elePath, eleStamp);
   validateTets(mesh, elePath.string(), tetLines, report);
-  if (fs::exists(facePath, ec)) readFaces(facePath, report.indexBase, mesh);
+  if (fs::exists(facePath, ec)) {
+    std::string faceStamp;
+    readFaces(facePath, report.indexBase, mesh, faceStamp);
+    checkSameSet(nodePath, report.setStamp, facePath, faceStamp);
+  }
   if (reportOut) *reportOut = std::move(report);
   return mesh;
 }
 
-void writeTetGen(const fs::path& stem, const TetMesh& mesh,
-                 const std::vector<double>* tetAttribute) {
+void addTetGen(FileSet& set, const fs::path& stem, const TetMesh& mesh,
+               const std::vector<double>* tetAttribute) {
   const fs::path base = tetgenStem(stem);
-  writeFileAtomically(fs::path(base).concat(".node"), [&](std::ostream& out) {
+  set.add(fs::path(base).concat(".node"), [&](std::ostream& out) {
     out << mesh.numVertices() << " 3 0 0\n" << std::setprecision(17);
     for (int i = 0; i < mesh.numVertices(); ++i) {
       const Vec3& p = mesh.vertices[i];
       out << i << ' ' << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
     }
-    out << "# written by galsculpt\n";
+    out << "# written by galsculpt\n" << set.stampLine();
   });
-  writeFileAtomically(fs::path(base).concat(".ele"), [&](std::ostream& out) {
+  set.add(fs::path(base).concat(".ele"), [&](std::ostream& out) {
     const bool attr = tetAttribute && tetAttribute->size() == mesh.tets.size();
     out << mesh.numTets() << " 4 " << (attr ? 1 : 0) << '\n' << std::setprecision(17);
     for (int i = 0; i < mesh.numTets(); ++i) {
@@ -231,16 +254,25 @@ void writeTetGen(const fs::path& stem, const TetMesh& mesh,
       if (attr) out << ' ' << (*tetAttribute)[i];
       out << '\n';
     }
-    out << "# written by galsculpt\n";
+    out << "# written by galsculpt\n" << set.stampLine();
   });
   const std::vector<Tri> faces = boundaryFaces(mesh);
-  writeFileAtomically(fs::path(base).concat(".face"), [&](std::ostream& out) {
+  set.add(fs::path(base).concat(".face"), [&](std::ostream& out) {
     out << faces.size() << " 1\n";
     for (size_t i = 0; i < faces.size(); ++i) {
       out << i << ' ' << faces[i][0] << ' ' << faces[i][1] << ' ' << faces[i][2] << " 1\n";
     }
-    out << "# written by galsculpt\n";
+    out << "# written by galsculpt\n" << set.stampLine();
   });
+}
+
+void writeTetGen(const fs::path& stem, const TetMesh& mesh,
+                 const std::vector<double>* tetAttribute) {
+  FileSet set;
+  addTetGen(set, stem, mesh, tetAttribute);
+  // A .damage beside belongs to the mesh it was written with, not to this one.
+  set.remove(fs::path(tetgenStem(stem)).concat(".damage"));
+  set.commit();
 }
 
 }  // namespace galsculpt

@@ -4,12 +4,16 @@
 // numbering (taken from the first vertex, as TetGen does), 10-node tets (corners kept). Strict:
 // every count, index and number is checked and errors say `file:line: message`. Malformed or
 // binary input raises InputError; it never crashes or hangs.
-// Writer: 0-based files with boundary faces; each file is written atomically.
+// Writer: 0-based files with boundary faces, committed as one set (atomic_file.h FileSet):
+// every file carries the set's stamp and the reader refuses .node/.ele/.face from different
+// writes.
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
+#include "atomic_file.h"
 #include "mesh_validation.h"
 #include "tet_mesh.h"
 
@@ -23,7 +27,16 @@ std::filesystem::path tetgenStem(const std::filesystem::path& path);
 
 // Writes stem.node, stem.ele and stem.face (the boundary, outward). `tetAttribute` (optional,
 // one value per tet) is written as the .ele attribute column.
+// Writes and commits stem.node/.ele/.face as one set; a stem.damage left from another write is
+// removed with it.
 void writeTetGen(const std::filesystem::path& stem, const TetMesh& mesh,
                  const std::vector<double>* tetAttribute = nullptr);
+// Adds stem.node/.ele/.face to a set the caller commits with other members (a .damage).
+void addTetGen(FileSet& set, const std::filesystem::path& stem, const TetMesh& mesh,
+               const std::vector<double>* tetAttribute = nullptr);
+
+// Throws InputError naming `other` when its set stamp differs from `first`'s.
+void checkSameSet(const std::filesystem::path& first, const std::string& firstStamp,
+                  const std::filesystem::path& other, const std::string& otherStamp);
 
 }  // namespace galsculpt

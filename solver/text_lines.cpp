@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 
 #include "input_error.h"
 
@@ -97,7 +98,16 @@ double TextLines::parseDouble(const TextLine& line, size_t token, const char* wh
   const char* begin = t.data();
   if (!t.empty() && t[0] == '+') ++begin;
   const auto [ptr, ec] = std::from_chars(begin, t.data() + t.size(), value);
-  if (ec == std::errc::result_out_of_range || (ec == std::errc() && !std::isfinite(value))) {
+  if (ec == std::errc::result_out_of_range && ptr == t.data() + t.size()) {
+    // Out of range either way: too large is an error, too small rounds to zero (or a
+    // subnormal) as strtod does, since 1e-400 is a well-formed number for 0.
+    const double rounded = std::strtod(std::string(begin, ptr).c_str(), nullptr);
+    if (!std::isfinite(rounded))
+      fail(line.number,
+           std::string(what) + " is beyond the range of a double: '" + printable(t) + "'");
+    return rounded;
+  }
+  if (ec == std::errc() && !std::isfinite(value)) {
     fail(line.number, std::string(what) + " is not finite: '" + printable(t) + "'");
   }
   if (ec != std::errc() || ptr != t.data() + t.size()) {

@@ -23,6 +23,8 @@ class TextLines {
   TextLines(std::string file, std::string_view buffer, char commentChar = '#');
 
   bool atEnd() const { return next_ >= lines_.size(); }
+  // Non-empty lines not yet handed out.
+  size_t remaining() const { return lines_.size() - next_; }
   // The next non-empty line; throws InputError "unexpected end of file" past the end.
   const TextLine& next(const std::string& expecting);
   const TextLine* peek() const { return atEnd() ? nullptr : &lines_[next_]; }

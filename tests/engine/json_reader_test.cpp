@@ -32,5 +32,31 @@ TEST(JsonReader, ValuesAreCheckedWithTheirPath) {
   EXPECT_THROW_WITH(o.requiredNumber("absent", 0, 1), InputError, "$.absent: is required");
 }
 
+// Found by the fuzzing run: a missing key read raw threw the JSON library's bare exception.
+TEST(JsonReader, AMissingKeyReadRawIsRequired) {
+  const nlohmann::json j = nlohmann::json::parse(R"({"a": 1})");
+  JsonObject o(j, "$.anchors[0]", "p.gsproj");
+  EXPECT_THROW_WITH(o.raw("vertices"), InputError, "p.gsproj: $.anchors[0].vertices: is required");
+}
+
+TEST(JsonReader, NumbersOutOfRangeAndDeepNestingNameTheFileAndLine) {
+  test::TempDir dir;
+  test::writeText(dir / "big.json", "{\n  \"a\": 1,\n  \"b\": 1e999\n}\n");
+  EXPECT_THROW_WITH(parseJsonFile(dir / "big.json"), InputError,
+                    "big.json:3: JSON: the number '1e999' is beyond the range of a double");
+  test::writeText(dir / "deep.json",
+                  "{\n\"a\": " + std::string(300, '[') + std::string(300, ']') + "}");
+  EXPECT_THROW_WITH(parseJsonFile(dir / "deep.json"), InputError,
+                    "deep.json:2: JSON nests deeper than 256 levels");
+  // Brackets inside strings do not count.
+  test::writeText(dir / "text.json", "{\"a\": \"" + std::string(300, '[') + "\\\"\"}");
+  EXPECT_NO_THROW(parseJsonFile(dir / "text.json"));
+  // Unsigned values beyond the signed range read back as what they are, not as -1.
+  const nlohmann::json j = nlohmann::json::parse(R"({"n": 18446744073709551615})");
+  JsonObject o(j, "$", "f.json");
+  EXPECT_THROW_WITH(o.integer("n", 0, 0, 1000), InputError,
+                    "$.n: must be at most 1000, got 18446744073709551615");
+}
+
 }  // namespace
 }  // namespace galsculpt
