@@ -1,7 +1,9 @@
 #include "json_reader.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include "solver/atomic_file.h"
@@ -46,14 +48,55 @@ size_t tooDeepAt(const std::string& text) {
   return std::string::npos;
 }
 
+// Where the n-th key (a string followed by ':') of a well-formed document starts.
+size_t nthKeyAt(const std::string& text, size_t n) {
+  size_t count = 0;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '"') continue;
+    const size_t start = i;
+    for (++i; i < text.size() && text[i] != '"'; ++i) {
+      if (text[i] == '\\') ++i;
+    }
+    size_t j = i + 1;
+    while (j < text.size() && std::isspace(static_cast<unsigned char>(text[j]))) ++j;
+    if (j < text.size() && text[j] == ':' && count++ == n) return start;
+  }
+  return text.size();
+}
+
 }  // namespace
 
 nlohmann::json parseJsonText(const std::string& text, const std::string& file, int firstLine) {
   if (const size_t at = tooDeepAt(text); at != std::string::npos)
     throw InputError(file, firstLine - 1 + lineAt(text, at),
                      "JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+  // A key given twice in one object would silently keep the last value: refused.
+  struct DuplicateKey {
+    std::string key;
+    size_t ordinal;  // among all keys of the document, from 0
+  };
+  std::vector<std::set<std::string>> open;  // the keys seen in each open object (or array)
+  size_t keys = 0;
+  const auto callback = [&open, &keys](int, nlohmann::json::parse_event_t event,
+                                       nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    if (event == Event::object_start || event == Event::array_start) {
+      open.emplace_back();
+    } else if ((event == Event::object_end || event == Event::array_end) && !open.empty()) {
+      open.pop_back();
+    } else if (event == Event::key) {
+      if (!open.empty() && !open.back().insert(parsed.get<std::string>()).second)
+        throw DuplicateKey{parsed.get<std::string>(), keys};
+      ++keys;
+    }
+    return true;
+  };
   try {
-    return nlohmann::json::parse(text);
+    return nlohmann::json::parse(text, callback);
+  } catch (const DuplicateKey& d) {
+    throw InputError(
+        file, firstLine - 1 + lineAt(text, nthKeyAt(text, d.ordinal)),
+        "JSON: the key " + nlohmann::json(d.key).dump() + " is given twice in one object");
   } catch (const nlohmann::json::parse_error& e) {
     const size_t offset = e.byte > 0 ? e.byte - 1 : 0;
     std::string what = e.what();

@@ -9,6 +9,7 @@
 #include <functional>
 #include <random>
 
+#include "app/input_script.h"
 #include "engine/playback.h"
 #include "engine/project_file.h"
 #include "engine/scene.h"
@@ -178,6 +179,14 @@ TEST(FuzzReaders, SceneAndScript) {
   ASSERT_NE(at, std::string::npos);
   script.replace(at, script.find('"', at) - at, sceneFile);
   fuzz("script", dir / "p.json", script, [&] { loadPlaybackScript(dir / "p.json"); });
+}
+
+TEST(FuzzReaders, InputScript) {
+  test::TempDir dir;
+  fuzz("input-script", dir / "i.json",
+       test::readText(fs::path(GALSCULPT_SOURCE_DIR) / "docs" / "images" /
+                      "guide_overview_input.json"),
+       [&] { loadInputScript(dir / "i.json"); });
 }
 
 TEST(FuzzReaders, ProjectAndDamage) {

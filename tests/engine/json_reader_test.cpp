@@ -32,6 +32,19 @@ TEST(JsonReader, ValuesAreCheckedWithTheirPath) {
   EXPECT_THROW_WITH(o.requiredNumber("absent", 0, 1), InputError, "$.absent: is required");
 }
 
+TEST(JsonReader, AKeyGivenTwiceIsRefused) {
+  test::TempDir dir;
+  test::writeText(dir / "twice.json",
+                  "{\n  \"gravity\": [0, -9.81, 0],\n  \"o\": {\"gravity\": 1},\n  \"gravity\": "
+                  "[0, 0, 0]\n}\n");
+  EXPECT_THROW_WITH(parseJsonFile(dir / "twice.json"), InputError,
+                    "twice.json:4: JSON: the key \"gravity\" is given twice in one object");
+  // The same key in different objects is fine.
+  test::writeText(dir / "ok.json",
+                  "{\"a\": {\"k\": 1}, \"b\": {\"k\": 2}, \"c\": [{\"k\": 1}, {\"k\": 2}]}");
+  EXPECT_NO_THROW(parseJsonFile(dir / "ok.json"));
+}
+
 // Found by the fuzzing run: a missing key read raw threw the JSON library's bare exception.
 TEST(JsonReader, AMissingKeyReadRawIsRequired) {
   const nlohmann::json j = nlohmann::json::parse(R"({"a": 1})");
