@@ -139,7 +139,12 @@ std::vector<int> readElements(const fs::path& path, int base, TetMesh& mesh, Mes
     }
     for (size_t k = 5; k < perLine; ++k) {
       if (k < static_cast<size_t>(1 + perTet)) {
-        lines.parseInt(line, k, "vertex index");
+        // A 10-node tet's mid-edge nodes are dropped, but they must still be vertices.
+        const long long v = lines.parseInt(line, k, "vertex index") - base;
+        if (v < 0 || v >= mesh.numVertices())
+          lines.fail(line.number, "vertex index " + std::to_string(v + base) + " out of range [" +
+                                      std::to_string(base) + ", " +
+                                      std::to_string(mesh.numVertices() - 1 + base) + "]");
       } else {
         lines.parseDouble(line, k, "attribute");
       }
