@@ -3,9 +3,14 @@
 # already present are skipped by apt-get, and the package index is refreshed only when stale.
 set -euo pipefail
 
+# libopenblas0-pthread: an optimized BLAS/LAPACK behind Debian's alternatives, which CHOLMOD (the
+# reference solver) then uses instead of the reference BLAS: 2.1 s instead of 6.5 s a frame on the
+# hanging sphere (docs/benchmarks.md). Not the OpenMP build: inside this OpenMP program it ran
+# twice as slow as the reference BLAS.
 packages=(
   build-essential cmake pkg-config git
   libeigen3-dev libsuitesparse-dev nlohmann-json3-dev
+  libopenblas0-pthread
   libglfw3-dev libimgui-dev libstb-dev libassimp-dev
   libopengl-dev libegl-dev libgles-dev libegl1-mesa-dev libgl1-mesa-dri mesa-utils xvfb xauth
   libgtest-dev libgmock-dev libbenchmark-dev

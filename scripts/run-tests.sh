@@ -11,4 +11,6 @@ export GALSCULPT_CACHE_DIR="$PWD/test-cache"
 # ctest already runs tests side by side; OpenMP threads on top of that oversubscribe the cores
 # and spin. Tests that check threading set their thread counts themselves.
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
+# The same for OpenBLAS's own threads (CHOLMOD's BLAS): they spin while waiting.
+export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 ctest --output-on-failure -j "$(nproc 2>/dev/null || echo 2)" "$@"
