@@ -738,6 +738,8 @@ class DeviceSolver {
 
   int plasticUpdate() {
     const int* tv = tetVertices_.data();
+    const int* te = tetEdges_.data();
+    const std::uint8_t* damaged = damaged_.data();
     const kernels::RestData* rest = rest_.data();
     const double* x = x_.data();
     double* fp = fp_.data();
@@ -747,6 +749,10 @@ class DeviceSolver {
     const kernels::PlasticParamsData params{model_.material.plastic.yieldStress,
                                             model_.material.plastic.hardening};
     ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
+      // As on the CPU (solver/step.cpp plasticUpdate): damaged elements do not flow.
+      flowed[t] = 0.0;
+      for (int k = 0; k < 6; ++k)
+        if (damaged[te[6 * t + k]]) return;
       double x12[12];
       for (int a = 0; a < 4; ++a)
         for (int k = 0; k < 3; ++k) x12[3 * a + k] = x[3 * tv[4 * t + a] + k];

@@ -266,11 +266,18 @@ SubstepOutcome substep(const SimModel& model, SimState& state, const StepSetting
   return result;
 }
 
-// Radial return on every element after a sub-step; returns how many flowed.
+// Radial return on every undamaged element after a sub-step; returns how many flowed. A
+// damaged element's F spans its crack (the far side moves with another piece, or a slit
+// opens): flowing by it would build the crack's opening into the element's rest shape, which
+// then pulls on the near side (a cut clay ball crumpled as its halves parted). Damaged
+// elements keep the plastic state they had when they were damaged.
 int plasticUpdate(const SimModel& model, SimState& state) {
   int flowed = 0;
 #pragma omp parallel for schedule(static) reduction(+ : flowed)
   for (int t = 0; t < model.numTets(); ++t) {
+    bool damaged = false;
+    for (int e : model.tetEdges[t]) damaged = damaged || state.damaged[e];
+    if (damaged) continue;
     const Tet& tet = model.mesh.tets[t];
     const TetPoints p{state.x[tet[0]], state.x[tet[1]], state.x[tet[2]], state.x[tet[3]]};
     const Eigen::Matrix3d f = deformationGradient(model.rest[t], p);

@@ -213,5 +213,35 @@ TEST(Simulation, ADeviceFailureFallsBackToTheCpuAndSaysSo) {
   EXPECT_EQ(sim.state().x, reference.state().x) << "the failed frame was computed in full";
 }
 
+// A clay ball cut in two, one half pulled straight away: the other half stays as it is. Plastic
+// flow once used the whole deformation gradient of the cut elements, whose far corners left with
+// the other half: their rest shapes stretched across the cut and then pulled the near half out
+// of shape (by centimetres, under the reference solver too).
+TEST(Simulation, ACutClayHalfPulledAwayLeavesTheOtherHalfAsItIs) {
+  test::TempDir dir;
+  const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + R"(,
+    "material": {"preset": "clay"}, "gravity": [0, 0, 0],
+    "anchors": [{"box": {"max": [-0.06, 1e9, 1e9]}}],
+    "solver": {"type": "multigrid", "grid": "50/all", "backend": "cpu"}})");
+  Simulation sim(scene, loadSceneMesh(scene));
+  // The plane x + y = 0.005 (through no vertex), swept across the whole ball.
+  const Vec3 n = Vec3(1, 1, 0).normalized(), c = 0.005 / std::sqrt(2.0) * n;
+  const Vec3 t1 = Vec3::UnitZ(), t2 = n.cross(t1);
+  ASSERT_GT(sim.cut(sweptBladeSurface(c - t1 - t2, c + t1 - t2, c - t1 + t2, c + t1 + t2)), 0);
+  ASSERT_EQ(countDamagePieces(sim.model(), sim.state()), 2);
+  std::vector<int> far, near;
+  for (int v = 0; v < sim.model().numVertices(); ++v)
+    (n.dot(sim.model().mesh.vertices[v] - c) > 0 ? far : near).push_back(v);
+  sim.addAnchor(far, {{0.0, Vec3::Zero()}, {0.3, 0.06 * n}});
+  for (int f = 0; f < 30; ++f) sim.advance();
+  double moved = 0.0, pulled = 1e9;
+  for (int v : near)
+    moved = std::max(moved, (sim.state().x[v] - sim.model().mesh.vertices[v]).norm());
+  for (int v : far)
+    pulled = std::min(pulled, n.dot(sim.state().x[v] - sim.model().mesh.vertices[v]));
+  EXPECT_GT(pulled, 0.05) << "the far half was pulled away";
+  EXPECT_LT(moved, 1e-6) << "the near half, free but for its anchored end, stays as it is";
+}
+
 }  // namespace
 }  // namespace galsculpt
