@@ -8,6 +8,7 @@
 #include "engine/surface_io.h"
 #include "gpu/cuda_step_backend.h"
 #include "solver/shape_generators.h"
+#include "tests/app/cli_run.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -15,15 +16,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int code;
-  std::string out, err;
-};
-
+using test::CliRun;
 CliRun run(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  const int code = runCli(args, out, err);
-  return {code, out.str(), err.str()};
+  return test::runCliCapture(args);
 }
 
 TEST(Cli, HelpAndVersion) {

@@ -20,6 +20,8 @@
 #include "engine/project_file.h"
 #include "engine/scene_mesh.h"
 #include "solver/tetgen_io.h"
+#include "tests/app/cli_run.h"
+#include "tests/project_bytes.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -30,15 +32,9 @@ namespace fs = std::filesystem;
 const fs::path kCorpus = fs::path(GALSCULPT_TEST_DATA) / "hostile";
 const fs::path kAssets = fs::path(GALSCULPT_SOURCE_DIR) / "assets";
 
-struct CliRun {
-  int code;
-  std::string out, err;
-};
-
+using test::CliRun;
 CliRun run(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  const int code = runCli(args, out, err);
-  return {code, out.str(), err.str()};
+  return test::runCliCapture(args);
 }
 
 std::vector<std::string> split(const std::string& s) {
@@ -133,15 +129,8 @@ class HostileProjects : public ::testing::Test {
     EXPECT_EQ(r.code, kExitBadInput) << name << ": " << r.err;
     return r.err;
   }
-  // The project with its JSON header edited (the length line follows it).
   std::string withHeader(const std::function<void(nlohmann::json&)>& edit) const {
-    const size_t line1 = bytes.find('\n'), line2 = bytes.find('\n', line1 + 1);
-    const size_t length = std::stoull(bytes.substr(line1 + 1, line2 - line1 - 1));
-    nlohmann::json h = nlohmann::json::parse(bytes.substr(line2 + 1, length));
-    edit(h);
-    const std::string header = h.dump();
-    return bytes.substr(0, line1 + 1) + std::to_string(header.size()) + "\n" + header +
-           bytes.substr(line2 + 1 + length);
+    return test::withProjectHeader(bytes, edit);
   }
   std::string replaced(const std::string& from, const std::string& to) const {
     std::string s = bytes;

@@ -9,6 +9,7 @@
 
 #include "engine/scene_mesh.h"
 #include "solver/input_error.h"
+#include "tests/project_bytes.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -107,13 +108,7 @@ TEST(ProjectFile, MalformedProjectsGetClearErrors) {
   EXPECT_NE(errorOf(good + "x").find("unexpected data after byte"), std::string::npos);
   // The header edited (its length line follows it).
   auto withHeader = [&](const std::function<void(nlohmann::json&)>& edit) {
-    const size_t line1 = good.find('\n'), line2 = good.find('\n', line1 + 1);
-    const size_t length = std::stoull(good.substr(line1 + 1, line2 - line1 - 1));
-    nlohmann::json h = nlohmann::json::parse(good.substr(line2 + 1, length));
-    edit(h);
-    const std::string header = h.dump();
-    return good.substr(0, line1 + 1) + std::to_string(header.size()) + "\n" + header +
-           good.substr(line2 + 1 + length);
+    return test::withProjectHeader(good, edit);
   };
   EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) {
               h["anchors"][0]["vertices"][0] = 1 << 30;
