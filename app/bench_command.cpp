@@ -70,7 +70,7 @@ Setting sceneSetting(const SolverDesc& d) {
   s.newtonIterations = d.newtonIterations;
   s.pcgTolerance = d.pcgTolerance;
   s.cycles = d.cycles;
-  s.coarseCholesky = d.coarseSolver == "cholesky";
+  s.coarseCholesky = d.coarseSolver == CoarseSolver::Cholesky;
   return s;
 }
 
@@ -97,15 +97,15 @@ void applyRandomCuts(Simulation& sim, int cuts, AfterCut afterCut) {
 nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
                        const Setting& setting, int frames, const fs::path& referencePositions) {
   SceneDescription scene = baseScene;
-  if (setting.reference) scene.solver.backend = "cpu";  // the direct solve has no device path
-  scene.solver.type = setting.reference ? "reference" : "multigrid";
+  if (setting.reference) scene.solver.backend = BackendRequest::Cpu;  // no device path
+  scene.solver.type = setting.reference ? SolverType::Reference : SolverType::Multigrid;
   scene.solver.grid = setting.grid;
   scene.solver.fineSweeps = setting.fineSweeps;
   scene.solver.coarseIterations = setting.coarseIters;
   scene.solver.newtonIterations = setting.newtonIterations;
   scene.solver.pcgTolerance = setting.pcgTolerance;
   scene.solver.cycles = setting.cycles;
-  scene.solver.coarseSolver = setting.coarseCholesky ? "cholesky" : "cg";
+  scene.solver.coarseSolver = setting.coarseCholesky ? CoarseSolver::Cholesky : CoarseSolver::Cg;
   Simulation sim(scene, mesh);
   // The surface is built when the scene opens and brought up to date after each cut, as the app
   // does: what a cut costs the surface is measured here, what a frame costs it below.
@@ -264,7 +264,7 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
   a.expectPositional(0, 0,
                      "galsculpt bench [--scene NAME] [--quick] [--sweep] [--cracks] [--frames N] "
                      "[--json FILE] [--backend auto|cpu|cuda]");
-  const std::string backend = backendOption(a);
+  const std::optional<BackendRequest> backend = backendOption(a);
   const bool quick = a.has("--quick");
   const int frames = a.intValue("--frames", quick ? 20 : 60, 1, 100000);
   std::vector<BenchScene> scenes;
@@ -289,7 +289,7 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
          " pos err %  vol chg %  surf ms    max  backend\n";
   for (const BenchScene& bs : scenes) {
     SceneDescription scene = loadScene(fs::path(assetDirectory()) / "scenes" / bs.file);
-    if (!backend.empty()) scene.solver.backend = backend;
+    if (backend) scene.solver.backend = *backend;
     TetMesh mesh;
     try {
       mesh = loadSceneMesh(scene, [&err](const std::string& line) { err << line << '\n'; });

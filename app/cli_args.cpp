@@ -89,12 +89,12 @@ void CliArgs::expectPositional(size_t min, size_t max, const std::string& usage)
   if (positional_.size() < min || positional_.size() > max) throw UsageError("usage: " + usage);
 }
 
-std::string backendOption(const CliArgs& args) {
+std::optional<BackendRequest> backendOption(const CliArgs& args) {
   const auto v = args.value("--backend");
-  if (!v) return {};
-  if (*v != "auto" && *v != "cpu" && *v != "cuda")
-    throw UsageError("--backend must be auto, cpu or cuda, got '" + *v + "'");
-  return *v;
+  if (!v) return std::nullopt;
+  const std::optional<BackendRequest> request = backendRequestFromName(*v);
+  if (!request) throw UsageError("--backend must be auto, cpu or cuda, got '" + *v + "'");
+  return request;
 }
 
 }  // namespace galsculpt

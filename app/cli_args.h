@@ -2,6 +2,8 @@
 // flag declared by the command (unknown flags are usage errors, never ignored).
 #pragma once
 
+#include "engine/scene.h"
+
 #include <map>
 #include <optional>
 #include <set>
@@ -38,6 +40,6 @@ class CliArgs {
 };
 
 // --backend auto|cpu|cuda (run, play, bench, open): empty when absent, UsageError otherwise.
-std::string backendOption(const CliArgs& args);
+std::optional<BackendRequest> backendOption(const CliArgs& args);
 
 }  // namespace galsculpt

@@ -172,9 +172,9 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
   const RunOptions o = readRunOptions(a, "run");
   const int frames = a.intValue("--frames", 0, 1, 10000000);
   if (!a.has("--frames")) throw UsageError("run needs --frames N");
-  const std::string backend = backendOption(a);
+  const std::optional<BackendRequest> backend = backendOption(a);
   SceneDescription scene = loadScene(a.positional()[0]);
-  if (!backend.empty()) scene.solver.backend = backend;
+  if (backend) scene.solver.backend = *backend;
   Simulation sim(scene, loadMeshReporting(scene, err), o.solver);
   return simulateFrames(
       scene.name, frames, sim, o, [&sim] { return sim.advance(); }, out, err);
@@ -190,9 +190,9 @@ int playCommand(const std::vector<std::string>& args, std::ostream& out, std::os
                      "[--solver reference] [--export-format obj|ply|stl|gltf|glb] "
                      "[--export-tets] [--png-every K] [--size WxH] [--backend auto|cpu|cuda]");
   const RunOptions o = readRunOptions(a, "play");
-  const std::string backend = backendOption(a);
+  const std::optional<BackendRequest> backend = backendOption(a);
   PlaybackScript script = loadPlaybackScript(a.positional()[0]);
-  if (!backend.empty()) script.scene.solver.backend = backend;
+  if (backend) script.scene.solver.backend = *backend;
   Simulation sim(script.scene, loadMeshReporting(script.scene, err), o.solver);
   Playback playback(script, sim);
   return simulateFrames(

@@ -679,6 +679,18 @@ void SculptApp::drawToolsPanel() {
   ImGui::End();
 }
 
+// A combo box over the values of a settings enum, shown by their scene-file names.
+template <typename E, size_t N>
+void pickEnum(const char* label, E& value, const E (&values)[N], const char* (*nameOf)(E)) {
+  const char* names[N];
+  int current = 0;
+  for (size_t k = 0; k < N; ++k) {
+    names[k] = nameOf(values[k]);
+    if (values[k] == value) current = static_cast<int>(k);
+  }
+  if (ImGui::Combo(label, &current, names, static_cast<int>(N))) value = values[current];
+}
+
 // Wrap width of the overlay's free text, in pixels (its figures' lines are about this wide).
 constexpr float kOverlayTextWidth = 320.0f;
 
@@ -694,8 +706,9 @@ void SculptApp::drawOverlay() {
     const SceneDescription& scene = session_->scene();
     ImGui::Text("%s: %d vertices, %d tets", scene.name.c_str(), sim.model().numVertices(),
                 sim.model().numTets());
-    ImGui::Text("material: %s (%s)", scene.material.preset.c_str(), scene.material.model.c_str());
-    ImGui::Text("solver: %s %s on the %s backend", scene.solver.type.c_str(),
+    ImGui::Text("material: %s (%s)", scene.material.preset.c_str(),
+                materialModelName(scene.material.model));
+    ImGui::Text("solver: %s %s on the %s backend", solverTypeName(scene.solver.type),
                 scene.solver.grid.c_str(),
                 (stepInFlight() ? backendName_ : sim.backendName()).c_str());
     ImGui::Separator();
@@ -762,14 +775,13 @@ void SculptApp::drawScenePanel() {
   ImGui::Begin("Scene settings", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   MaterialDesc& m = editing_.material;
   static const char* presets[] = {"clay", "rubber", "flesh", "steel"};
-  static const char* models[] = {"corotational", "stvk", "stable_neo_hookean"};
-  int preset = 0, model = 0;
+  int preset = 0;
   for (int i = 0; i < 4; ++i)
     if (m.preset == presets[i]) preset = i;
-  for (int i = 0; i < 3; ++i)
-    if (m.model == models[i]) model = i;
   if (ImGui::Combo("preset", &preset, presets, 4)) m = materialPreset(presets[preset]);
-  if (ImGui::Combo("model", &model, models, 3)) m.model = models[model];
+  pickEnum("model", m.model,
+           {MaterialModel::Corotational, MaterialModel::StVK, MaterialModel::StableNeoHookean},
+           materialModelName);
   ImGui::InputDouble("Young's modulus (Pa)", &m.youngsModulus, 0.0, 0.0, "%.4g");
   ImGui::InputDouble("Poisson ratio", &m.poissonRatio, 0.0, 0.0, "%.4g");
   ImGui::InputDouble("density (kg/m^3)", &m.density, 0.0, 0.0, "%.4g");
@@ -781,23 +793,15 @@ void SculptApp::drawScenePanel() {
                        "%.4g");
   ImGui::Separator();
   SolverDesc& v = editing_.solver;
-  static const char* types[] = {"multigrid", "reference"};
-  static const char* smoothers[] = {"gauss_seidel", "jacobi"};
-  static const char* coarse[] = {"cg", "cholesky"};
-  static const char* backends[] = {"auto", "cpu", "cuda"};
-  auto pick = [](const char* label, std::string& value, const char* const* names, int n) {
-    int i = 0;
-    for (int k = 0; k < n; ++k)
-      if (value == names[k]) i = k;
-    if (ImGui::Combo(label, &i, names, n)) value = names[i];
-  };
-  pick("solver", v.type, types, 2);
+  pickEnum("solver", v.type, {SolverType::Multigrid, SolverType::Reference}, solverTypeName);
   ImGui::InputText("grid (e.g. 50/1000/all)", grid_, sizeof grid_);
   ImGui::InputInt("fine sweeps", &v.fineSweeps);
   ImGui::InputInt("coarse iterations", &v.coarseIterations);
-  pick("smoother", v.smoother, smoothers, 2);
-  pick("coarse solver", v.coarseSolver, coarse, 2);
-  pick("backend", v.backend, backends, 3);
+  pickEnum("smoother", v.smoother, {Smoother::GaussSeidel, Smoother::Jacobi}, smootherName);
+  pickEnum("coarse solver", v.coarseSolver, {CoarseSolver::Cg, CoarseSolver::Cholesky},
+           coarseSolverName);
+  pickEnum("backend", v.backend, {BackendRequest::Auto, BackendRequest::Cpu, BackendRequest::Cuda},
+           backendRequestName);
   if (ImGui::Button("Apply (restarts the simulation)")) applySceneSettings();
   ImGui::SameLine();
   if (ImGui::Button("Revert")) {

@@ -8,6 +8,8 @@
 #include <ostream>
 #include <string>
 
+#include "engine/scene.h"
+
 namespace galsculpt {
 
 struct SculptWindowOptions {
@@ -20,7 +22,7 @@ struct SculptWindowOptions {
   double autosaveSeconds = 60.0;  // 0: never
   bool offerRecovery = true;      // ask about files left by a crash
   bool startPlaying = true;
-  std::string backend;  // auto | cpu | cuda for every file opened; empty: the scene's own
+  std::optional<BackendRequest> backend;  // for every file opened; none: the scene's own
 };
 
 // Runs until the window closes; returns false (with a reason) when no window can be opened.

@@ -32,8 +32,8 @@ bool haveDisplay() {
 
 std::string describeMaterial(const MaterialDesc& m) {
   std::ostringstream s;
-  s << "material: " << m.preset << " (" << m.model << ", E " << m.youngsModulus << " Pa, nu "
-    << m.poissonRatio << ", " << m.density << " kg/m^3)";
+  s << "material: " << m.preset << " (" << materialModelName(m.model) << ", E " << m.youngsModulus
+    << " Pa, nu " << m.poissonRatio << ", " << m.density << " kg/m^3)";
   return s.str();
 }
 
@@ -61,7 +61,8 @@ ViewContent loadViewContent(const fs::path& file, std::ostream& log) {
     c.facts.push_back(std::to_string(mesh.numVertices()) + " vertices, " +
                       std::to_string(mesh.numTets()) + " tets");
     c.facts.push_back(describeMaterial(scene.material));
-    c.facts.push_back("solver: " + scene.solver.type + " " + scene.solver.grid);
+    c.facts.push_back(std::string("solver: ") + solverTypeName(scene.solver.type) + " " +
+                      scene.solver.grid);
     return c;
   }
   if (meshFileKind(file) == MeshFileKind::Surface) {
@@ -127,7 +128,7 @@ int openCommand(const std::vector<std::string>& args, std::ostream& out, std::os
                      "galsculpt open FILE [--headless] [--out DIR] [--size WxH] [--paused] "
                      "[--input-script FILE] [--save-project FILE] [--save-recording FILE] "
                      "[--autosave SECONDS] [--no-recovery] [--backend auto|cpu|cuda]");
-  const std::string backend = backendOption(a);
+  const std::optional<BackendRequest> backend = backendOption(a);
   const fs::path file = a.positional()[0];
   if (!fs::exists(file)) throw InputError(file.string() + ": no such file");
   bool headless = a.has("--headless");
@@ -197,8 +198,8 @@ int sceneCommand(const std::vector<std::string>& args, std::ostream& out, std::o
   out << describeMaterial(s.material) << '\n';
   out << "anchors: " << s.anchors.size() << "\ncolliders: " << s.colliders.size() << '\n';
   out << "fracture: " << (s.fracture.enabled ? "on" : "off") << '\n';
-  out << "solver: " << s.solver.type << " " << s.solver.grid << " (" << s.solver.fineSweeps
-      << " sweeps, " << s.solver.coarseIterations << " coarse iterations)\n";
+  out << "solver: " << solverTypeName(s.solver.type) << " " << s.solver.grid << " ("
+      << s.solver.fineSweeps << " sweeps, " << s.solver.coarseIterations << " coarse iterations)\n";
   out << "time_step: " << s.timeStep << " s x " << s.substeps << " substep(s)\n";
   if (a.has("--load-mesh")) {
     const TetMesh mesh = loadSceneMesh(s, [&err](const std::string& line) { err << line << '\n'; });

@@ -4,16 +4,16 @@
 
 namespace galsculpt {
 
-BackendChoice chooseBackend(const std::string& requested, const SimModel& model,
+BackendChoice chooseBackend(BackendRequest requested, const SimModel& model,
                             const StepSettings& settings) {
   BackendChoice choice;
-  if (requested != "cpu") {
+  if (requested != BackendRequest::Cpu) {
     std::string reason;
     choice.backend = gpu::makeCudaStepBackend(model, settings, reason);
     if (choice.backend) return choice;
-    choice.note =
-        (requested == "cuda" ? "the CUDA backend is not available (" : "backend auto: (") + reason +
-        "): running on the CPU";
+    choice.note = (requested == BackendRequest::Cuda ? "the CUDA backend is not available ("
+                                                     : "backend auto: (") +
+                  reason + "): running on the CPU";
   }
   choice.backend = std::make_unique<CpuStepBackend>(model);
   return choice;

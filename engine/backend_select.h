@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "engine/scene.h"
 #include "solver/step_backend.h"
 
 namespace galsculpt {
@@ -15,9 +16,8 @@ struct BackendChoice {
   std::string note;  // why the request was not met (empty when it was)
 };
 
-// `requested`: "auto", "cpu" or "cuda" (the scene reader has checked it). The model must
-// outlive the backend.
-BackendChoice chooseBackend(const std::string& requested, const SimModel& model,
+// The model must outlive the backend.
+BackendChoice chooseBackend(BackendRequest requested, const SimModel& model,
                             const StepSettings& settings);
 
 }  // namespace galsculpt

@@ -16,7 +16,42 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 const std::vector<std::string> kPresets = {"clay", "rubber", "flesh", "steel"};
-const std::vector<std::string> kModels = {"corotational", "stvk", "stable_neo_hookean"};
+// Enum values and their names, in enum order.
+template <typename E>
+struct Named {
+  E value;
+  const char* name;
+};
+constexpr Named<MaterialModel> kModelNames[] = {
+    {MaterialModel::Corotational, "corotational"},
+    {MaterialModel::StVK, "stvk"},
+    {MaterialModel::StableNeoHookean, "stable_neo_hookean"}};
+constexpr Named<SolverType> kSolverTypeNames[] = {{SolverType::Multigrid, "multigrid"},
+                                                  {SolverType::Reference, "reference"}};
+constexpr Named<Smoother> kSmootherNames[] = {{Smoother::GaussSeidel, "gauss_seidel"},
+                                              {Smoother::Jacobi, "jacobi"}};
+constexpr Named<CoarseSolver> kCoarseSolverNames[] = {{CoarseSolver::Cg, "cg"},
+                                                      {CoarseSolver::Cholesky, "cholesky"}};
+constexpr Named<BackendRequest> kBackendNames[] = {
+    {BackendRequest::Auto, "auto"}, {BackendRequest::Cpu, "cpu"}, {BackendRequest::Cuda, "cuda"}};
+
+template <typename E, size_t N>
+const char* nameOf(const Named<E> (&names)[N], E value) {
+  for (const Named<E>& n : names)
+    if (n.value == value) return n.name;
+  return "?";
+}
+
+// An optional enum member of a scene object, by name; unknown names fail with the choices.
+template <typename E, size_t N>
+E readEnum(JsonObject& o, const std::string& key, E fallback, const Named<E> (&names)[N]) {
+  std::vector<std::string> allowed;
+  for (const Named<E>& n : names) allowed.push_back(n.name);
+  const std::string name = o.string(key, nameOf(names, fallback), allowed);
+  for (const Named<E>& n : names)
+    if (name == n.name) return n.value;
+  return fallback;
+}
 
 // "50/1000/all": coarse to fine, counts strictly increasing, ending in "all".
 void checkGrid(JsonObject& o, const std::string& key, const std::string& grid) {
@@ -64,7 +99,7 @@ MeshSource readMesh(JsonObject o, const fs::path& sceneDir) {
 MaterialDesc readMaterial(JsonObject o) {
   const std::string preset = o.string("preset", "rubber", kPresets);
   MaterialDesc m = materialPreset(preset);
-  m.model = o.string("model", m.model, kModels);
+  m.model = readEnum(o, "model", m.model, kModelNames);
   m.youngsModulus = o.number("youngs_modulus", m.youngsModulus, 1e-3, 1e13);
   m.poissonRatio = o.number("poisson_ratio", m.poissonRatio, -0.99, 0.4999);
   m.density = o.number("density", m.density, 1e-3, 1e6);
@@ -190,17 +225,17 @@ FractureDesc readFracture(JsonObject o) {
 
 SolverDesc readSolver(JsonObject o) {
   SolverDesc s;
-  s.type = o.string("type", s.type, {"multigrid", "reference"});
+  s.type = readEnum(o, "type", s.type, kSolverTypeNames);
   s.grid = o.string("grid", s.grid);
   checkGrid(o, "grid", s.grid);
   s.fineSweeps = o.integer("fine_sweeps", s.fineSweeps, 0, 10000);
   s.coarseIterations = o.integer("coarse_iters", s.coarseIterations, 0, 100000);
-  s.smoother = o.string("smoother", s.smoother, {"gauss_seidel", "jacobi"});
-  s.coarseSolver = o.string("coarse_solver", s.coarseSolver, {"cg", "cholesky"});
+  s.smoother = readEnum(o, "smoother", s.smoother, kSmootherNames);
+  s.coarseSolver = readEnum(o, "coarse_solver", s.coarseSolver, kCoarseSolverNames);
   s.newtonIterations = o.integer("newton_iters", s.newtonIterations, 1, 100);
   s.cycles = o.integer("cycles", s.cycles, 1, 1000);
   s.pcgTolerance = o.number("pcg_tolerance", s.pcgTolerance, 0.0, 0.5);
-  s.backend = o.string("backend", s.backend, {"auto", "cpu", "cuda"});
+  s.backend = readEnum(o, "backend", s.backend, kBackendNames);
   s.splitAggregates = o.boolean("split_aggregates", s.splitAggregates);
   o.rejectUnknownKeys();
   return s;
@@ -208,11 +243,32 @@ SolverDesc readSolver(JsonObject o) {
 
 }  // namespace
 
+const char* solverTypeName(SolverType t) {
+  return nameOf(kSolverTypeNames, t);
+}
+const char* smootherName(Smoother s) {
+  return nameOf(kSmootherNames, s);
+}
+const char* coarseSolverName(CoarseSolver c) {
+  return nameOf(kCoarseSolverNames, c);
+}
+const char* backendRequestName(BackendRequest b) {
+  return nameOf(kBackendNames, b);
+}
+const char* materialModelName(MaterialModel m) {
+  return nameOf(kModelNames, m);
+}
+std::optional<BackendRequest> backendRequestFromName(const std::string& name) {
+  for (const Named<BackendRequest>& n : kBackendNames)
+    if (name == n.name) return n.value;
+  return std::nullopt;
+}
+
 MaterialDesc materialPreset(const std::string& name) {
   MaterialDesc m;
   m.preset = name;
   if (name == "clay") {  // modelling clay: soft, nearly incompressible, yields early
-    m.model = "stvk";
+    m.model = MaterialModel::StVK;
     m.youngsModulus = 2.0e5;
     m.poissonRatio = 0.45;
     m.density = 1800.0;
@@ -220,13 +276,13 @@ MaterialDesc materialPreset(const std::string& name) {
     m.hardening = 1.0e4;
     m.fractureThreshold = 3.0e4;
   } else if (name == "rubber") {
-    m.model = "stable_neo_hookean";
+    m.model = MaterialModel::StableNeoHookean;
     m.youngsModulus = 1.0e6;
     m.poissonRatio = 0.48;
     m.density = 1100.0;
     m.fractureThreshold = 1.5e6;
   } else if (name == "flesh") {  // soft tissue; plastic before it tears (ductile)
-    m.model = "stable_neo_hookean";
+    m.model = MaterialModel::StableNeoHookean;
     m.youngsModulus = 5.0e4;
     m.poissonRatio = 0.45;
     m.density = 1060.0;
@@ -234,7 +290,7 @@ MaterialDesc materialPreset(const std::string& name) {
     m.hardening = 1.0e4;
     m.fractureThreshold = 5.0e4;
   } else if (name == "steel") {  // structural steel, brittle fracture preset
-    m.model = "corotational";
+    m.model = MaterialModel::Corotational;
     m.youngsModulus = 2.0e11;
     m.poissonRatio = 0.3;
     m.density = 7850.0;
@@ -245,7 +301,9 @@ MaterialDesc materialPreset(const std::string& name) {
   return m;
 }
 
-SceneDescription loadScene(const fs::path& file) { return parseScene(parseJsonFile(file), file); }
+SceneDescription loadScene(const fs::path& file) {
+  return parseScene(parseJsonFile(file), file);
+}
 
 SceneDescription parseScene(const nlohmann::json& root, const fs::path& file) {
   JsonObject o(root, "$", file.string());

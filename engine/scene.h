@@ -7,10 +7,12 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/json_reader.h"
+#include "solver/material_types.h"
 
 namespace galsculpt {
 
@@ -27,9 +29,9 @@ struct MeshSource {
 };
 
 struct MaterialDesc {
-  std::string preset = "rubber";             // clay | rubber | flesh | steel
-  std::string model = "stable_neo_hookean";  // corotational | stvk | stable_neo_hookean
-  double youngsModulus = 0.0;                // Pa
+  std::string preset = "rubber";  // clay | rubber | flesh | steel
+  MaterialModel model = MaterialModel::StableNeoHookean;
+  double youngsModulus = 0.0;  // Pa
   double poissonRatio = 0.0;
   double density = 0.0;            // kg/m^3
   double yieldStress = 0.0;        // Pa, 0 = elastic
@@ -87,18 +89,35 @@ struct FractureDesc {
   double compressiveThreshold = 0.0;  // Pa, edges crushed beyond it break too (0: never)
 };
 
+// The solver's choices, parsed once from their names (scene files, the command line, the Scene
+// settings panel); nothing compares their names after loading.
+enum class SolverType { Multigrid, Reference };
+enum class Smoother { GaussSeidel, Jacobi };
+enum class CoarseSolver { Cg, Cholesky };
+enum class BackendRequest { Auto, Cpu, Cuda };
+
+// Names as written in scene files: "multigrid", "gauss_seidel", "cholesky", "cuda", ...
+const char* solverTypeName(SolverType t);
+const char* smootherName(Smoother s);
+const char* coarseSolverName(CoarseSolver c);
+const char* backendRequestName(BackendRequest b);
+// "corotational", "stvk", "stable_neo_hookean".
+const char* materialModelName(MaterialModel m);
+// The request named `name`, or none for an unknown name.
+std::optional<BackendRequest> backendRequestFromName(const std::string& name);
+
 struct SolverDesc {
-  std::string type = "multigrid";  // multigrid | reference
+  SolverType type = SolverType::Multigrid;
   std::string grid = "50/all";
   int fineSweeps = 3;
   int coarseIterations = 20;
-  std::string smoother = "gauss_seidel";  // gauss_seidel | jacobi
-  std::string coarseSolver = "cg";        // cg | cholesky
+  Smoother smoother = Smoother::GaussSeidel;
+  CoarseSolver coarseSolver = CoarseSolver::Cg;
   int newtonIterations = 1;
-  int cycles = 1;                // V-cycles per linear solve (without PCG)
-  double pcgTolerance = 0.0;     // > 0: CG preconditioned by V-cycles, to this relative residual
-  std::string backend = "auto";  // auto | cpu | cuda
-  bool splitAggregates = true;   // crack-aware coarse levels
+  int cycles = 1;             // V-cycles per linear solve (without PCG)
+  double pcgTolerance = 0.0;  // > 0: CG preconditioned by V-cycles, to this relative residual
+  BackendRequest backend = BackendRequest::Auto;
+  bool splitAggregates = true;  // crack-aware coarse levels
 };
 
 // Optional measurements written as metrics columns.

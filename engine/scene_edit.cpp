@@ -27,7 +27,7 @@ SceneDescription editScene(const SceneDescription& base, const SceneSettings& s)
   }
   const MaterialDesc& m = s.material;
   j["material"] = {{"preset", m.preset},
-                   {"model", m.model},
+                   {"model", materialModelName(m.model)},
                    {"youngs_modulus", m.youngsModulus},
                    {"poisson_ratio", m.poissonRatio},
                    {"density", m.density},
@@ -40,13 +40,13 @@ SceneDescription editScene(const SceneDescription& base, const SceneSettings& s)
   j["fracture"] = fracture;
   const SolverDesc& v = s.solver;
   nlohmann::json solver = j.contains("solver") ? j["solver"] : nlohmann::json::object();
-  solver["type"] = v.type;
+  solver["type"] = solverTypeName(v.type);
   solver["grid"] = v.grid;
   solver["fine_sweeps"] = v.fineSweeps;
   solver["coarse_iters"] = v.coarseIterations;
-  solver["smoother"] = v.smoother;
-  solver["coarse_solver"] = v.coarseSolver;
-  solver["backend"] = v.backend;
+  solver["smoother"] = smootherName(v.smoother);
+  solver["coarse_solver"] = coarseSolverName(v.coarseSolver);
+  solver["backend"] = backendRequestName(v.backend);
   j["solver"] = solver;
   return parseScene(j, base.file.parent_path() / (base.file.stem().string() + ".edited.json"));
 }

@@ -23,7 +23,7 @@ SceneDescription sceneForMesh(const fs::path& mesh, int importTets) {
 }
 
 OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int importTets,
-                          const std::string& backend) {
+                          std::optional<BackendRequest> backend) {
   if (!fs::exists(file)) throw InputError(file.string() + ": no such file");
   OpenedSession opened;
   // By content, or by name: a .gsproj whose magic is broken is a broken project, not an
@@ -31,7 +31,7 @@ OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int 
   if (looksLikeProject(file) || file.extension() == ".gsproj") {
     if (progress) progress("reading project " + file.string());
     Project project = readProject(file);
-    if (!backend.empty()) project.scene.solver.backend = backend;
+    if (backend) project.scene.solver.backend = *backend;
     opened.camera = project.camera;
     opened.session = sessionFromProject(project, file);
     return opened;
@@ -41,7 +41,7 @@ OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int 
   if (json.contains("events")) {
     // A playback script: its scene, replayed to the script's end, then sculpted on.
     PlaybackScript script = parsePlaybackScript(json, file);
-    if (!backend.empty()) script.scene.solver.backend = backend;
+    if (backend) script.scene.solver.backend = *backend;
     const TetMesh mesh = loadSceneMesh(script.scene, progress);
     opened.session = std::make_unique<SculptSession>(script.scene, mesh);
     opened.session->replay(script, [&](int frame, int frames) {
@@ -54,7 +54,7 @@ OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int 
   SceneDescription scene = ext == ".json" ? parseScene(json, file) : sceneForMesh(file, importTets);
   if (ext != ".json" && meshFileKind(file) == MeshFileKind::Unknown)
     throw InputError(file.string() + ": not a project, scene or mesh file this version reads");
-  if (!backend.empty()) scene.solver.backend = backend;
+  if (backend) scene.solver.backend = *backend;
   const TetMesh mesh = loadSceneMesh(scene, progress);
   if (progress) progress("building the simulation (" + std::to_string(mesh.numTets()) + " tets)");
   opened.session = std::make_unique<SculptSession>(scene, mesh);

@@ -23,8 +23,9 @@ struct OpenedSession {
 SceneDescription sceneForMesh(const std::filesystem::path& mesh, int importTets);
 
 // Throws InputError for a file that cannot be opened (naming it and the problem).
-// `backend` (auto | cpu | cuda), when not empty, replaces the scene's solver.backend.
+// `backend`, when given, replaces the scene's solver.backend.
 OpenedSession openSession(const std::filesystem::path& file, const ProgressFn& progress = {},
-                          int importTets = 20000, const std::string& backend = {});
+                          int importTets = 20000,
+                          std::optional<BackendRequest> backend = std::nullopt);
 
 }  // namespace galsculpt

@@ -79,11 +79,7 @@ void checkSceneAnchors(const SceneDescription& scene, const TetMesh& mesh) {
 
 MaterialParams materialFromScene(const MaterialDesc& m) {
   MaterialParams p;
-  try {
-    p.model = materialModelFromName(m.model);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
-  }
+  p.model = m.model;
   p.lame = lameFromYoungPoisson(m.youngsModulus, m.poissonRatio);
   p.density = m.density;
   p.plastic = {m.yieldStress, m.hardening};
@@ -114,15 +110,15 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     if (c.friction > 0.0 && notes_.empty())
       notes_.push_back("collider friction is not modelled yet: contacts are frictionless");
   }
-  if (choice == SolverChoice::Reference || scene.solver.type == "reference") {
+  if (choice == SolverChoice::Reference || scene.solver.type == SolverType::Reference) {
     settings_ = referenceSettings(settings_);
-  } else if (scene.solver.type == "multigrid") {
+  } else {
     settings_.multigrid = true;
     settings_.gridHandles = parseGridSetup(scene.solver.grid);
     MultigridSettings& mg = settings_.multigridSettings;
     mg.preSweeps = mg.postSweeps = scene.solver.fineSweeps;
-    mg.jacobi = scene.solver.smoother == "jacobi";
-    mg.coarseCholesky = scene.solver.coarseSolver == "cholesky";
+    mg.jacobi = scene.solver.smoother == Smoother::Jacobi;
+    mg.coarseCholesky = scene.solver.coarseSolver == CoarseSolver::Cholesky;
     mg.coarseIterations = scene.solver.coarseIterations;
     mg.cycles = scene.solver.cycles;
     mg.splitAggregates = scene.solver.splitAggregates;
@@ -427,7 +423,7 @@ FrameMetrics Simulation::advance() {
   } catch (const std::exception& e) {
     // A device failure (lost GPU, out of memory) throws before the state is written back: the
     // frame runs again on the CPU, and so does the rest of the session.
-    if (backend_->name() == "cpu") throw;
+    if (!backend_->offloads()) throw;
     notes_.push_back("the " + backend_->name() + " backend failed (" + e.what() +
                      "): running on the CPU from frame " + std::to_string(frame_));
     backend_ = std::make_unique<CpuStepBackend>(model_);

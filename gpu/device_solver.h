@@ -1072,6 +1072,7 @@ class DeviceStepBackend final : public StepBackend {
  public:
   explicit DeviceStepBackend(const SimModel& model) : solver_(executor_, model) {}
   std::string name() const override { return Exec::kName; }
+  bool offloads() const override { return true; }
   StepReport step(SimState& state, const StepSettings& settings) override {
     return solver_.step(state, settings);
   }

@@ -7,13 +7,6 @@
 
 namespace galsculpt {
 
-MaterialModel materialModelFromName(const std::string& name) {
-  if (name == "corotational") return MaterialModel::Corotational;
-  if (name == "stvk") return MaterialModel::StVK;
-  if (name == "stable_neo_hookean") return MaterialModel::StableNeoHookean;
-  throw std::invalid_argument("unknown material model '" + name + "'");
-}
-
 Lame lameFromYoungPoisson(double e, double nu) {
   return {e / (2.0 * (1.0 + nu)), e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))};
 }

@@ -12,8 +12,6 @@
 
 namespace galsculpt {
 
-// Parses "corotational", "stvk", "stable_neo_hookean"; throws std::invalid_argument.
-MaterialModel materialModelFromName(const std::string& name);
 
 Lame lameFromYoungPoisson(double youngsModulus, double poissonRatio);
 

@@ -14,7 +14,9 @@ namespace galsculpt {
 class StepBackend {
  public:
   virtual ~StepBackend() = default;
-  virtual std::string name() const = 0;  // "cpu", "cuda"
+  virtual std::string name() const = 0;  // "cpu", "cuda" (for display)
+  // Whether frames run elsewhere than on this CPU, so that a failure can fall back to it.
+  virtual bool offloads() const = 0;
   // One frame of dt; the state is read at the start and written back at the end.
   virtual StepReport step(SimState& state, const StepSettings& settings) = 0;
 };
@@ -24,6 +26,7 @@ class CpuStepBackend final : public StepBackend {
  public:
   explicit CpuStepBackend(const SimModel& model) : model_(model) {}
   std::string name() const override { return "cpu"; }
+  bool offloads() const override { return false; }
   StepReport step(SimState& state, const StepSettings& settings) override {
     return galsculpt::step(model_, state, settings);
   }

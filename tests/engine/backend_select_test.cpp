@@ -23,7 +23,7 @@ StepSettings multigridSettings() {
 
 TEST(BackendSelect, CpuIsTakenAsAskedWithoutANote) {
   const SimModel m = smallModel();
-  const BackendChoice c = chooseBackend("cpu", m, multigridSettings());
+  const BackendChoice c = chooseBackend(BackendRequest::Cpu, m, multigridSettings());
   EXPECT_EQ(c.backend->name(), "cpu");
   EXPECT_TRUE(c.note.empty());
 }
@@ -34,7 +34,7 @@ TEST(BackendSelect, AutoAndCudaTakeTheGpuOrSayWhyNot) {
   const SimModel m = smallModel();
   std::string reason;
   const bool gpu = gpu::makeCudaStepBackend(m, multigridSettings(), reason) != nullptr;
-  for (const char* requested : {"auto", "cuda"}) {
+  for (BackendRequest requested : {BackendRequest::Auto, BackendRequest::Cuda}) {
     const BackendChoice c = chooseBackend(requested, m, multigridSettings());
     if (gpu) {
       EXPECT_EQ(c.backend->name(), "cuda");
@@ -53,14 +53,14 @@ TEST(BackendSelect, AutoAndCudaTakeTheGpuOrSayWhyNot) {
 TEST(BackendSelect, TheReferenceSolverStaysOnTheCpuAndSaysSo) {
   const SimModel m = smallModel();
   StepSettings reference;  // multigrid off: the direct sparse Cholesky
-  const BackendChoice c = chooseBackend("cuda", m, reference);
+  const BackendChoice c = chooseBackend(BackendRequest::Cuda, m, reference);
   EXPECT_EQ(c.backend->name(), "cpu");
   EXPECT_NE(c.note.find("reference solver"), std::string::npos) << c.note;
 }
 
 TEST(BackendSelect, TheCpuBackendRunsTheSolversFrame) {
   const SimModel m = smallModel();
-  const BackendChoice c = chooseBackend("cpu", m, multigridSettings());
+  const BackendChoice c = chooseBackend(BackendRequest::Cpu, m, multigridSettings());
   SimState a = initialState(m), b = initialState(m);
   c.backend->step(a, multigridSettings());
   step(m, b, multigridSettings());

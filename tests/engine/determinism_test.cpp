@@ -67,7 +67,7 @@ std::uint64_t sphereCut() {
                       "\"duration\": 10, \"from\": [[-0.2, 0.2, 0.02], [0.2, 0.2, 0.02]], "
                       "\"to\": [[-0.2, -0.2, 0.02], [0.2, -0.2, 0.02]]}]}");
   PlaybackScript script = loadPlaybackScript(dir / "cut.json");
-  script.scene.solver.backend = "cpu";
+  script.scene.solver.backend = BackendRequest::Cpu;
   Simulation sim(script.scene, loadSceneMesh(script.scene));
   Playback playback(script, sim);
   while (!playback.finished()) playback.advance();

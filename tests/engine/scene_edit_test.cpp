@@ -20,14 +20,14 @@ TEST(SceneEdit, ReplacesTheSettingsAndKeepsTheMeshReachableFromAnywhere) {
   s.fracture = true;
   s.fractureThreshold = 5e4;
   s.solver.grid = "30/300/all";
-  s.solver.smoother = "jacobi";
+  s.solver.smoother = Smoother::Jacobi;
   const SceneDescription edited = editScene(base, s);
   EXPECT_EQ(edited.material.preset, "rubber");
   EXPECT_EQ(edited.material.youngsModulus, 12345.0);
   EXPECT_TRUE(edited.fracture.enabled);
   EXPECT_EQ(edited.fracture.threshold, 5e4);
   EXPECT_EQ(edited.solver.grid, "30/300/all");
-  EXPECT_EQ(edited.solver.smoother, "jacobi");
+  EXPECT_EQ(edited.solver.smoother, Smoother::Jacobi);
   EXPECT_EQ(edited.anchors.size(), base.anchors.size()) << "the rest of the scene stays";
   EXPECT_EQ(edited.mesh.path, base.mesh.path);
   // Saved elsewhere and read back, the edited scene still finds its mesh.

@@ -34,7 +34,7 @@ TEST(Scene, HangingSphereHasThePaperParameters) {
   EXPECT_DOUBLE_EQ(s.material.youngsModulus, 8000.0);
   EXPECT_DOUBLE_EQ(s.material.poissonRatio, 0.48);
   EXPECT_DOUBLE_EQ(s.material.density, 1000.0);
-  EXPECT_EQ(s.material.model, "stable_neo_hookean");
+  EXPECT_EQ(s.material.model, MaterialModel::StableNeoHookean);
   EXPECT_NEAR(s.timeStep, 1.0 / 60.0, 1e-6);
   EXPECT_DOUBLE_EQ(s.dampingMass, 0.1);
   EXPECT_DOUBLE_EQ(s.dampingStiffness, 0.01);
@@ -147,7 +147,35 @@ INSTANTIATE_TEST_SUITE_P(
                  "$.gravty: unknown key"},
         BadScene{std::string("{") + kMesh + ",\n\"substeps\": 0}",
                  "$.substeps: must be at least 1"},
+        BadScene{std::string("{") + kMesh + R"(, "material": {"model": "neo"}})",
+                 "$.material.model: unknown value 'neo' (expected one of: corotational, stvk, "
+                 "stable_neo_hookean)"},
+        BadScene{std::string("{") + kMesh + R"(, "solver": {"smoother": "sor"}})",
+                 "$.solver.smoother: unknown value 'sor' (expected one of: gauss_seidel, jacobi)"},
+        BadScene{std::string("{") + kMesh + R"(, "solver": {"backend": "gpu"}})",
+                 "$.solver.backend: unknown value 'gpu' (expected one of: auto, cpu, cuda)"},
         BadScene{"{\n\"mesh\": {\n\"file\": \"x.node\",\n}\n}", "s.json:4: JSON syntax error"}));
+
+// Settings are parsed once into enums; their names come back as written.
+TEST(Scene, SolverChoicesAreTypedAndKeepTheirNames) {
+  test::TempDir dir;
+  test::writeText(dir / "s.json", std::string("{") + kMesh + R"(, "material": {"model": "stvk"},
+      "solver": {"type": "reference", "smoother": "jacobi", "coarse_solver": "cholesky",
+                 "backend": "cpu"}})");
+  const SceneDescription s = loadScene(dir / "s.json");
+  EXPECT_EQ(s.material.model, MaterialModel::StVK);
+  EXPECT_EQ(s.solver.type, SolverType::Reference);
+  EXPECT_EQ(s.solver.smoother, Smoother::Jacobi);
+  EXPECT_EQ(s.solver.coarseSolver, CoarseSolver::Cholesky);
+  EXPECT_EQ(s.solver.backend, BackendRequest::Cpu);
+  EXPECT_STREQ(materialModelName(s.material.model), "stvk");
+  EXPECT_STREQ(solverTypeName(s.solver.type), "reference");
+  EXPECT_STREQ(smootherName(s.solver.smoother), "jacobi");
+  EXPECT_STREQ(coarseSolverName(s.solver.coarseSolver), "cholesky");
+  EXPECT_STREQ(backendRequestName(s.solver.backend), "cpu");
+  EXPECT_EQ(backendRequestFromName("cuda"), BackendRequest::Cuda);
+  EXPECT_FALSE(backendRequestFromName("gpu").has_value());
+}
 
 TEST(Scene, MissingMeshFileIsReportedWhenLoading) {
   test::TempDir dir;

@@ -189,6 +189,7 @@ namespace {
 class FailingBackend final : public StepBackend {
  public:
   std::string name() const override { return "cuda"; }
+  bool offloads() const override { return true; }
   StepReport step(SimState&, const StepSettings&) override {
     throw std::runtime_error("device lost");
   }

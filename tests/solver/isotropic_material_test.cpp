@@ -2,16 +2,10 @@
 
 #include <gtest/gtest.h>
 
-#include <stdexcept>
-
 namespace galsculpt {
 namespace {
 
-TEST(IsotropicMaterial, NamesAndLameParameters) {
-  EXPECT_EQ(materialModelFromName("corotational"), MaterialModel::Corotational);
-  EXPECT_EQ(materialModelFromName("stvk"), MaterialModel::StVK);
-  EXPECT_EQ(materialModelFromName("stable_neo_hookean"), MaterialModel::StableNeoHookean);
-  EXPECT_THROW(materialModelFromName("neo"), std::invalid_argument);
+TEST(IsotropicMaterial, LameParameters) {
   const Lame l = lameFromYoungPoisson(1000.0, 0.25);
   EXPECT_DOUBLE_EQ(l.mu, 1000.0 / 2.5);
   EXPECT_DOUBLE_EQ(l.lambda, 1000.0 * 0.25 / (1.25 * 0.5));
