@@ -246,13 +246,14 @@ int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::os
     a.expectPositional(2, 2,
                        "galsculpt mesh generate sphere|charpy|steak OUT [--tets N] [--radius R]");
     const std::string name = a.positional()[0];
-    if (name != "sphere" && name != "charpy" && name != "steak") {
-      throw UsageError("unknown shape '" + name + "' (sphere, charpy or steak)");
-    }
+    const std::optional<Generator> generator = generatorFromName(name);
+    if (!generator) throw UsageError("unknown shape '" + name + "' (sphere, charpy or steak)");
     const fs::path outPath = checkedOutput(a.positional()[1]);
     // A surface alone (no --tets) gets the resolution of the paper's scene.
-    const int tets = a.intValue("--tets", name == "steak" ? 186000 : 35000, 1, 50000000);
-    const TriMesh surface = generatorSurface(name, a.doubleValue("--radius", 0.1, 1e-6, 1e6), tets);
+    const int tets =
+        a.intValue("--tets", *generator == Generator::Steak ? 186000 : 35000, 1, 50000000);
+    const TriMesh surface =
+        generatorSurface(*generator, a.doubleValue("--radius", 0.1, 1e-6, 1e6), tets);
     if (meshFileKind(outPath) == MeshFileKind::Surface) {
       writeSurface(outPath, surface);
       out << "wrote " << outPath.string() << " (" << surface.numVertices() << " vertices, "

@@ -32,6 +32,8 @@ constexpr Named<Smoother> kSmootherNames[] = {{Smoother::GaussSeidel, "gauss_sei
                                               {Smoother::Jacobi, "jacobi"}};
 constexpr Named<CoarseSolver> kCoarseSolverNames[] = {{CoarseSolver::Cg, "cg"},
                                                       {CoarseSolver::Cholesky, "cholesky"}};
+constexpr Named<Generator> kGeneratorNames[] = {
+    {Generator::Sphere, "sphere"}, {Generator::Charpy, "charpy"}, {Generator::Steak, "steak"}};
 constexpr Named<BackendRequest> kBackendNames[] = {
     {BackendRequest::Auto, "auto"}, {BackendRequest::Cpu, "cpu"}, {BackendRequest::Cuda, "cuda"}};
 
@@ -73,7 +75,7 @@ MeshSource readMesh(JsonObject o, const fs::path& sceneDir) {
     m.path = fs::absolute(sceneDir / f).lexically_normal();
   } else if (o.has("generate")) {
     m.kind = MeshSource::Kind::Generate;
-    m.generator = o.string("generate", "", {"sphere", "charpy", "steak"});
+    m.generator = readEnum(o, "generate", Generator::Sphere, kGeneratorNames);
     m.tets = o.integer("tets", 0, 100, 5000000);
     if (m.tets == 0) o.fail("tets", "is required with 'generate'");
     m.radius = o.number("radius", 0.1, 1e-6, 1e3);
@@ -257,6 +259,14 @@ const char* backendRequestName(BackendRequest b) {
 }
 const char* materialModelName(MaterialModel m) {
   return nameOf(kModelNames, m);
+}
+const char* generatorName(Generator g) {
+  return nameOf(kGeneratorNames, g);
+}
+std::optional<Generator> generatorFromName(const std::string& name) {
+  for (const Named<Generator>& n : kGeneratorNames)
+    if (name == n.name) return n.value;
+  return std::nullopt;
 }
 std::optional<BackendRequest> backendRequestFromName(const std::string& name) {
   for (const Named<BackendRequest>& n : kBackendNames)

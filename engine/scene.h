@@ -16,15 +16,21 @@
 
 namespace galsculpt {
 
+// The paper's shapes, made on demand (engine/scene_mesh.h).
+enum class Generator { Sphere, Charpy, Steak };
+// "sphere", "charpy", "steak"; generatorFromName: none for another name.
+const char* generatorName(Generator g);
+std::optional<Generator> generatorFromName(const std::string& name);
+
 struct MeshSource {
   enum class Kind { File, Generate, Import };
   Kind kind = Kind::File;
-  std::filesystem::path path;  // File: tet mesh; Import: surface (absolute, resolved)
-  std::string generator;       // Generate: sphere | charpy | steak
-  std::string cgalMesh;        // Import from Debian's libcgal-demo data (e.g. "armadillo")
-  int tets = 0;                // Generate / Import: target tet count
-  double radius = 0.1;         // sphere
-  double scale = 1.0;          // applied to the surface before meshing (Import)
+  std::filesystem::path path;               // File: tet mesh; Import: surface (absolute, resolved)
+  Generator generator = Generator::Sphere;  // Generate
+  std::string cgalMesh;  // Import from Debian's libcgal-demo data (e.g. "armadillo")
+  int tets = 0;          // Generate / Import: target tet count
+  double radius = 0.1;   // sphere
+  double scale = 1.0;    // applied to the surface before meshing (Import)
   Eigen::Vector3d translate = Eigen::Vector3d::Zero();
 };
 

@@ -37,18 +37,21 @@ int subdivisionsFor(int targetTets, double tetsPerFace, int minLevel, int maxLev
 }
 }  // namespace
 
-TriMesh generatorSurface(const std::string& generator, double radius, int targetTets) {
-  // 1280 faces for the paper's 35k-tet sphere.
-  if (generator == "sphere") return makeIcosphere(radius, subdivisionsFor(targetTets, 20.0, 1, 5));
-  if (generator == "charpy") return makeCharpyBar();
-  if (generator == "steak") {
-    // Surface triangles of about the size of a tet edge at this count (8 surface faces per
-    // 100 tets keeps the boundary from forcing extra tets); never coarser than 15 mm.
-    const double area = 0.04;  // m^2, the slab's surface
-    const double faces = std::max(200.0, 0.08 * targetTets);
-    return makeSteakSlab(std::min(0.015, std::sqrt(area / (0.433 * faces))));
+TriMesh generatorSurface(Generator generator, double radius, int targetTets) {
+  switch (generator) {
+    case Generator::Sphere:  // 1280 faces for the paper's 35k-tet sphere
+      return makeIcosphere(radius, subdivisionsFor(targetTets, 20.0, 1, 5));
+    case Generator::Charpy:
+      return makeCharpyBar();
+    case Generator::Steak: {
+      // Surface triangles of about the size of a tet edge at this count (8 surface faces per
+      // 100 tets keeps the boundary from forcing extra tets); never coarser than 15 mm.
+      const double area = 0.04;  // m^2, the slab's surface
+      const double faces = std::max(200.0, 0.08 * targetTets);
+      return makeSteakSlab(std::min(0.015, std::sqrt(area / (0.433 * faces))));
+    }
   }
-  throw std::invalid_argument("unknown generator '" + generator + "'");
+  throw std::logic_error("unhandled generator");
 }
 
 namespace {
@@ -97,14 +100,14 @@ TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress)
       TriMesh surface = generatorSurface(m.generator, m.radius, m.tets);
       transformSurface(surface, m);
       std::ostringstream key;
-      key << m.generator << "-" << m.tets;
-      if (m.generator == "sphere") key << "-r" << m.radius;
+      key << generatorName(m.generator) << "-" << m.tets;
+      if (m.generator == Generator::Sphere) key << "-r" << m.radius;
       if (m.scale != 1.0 || !m.translate.isZero())
         key << "-s" << m.scale << "-t" << m.translate.transpose();
       std::string k = key.str();
       for (char& c : k)
         if (c == ' ') c = '_';
-      return cachedTetrahedralization(surface, k, m.generator, m.tets, progress);
+      return cachedTetrahedralization(surface, k, generatorName(m.generator), m.tets, progress);
     }
     case MeshSource::Kind::Import: {
       fs::path source = m.path;

@@ -19,9 +19,9 @@ std::filesystem::path cacheDirectory();
 // Where Debian's libcgal-demo data are unpacked by scripts/fetch-cgal-meshes.sh.
 std::filesystem::path cgalMeshPath(const std::string& name);
 
-// The closed surface a generator makes ("sphere", "charpy", "steak"), resolved for about
+// The closed surface a generator makes, resolved for about
 // `targetTets` tets: a surface finer than the volume mesh needs would force extra tets.
-TriMesh generatorSurface(const std::string& generator, double radius, int targetTets);
+TriMesh generatorSurface(Generator generator, double radius, int targetTets);
 
 using ProgressFn = std::function<void(const std::string&)>;
 

@@ -28,7 +28,7 @@ TEST(Scene, EveryShippedSceneValidates) {
 TEST(Scene, HangingSphereHasThePaperParameters) {
   const SceneDescription s = loadScene(kScenes / "hanging_sphere.json");
   EXPECT_EQ(s.mesh.kind, MeshSource::Kind::Generate);
-  EXPECT_EQ(s.mesh.generator, "sphere");
+  EXPECT_EQ(s.mesh.generator, Generator::Sphere);
   EXPECT_EQ(s.mesh.tets, 35000);
   EXPECT_DOUBLE_EQ(s.mesh.radius, 0.1);
   EXPECT_DOUBLE_EQ(s.material.youngsModulus, 8000.0);
