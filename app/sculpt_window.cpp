@@ -692,14 +692,17 @@ void pickEnum(const char* label, E& value, const E (&values)[N], const char* (*n
 }
 
 // Wrap width of the overlay's free text, in pixels (its figures' lines are about this wide).
-constexpr float kOverlayTextWidth = 320.0f;
+constexpr float kOverlayTextWidth = 340.0f;
 
 void SculptApp::drawOverlay() {
-  // Anchored by its top-right corner, so that growing never pushes it off the screen's edge.
-  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 10, 30), ImGuiCond_FirstUseEver,
+  // Pinned by its top-right corner to the screen's: as its figures widen it grows leftwards,
+  // never off the edge.
+  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 10, 30), ImGuiCond_Always,
                           ImVec2(1.0f, 0.0f));
   ImGui::SetNextWindowBgAlpha(0.6f);
   ImGui::Begin("Simulation", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  // Long lines (a scene's name, a backend fallback's reason) wrap instead of widening it.
+  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kOverlayTextWidth);
   ImGui::Text("%.1f fps (window)", static_cast<double>(ImGui::GetIO().Framerate));
   if (session_) {
     const Simulation& sim = session_->simulation();
@@ -725,13 +728,9 @@ void SculptApp::drawOverlay() {
       ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "step retries: %d", metrics_.warnings);
     ImGui::Text("history %.1f MB, %zu recorded events", session_->historyBytes() / 1048576.0,
                 session_->recording().size());
-    // Notes (a backend fallback's reason) and the status can be long: wrapped, not widening.
-    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kOverlayTextWidth);
     for (const std::string& note : stepInFlight() ? notes_ : sim.notes())
       ImGui::TextDisabled("%s", note.c_str());
-    ImGui::PopTextWrapPos();
   }
-  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kOverlayTextWidth);
   if (!status_.empty()) ImGui::TextDisabled("%s", status_.c_str());
   ImGui::PopTextWrapPos();
   ImGui::End();
