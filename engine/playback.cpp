@@ -159,6 +159,15 @@ PlaybackScript parsePlaybackScript(const nlohmann::json& root, const fs::path& f
     s.events.push_back(
         parseToolEvent(events[i], "$.events[" + std::to_string(i) + "]", file.string()));
   }
+  for (const ToolEvent& e : s.events) {
+    // An event after the last frame would never happen (one at the last frame does: a cut made
+    // just before saving is applied after it).
+    if (e.frame > s.frames)
+      throw InputError(file.string(), 0,
+                       e.path + ".frame: " + std::to_string(e.frame) +
+                           " is after the script's last frame (" + std::to_string(s.frames) +
+                           "): the event would never happen");
+  }
   std::stable_sort(s.events.begin(), s.events.end(),
                    [](const ToolEvent& a, const ToolEvent& b) { return a.frame < b.frame; });
   // Names must be added before they are removed, and scene anchors must exist.

@@ -104,9 +104,12 @@ std::mutex& importMutex() {
   return m;
 }
 
-// The warnings that mean the file's data was dropped or altered, not merely unusual.
+// The messages that mean the file's data was dropped or altered, not merely unusual: every error
+// assimp logs while still returning a scene (an STL facet of four corners), and the warnings
+// that say data was dropped.
 const std::string* droppedData(const std::vector<std::string>& warnings) {
   for (const std::string& w : warnings) {
+    if (w.rfind("Error", 0) == 0) return &w;
     std::string lower = w;
     std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return std::tolower(c); });
