@@ -23,10 +23,25 @@ int lineAt(const std::string& text, size_t offset) {
          static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(offset), '\n'));
 }
 
-// The first place where arrays and objects nest deeper than kMaxJsonDepth (outside strings), or
-// npos. The parser and the value's destructor would otherwise recurse once a level: a file of
-// a few hundred thousand brackets overflows the stack.
-size_t tooDeepAt(const std::string& text) {
+// Where the n-th key (a string followed by ':') of a well-formed document starts.
+size_t nthKeyAt(const std::string& text, size_t n) {
+  size_t count = 0;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '"') continue;
+    const size_t start = i;
+    for (++i; i < text.size() && text[i] != '"'; ++i) {
+      if (text[i] == '\\') ++i;
+    }
+    size_t j = i + 1;
+    while (j < text.size() && std::isspace(static_cast<unsigned char>(text[j]))) ++j;
+    if (j < text.size() && text[j] == ':' && count++ == n) return start;
+  }
+  return text.size();
+}
+
+}  // namespace
+
+size_t jsonTooDeepAt(std::string_view text) {
   int depth = 0;
   bool inString = false;
   for (size_t i = 0; i < text.size(); ++i) {
@@ -48,26 +63,8 @@ size_t tooDeepAt(const std::string& text) {
   return std::string::npos;
 }
 
-// Where the n-th key (a string followed by ':') of a well-formed document starts.
-size_t nthKeyAt(const std::string& text, size_t n) {
-  size_t count = 0;
-  for (size_t i = 0; i < text.size(); ++i) {
-    if (text[i] != '"') continue;
-    const size_t start = i;
-    for (++i; i < text.size() && text[i] != '"'; ++i) {
-      if (text[i] == '\\') ++i;
-    }
-    size_t j = i + 1;
-    while (j < text.size() && std::isspace(static_cast<unsigned char>(text[j]))) ++j;
-    if (j < text.size() && text[j] == ':' && count++ == n) return start;
-  }
-  return text.size();
-}
-
-}  // namespace
-
 nlohmann::json parseJsonText(const std::string& text, const std::string& file, int firstLine) {
-  if (const size_t at = tooDeepAt(text); at != std::string::npos)
+  if (const size_t at = jsonTooDeepAt(text); at != std::string::npos)
     throw InputError(file, firstLine - 1 + lineAt(text, at),
                      "JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels");
   // A key given twice in one object would silently keep the last value: refused.

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace galsculpt {
@@ -20,6 +21,11 @@ nlohmann::json vec3Json(const Eigen::Vector3d& v);
 // Documents nesting deeper than this are refused before parsing (no scene, script or project
 // nests more than a handful of levels).
 inline constexpr int kMaxJsonDepth = 256;
+
+// The first place where arrays and objects nest deeper than kMaxJsonDepth (outside strings), or
+// npos. Recursive parsers (nlohmann's value destructor, assimp's glTF reader) would otherwise
+// recurse once a level: a file of a few hundred thousand brackets overflows the stack.
+size_t jsonTooDeepAt(std::string_view text);
 
 // Parses a file; syntax errors become InputError "file:line: JSON syntax error: ...", numbers
 // beyond a double's range and nesting deeper than kMaxJsonDepth are refused with file and line.

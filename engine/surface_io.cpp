@@ -16,6 +16,7 @@
 #include <memory>
 #include <mutex>
 
+#include "engine/json_reader.h"
 #include "engine/off_ply_reader.h"
 #include "solver/atomic_file.h"
 #include "solver/input_error.h"
@@ -120,6 +121,14 @@ const std::string* droppedData(const std::vector<std::string>& warnings) {
   return nullptr;
 }
 
+// glTF's JSON, checked for nesting before assimp's recursive parser sees it (a deeply nested
+// file overflowed the stack).
+void checkJsonDepth(const std::string& name, std::string_view json, size_t offset) {
+  if (const size_t at = jsonTooDeepAt(json); at != std::string::npos)
+    throw InputError(name + ": byte " + std::to_string(offset + at) + ": JSON nests deeper than " +
+                     std::to_string(kMaxJsonDepth) + " levels");
+}
+
 // GLB's own header, checked before assimp reads it: assimp trusts the length fields.
 void checkGlbHeader(const fs::path& path) {
   const std::string data = readWholeFile(path);
@@ -147,6 +156,7 @@ void checkGlbHeader(const fs::path& path) {
     if (length > data.size() - at - 8)
       throw InputError(name + ": byte " + std::to_string(at) + ": a chunk of " +
                        std::to_string(length) + " bytes runs past the end of the file");
+    if (at == 12) checkJsonDepth(name, std::string_view(data).substr(at + 8, length), at + 8);
     at += 8 + length;
   }
 }
@@ -172,6 +182,7 @@ TriMesh readSurface(const fs::path& path) {
     faces = std::move(raw.faces);
   } else {
     if (ext == ".glb") checkGlbHeader(path);
+    if (ext == ".gltf") checkJsonDepth(path.string(), readWholeFile(path), 0);
     const std::lock_guard<std::mutex> lock(importMutex());
     ImportWarnings warnings;
     Assimp::Importer importer;

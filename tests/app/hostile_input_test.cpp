@@ -97,6 +97,26 @@ TEST(HostileInput, GeneratedCasesAreRefused) {
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find("deep_script.json:1: JSON nests deeper"), std::string::npos) << r.err;
 
+  // A glTF whose JSON nests 200,000 deep: assimp's recursive parser overflowed the stack.
+  const std::string gltf = "{\"asset\": {\"version\": \"2.0\"}, \"x\": " + deep + "}";
+  test::writeText(dir / "deep.gltf", gltf);
+  r = run({"mesh", "info", (dir / "deep.gltf").string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("deep.gltf: byte 290: JSON nests deeper than 256 levels"), std::string::npos)
+      << r.err;
+  std::string chunk = gltf;
+  chunk.resize((chunk.size() + 3) / 4 * 4, ' ');
+  std::string glb = "glTF";
+  auto u32 = [&glb](std::uint32_t v) { glb.append(reinterpret_cast<const char*>(&v), 4); };
+  u32(2);
+  u32(static_cast<std::uint32_t>(20 + chunk.size()));
+  u32(static_cast<std::uint32_t>(chunk.size()));
+  glb += "JSON" + chunk;
+  test::writeText(dir / "deep.glb", glb);
+  r = run({"mesh", "info", (dir / "deep.glb").string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("deep.glb: byte 310: JSON nests deeper"), std::string::npos) << r.err;
+
   // A device and a folder where a mesh file should be (/dev/zero ended in std::bad_alloc).
   fs::create_symlink("/dev/zero", dir / "zero.node");
   fs::create_symlink("/dev/zero", dir / "zero.ele");
