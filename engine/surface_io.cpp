@@ -105,15 +105,20 @@ std::mutex& importMutex() {
   return m;
 }
 
-// The messages that mean the file's data was dropped or altered, not merely unusual: every error
-// assimp logs while still returning a scene (an STL facet of four corners), and the warnings
-// that say data was dropped.
+// The messages that mean the file's geometry was dropped or altered, not merely unusual: every
+// error assimp logs while still returning a scene (an STL facet of four corners), and the
+// warnings that say data was dropped. Materials and textures are not read here, so what assimp
+// says of them (an unknown texture type in an .mtl) is no reason to refuse a mesh.
 const std::string* droppedData(const std::vector<std::string>& warnings) {
   for (const std::string& w : warnings) {
-    if (w.rfind("Error", 0) == 0) return &w;
     std::string lower = w;
     std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return std::tolower(c); });
+    bool appearance = false;
+    for (const char* word : {"mtl", "material", "texture"})
+      appearance = appearance || lower.find(word) != std::string::npos;
+    if (appearance) continue;
+    if (w.rfind("Error", 0) == 0) return &w;
     for (const char* sign : {"out of range", "out-of-range", "dropped", "invalid", "overflow"}) {
       if (lower.find(sign) != std::string::npos) return &w;
     }
@@ -127,6 +132,29 @@ void checkJsonDepth(const std::string& name, std::string_view json, size_t offse
   if (const size_t at = jsonTooDeepAt(json); at != std::string::npos)
     throw InputError(name + ": byte " + std::to_string(offset + at) + ": JSON nests deeper than " +
                      std::to_string(kMaxJsonDepth) + " levels");
+}
+
+// A .gltf's JSON: not too deep for assimp's parser, and buffers and images only in its own
+// folder or below (a uri such as ../../../../etc/passwd was read as vertex data).
+void checkGltfJson(const fs::path& path) {
+  const std::string text = readWholeFile(path);
+  checkJsonDepth(path.string(), text, 0);
+  const nlohmann::json j = parseJsonText(text, path.string());
+  for (const char* list : {"buffers", "images"}) {
+    if (!j.is_object() || !j.contains(list) || !j[list].is_array()) continue;
+    for (size_t i = 0; i < j[list].size(); ++i) {
+      const nlohmann::json& item = j[list][i];
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+      const std::string uri = item["uri"].get<std::string>();
+      if (uri.rfind("data:", 0) == 0) continue;
+      const fs::path p = fs::path(uri).lexically_normal();
+      if (p.is_absolute() || uri.find("://") != std::string::npos ||
+          (!p.empty() && *p.begin() == ".."))
+        throw InputError(path.string(), 0,
+                         "$." + std::string(list) + "[" + std::to_string(i) + "].uri: '" + uri +
+                             "' lies outside the glTF's folder");
+    }
+  }
 }
 
 // GLB's own header, checked before assimp reads it: assimp trusts the length fields.
@@ -182,7 +210,7 @@ TriMesh readSurface(const fs::path& path) {
     faces = std::move(raw.faces);
   } else {
     if (ext == ".glb") checkGlbHeader(path);
-    if (ext == ".gltf") checkJsonDepth(path.string(), readWholeFile(path), 0);
+    if (ext == ".gltf") checkGltfJson(path);
     const std::lock_guard<std::mutex> lock(importMutex());
     ImportWarnings warnings;
     Assimp::Importer importer;
