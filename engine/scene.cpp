@@ -44,15 +44,19 @@ const char* nameOf(const Named<E> (&names)[N], E value) {
   return "?";
 }
 
+template <typename E, size_t N>
+std::optional<E> valueOf(const Named<E> (&names)[N], const std::string& name) {
+  for (const Named<E>& n : names)
+    if (name == n.name) return n.value;
+  return std::nullopt;
+}
+
 // An optional enum member of a scene object, by name; unknown names fail with the choices.
 template <typename E, size_t N>
 E readEnum(JsonObject& o, const std::string& key, E fallback, const Named<E> (&names)[N]) {
   std::vector<std::string> allowed;
   for (const Named<E>& n : names) allowed.push_back(n.name);
-  const std::string name = o.string(key, nameOf(names, fallback), allowed);
-  for (const Named<E>& n : names)
-    if (name == n.name) return n.value;
-  return fallback;
+  return valueOf(names, o.string(key, nameOf(names, fallback), allowed)).value_or(fallback);
 }
 
 // "50/1000/all": coarse to fine, counts strictly increasing, ending in "all".
@@ -264,14 +268,10 @@ const char* generatorName(Generator g) {
   return nameOf(kGeneratorNames, g);
 }
 std::optional<Generator> generatorFromName(const std::string& name) {
-  for (const Named<Generator>& n : kGeneratorNames)
-    if (name == n.name) return n.value;
-  return std::nullopt;
+  return valueOf(kGeneratorNames, name);
 }
 std::optional<BackendRequest> backendRequestFromName(const std::string& name) {
-  for (const Named<BackendRequest>& n : kBackendNames)
-    if (name == n.name) return n.value;
-  return std::nullopt;
+  return valueOf(kBackendNames, name);
 }
 
 MaterialDesc materialPreset(const std::string& name) {
