@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 
 #include <signal.h>
 
@@ -16,6 +17,9 @@
 #include "engine/scene_mesh.h"
 #include "solver/sim_model.h"
 #include "tests/test_util.h"
+
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
 
 namespace galsculpt {
 namespace {
@@ -354,6 +358,44 @@ TEST(AppUi, RealtimeSessionWithTheSolverOnItsThreadStillReplaysExactly) {
   EXPECT_EQ(sim.frame(), run.project.state.frame);
   EXPECT_TRUE(sim.state().x == run.project.state.x) << "positions replay bit for bit";
   EXPECT_TRUE(sim.state().damaged == run.project.state.damaged);
+}
+
+// The overlay stays on the screen however long its text: a scene with a long name (and, on a
+// machine without a GPU, the backend's long note) once widened it past the window's right edge.
+// The viewport's background is a vertical gradient, the same along a row: right of the overlay
+// the screenshot must show that background, and the overlay must be there left of it.
+TEST(AppUi, TheOverlayStaysOnTheScreen) {
+  test::TempDir dir;
+  test::writeText(
+      dir / "long.json",
+      "{\"name\": \"" + std::string(60, 'x') + " a scene whose name runs on and on " +
+          std::string(60, 'y') + "\", \"mesh\": {\"file\": \"" +
+          (kDefaultScene.parent_path().parent_path() / "meshes" / "sphere_small.node").string() +
+          "\"}}");
+  const fs::path shot = dir / "shot.png";
+  const UiRun run = runApp(dir,
+                           R"({"wait": 3}, {"command": "screenshot", "argument": ")" +
+                               shot.string() + R"("}, {"wait": 1})",
+                           dir / "long.json");
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  int w = 0, h = 0, channels = 0;
+  unsigned char* pixels = stbi_load(shot.c_str(), &w, &h, &channels, 3);
+  ASSERT_NE(pixels, nullptr) << shot;
+  auto at = [&](int x, int y) {
+    const unsigned char* p = pixels + 3 * (static_cast<size_t>(y) * w + x);
+    return std::array<int, 3>{p[0], p[1], p[2]};
+  };
+  auto close = [](const std::array<int, 3>& a, const std::array<int, 3>& b) {
+    return std::abs(a[0] - b[0]) <= 3 && std::abs(a[1] - b[1]) <= 3 && std::abs(a[2] - b[2]) <= 3;
+  };
+  int overlayRows = 0;
+  for (int y = 35; y < 60; ++y) {
+    const std::array<int, 3> background = at(w / 2 + 40, y);
+    EXPECT_TRUE(close(at(w - 3, y), background)) << "row " << y << ": the overlay reaches the edge";
+    overlayRows += !close(at(w - 150, y), background);
+  }
+  EXPECT_GT(overlayRows, 15) << "the overlay is drawn at the top right";
+  stbi_image_free(pixels);
 }
 
 }  // namespace
