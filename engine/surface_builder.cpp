@@ -129,11 +129,11 @@ TriMesh facesWithTag(const VisualSurface& surface, SurfaceTag tag, std::vector<i
   return out;
 }
 
-ShadingNormals shadingNormals(const VisualSurface& surface) {
-  std::vector<Tri> outer, crack;
+std::vector<Vec3> outerShadingNormals(const VisualSurface& surface) {
+  std::vector<Tri> outer;
   for (size_t f = 0; f < surface.mesh.faces.size(); ++f)
-    (surface.tags[f] == SurfaceTag::Crack ? crack : outer).push_back(surface.mesh.faces[f]);
-  return {vertexNormals(surface.mesh.vertices, outer), vertexNormals(surface.mesh.vertices, crack)};
+    if (surface.tags[f] == SurfaceTag::Outer) outer.push_back(surface.mesh.faces[f]);
+  return vertexNormals(surface.mesh.vertices, outer);
 }
 
 SurfaceBuilder::SurfaceBuilder(const SimModel& model) {

@@ -56,17 +56,10 @@ struct VisualSurface {
 TriMesh facesWithTag(const VisualSurface& surface, SurfaceTag tag,
                      std::vector<int>* source = nullptr);
 
-// Smooth shading normals that stay sharp where crack faces meet outer faces: per tag, the
-// area-weighted normal of each vertex over that tag's faces (zero where it has none). A face
-// corner takes the normal of its face's tag.
-struct ShadingNormals {
-  std::vector<Vec3> outer;  // (nVerts)
-  std::vector<Vec3> crack;  // (nVerts)
-  const Vec3& at(SurfaceTag tag, int vertex) const {
-    return tag == SurfaceTag::Crack ? crack[vertex] : outer[vertex];
-  }
-};
-ShadingNormals shadingNormals(const VisualSurface& surface);
+// Smooth shading normals of the outer faces, sharp where crack faces meet them: per vertex, the
+// area-weighted normal over the outer faces around it (zero where it has none). Crack faces are
+// shaded flat, each with its own normal.
+std::vector<Vec3> outerShadingNormals(const VisualSurface& surface);  // (nVerts)
 
 struct SurfaceUpdateStats {
   int rebuiltOwners = 0;  // boundary faces and tets whose triangles were regenerated

@@ -362,7 +362,7 @@ const char* checkedFormat(const fs::path& path) {
 // one normal each (flat, as the app shades them), so crack edges stay sharp.
 void writeObj(const fs::path& path, const VisualSurface& s) {
   checkedOutputDir(path);
-  const std::vector<Vec3> outerNormals = shadingNormals(s).outer;
+  const std::vector<Vec3> outerNormals = outerShadingNormals(s);
   const int n = s.mesh.numVertices();
   writeFileAtomically(path, [&](std::ostream& out) {
     out << "# galsculpt visualization surface: " << n << " vertices, " << s.mesh.numFaces()

@@ -98,10 +98,17 @@ TEST(SurfaceIo, ObjKeepsTagsAsGroupsAndCoincidentCopiesApart) {
   const std::string text = test::readText(dir / "slit.obj");
   EXPECT_NE(text.find("\ng outer\n"), std::string::npos);
   EXPECT_NE(text.find("\ng crack\n"), std::string::npos);
-  int vertices = 0;
+  int vertices = 0, normals = 0;
   std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);) vertices += line.rfind("v ", 0) == 0;
+  for (std::string line; std::getline(lines, line);) {
+    vertices += line.rfind("v ", 0) == 0;
+    normals += line.rfind("vn ", 0) == 0;
+  }
   EXPECT_EQ(vertices, builder.surface().mesh.numVertices()) << "no vertex merged by position";
+  // Smooth normals per vertex for the outer faces, one per crack face (shaded flat).
+  const int crackFaces = facesWithTag(builder.surface(), SurfaceTag::Crack).numFaces();
+  ASSERT_GT(crackFaces, 0);
+  EXPECT_EQ(normals, builder.surface().mesh.numVertices() + crackFaces);
   const TriMesh indexed = test::readObjByIndex((dir / "slit.obj").string());
   EXPECT_EQ(indexed.faces, builder.surface().mesh.faces);
   EXPECT_TRUE(analyzeSurface(indexed).closedManifold());
