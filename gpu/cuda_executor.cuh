@@ -199,7 +199,7 @@ class CudaExecutor {
   CudaExecutor& operator=(const CudaExecutor&) = delete;
 
   template <typename F>
-  void forEach(int n, const F& f) const {
+  void forEach(int n, const F& f, long /*cost: a CPU's threading hint*/ = 1) const {
     if (n <= 0) return;
     forEachKernel<<<(n + kThreads - 1) / kThreads, kThreads, 0, GALSCULPT_CUDA_STREAM>>>(n, f);
     GALSCULPT_CUDA_CHECK(cudaGetLastError());

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace galsculpt::gpu {
 
@@ -56,15 +57,30 @@ FractureLayout buildFractureLayout(const FractureField& field) {
   f.slots = field.slots;
   f.threshold = field.threshold;
   for (const Vec3& p : field.midpoint) f.midpoint.insert(f.midpoint.end(), {p.x(), p.y(), p.z()});
+  if (field.cells.empty()) return f;
   std::vector<std::pair<std::int64_t, std::pair<int, int>>> cells(field.cells.begin(),
                                                                   field.cells.end());
   std::sort(cells.begin(), cells.end());
+  std::unordered_map<std::int64_t, int> index;
   for (const auto& [key, range] : cells) {
-    f.cellKeys.push_back(key);
+    index.emplace(key, f.cells());
     f.cellBegin.push_back(range.first);
     f.cellEnd.push_back(range.second);
   }
   f.cellEdges = field.cellEdges;
+  f.edgeCell.assign(field.midpoint.size(), -1);
+  f.cellNeighbors.assign(27 * static_cast<size_t>(f.cells()), -1);
+  for (int c = 0; c < f.cells(); ++c) {
+    const auto at = fractureCell(field.midpoint[f.cellEdges[f.cellBegin[c]]], field.cellSize);
+    for (int i = f.cellBegin[c]; i < f.cellEnd[c]; ++i) f.edgeCell[f.cellEdges[i]] = c;
+    int k = 0;
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz, ++k) {
+          const auto it = index.find(fractureCellKey(at[0] + dx, at[1] + dy, at[2] + dz));
+          if (it != index.end()) f.cellNeighbors[27 * c + k] = it->second;
+        }
+  }
   return f;
 }
 

@@ -34,14 +34,18 @@ struct ModelLayout {
 
 ModelLayout buildModelLayout(const SimModel& model);
 
-// The fracture pass's data; the kernel's cells as sorted keys with edge ranges (binary search
-// on the device instead of a hash map).
+// The fracture pass's data. The kernel's cells are numbered, each with the numbers of the 27
+// cells around it (-1 where there is none, in dz-fastest order, as the CPU visits them), so a
+// thread finds an edge's neighbourhood without a search and can skip it when no cell near it
+// holds an edge over the smallest threshold.
 struct FractureLayout {
-  std::vector<int> slotStart, slots;   // edge -> 6 t + local edge
-  std::vector<double> threshold;       // (nEdges)
-  std::vector<double> midpoint;        // (3 nEdges) rest midpoints
-  std::vector<std::int64_t> cellKeys;  // sorted
+  std::vector<int> slotStart, slots;  // edge -> 6 t + local edge
+  std::vector<double> threshold;      // (nEdges)
+  std::vector<double> midpoint;       // (3 nEdges) rest midpoints
   std::vector<int> cellBegin, cellEnd, cellEdges;
+  std::vector<int> edgeCell;       // (nEdges) the cell of each edge's midpoint
+  std::vector<int> cellNeighbors;  // (27 cells)
+  int cells() const { return static_cast<int>(cellBegin.size()); }
 };
 
 FractureLayout buildFractureLayout(const FractureField& field);

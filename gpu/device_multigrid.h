@@ -45,6 +45,11 @@ class DeviceMultigrid {
       d.rows = s.rows;
       d.handles = s.handles;
       d.nnz = static_cast<int>(s.columns.size());
+      // Work per item, for the CPU executor's threading (the GPU ignores it).
+      d.refreshCost = (l == 0 ? 48 : 3 * 1728) *
+                      (1 + static_cast<long>(s.contribRow.size()) / std::max(1, d.nnz));
+      d.memberCost = 36 * (1 + s.rows / std::max(1, s.handles));
+      d.rowCost = 144 * (1 + d.nnz / std::max(1, s.handles));
       d.parent.upload(s.parent);
       d.y.upload(s.y);
       d.toParent.upload(s.toParent);
@@ -120,33 +125,39 @@ class DeviceMultigrid {
       const int* row = d.contribRow.data();
       double* out = d.blocks.data();
       const bool first = l == 0;
-      ex_.forEach(d.nnz, [=] GALSCULPT_LAMBDA(int b) {
-        double acc[144];
-        for (double& a : acc) a = 0.0;
-        for (int i = start[b]; i < start[b + 1]; ++i) {
-          const int k = block[i], r = row[i], c = finerColumns[k];
-          if (first) {
-            addKron4x3(y + 4 * r, y + 4 * c, finer + 9 * k, acc);
-          } else {
-            addTripleProduct12(toParent + 144 * r, finer + 144 * k, toParent + 144 * c, acc);
-          }
-        }
-        for (int i = 0; i < 144; ++i) out[144 * b + i] = acc[i];
-      });
+      ex_.forEach(
+          d.nnz,
+          [=] GALSCULPT_LAMBDA(int b) {
+            double acc[144];
+            for (double& a : acc) a = 0.0;
+            for (int i = start[b]; i < start[b + 1]; ++i) {
+              const int k = block[i], r = row[i], c = finerColumns[k];
+              if (first) {
+                addKron4x3(y + 4 * r, y + 4 * c, finer + 9 * k, acc);
+              } else {
+                addTripleProduct12(toParent + 144 * r, finer + 144 * k, toParent + 144 * c, acc);
+              }
+            }
+            for (int i = 0; i < 144; ++i) out[144 * b + i] = acc[i];
+          },
+          d.refreshCost);
       // Modes no fine vertex sees: a relative shift (identity for a handle without rows).
       const int* diagonal = d.diagonal.data();
       const std::uint8_t* empty = d.empty.data();
       double* factor = d.diagonalFactor.data();
-      ex_.forEach(d.handles, [=] GALSCULPT_LAMBDA(int h) {
-        double* blk = out + 144 * diagonal[h];
-        double trace = 0.0;
-        for (int i = 0; i < 12; ++i) trace += blk[13 * i];
-        const double shift = empty[h] ? 1.0 : 1e-9 * fmax(trace / 12.0, 1e-300);
-        for (int i = 0; i < 12; ++i) blk[13 * i] += shift;
-        double* f = factor + 144 * h;
-        for (int i = 0; i < 144; ++i) f[i] = blk[i];
-        cholesky(12, f);
-      });
+      ex_.forEach(
+          d.handles,
+          [=] GALSCULPT_LAMBDA(int h) {
+            double* blk = out + 144 * diagonal[h];
+            double trace = 0.0;
+            for (int i = 0; i < 12; ++i) trace += blk[13 * i];
+            const double shift = empty[h] ? 1.0 : 1e-9 * fmax(trace / 12.0, 1e-300);
+            for (int i = 0; i < 12; ++i) blk[13 * i] += shift;
+            double* f = factor + 144 * h;
+            for (int i = 0; i < 144; ++i) f[i] = blk[i];
+            cholesky(12, f);
+          },
+          1000);
     }
     if (fragments_ > 0) factorFragments(fine);
     if (pieceCount_ >= 2) factorPieces();
@@ -236,6 +247,7 @@ class DeviceMultigrid {
   // member functions; the data members stay private.
   struct Level {
     int rows = 0, handles = 0, nnz = 0;
+    long refreshCost = 1, memberCost = 1, rowCost = 1;
     Buffer<int> parent;
     Buffer<double> y, toParent;
     Buffer<int> rowStart, columns, diagonal;
@@ -253,13 +265,14 @@ class DeviceMultigrid {
   // rows of one colour at once (no two share a block).
   template <typename RowUpdate>
   void forEachColour(const std::vector<int>& colorStart, const int* colorRows, bool reverse,
-                     const RowUpdate& update) {
+                     const RowUpdate& update, long cost = 1) {
     const int colors = static_cast<int>(colorStart.size()) - 1;
     for (int ci = 0; ci < colors; ++ci) {
       const int color = reverse ? colors - 1 - ci : ci;
       const int* rowsOf = colorRows + colorStart[color];
-      ex_.forEach(colorStart[color + 1] - colorStart[color],
-                  [=] GALSCULPT_LAMBDA(int i) { update(rowsOf[i]); });
+      ex_.forEach(
+          colorStart[color + 1] - colorStart[color],
+          [=] GALSCULPT_LAMBDA(int i) { update(rowsOf[i]); }, cost);
     }
   }
 
@@ -303,26 +316,32 @@ class DeviceMultigrid {
         double* ax = d.ax.data();
         multiplyCoarse(l - 1, x, ax);
         const double w = s.jacobiWeight;
-        ex_.forEach(d.handles, [=] GALSCULPT_LAMBDA(int r) {
-          double res[12];
-          for (int i = 0; i < 12; ++i) res[i] = b[12 * r + i] - ax[12 * r + i];
-          choleskySolve(12, factor + 144 * r, res);
-          for (int i = 0; i < 12; ++i) x[12 * r + i] += w * res[i];
-        });
+        ex_.forEach(
+            d.handles,
+            [=] GALSCULPT_LAMBDA(int r) {
+              double res[12];
+              for (int i = 0; i < 12; ++i) res[i] = b[12 * r + i] - ax[12 * r + i];
+              choleskySolve(12, factor + 144 * r, res);
+              for (int i = 0; i < 12; ++i) x[12 * r + i] += w * res[i];
+            },
+            300);
         continue;
       }
-      forEachColour(d.colorStart, d.colorRows.data(), reverse, [=] GALSCULPT_LAMBDA(int r) {
-        double rhs[12];
-        for (int j = 0; j < 12; ++j) rhs[j] = b[12 * r + j];
-        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
-          if (columns[k] == r) continue;
-          double t[12] = {};
-          addMultiply12(blocks + 144 * k, x + 12 * columns[k], t);
-          for (int j = 0; j < 12; ++j) rhs[j] -= t[j];
-        }
-        choleskySolve(12, factor + 144 * r, rhs);
-        for (int j = 0; j < 12; ++j) x[12 * r + j] = rhs[j];
-      });
+      forEachColour(
+          d.colorStart, d.colorRows.data(), reverse,
+          [=] GALSCULPT_LAMBDA(int r) {
+            double rhs[12];
+            for (int j = 0; j < 12; ++j) rhs[j] = b[12 * r + j];
+            for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
+              if (columns[k] == r) continue;
+              double t[12] = {};
+              addMultiply12(blocks + 144 * k, x + 12 * columns[k], t);
+              for (int j = 0; j < 12; ++j) rhs[j] -= t[j];
+            }
+            choleskySolve(12, factor + 144 * r, rhs);
+            for (int j = 0; j < 12; ++j) x[12 * r + j] = rhs[j];
+          },
+          d.rowCost);
     }
   }
 
@@ -332,12 +351,15 @@ class DeviceMultigrid {
     const int* rowStart = d.rowStart.data();
     const int* columns = d.columns.data();
     const double* blocks = d.blocks.data();
-    ex_.forEach(d.handles, [=] GALSCULPT_LAMBDA(int r) {
-      double acc[12] = {};
-      for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
-        addMultiply12(blocks + 144 * k, x + 12 * columns[k], acc);
-      for (int i = 0; i < 12; ++i) y[12 * r + i] = acc[i];
-    });
+    ex_.forEach(
+        d.handles,
+        [=] GALSCULPT_LAMBDA(int r) {
+          double acc[12] = {};
+          for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
+            addMultiply12(blocks + 144 * k, x + 12 * columns[k], acc);
+          for (int i = 0; i < 12; ++i) y[12 * r + i] = acc[i];
+        },
+        d.rowCost);
   }
 
   // coarse = U_l^T (b - ax), one thread per handle over its aggregate's rows.
@@ -348,22 +370,25 @@ class DeviceMultigrid {
     const double* y = d.y.data();
     const double* toParent = d.toParent.data();
     const bool first = l == 0;
-    ex_.forEach(d.handles, [=] GALSCULPT_LAMBDA(int h) {
-      double acc[12] = {};
-      for (int i = start[h]; i < start[h + 1]; ++i) {
-        const int r = members[i];
-        if (first) {
-          for (int m = 0; m < 4; ++m)
-            for (int k = 0; k < 3; ++k)
-              acc[3 * m + k] += y[4 * r + m] * (b[3 * r + k] - ax[3 * r + k]);
-        } else {
-          double res[12];
-          for (int k = 0; k < 12; ++k) res[k] = b[12 * r + k] - ax[12 * r + k];
-          addMultiplyTransposed12(toParent + 144 * r, res, acc);
-        }
-      }
-      for (int k = 0; k < 12; ++k) coarse[12 * h + k] = acc[k];
-    });
+    ex_.forEach(
+        d.handles,
+        [=] GALSCULPT_LAMBDA(int h) {
+          double acc[12] = {};
+          for (int i = start[h]; i < start[h + 1]; ++i) {
+            const int r = members[i];
+            if (first) {
+              for (int m = 0; m < 4; ++m)
+                for (int k = 0; k < 3; ++k)
+                  acc[3 * m + k] += y[4 * r + m] * (b[3 * r + k] - ax[3 * r + k]);
+            } else {
+              double res[12];
+              for (int k = 0; k < 12; ++k) res[k] = b[12 * r + k] - ax[12 * r + k];
+              addMultiplyTransposed12(toParent + 144 * r, res, acc);
+            }
+          }
+          for (int k = 0; k < 12; ++k) coarse[12 * h + k] = acc[k];
+        },
+        d.memberCost);
   }
 
   void prolongAdd(int l, const double* coarse, double* x) {

@@ -113,7 +113,7 @@ class DeviceSolver {
     damaged_.resize(layout_.edges);
     elemEnergy_.resize(tets_);
     elemGrad_.resize(12 * static_cast<size_t>(tets_));
-    elemHess_.resize(144 * static_cast<size_t>(tets_));
+    elemHess_.resize(kPackedHessian * static_cast<size_t>(tets_));
     for (Buffer<double>* b : {&k_, &frozen_, &h_})
       b->resize(9 * static_cast<size_t>(layout_.blocks));
     scalars_.resize(kScalars);
@@ -235,8 +235,10 @@ class DeviceSolver {
       std::uint8_t intact;
       kernels::RestData r;
       in.load(t, y, x12, intact, r);
+      double hess[144];
       kernels::evaluateElement(model, lame, r, x12, intact, resists, mode, energy[t], eg + 12 * t,
-                               eh + 144 * static_cast<size_t>(t));
+                               hess);
+      if (withHessian) packHessian(hess, eh + kPackedHessian * static_cast<size_t>(t));
     });
     ex_.sum(
         tets_, [=] GALSCULPT_LAMBDA(int t) { return energy[t]; }, scalars_.data() + energySlot);
@@ -258,12 +260,32 @@ class DeviceSolver {
       double acc[9] = {};
       for (int i = bStart[b]; i < bStart[b + 1]; ++i) {
         const int slot = bSlots[i], t = slot / 16, a = (slot % 16) / 4, c = slot % 4;
-        const double* h = eh + 144 * static_cast<size_t>(t);
-        for (int j = 0; j < 3; ++j)
-          for (int r = 0; r < 3; ++r) acc[r + 3 * j] += h[(3 * a + r) + 12 * (3 * c + j)];
+        const double* h = eh + kPackedHessian * static_cast<size_t>(t);
+        if (a <= c) {
+          const double* blk = h + 9 * packedBlock(a, c);
+          for (int k = 0; k < 9; ++k) acc[k] += blk[k];
+        } else {  // the mirror of block (c, a)
+          const double* blk = h + 9 * packedBlock(c, a);
+          for (int j = 0; j < 3; ++j)
+            for (int r = 0; r < 3; ++r) acc[r + 3 * j] += blk[j + 3 * r];
+        }
       }
       for (int i = 0; i < 9; ++i) kb[9 * b + i] = acc[i];
     });
+  }
+
+  // An element's 12x12 stiffness is kept as its ten upper 3x3 blocks (a <= c, each column-major):
+  // the gathers read 72 contiguous bytes per block and the buffer is 90 doubles per element,
+  // not 144, which is most of what a frame moves through memory.
+  static constexpr int kPackedHessian = 90;
+  GALSCULPT_HD static int packedBlock(int a, int c) { return 4 * a - a * (a - 1) / 2 + (c - a); }
+  GALSCULPT_HD static void packHessian(const double* h, double* packed) {
+    for (int a = 0; a < 4; ++a)
+      for (int c = a; c < 4; ++c) {
+        double* blk = packed + 9 * packedBlock(a, c);
+        for (int j = 0; j < 3; ++j)
+          for (int r = 0; r < 3; ++r) blk[r + 3 * j] = h[(3 * a + r) + 12 * (3 * c + j)];
+      }
   }
 
   ElementInputs elementInputs() const {
@@ -828,49 +850,46 @@ class DeviceSolver {
       std::uint8_t* hot = hot_.data();
       ex_.forEach(edges,
                   [=] GALSCULPT_LAMBDA(int e) { hot[e] = !damaged[e] && local[e] > minThreshold; });
-      const double radius = field.settings.kernelRadius, cell = field.cellSize;
+      const double radius = field.settings.kernelRadius;
       const double* mid = midpoint_.data();
-      const std::int64_t* keys = cellKeys_.data();
       const int* cellBegin = cellBegin_.data();
       const int* cellEnd = cellEnd_.data();
       const int* cellEdges = cellEdges_.data();
-      const int cells = static_cast<int>(fractureLayout_.cellKeys.size());
+      const int* edgeCell = edgeCell_.data();
+      const int* neighbors = cellNeighbors_.data();
+      std::uint8_t* cellHot = cellHot_.data();
+      ex_.forEach(fractureLayout_.cells(), [=] GALSCULPT_LAMBDA(int c) {
+        std::uint8_t any = 0;
+        for (int i = cellBegin[c]; i < cellEnd[c]; ++i) any |= hot[cellEdges[i]];
+        cellHot[c] = any;
+      });
       ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
         breaks[e] = !damaged[e] && crush > 0.0 && -compression[e] > crush;
         ratio[e] = -kInf;
         if (damaged[e]) return;
+        const int* around = neighbors + 27 * edgeCell[e];
+        bool near = false;
+        for (int k = 0; k < 27; ++k) near = near || (around[k] >= 0 && cellHot[around[k]]);
+        if (!near) return;  // no edge close enough to break it: the common case, cheap
         bool candidate = false;
         double sum = 0.0, weights = 0.0;
         const double r2 = radius * radius;
-        const std::int64_t c[3] = {static_cast<std::int64_t>(floor(mid[3 * e] / cell)),
-                                   static_cast<std::int64_t>(floor(mid[3 * e + 1] / cell)),
-                                   static_cast<std::int64_t>(floor(mid[3 * e + 2] / cell))};
-        for (int dx = -1; dx <= 1; ++dx)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dz = -1; dz <= 1; ++dz) {
-              const std::int64_t key = fractureCellKey(c[0] + dx, c[1] + dy, c[2] + dz);
-              int lo = 0, hi = cells;
-              while (lo < hi) {
-                const int m = (lo + hi) / 2;
-                if (keys[m] < key)
-                  lo = m + 1;
-                else
-                  hi = m;
-              }
-              if (lo == cells || keys[lo] != key) continue;
-              for (int i = cellBegin[lo]; i < cellEnd[lo]; ++i) {
-                const int f = cellEdges[i];
-                double d2 = 0.0;
-                for (int k = 0; k < 3; ++k)
-                  d2 += (mid[3 * f + k] - mid[3 * e + k]) * (mid[3 * f + k] - mid[3 * e + k]);
-                if (!(d2 < r2)) continue;
-                candidate = candidate || hot[f];
-                if (damaged[f]) continue;
-                const double w = (1.0 - d2 / r2) * (1.0 - d2 / r2);
-                sum += w * local[f];
-                weights += w;
-              }
-            }
+        for (int k = 0; k < 27; ++k) {
+          const int c = around[k];
+          if (c < 0) continue;
+          for (int i = cellBegin[c]; i < cellEnd[c]; ++i) {
+            const int f = cellEdges[i];
+            double d2 = 0.0;
+            for (int j = 0; j < 3; ++j)
+              d2 += (mid[3 * f + j] - mid[3 * e + j]) * (mid[3 * f + j] - mid[3 * e + j]);
+            if (!(d2 < r2)) continue;
+            candidate = candidate || hot[f];
+            if (damaged[f]) continue;
+            const double w = (1.0 - d2 / r2) * (1.0 - d2 / r2);
+            sum += w * local[f];
+            weights += w;
+          }
+        }
         if (!candidate) return;
         const double mean = weights > 0.0 ? sum / weights : local[e];
         ratio[e] = mean / threshold[e];
@@ -903,12 +922,6 @@ class DeviceSolver {
     return report;
   }
 
-  GALSCULPT_HD static std::int64_t fractureCellKey(std::int64_t x, std::int64_t y, std::int64_t z) {
-    const std::int64_t mask = (1 << 21) - 1;
-    return ((x + (1 << 20)) & mask) << 42 | ((y + (1 << 20)) & mask) << 21 |
-           ((z + (1 << 20)) & mask);
-  }
-
   // ---- setup ----------------------------------------------------------------------------
 
   void ensureMultigrid(const StepSettings& s) {
@@ -929,10 +942,12 @@ class DeviceSolver {
     edgeSlots_.upload(fractureLayout_.slots);
     threshold_.upload(fractureLayout_.threshold);
     midpoint_.upload(fractureLayout_.midpoint);
-    cellKeys_.upload(fractureLayout_.cellKeys);
     cellBegin_.upload(fractureLayout_.cellBegin);
     cellEnd_.upload(fractureLayout_.cellEnd);
     cellEdges_.upload(fractureLayout_.cellEdges);
+    edgeCell_.upload(fractureLayout_.edgeCell);
+    cellNeighbors_.upload(fractureLayout_.cellNeighbors);
+    cellHot_.resize(fractureLayout_.cells());
     slotStress_.resize(6 * static_cast<size_t>(tets_));
     for (Buffer<double>* b : {&localStress_, &compression_, &mean_}) b->resize(layout_.edges);
     breaks_.resize(layout_.edges);
@@ -1053,10 +1068,10 @@ class DeviceSolver {
   // Fracture.
   const FractureField* fractureField_ = nullptr;
   FractureLayout fractureLayout_;
-  Buffer<int> edgeSlotStart_, edgeSlots_, cellBegin_, cellEnd_, cellEdges_;
-  Buffer<std::int64_t> cellKeys_;
+  Buffer<int> edgeSlotStart_, edgeSlots_, cellBegin_, cellEnd_, cellEdges_, edgeCell_,
+      cellNeighbors_;
   Buffer<double> threshold_, midpoint_, slotStress_, localStress_, compression_, mean_;
-  Buffer<std::uint8_t> breaks_, hot_;
+  Buffer<std::uint8_t> breaks_, hot_, cellHot_;
   // Host shadows: what the device holds, to upload only changes.
   std::vector<double> hostX_, hostV_, hostFp_, hostStrain_, hostAnchorTargets_;
   std::vector<std::uint8_t> hostDamaged_, hostFixed_;

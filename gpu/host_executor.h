@@ -27,6 +27,8 @@ inline void forbidInCapture(const char* what) {
 class HostExecutor {
  public:
   static constexpr const char* kName = "host";
+  // Below this much work (items x cost) a launch runs on one thread: waking the others costs more.
+  static constexpr long kParallelWork = 4096;
 
   template <typename T>
   class Buffer {
@@ -62,10 +64,13 @@ class HostExecutor {
   };
   const Counters& counters() const { return counters_; }
 
+  // `cost`: about how many operations one item takes, so that few heavy items (coarse blocks,
+  // handles) are spread over the threads as well as many light ones; results do not depend on
+  // it (every item writes its own outputs).
   template <typename F>
-  void forEach(int n, const F& f) const {
+  void forEach(int n, const F& f, long cost = 1) const {
     ++counters_.launches;
-#pragma omp parallel for schedule(static) if (n > 4096)
+#pragma omp parallel for schedule(static) if (n > 1 && n * cost > kParallelWork)
     for (int i = 0; i < n; ++i) f(i);
   }
   // *out = sum of f(i) over i < n.

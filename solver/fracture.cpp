@@ -21,17 +21,6 @@ double uniformSigned(std::uint32_t seed, std::uint64_t edge) {
   return 2.0 * (static_cast<double>(z >> 11) * 0x1.0p-53) - 1.0;
 }
 
-std::array<std::int64_t, 3> cellOf(const Vec3& p, double cell) {
-  const auto c = [&](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
-  return {c(p.x()), c(p.y()), c(p.z())};
-}
-
-// 21 bits per axis (the mesh spans far fewer cells than 2^20 in any direction).
-std::int64_t cellKey(std::int64_t x, std::int64_t y, std::int64_t z) {
-  const std::int64_t mask = (1 << 21) - 1;
-  return ((x + (1 << 20)) & mask) << 42 | ((y + (1 << 20)) & mask) << 21 | ((z + (1 << 20)) & mask);
-}
-
 // Per element: n^T sigma n on its six edges, written to slots 6 t + k.
 std::vector<double> elementEdgeStresses(const SimModel& model, const SimState& state,
                                         bool compressionResists) {
@@ -77,11 +66,11 @@ std::vector<double> localEdgeStress(const SimModel& model, const FractureField& 
 template <typename Visit>
 void forEdgesNear(const FractureField& field, const Vec3& p, Visit visit) {
   const double r = field.settings.kernelRadius;
-  const auto c = cellOf(p, field.cellSize);
+  const auto c = fractureCell(p, field.cellSize);
   for (int dx = -1; dx <= 1; ++dx) {
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dz = -1; dz <= 1; ++dz) {
-        const auto it = field.cells.find(cellKey(c[0] + dx, c[1] + dy, c[2] + dz));
+        const auto it = field.cells.find(fractureCellKey(c[0] + dx, c[1] + dy, c[2] + dz));
         if (it == field.cells.end()) continue;
         for (int i = it->second.first; i < it->second.second; ++i) {
           const int f = field.cellEdges[i];
@@ -144,8 +133,8 @@ FractureField buildFractureField(const SimModel& model, const FractureSettings& 
     f.cellSize = settings.kernelRadius;
     std::vector<std::pair<std::int64_t, int>> keyed(nEdges);
     for (int e = 0; e < nEdges; ++e) {
-      const auto c = cellOf(f.midpoint[e], f.cellSize);
-      keyed[e] = {cellKey(c[0], c[1], c[2]), e};
+      const auto c = fractureCell(f.midpoint[e], f.cellSize);
+      keyed[e] = {fractureCellKey(c[0], c[1], c[2]), e};
     }
     std::sort(keyed.begin(), keyed.end());
     f.cellEdges.resize(nEdges);

@@ -16,6 +16,8 @@
 //   (seed, edge index): the same on every run and for any thread count.
 #pragma once
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -46,6 +48,17 @@ struct FractureField {
   std::unordered_map<std::int64_t, std::pair<int, int>> cells;  // cell key -> range in cellEdges
   std::vector<int> cellEdges;
 };
+
+// The kernel grid: the cell of a point, and a cell's key (21 bits per axis; the mesh spans far
+// fewer cells than 2^20 in any direction).
+inline std::array<std::int64_t, 3> fractureCell(const Vec3& p, double cell) {
+  const auto c = [&](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
+  return {c(p.x()), c(p.y()), c(p.z())};
+}
+inline std::int64_t fractureCellKey(std::int64_t x, std::int64_t y, std::int64_t z) {
+  const std::int64_t mask = (1 << 21) - 1;
+  return ((x + (1 << 20)) & mask) << 42 | ((y + (1 << 20)) & mask) << 21 | ((z + (1 << 20)) & mask);
+}
 
 // Throws std::invalid_argument for a non-positive threshold or a jitter outside [0, 1).
 FractureField buildFractureField(const SimModel& model, const FractureSettings& settings);
