@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include "cusolver_loader.h"
+#include "gpu/cusolver_loader.h"
 
 namespace galsculpt::gpu {
 

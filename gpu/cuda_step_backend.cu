@@ -1,7 +1,7 @@
-#include "cuda_executor.cuh"
-#include "cuda_step_backend.h"
-#include "device_info.h"
-#include "device_solver.h"
+#include "gpu/cuda_executor.cuh"
+#include "gpu/cuda_step_backend.h"
+#include "gpu/device_info.h"
+#include "solver/frame/frame_solver.h"
 
 namespace galsculpt::gpu {
 

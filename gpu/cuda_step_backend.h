@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "solver/step_backend.h"
+#include "solver/frame/step_backend.h"
 
 namespace galsculpt::gpu {
 

@@ -1,7 +1,7 @@
 // The CUDA backend's entry points in builds without nvcc: it is not there, and says so.
-#include "cuda_step_backend.h"
+#include "gpu/cuda_step_backend.h"
 
-#include "device_solver.h"
+#include "solver/frame/frame_solver.h"
 
 namespace galsculpt::gpu {
 

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <string>
 
-#include "solver/surface_checks.h"
+#include "solver/mesh/surface_checks.h"
 
 namespace galsculpt::test {
 

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "solver/tet_mesh.h"
+#include "solver/mesh/tet_mesh.h"
 
 namespace galsculpt::test {
 

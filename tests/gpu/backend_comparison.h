@@ -9,11 +9,11 @@
 #include <filesystem>
 #include <string>
 
-#include "engine/scene.h"
-#include "engine/scene_mesh.h"
-#include "engine/simulation.h"
-#include "solver/knife.h"
-#include "solver/step_backend.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/scene_mesh.h"
+#include "engine/session/simulation.h"
+#include "solver/fracture/knife.h"
+#include "solver/frame/step_backend.h"
 
 namespace galsculpt::gpu {
 

@@ -1,0 +1,347 @@
+// `galsculpt bench`: speed against error on the paper's scenes, and a solver-setting sweep.
+//
+// Every measurement runs in a child process (fork) so that its peak memory is its own and a
+// crash cannot take the benchmark down. The reference run (Newton + direct solve) of a scene
+// writes its final positions; each multigrid run is compared with them.
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+
+#include "app/cli/cli.h"
+#include "app/cli/cli_args.h"
+#include "engine/scene/scene_mesh.h"
+#include "engine/session/simulation.h"
+#include "solver/io/atomic_file.h"
+#include "solver/io/input_error.h"
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct BenchScene {
+  const char* name;
+  const char* file;
+};
+const BenchScene kScenes[] = {{"sphere", "hanging_sphere.json"},
+                              {"charpy", "charpy.json"},
+                              {"human", "human.json"},
+                              {"armadillo", "armadillo.json"},
+                              {"steak", "steak.json"}};
+
+struct Setting {
+  bool reference = false;
+  std::string grid;
+  int fineSweeps = 3, coarseIters = 20;
+  int cuts = -1;  // >= 0: that many random knife cuts before the frames (the --cracks series)
+  // Beyond the paper's one linearized step with one V-cycle (the defaults):
+  int newtonIterations = 1;
+  double pcgTolerance = 0.0;
+  int cycles = 1;
+  bool coarseCholesky = false;
+
+  bool paperLike() const {
+    return newtonIterations == 1 && pcgTolerance == 0.0 && cycles == 1 && !coarseCholesky;
+  }
+};
+
+Setting paperSetting(const std::string& grid, int sweeps, int coarse) {
+  Setting s;
+  s.grid = grid;
+  s.fineSweeps = sweeps;
+  s.coarseIters = coarse;
+  return s;
+}
+
+Setting sceneSetting(const SolverDesc& d) {
+  Setting s = paperSetting(d.grid, d.fineSweeps, d.coarseIterations);
+  s.newtonIterations = d.newtonIterations;
+  s.pcgTolerance = d.pcgTolerance;
+  s.cycles = d.cycles;
+  s.coarseCholesky = d.coarseSolver == CoarseSolver::Cholesky;
+  return s;
+}
+
+// Deterministic random blade sweeps through the body's bounding box, each about a third of the
+// body across: most leave slits, many together cut pieces off. `afterCut` runs after each.
+template <typename AfterCut>
+void applyRandomCuts(Simulation& sim, int cuts, AfterCut afterCut) {
+  const BoundingBox box = boundingBox(sim.model().mesh.vertices);
+  const Vec3 center = 0.5 * (box.min + box.max);
+  const Vec3 half = 0.5 * box.size();
+  std::mt19937 rng(2024);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int c = 0; c < cuts; ++c) {
+    const Vec3 p = center + 0.7 * Vec3(u(rng) * half.x(), u(rng) * half.y(), u(rng) * half.z());
+    const Vec3 normal = Vec3(u(rng), u(rng), u(rng)).normalized();
+    const Vec3 t1 = normal.unitOrthogonal(), t2 = normal.cross(t1);
+    const double r = 0.35 * half.norm();
+    sim.cut(sweptBladeSurface(p - r * t1 - r * t2, p + r * t1 - r * t2, p - r * t1 + r * t2,
+                              p + r * t1 + r * t2));
+    afterCut();
+  }
+}
+
+nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
+                       const Setting& setting, int frames, const fs::path& referencePositions) {
+  SceneDescription scene = baseScene;
+  if (setting.reference) scene.solver.backend = BackendRequest::Cpu;  // no device path
+  scene.solver.type = setting.reference ? SolverType::Reference : SolverType::Multigrid;
+  scene.solver.grid = setting.grid;
+  scene.solver.fineSweeps = setting.fineSweeps;
+  scene.solver.coarseIterations = setting.coarseIters;
+  scene.solver.newtonIterations = setting.newtonIterations;
+  scene.solver.pcgTolerance = setting.pcgTolerance;
+  scene.solver.cycles = setting.cycles;
+  scene.solver.coarseSolver = setting.coarseCholesky ? CoarseSolver::Cholesky : CoarseSolver::Cg;
+  Simulation sim(scene, mesh);
+  // The surface is built when the scene opens and brought up to date after each cut, as the app
+  // does: what a cut costs the surface is measured here, what a frame costs it below.
+  sim.surface();
+  std::vector<double> msCut;
+  if (setting.cuts > 0) {
+    applyRandomCuts(sim, setting.cuts, [&] {
+      SurfaceUpdateStats st;
+      sim.surface(&st);
+      msCut.push_back(st.msTopology + st.msPositions);
+    });
+  }
+  std::sort(msCut.begin(), msCut.end());
+  std::vector<double> ms, msSurface;
+  FrameMetrics last;
+  for (int f = 0; f < frames; ++f) {
+    last = sim.advance();
+    ms.push_back(last.msTotal);
+    // What the app adds to a frame: bringing the visualization surface up to date.
+    SurfaceUpdateStats st;
+    sim.surface(&st);
+    msSurface.push_back(st.msTopology + st.msPositions);
+  }
+  std::sort(ms.begin(), ms.end());
+  const double median = ms[ms.size() / 2];
+  std::sort(msSurface.begin(), msSurface.end());
+  nlohmann::json r;
+  r["tets"] = mesh.numTets();
+  r["solver"] = setting.reference ? "reference" : "multigrid";
+  r["grid"] = setting.reference ? "" : setting.grid;
+  r["fine_sweeps"] = setting.reference ? 0 : setting.fineSweeps;
+  r["coarse_iters"] = setting.reference ? 0 : setting.coarseIters;
+  if (!setting.reference) {
+    r["newton_iters"] = setting.newtonIterations;
+    r["pcg_tolerance"] = setting.pcgTolerance;
+    r["cycles"] = setting.cycles;
+    r["coarse_solver"] = setting.coarseCholesky ? "cholesky" : "cg";
+  }
+  r["backend"] = sim.backendName();
+  for (const std::string& note : sim.notes()) {
+    if (note.find("running on the CPU") != std::string::npos) r["backend_note"] = note;
+  }
+  r["frames"] = frames;
+  r["ms_per_frame"] = median;
+  r["fps"] = 1000.0 / median;
+  r["ms_surface"] = msSurface[msSurface.size() / 2];
+  r["ms_surface_max"] = msSurface.back();
+  r["volume_change_pct"] = last.volumeChangePct;
+  r["warnings"] = last.warnings;
+  r["damaged_edges"] = last.damagedEdges;
+  r["pieces"] = last.pieces;
+  if (setting.cuts >= 0) {
+    r["cuts"] = setting.cuts;
+    r["ms_surface_cut"] = msCut.empty() ? 0.0 : msCut[msCut.size() / 2];
+    r["ms_surface_cut_max"] = msCut.empty() ? 0.0 : msCut.back();
+  }
+  const std::vector<Vec3>& x = sim.state().x;
+  if (setting.cuts >= 0) {
+    r["rel_position_error"] = nullptr;  // cost against cracks: no reference run
+  } else if (setting.reference) {
+    writeFileAtomically(referencePositions, [&](std::ostream& out) {
+      out.write(reinterpret_cast<const char*>(x.data()),
+                static_cast<std::streamsize>(x.size() * sizeof(Vec3)));
+    });
+    r["rel_position_error"] = 0.0;
+  } else {
+    std::vector<Vec3> ref(x.size());
+    std::ifstream in(referencePositions, std::ios::binary);
+    in.read(reinterpret_cast<char*>(ref.data()),
+            static_cast<std::streamsize>(ref.size() * sizeof(Vec3)));
+    // Largest position difference relative to the reference's largest displacement.
+    double err = 0.0, disp = 0.0;
+    for (size_t v = 0; v < x.size(); ++v) {
+      err = std::max(err, (x[v] - ref[v]).norm());
+      disp = std::max(disp, (ref[v] - mesh.vertices[v]).norm());
+    }
+    r["rel_position_error"] = in ? err / std::max(disp, 1e-300) : -1.0;
+  }
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  r["peak_rss_mb"] = usage.ru_maxrss / 1024.0;
+  return r;
+}
+
+// Runs `measure` in a child process; returns its result (or an "error" entry).
+nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh,
+                              const Setting& setting, int frames,
+                              const fs::path& referencePositions, const fs::path& scratch) {
+  const fs::path resultFile = scratch / "result.json";
+  std::error_code ec;
+  fs::remove(resultFile, ec);
+  // Output still buffered in the parent would be written a second time by the child. The parent
+  // must not have entered an OpenMP region before forking: libgomp's thread pool does not
+  // survive fork, and the child's first parallel region would wait for it forever.
+  std::cout.flush();
+  std::cerr.flush();
+  std::fflush(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    int code = 0;
+    try {
+      const nlohmann::json r = measure(scene, mesh, setting, frames, referencePositions);
+      std::ofstream(resultFile) << r.dump();
+    } catch (const std::exception& e) {
+      std::ofstream(resultFile) << nlohmann::json{{"error", e.what()}}.dump();
+      code = 1;
+    }
+    std::fflush(nullptr);
+    _exit(code);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  std::ifstream in(resultFile);
+  if (!in)
+    return nlohmann::json{
+        {"error", "the measurement process died (status " + std::to_string(status) + ")"}};
+  return nlohmann::json::parse(in);
+}
+
+std::string row(const nlohmann::json& r) {
+  std::ostringstream s;
+  if (r.contains("error")) return "  error: " + r["error"].get<std::string>();
+  if (r.contains("cuts")) {
+    s << std::left << std::setw(10) << r.value("scene", "") << std::setw(8) << r["tets"].get<int>()
+      << "cuts " << std::right << std::setw(4) << r["cuts"].get<int>() << std::fixed
+      << std::setprecision(2) << std::setw(10) << r["ms_per_frame"].get<double>() << " ms/frame"
+      << std::setw(8) << std::setprecision(1) << r["fps"].get<double>() << " fps" << std::setw(8)
+      << r["damaged_edges"].get<int>() << " damaged edges" << std::setw(6) << r["pieces"].get<int>()
+      << " pieces" << std::setw(8) << std::setprecision(2) << r["ms_surface"].get<double>()
+      << " ms surface" << std::setw(8) << r.value("ms_surface_cut", 0.0) << " ms surface per cut";
+    return s.str();
+  }
+  std::string grid = r["grid"].get<std::string>();
+  if (r.value("newton_iters", 1) != 1) grid += " n" + std::to_string(r.value("newton_iters", 1));
+  if (r.value("pcg_tolerance", 0.0) > 0.0) grid += " pcg";
+  if (r.value("cycles", 1) != 1) grid += " c" + std::to_string(r.value("cycles", 1));
+  if (r.value("coarse_solver", std::string("cg")) == "cholesky") grid += " chol";
+  s << std::left << std::setw(10) << r.value("scene", "") << std::setw(8) << r["tets"].get<int>()
+    << std::setw(10) << r["solver"].get<std::string>() << std::setw(20) << grid << std::right
+    << std::setw(4) << r["fine_sweeps"].get<int>() << std::setw(6) << r["coarse_iters"].get<int>()
+    << std::fixed << std::setprecision(2) << std::setw(10) << r["ms_per_frame"].get<double>()
+    << std::setw(9) << std::setprecision(1) << r["fps"].get<double>() << std::setw(9)
+    << std::setprecision(0) << r["peak_rss_mb"].get<double>() << std::setw(11)
+    << std::setprecision(3) << 100.0 * r["rel_position_error"].get<double>() << std::setw(10)
+    << std::setprecision(3) << r["volume_change_pct"].get<double>() << std::setw(8)
+    << std::setprecision(2) << r["ms_surface"].get<double>() << std::setw(8)
+    << r["ms_surface_max"].get<double>() << "  " << r.value("backend", std::string("cpu"));
+  return s.str();
+}
+
+}  // namespace
+
+int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  const CliArgs a(args, {"--scene", "--json", "--frames", "--backend"},
+                  {"--quick", "--sweep", "--cracks"});
+  a.expectPositional(0, 0,
+                     "galsculpt bench [--scene NAME] [--quick] [--sweep] [--cracks] [--frames N] "
+                     "[--json FILE] [--backend auto|cpu|cuda]");
+  const std::optional<BackendRequest> backend = backendOption(a);
+  const bool quick = a.has("--quick");
+  const int frames = a.intValue("--frames", quick ? 20 : 60, 1, 100000);
+  std::vector<BenchScene> scenes;
+  if (auto name = a.value("--scene")) {
+    for (const BenchScene& s : kScenes) {
+      if (*name == s.name) scenes.push_back(s);
+    }
+    if (scenes.empty())
+      throw UsageError("unknown scene '" + *name + "' (sphere, charpy, human, armadillo, steak)");
+  } else if (quick || a.has("--cracks")) {
+    scenes = a.has("--cracks") ? std::vector<BenchScene>{kScenes[0]}
+                               : std::vector<BenchScene>{kScenes[0], kScenes[1]};
+  } else {
+    scenes.assign(std::begin(kScenes), std::end(kScenes));
+  }
+  std::string pattern = (fs::temp_directory_path() / "galsculpt-bench-XXXXXX").string();
+  if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder");
+  const fs::path scratch = pattern;
+
+  nlohmann::json results = nlohmann::json::array();
+  out << "scene     tets    solver    grid                 fine coarse  ms/frame      fps  peak MB "
+         " pos err %  vol chg %  surf ms    max  backend\n";
+  for (const BenchScene& bs : scenes) {
+    SceneDescription scene = loadScene(fs::path(assetDirectory()) / "scenes" / bs.file);
+    if (backend) scene.solver.backend = *backend;
+    TetMesh mesh;
+    try {
+      mesh = loadSceneMesh(scene, [&err](const std::string& line) { err << line << '\n'; });
+    } catch (const InputError& e) {
+      err << "skipping " << bs.name << ": " << e.what() << '\n';
+      continue;
+    }
+    // The reference, the paper's setting (one linearized step, one V-cycle, 3 sweeps, 20
+    // coarse CG iterations on the scene's grid) and the scene's own setting when it differs.
+    Setting reference;
+    reference.reference = true;
+    std::vector<Setting> settings = {reference, paperSetting(scene.solver.grid, 3, 20)};
+    const Setting own = sceneSetting(scene.solver);
+    if (!own.paperLike() || own.fineSweeps != 3 || own.coarseIters != 20) settings.push_back(own);
+    if (a.has("--cracks")) {
+      // The cost of a frame against the number of cracks: the scene's own solver after 0, 10
+      // and 100 random knife cuts.
+      settings.clear();
+      for (int cuts : {0, 10, 100}) {
+        Setting cut = own;
+        cut.cuts = cuts;
+        settings.push_back(cut);
+      }
+    }
+    if (a.has("--sweep") && std::string(bs.name) == "sphere") {
+      for (const char* grid : {"50/all", "200/all", "50/1000/all"}) {
+        for (int sweeps : {1, 3, 10, 30}) {
+          for (int coarse : {5, 20, 200}) {
+            if (std::string(grid) == scene.solver.grid && sweeps == 3 && coarse == 20) continue;
+            settings.push_back(paperSetting(grid, sweeps, coarse));
+          }
+        }
+      }
+    }
+    const fs::path refFile = scratch / (std::string(bs.name) + ".ref");
+    for (const Setting& s : settings) {
+      nlohmann::json r = measureInChild(scene, mesh, s, frames, refFile, scratch);
+      r["scene"] = bs.name;
+      out << row(r) << '\n' << std::flush;
+      results.push_back(r);
+    }
+  }
+  fs::remove_all(scratch);
+  if (auto json = a.value("--json")) {
+    const nlohmann::json doc{
+        {"machine", {{"cores", static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN))}}},
+        {"frames", frames},
+        {"results", results}};
+    writeFileAtomically(*json, [&](std::ostream& o) { o << doc.dump(2) << '\n'; });
+    out << "wrote " << *json << '\n';
+  }
+  return kExitOk;
+}
+
+}  // namespace galsculpt

@@ -1,0 +1,100 @@
+#include "app/cli/cli_args.h"
+
+#include <charconv>
+#include <cmath>
+
+namespace galsculpt {
+
+CliArgs::CliArgs(const std::vector<std::string>& args, const std::set<std::string>& valueFlags,
+                 const std::set<std::string>& switches) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.rfind("--", 0) != 0 || a == "--") {
+      positional_.push_back(a);
+      continue;
+    }
+    std::string name = a;
+    std::optional<std::string> inlineValue;
+    if (const size_t eq = a.find('='); eq != std::string::npos) {
+      name = a.substr(0, eq);
+      inlineValue = a.substr(eq + 1);
+    }
+    if (valueFlags.count(name)) {
+      if (inlineValue) {
+        values_[name] = *inlineValue;
+      } else if (i + 1 < args.size()) {
+        values_[name] = args[++i];
+      } else {
+        throw UsageError(name + " needs a value");
+      }
+    } else if (switches.count(name) && !inlineValue) {
+      values_[name] = "";
+    } else {
+      throw UsageError("unknown option " + name);
+    }
+  }
+}
+
+std::optional<std::string> CliArgs::value(const std::string& flag) const {
+  const auto it = values_.find(flag);
+  if (it == values_.end()) return std::nullopt;
+  return it->second;
+}
+
+int CliArgs::intValue(const std::string& flag, int fallback, int min, int max) const {
+  const auto v = value(flag);
+  if (!v) return fallback;
+  long long x = 0;
+  const auto [ptr, ec] = std::from_chars(v->data(), v->data() + v->size(), x);
+  if (ec != std::errc() || ptr != v->data() + v->size())
+    throw UsageError(flag + " expects an integer, got '" + *v + "'");
+  if (x < min || x > max) {
+    throw UsageError(flag + " must be in [" + std::to_string(min) + ", " + std::to_string(max) +
+                     "], got " + *v);
+  }
+  return static_cast<int>(x);
+}
+
+double CliArgs::doubleValue(const std::string& flag, double fallback, double min,
+                            double max) const {
+  const auto v = value(flag);
+  if (!v) return fallback;
+  double x = 0;
+  const auto [ptr, ec] = std::from_chars(v->data(), v->data() + v->size(), x);
+  if (ec != std::errc() || ptr != v->data() + v->size() || !std::isfinite(x)) {
+    throw UsageError(flag + " expects a number, got '" + *v + "'");
+  }
+  if (x < min || x > max) throw UsageError(flag + " is out of range: " + *v);
+  return x;
+}
+
+std::pair<int, int> CliArgs::sizeValue(const std::string& flag,
+                                       std::pair<int, int> fallback) const {
+  const auto v = value(flag);
+  if (!v) return fallback;
+  const size_t x = v->find('x');
+  int w = 0, h = 0;
+  if (x != std::string::npos) {
+    const auto r1 = std::from_chars(v->data(), v->data() + x, w);
+    const auto r2 = std::from_chars(v->data() + x + 1, v->data() + v->size(), h);
+    if (r1.ec == std::errc() && r2.ec == std::errc() && r1.ptr == v->data() + x &&
+        r2.ptr == v->data() + v->size() && w >= 16 && h >= 16 && w <= 8192 && h <= 8192) {
+      return {w, h};
+    }
+  }
+  throw UsageError(flag + " expects WIDTHxHEIGHT between 16 and 8192, got '" + *v + "'");
+}
+
+void CliArgs::expectPositional(size_t min, size_t max, const std::string& usage) const {
+  if (positional_.size() < min || positional_.size() > max) throw UsageError("usage: " + usage);
+}
+
+std::optional<BackendRequest> backendOption(const CliArgs& args) {
+  const auto v = args.value("--backend");
+  if (!v) return std::nullopt;
+  const std::optional<BackendRequest> request = backendRequestFromName(*v);
+  if (!request) throw UsageError("--backend must be auto, cpu or cuda, got '" + *v + "'");
+  return request;
+}
+
+}  // namespace galsculpt

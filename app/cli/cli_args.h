@@ -1,0 +1,45 @@
+// Minimal command-line parsing for the galsculpt subcommands: positionals plus --flags, each
+// flag declared by the command (unknown flags are usage errors, never ignored).
+#pragma once
+
+#include "engine/scene/scene.h"
+
+#include <map>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace galsculpt {
+
+// Thrown for a malformed command line; the CLI prints it with the usage and exits 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class CliArgs {
+ public:
+  // `valueFlags` take a value (--tets 1000 or --tets=1000); `switches` do not.
+  CliArgs(const std::vector<std::string>& args, const std::set<std::string>& valueFlags,
+          const std::set<std::string>& switches);
+
+  const std::vector<std::string>& positional() const { return positional_; }
+  bool has(const std::string& flag) const { return values_.count(flag) > 0; }
+  std::optional<std::string> value(const std::string& flag) const;
+  int intValue(const std::string& flag, int fallback, int min, int max) const;
+  double doubleValue(const std::string& flag, double fallback, double min, double max) const;
+  // "WxH"
+  std::pair<int, int> sizeValue(const std::string& flag, std::pair<int, int> fallback) const;
+  void expectPositional(size_t min, size_t max, const std::string& usage) const;
+
+ private:
+  std::vector<std::string> positional_;
+  std::map<std::string, std::string> values_;
+};
+
+// --backend auto|cpu|cuda (run, play, bench, open): empty when absent, UsageError otherwise.
+std::optional<BackendRequest> backendOption(const CliArgs& args);
+
+}  // namespace galsculpt

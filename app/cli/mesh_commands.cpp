@@ -1,0 +1,270 @@
+// `galsculpt mesh info | convert | import | generate`.
+#include <filesystem>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "app/cli/cli.h"
+#include "app/cli/cli_args.h"
+#include "engine/meshing/mesh_files.h"
+#include "engine/meshing/tetrahedralize.h"
+#include "engine/scene/scene_mesh.h"
+#include "engine/surface/surface_io.h"
+#include "solver/io/damage_io.h"
+#include "solver/io/input_error.h"
+#include "solver/io/tetgen_io.h"
+#include "solver/mesh/mesh_stats.h"
+#include "solver/mesh/surface_checks.h"
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string vec(const Vec3& v) {
+  std::ostringstream s;
+  s << std::setprecision(9) << v.x() << ' ' << v.y() << ' ' << v.z();
+  return s.str();
+}
+
+// The damage written beside a TetGen mesh (stem.damage), checked to be of the same write.
+struct DamageBeside {
+  bool present = false;
+  int damaged = 0, crossed = 0;
+};
+DamageBeside readDamageBeside(const fs::path& file, const TetMesh& mesh,
+                              const MeshReadReport& report) {
+  DamageBeside d;
+  if (meshFileKind(file) != MeshFileKind::TetGen) return d;
+  const fs::path stem = tetgenStem(file);
+  const fs::path damagePath = fs::path(stem).concat(".damage");
+  std::error_code ec;
+  if (!fs::exists(damagePath, ec)) return d;
+  const EdgeDamageState state = readDamage(damagePath, uniqueEdges(mesh));
+  checkSameSet(fs::path(stem).concat(".node"), report.setStamp, damagePath, state.setStamp);
+  d.present = true;
+  for (size_t e = 0; e < state.damaged.size(); ++e) {
+    d.damaged += state.damaged[e];
+    d.crossed += hasCrossing(state.crossing[e]);
+  }
+  return d;
+}
+
+int infoTet(const fs::path& file, bool json, std::ostream& out) {
+  MeshReadReport report;
+  const TetMesh mesh = readTetMesh(file, &report);
+  const DamageBeside damage = readDamageBeside(file, mesh, report);
+  const TetMeshStats s = computeStats(mesh);
+  if (json) {
+    nlohmann::json j;
+    j["file"] = file.string();
+    j["kind"] = "tet";
+    j["vertices"] = s.vertices;
+    j["tets"] = s.tets;
+    j["edges"] = s.edges;
+    j["boundary_faces"] = s.boundaryFaces;
+    j["bbox_min"] = vec3Json(s.box.min);
+    j["bbox_max"] = vec3Json(s.box.max);
+    j["volume"] = s.volume;
+    j["quality_min"] = s.minQuality;
+    j["quality_mean"] = s.meanQuality;
+    j["quality_histogram"] = s.qualityHistogram;
+    j["watertight"] = s.watertight;
+    j["pieces"] = s.pieces;
+    j["reoriented_tets"] = report.reorientedTets;
+    j["unused_vertices"] = report.unusedVertices;
+    if (damage.present) {
+      j["damaged_edges"] = damage.damaged;
+      j["blade_crossings"] = damage.crossed;
+    }
+    out << j.dump(2) << '\n';
+    return kExitOk;
+  }
+  out << std::setprecision(9);
+  out << "file: " << file.string() << "\nkind: tet mesh\n";
+  out << "vertices: " << s.vertices << "\ntets: " << s.tets << "\nedges: " << s.edges
+      << "\nboundary_faces: " << s.boundaryFaces << '\n';
+  out << "bbox_min: " << vec(s.box.min) << "\nbbox_max: " << vec(s.box.max) << '\n';
+  out << "volume: " << s.volume << '\n';
+  out << "quality_min: " << s.minQuality << "\nquality_mean: " << s.meanQuality << '\n';
+  out << "quality_histogram:";
+  for (int b = 0; b < 10; ++b)
+    out << ' ' << std::fixed << std::setprecision(1) << b / 10.0 << ':' << s.qualityHistogram[b];
+  out << std::defaultfloat << std::setprecision(9) << '\n';
+  out << "watertight: " << (s.watertight ? "yes" : "no (" + s.boundaryProblem + ")") << '\n';
+  out << "pieces: " << s.pieces << '\n';
+  out << "reoriented_tets: " << report.reorientedTets
+      << "\nunused_vertices: " << report.unusedVertices << '\n';
+  if (damage.present)
+    out << "damaged_edges: " << damage.damaged << "\nblade_crossings: " << damage.crossed << '\n';
+  return kExitOk;
+}
+
+int infoSurface(const fs::path& file, bool json, std::ostream& out) {
+  const TriMesh mesh = readSurface(file);
+  const SurfaceTopology topo = analyzeSurface(mesh);
+  const auto crossings = findSelfIntersections(mesh, 1000);
+  const BoundingBox box = boundingBox(mesh.vertices);
+  const bool watertight = topo.closedManifold() && crossings.empty();
+  std::string problem = topo.describeProblem();
+  if (problem.empty() && !crossings.empty()) {
+    problem = "self-intersecting: " + std::to_string(crossings.size()) +
+              (crossings.size() >= 1000 ? "+" : "") + " crossing face pair(s)";
+  }
+  if (json) {
+    nlohmann::json j;
+    j["file"] = file.string();
+    j["kind"] = "surface";
+    j["vertices"] = mesh.numVertices();
+    j["faces"] = mesh.numFaces();
+    j["bbox_min"] = vec3Json(box.min);
+    j["bbox_max"] = vec3Json(box.max);
+    j["volume"] = enclosedVolume(mesh);
+    j["area"] = surfaceArea(mesh);
+    j["watertight"] = watertight;
+    j["problem"] = problem;
+    j["self_intersections"] = crossings.size();
+    j["pieces"] = topo.pieces;
+    out << j.dump(2) << '\n';
+    return kExitOk;
+  }
+  out << std::setprecision(9);
+  out << "file: " << file.string() << "\nkind: surface\n";
+  out << "vertices: " << mesh.numVertices() << "\nfaces: " << mesh.numFaces() << '\n';
+  out << "bbox_min: " << vec(box.min) << "\nbbox_max: " << vec(box.max) << '\n';
+  out << "volume: " << enclosedVolume(mesh) << "\narea: " << surfaceArea(mesh) << '\n';
+  out << "watertight: " << (watertight ? "yes" : "no (" + problem + ")") << '\n';
+  out << "self_intersections: " << crossings.size() << '\n';
+  out << "pieces: " << topo.pieces << '\n';
+  return kExitOk;
+}
+
+TetMesh meshSurface(const TriMesh& surface, const std::string& name, const CliArgs& a,
+                    std::ostream& err) {
+  TetrahedralizeOptions options;
+  options.targetTets = a.intValue("--tets", 0, 1, 50000000);
+  options.timeoutSeconds = a.doubleValue("--timeout", 300.0, 1.0, 86400.0);
+  options.tolerance = a.doubleValue("--tolerance", 0.15, 0.01, 1.0);
+  options.radiusEdgeRatio = a.doubleValue("--quality", 1.414, 1.05, 10.0);
+  options.surfaceName = name;
+  options.progress = [&err](const std::string& line) { err << line << '\n'; };
+  return tetrahedralize(surface, options).mesh;
+}
+
+void writeAny(const fs::path& path, const TetMesh& mesh, std::ostream& out) {
+  if (meshFileKind(path) == MeshFileKind::Surface) {
+    const TriMesh surface = boundarySurface(mesh);
+    writeSurface(path, surface);
+    out << "wrote " << path.string() << " (" << surface.numVertices() << " vertices, "
+        << surface.numFaces() << " faces: the tet mesh's boundary)\n";
+    return;
+  }
+  writeTetMesh(path, mesh);
+  out << "wrote " << path.string() << " (" << mesh.numVertices() << " vertices, " << mesh.numTets()
+      << " tets)\n";
+}
+
+// The output as given, or, without an extension, a TetGen basename (OUT -> OUT.node, .ele,
+// .face), as TetGen's own tools take it.
+fs::path checkedOutput(const fs::path& path) {
+  if (path.extension().empty() && !path.filename().empty()) return fs::path(path).concat(".node");
+  const MeshFileKind k = meshFileKind(path);
+  if (k == MeshFileKind::Unknown) {
+    throw UsageError("unknown output format '" + path.extension().string() +
+                     "' (use .node, .msh, .vtk, .obj, .ply, .stl, .gltf or .glb, or a basename "
+                     "without extension for .node/.ele/.face)");
+  }
+  return path;
+}
+
+}  // namespace
+
+int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  if (args.empty()) throw UsageError("mesh needs a subcommand: info, convert, import or generate");
+  const std::string sub = args[0];
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+
+  if (sub == "info") {
+    const CliArgs a(rest, {}, {"--json"});
+    a.expectPositional(1, 1, "galsculpt mesh info FILE [--json]");
+    fs::path file = a.positional()[0];
+    // A .damage file is read with the mesh it belongs to (stem.node/.ele beside it).
+    if (file.extension() == ".damage")
+      file = fs::path(tetgenStem(file.replace_extension())).concat(".node");
+    const MeshFileKind kind = meshFileKind(file);
+    if (kind == MeshFileKind::Surface) return infoSurface(file, a.has("--json"), out);
+    if (kind == MeshFileKind::Vtk)
+      throw InputError(file.string(), 0, "legacy VTK is an output format");
+    if (kind == MeshFileKind::Unknown) throw InputError(file.string(), 0, "unknown mesh format");
+    return infoTet(file, a.has("--json"), out);
+  }
+
+  if (sub == "convert") {
+    const CliArgs a(rest, {"--tets", "--timeout", "--tolerance", "--quality"}, {});
+    a.expectPositional(2, 2, "galsculpt mesh convert IN OUT [--tets N]");
+    const fs::path in = a.positional()[0], outPath = checkedOutput(a.positional()[1]);
+    const bool outSurface = meshFileKind(outPath) == MeshFileKind::Surface;
+    if (meshFileKind(in) == MeshFileKind::Surface) {
+      const TriMesh surface = readSurface(in);
+      if (outSurface) {
+        writeSurface(outPath, surface);
+        out << "wrote " << outPath.string() << " (" << surface.numVertices() << " vertices, "
+            << surface.numFaces() << " faces)\n";
+        return kExitOk;
+      }
+      if (!a.has("--tets")) throw UsageError("converting a surface to a tet mesh needs --tets N");
+      writeAny(outPath, meshSurface(surface, in.filename().string(), a, err), out);
+      return kExitOk;
+    }
+    MeshReadReport report;
+    const TetMesh mesh = readTetMesh(in, &report);
+    for (const std::string& note : report.notes) err << "note: " << note << '\n';
+    writeAny(outPath, mesh, out);
+    return kExitOk;
+  }
+
+  if (sub == "import") {
+    const CliArgs a(rest, {"--tets", "--timeout", "--tolerance", "--quality"}, {});
+    a.expectPositional(2, 2, "galsculpt mesh import SURFACE OUT --tets N");
+    if (!a.has("--tets")) throw UsageError("mesh import needs --tets N");
+    a.intValue("--tets", 0, 1, 50000000);  // a malformed count is a usage error before any I/O
+    const fs::path in = a.positional()[0], outPath = checkedOutput(a.positional()[1]);
+    if (meshFileKind(outPath) == MeshFileKind::Surface)
+      throw UsageError("mesh import writes a tet mesh: use .node, .msh or .vtk");
+    if (meshFileKind(in) != MeshFileKind::Surface) {
+      throw InputError(in.string(), 0,
+                       "not a surface mesh (expected .obj, .ply, .stl, .off, .gltf or .glb)");
+    }
+    const TriMesh surface = readSurface(in);
+    writeAny(outPath, meshSurface(surface, in.string(), a, err), out);
+    return kExitOk;
+  }
+
+  if (sub == "generate") {
+    const CliArgs a(rest, {"--tets", "--radius", "--timeout"}, {});
+    a.expectPositional(2, 2,
+                       "galsculpt mesh generate sphere|charpy|steak OUT [--tets N] [--radius R]");
+    const std::string name = a.positional()[0];
+    const std::optional<Generator> generator = generatorFromName(name);
+    if (!generator) throw UsageError("unknown shape '" + name + "' (sphere, charpy or steak)");
+    const fs::path outPath = checkedOutput(a.positional()[1]);
+    // A surface alone (no --tets) gets the resolution of the paper's scene.
+    const int tets =
+        a.intValue("--tets", *generator == Generator::Steak ? 186000 : 35000, 1, 50000000);
+    const TriMesh surface =
+        generatorSurface(*generator, a.doubleValue("--radius", 0.1, 1e-6, 1e6), tets);
+    if (meshFileKind(outPath) == MeshFileKind::Surface) {
+      writeSurface(outPath, surface);
+      out << "wrote " << outPath.string() << " (" << surface.numVertices() << " vertices, "
+          << surface.numFaces() << " faces)\n";
+      return kExitOk;
+    }
+    if (!a.has("--tets")) throw UsageError("a tet mesh output needs --tets N");
+    writeAny(outPath, meshSurface(surface, name, a, err), out);
+    return kExitOk;
+  }
+  throw UsageError("unknown mesh subcommand '" + sub + "'");
+}
+
+}  // namespace galsculpt

@@ -1,0 +1,203 @@
+// `galsculpt run SCENE --frames N [--solver reference] --out DIR --metrics FILE.csv
+//  [--export-every K]`: headless simulation with a progress bar and per-frame metrics.
+// `galsculpt play SCRIPT --out DIR [--export-every K]`: the same for a playback script.
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <iomanip>
+#include <memory>
+#include <sstream>
+#include <tuple>
+
+#include "app/cli/cli.h"
+#include "app/cli/cli_args.h"
+#include "app/render/render_mesh.h"
+#include "app/render/snapshot_renderer.h"
+#include "app/window/camera.h"
+#include "engine/scene/scene_mesh.h"
+#include "engine/session/playback.h"
+#include "engine/session/simulation.h"
+#include "engine/surface/surface_io.h"
+#include "solver/io/atomic_file.h"
+#include "solver/io/input_error.h"
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void drawProgress(std::ostream& err, int done, int total, double msPerFrame, bool interactive) {
+  if (interactive) {
+    const int width = 30;
+    const int filled = total > 0 ? width * done / total : width;
+    err << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << done
+        << '/' << total << std::fixed << std::setprecision(1) << "  " << msPerFrame << " ms/frame"
+        << std::defaultfloat << (done == total ? "\n" : "") << std::flush;
+  } else if (total > 0 && (done == total || done % std::max(1, total / 10) == 0)) {
+    err << "frame " << done << '/' << total << "  " << std::fixed << std::setprecision(1)
+        << msPerFrame << " ms/frame" << std::defaultfloat << '\n';
+  }
+}
+
+std::string frameName(int frame, const std::string& extension) {
+  std::ostringstream s;
+  s << "frame_" << std::setw(5) << std::setfill('0') << frame << '.' << extension;
+  return s.str();
+}
+
+// What run and play share: where outputs go, how often surfaces are exported, which solver.
+struct RunOptions {
+  fs::path outDir, metricsPath;
+  int exportEvery = 0;
+  std::string exportFormat = "obj";  // obj, ply, stl, gltf or glb
+  bool exportTets = false;
+  int pngEvery = 0;  // render the surface offscreen every K frames (0: never)
+  int width = 1280, height = 800;
+  SolverChoice solver = SolverChoice::FromScene;
+};
+
+// Offscreen snapshots of the visualization surface (crack faces tinted, anchored vertices as
+// blue dots), framed on the body at rest and seen from the standard perspective view (the
+// camera's default angles) - or from a script's latest camera event.
+class FrameRenderer {
+ public:
+  FrameRenderer(const Simulation& sim, int width, int height) : snapshots_(width, height) {
+    camera_.frame(boundingBox(sim.model().mesh.vertices));
+  }
+  void write(const Simulation& sim, const fs::path& file, const std::optional<CameraPose>& pose) {
+    snapshots_.setMesh(makeRenderMesh(sim.surface(), kSurfaceColor, kCrackColor));
+    std::vector<Vec3> anchored;
+    for (int v : sim.anchoredVertices()) anchored.push_back(sim.state().x[v]);
+    snapshots_.setPoints(anchored, kAnchorColor);
+    OrbitCamera camera = camera_;
+    if (pose) camera.setPose(*pose);
+    snapshots_.write(camera, file);
+  }
+
+ private:
+  SnapshotRenderer snapshots_;
+  OrbitCamera camera_;
+};
+
+// The frame loop shared by run and play: metrics CSV, surface exports, final.obj, summary.
+int simulateFrames(const std::string& name, int frames, Simulation& sim, const RunOptions& o,
+                   const std::function<FrameMetrics()>& advance, std::ostream& out,
+                   std::ostream& err,
+                   const std::function<std::optional<CameraPose>()>& camera = {}) {
+  auto pose = [&camera]() -> std::optional<CameraPose> { return camera ? camera() : std::nullopt; };
+  const fs::path& outDir = o.outDir;
+  const fs::path& metricsPath = o.metricsPath;
+  const int exportEvery = o.exportEvery;
+  std::unique_ptr<FrameRenderer> pictures;
+  if (o.pngEvery > 0) pictures = std::make_unique<FrameRenderer>(sim, o.width, o.height);
+  for (const std::string& note : sim.notes()) err << "note: " << note << '\n';
+  std::error_code ec;
+  fs::create_directories(outDir, ec);
+  if (ec) throw OutputError("cannot create " + outDir.string() + ": " + ec.message());
+
+  std::ostringstream csv;
+  csv << metricsCsvHeader() << '\n';
+  const bool interactive = isatty(STDERR_FILENO);
+  double msSum = 0.0;
+  int warnings = 0;
+  FrameMetrics last;
+  for (int f = 1; f <= frames; ++f) {
+    last = advance();
+    csv << metricsCsvRow(last) << '\n';
+    msSum += last.msTotal;
+    warnings += last.warnings;
+    drawProgress(err, f, frames, msSum / f, interactive);
+    if (exportEvery > 0 && f % exportEvery == 0)
+      writeVisualSurface(outDir / frameName(f, o.exportFormat), sim.surface());
+    if (pictures && f % o.pngEvery == 0) pictures->write(sim, outDir / frameName(f, "png"), pose());
+  }
+  if (pictures) pictures->write(sim, outDir / "final.png", pose());
+  writeVisualSurface(outDir / "final.obj", sim.surface());
+  if (o.exportFormat != "obj")
+    writeVisualSurface(outDir / ("final." + o.exportFormat), sim.surface());
+  if (o.exportTets) {
+    sim.writeTetsWithDamage(outDir / "final");
+    out << "wrote " << (outDir / "final").string() << ".node/.ele/.face/.damage/.vtk\n";
+  }
+  writeFileAtomically(metricsPath, [&](std::ostream& o) { o << csv.str(); });
+  out << name << ": " << frames << " frames, " << std::fixed << std::setprecision(2)
+      << msSum / frames << " ms/frame, volume change " << std::setprecision(3)
+      << sim.volumeChangePercent() << " %, " << last.damagedEdges << " damaged edges, "
+      << last.pieces << " piece(s), " << warnings << " warning(s)\n"
+      << std::defaultfloat;
+  out << "wrote " << metricsPath.string() << " and " << (outDir / "final.obj").string() << '\n';
+  return kExitOk;
+}
+
+RunOptions readRunOptions(const CliArgs& a, const std::string& command) {
+  if (!a.has("--out")) throw UsageError(command + " needs --out DIR");
+  RunOptions o;
+  o.exportEvery = a.intValue("--export-every", 0, 1, 10000000);
+  o.exportFormat = a.value("--export-format").value_or("obj");
+  if (o.exportFormat != "obj" && o.exportFormat != "ply" && o.exportFormat != "stl" &&
+      o.exportFormat != "gltf" && o.exportFormat != "glb") {
+    throw UsageError("--export-format must be obj, ply, stl, gltf or glb");
+  }
+  o.exportTets = a.has("--export-tets");
+  o.pngEvery = a.intValue("--png-every", 0, 1, 10000000);
+  std::tie(o.width, o.height) = a.sizeValue("--size", {1280, 800});
+  const std::string solver = a.value("--solver").value_or("scene");
+  if (solver != "scene" && solver != "reference")
+    throw UsageError("--solver must be 'reference' (or omitted)");
+  o.solver = solver == "reference" ? SolverChoice::Reference : SolverChoice::FromScene;
+  o.outDir = *a.value("--out");
+  o.metricsPath = a.value("--metrics").value_or((o.outDir / "metrics.csv").string());
+  return o;
+}
+
+TetMesh loadMeshReporting(const SceneDescription& scene, std::ostream& err) {
+  return loadSceneMesh(scene, [&err](const std::string& line) { err << line << '\n'; });
+}
+
+}  // namespace
+
+int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  const CliArgs a(args,
+                  {"--frames", "--solver", "--out", "--metrics", "--export-every",
+                   "--export-format", "--png-every", "--size", "--backend"},
+                  {"--export-tets"});
+  a.expectPositional(
+      1, 1,
+      "galsculpt run SCENE --frames N [--solver reference] --out DIR --metrics FILE.csv "
+      "[--export-every K] [--export-format obj|ply|stl|gltf|glb] [--export-tets] "
+      "[--png-every K] [--size WxH] [--backend auto|cpu|cuda]");
+  const RunOptions o = readRunOptions(a, "run");
+  const int frames = a.intValue("--frames", 0, 1, 10000000);
+  if (!a.has("--frames")) throw UsageError("run needs --frames N");
+  const std::optional<BackendRequest> backend = backendOption(a);
+  SceneDescription scene = loadScene(a.positional()[0]);
+  if (backend) scene.solver.backend = *backend;
+  Simulation sim(scene, loadMeshReporting(scene, err), o.solver);
+  return simulateFrames(
+      scene.name, frames, sim, o, [&sim] { return sim.advance(); }, out, err);
+}
+
+int playCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  const CliArgs a(args,
+                  {"--out", "--metrics", "--export-every", "--solver", "--export-format",
+                   "--png-every", "--size", "--backend"},
+                  {"--export-tets"});
+  a.expectPositional(1, 1,
+                     "galsculpt play SCRIPT --out DIR [--export-every K] [--metrics FILE.csv] "
+                     "[--solver reference] [--export-format obj|ply|stl|gltf|glb] "
+                     "[--export-tets] [--png-every K] [--size WxH] [--backend auto|cpu|cuda]");
+  const RunOptions o = readRunOptions(a, "play");
+  const std::optional<BackendRequest> backend = backendOption(a);
+  PlaybackScript script = loadPlaybackScript(a.positional()[0]);
+  if (backend) script.scene.solver.backend = *backend;
+  Simulation sim(script.scene, loadMeshReporting(script.scene, err), o.solver);
+  Playback playback(script, sim);
+  return simulateFrames(
+      script.scene.name, script.frames, sim, o, [&playback] { return playback.advance(); }, out,
+      err, [&playback] { return playback.camera(); });
+}
+
+}  // namespace galsculpt

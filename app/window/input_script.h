@@ -1,0 +1,41 @@
+// Synthetic input for the UI test and for demos: a JSON list of steps fed to the app's window
+// through the same handlers as GLFW's events (`galsculpt open FILE --input-script STEPS.json`).
+// Documented in docs/user-guide.md ("Scripted input"). Positions are fractions of the window
+// (0..1 from the top left), so a script works at any window size.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/window/tool_controller.h"
+
+namespace galsculpt {
+
+struct InputStep {
+  enum class Kind { Wait, Move, Press, Release, Scroll, Key, Command };
+  Kind kind = Kind::Wait;
+  int frames = 1;                                 // Wait: frames to let pass
+  std::vector<std::pair<double, double>> points;  // Move: cursor samples within one frame
+  MouseButton button = MouseButton::Left;
+  bool shift = false, ctrl = false;
+  double scroll = 0.0;
+  int key = 0;                    // Key: 'A'..'Z', '0'..'9', ' ', '[', ']', '.', or kKeyEscape
+  std::string command, argument;  // Command: open, save_project, save_recording, export, ...
+  std::string jsonPath;           // for messages
+};
+
+constexpr int kKeyEscape = 256;
+
+struct InputScript {
+  std::vector<InputStep> steps;
+  // false: each frame waits for its simulation step (frame counts are exact, for tests);
+  // true: the simulation runs on its worker thread as with a user at the mouse.
+  bool realtime = false;
+};
+
+// Throws InputError naming the file and the JSON path of a bad step.
+InputScript loadInputScript(const std::filesystem::path& file);
+
+}  // namespace galsculpt

@@ -1,0 +1,253 @@
+#include "engine/meshing/tetrahedralize.h"
+
+#include <stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <optional>
+#include <sstream>
+
+#include "engine/meshing/subprocess.h"
+#include "solver/io/atomic_file.h"
+#include "solver/io/input_error.h"
+#include "solver/io/tetgen_io.h"
+#include "solver/mesh/surface_checks.h"
+#include "solver/mesh/surface_simplify.h"
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "galsculpt-tetgen-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary directory");
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+void writeSmesh(const fs::path& path, const TriMesh& surface) {
+  writeFileAtomically(path, [&](std::ostream& out) {
+    out << std::setprecision(17);
+    out << surface.numVertices() << " 3 0 0\n";
+    for (int i = 0; i < surface.numVertices(); ++i) {
+      const Vec3& p = surface.vertices[i];
+      out << i << ' ' << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    }
+    out << surface.numFaces() << " 0\n";
+    for (const Tri& f : surface.faces) out << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
+    out << "0\n0\n";
+  });
+}
+
+// Reads the tet count from the .ele header without parsing the whole file.
+long long countTets(const fs::path& ele) {
+  std::ifstream in(ele);
+  long long n = -1;
+  in >> n;
+  return n;
+}
+
+// Strictest first: TetGen's quality bound with Steiner points allowed on the surface, then the
+// surface kept as given (-Y) with looser bounds, and last no quality bound at all.
+std::vector<TetQuality> qualityLevels(double radiusEdgeRatio) {
+  return {{radiusEdgeRatio, false}, {radiusEdgeRatio, true}, {2.0, true}, {4.0, true}, {0.0, true}};
+}
+
+std::string tetgenSwitches(const TetQuality& q, double bound) {
+  std::ostringstream sw;
+  sw << "-p";
+  if (q.keepSurface) sw << "Y";
+  if (q.radiusEdgeRatio > 0.0) sw << "q" << q.radiusEdgeRatio;
+  if (bound > 0.0) sw << "a" << std::setprecision(9) << bound;
+  sw << "Q";
+  return sw.str();
+}
+
+constexpr double kTetsPerSurfaceFace = 12.0;
+
+// A simplified copy with about `faces` faces that is still closed and free of crossings; none
+// when simplification cannot keep it so.
+std::optional<TriMesh> simplifyForMeshing(const TriMesh& surface, int faces,
+                                          const TetrahedralizeOptions& options) {
+  for (int attempt = 0; attempt < 3; ++attempt, faces = faces * 3 / 2) {
+    TriMesh coarse = simplifySurface(surface, std::max(faces, 100));
+    if (analyzeSurface(coarse).closedManifold() && findSelfIntersections(coarse, 1).empty()) {
+      if (options.progress) {
+        options.progress("simplified " + options.surfaceName + " from " +
+                         std::to_string(surface.numFaces()) + " to " +
+                         std::to_string(coarse.numFaces()) + " faces");
+      }
+      return coarse;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+void checkMeshableSurface(const TriMesh& surface, const std::string& name) {
+  if (surface.faces.empty()) throw InputError(name, 0, "the surface has no triangles");
+  const SurfaceTopology topo = analyzeSurface(surface);
+  if (!topo.closedManifold()) {
+    throw InputError(name, 0, "cannot tetrahedralize: the surface is " + topo.describeProblem());
+  }
+  const auto crossings = findSelfIntersections(surface, 1000);
+  if (!crossings.empty()) {
+    throw InputError(name, 0,
+                     "cannot tetrahedralize: the surface is self-intersecting: faces " +
+                         std::to_string(crossings[0].first) + " and " +
+                         std::to_string(crossings[0].second) + " cross (" +
+                         std::to_string(crossings.size()) + (crossings.size() >= 1000 ? "+" : "") +
+                         " crossing pair(s))");
+  }
+}
+
+TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOptions& options) {
+  checkMeshableSurface(input, options.surfaceName);
+  if (options.targetTets < 1) throw std::invalid_argument("target tet count must be positive");
+  TriMesh surface = input;
+  double volume = enclosedVolume(surface);
+  if (volume < 0.0) {  // inside-out: flip, the solid is the same
+    for (Tri& f : surface.faces) std::swap(f[1], f[2]);
+    volume = -volume;
+  }
+
+  TempDir dir;
+  fs::path smesh = dir.path() / "input.smesh";
+  writeSmesh(smesh, surface);
+  // TetGen writes its result beside its input: input.smesh -> input.1.node / .ele.
+  auto resultStem = [&]() { return fs::path(smesh).replace_extension(".1"); };
+
+  const double target = options.targetTets;
+  const double tolerance = options.tolerance;
+  bool simplified = false;
+  int attempts = 0;
+  long long bestCount = -1;
+  std::string bestSwitches;
+
+  // One TetGen run; returns its tet count. `bound` <= 0 means no volume bound.
+  auto run = [&](const TetQuality& q, double bound) {
+    const std::string sw = tetgenSwitches(q, bound);
+    const fs::path log = dir.path() / "tetgen.log";
+    const SubprocessResult r =
+        runSubprocess({options.program, sw, smesh.string()}, options.timeoutSeconds, log);
+    if (!r.started) {
+      throw std::runtime_error("cannot run '" + options.program +
+                               "': is TetGen installed? (scripts/install-deps.sh installs it)");
+    }
+    if (!r.succeeded()) {
+      throw std::runtime_error("tetgen " + r.describe() + " on " + options.surfaceName +
+                               " (switches " + sw + ")" +
+                               (r.logTail.empty() ? "" : ":\n" + r.logTail));
+    }
+    const long long count = countTets(fs::path(resultStem()).concat(".ele"));
+    if (count <= 0) throw std::runtime_error("tetgen wrote no tets for " + options.surfaceName);
+    ++attempts;
+    if (options.progress) {
+      std::ostringstream line;
+      line << "tetgen attempt " << attempts << " (" << sw << "): " << count << " tets (target "
+           << options.targetTets << ")";
+      options.progress(line.str());
+    }
+    if (bestCount < 0 || std::abs(count / target - 1.0) < std::abs(bestCount / target - 1.0)) {
+      bestCount = count;
+      bestSwitches = sw;
+    }
+    return count;
+  };
+  auto accept = [&](const TetQuality& q, double bound) {
+    TetrahedralizeResult result;
+    result.mesh = readTetGen(resultStem());
+    result.mesh.faces.clear();
+    result.mesh.faceMarkers.clear();
+    result.mesh.vertexMarkers.clear();
+    result.volumeBound = bound;
+    result.quality = q;
+    result.attempts = attempts;
+    return result;
+  };
+
+  const std::vector<TetQuality> levels = qualityLevels(options.radiusEdgeRatio);
+  for (size_t li = 0; li < levels.size(); ++li) {
+    const TetQuality& level = levels[li];
+    // With the surface kept as given TetGen still needs about 3 tets per surface face: a surface
+    // with more faces than that allows is simplified before any run.
+    const bool hopeless = surface.numFaces() * 3.0 > target * (1.0 + tolerance);
+    if ((li == 2 || (li == 0 && hopeless)) && !simplified) {
+      // The surface as given forces too many tets even when kept as is: simplify it to about
+      // one face per kFacesPerTet tets and start over with the strict levels.
+      simplified = true;
+      const int faces = static_cast<int>(target / kTetsPerSurfaceFace);
+      if (surface.numFaces() > faces) {
+        if (auto coarse = simplifyForMeshing(surface, faces, options)) {
+          surface = std::move(*coarse);
+          smesh = dir.path() / "simplified.smesh";
+          writeSmesh(smesh, surface);
+          li = static_cast<size_t>(-1);  // restart at the strictest level
+          continue;
+        }
+      }
+    }
+    // The fewest tets this quality allows: with no volume bound, only the surface and the
+    // quality bound place points. A surface finer than the target needs relaxes the quality.
+    const long long fewest = run(level, 0.0);
+    if (fewest > target * (1.0 + tolerance)) continue;
+    if (fewest >= target * (1.0 - tolerance)) return accept(level, 0.0);
+
+    TetQuality q = level;
+    int nudges = 0;
+    double bound = 1.5 * volume / target;     // a quality mesh has ~1.5x volume / bound tets
+    double lowBound = 0.0, lowCount = 0.0;    // gave too many tets
+    double highBound = 0.0, highCount = 0.0;  // gave too few tets
+    while (attempts < options.maxAttempts) {
+      const long long count = run(q, bound);
+      if (std::abs(count / target - 1.0) <= tolerance) return accept(q, bound);
+      if (count > target) {
+        lowBound = bound;
+        lowCount = static_cast<double>(count);
+      } else {
+        highBound = bound;
+        highCount = static_cast<double>(count);
+      }
+      if (lowBound > 0.0 && highBound > 0.0 && highBound < 1.01 * lowBound) {
+        // The count jumps across the target within a 1 % change of the bound (TetGen's
+        // refinement is discontinuous): nudge the quality bound and search again.
+        if (q.radiusEdgeRatio > 0.0) q.radiusEdgeRatio *= (nudges++ % 2 == 0) ? 1.04 : 1.0 / 1.08;
+        lowBound = highBound = 0.0;
+      }
+      if (lowBound > 0.0 && highBound > 0.0) {
+        // Interpolate log(count) linearly in log(bound) between the bracket ends.
+        const double t =
+            std::clamp(std::log(lowCount / target) / std::log(lowCount / highCount), 0.2, 0.8);
+        bound = std::exp(std::log(lowBound) + t * (std::log(highBound) - std::log(lowBound)));
+      } else {
+        bound *= std::clamp(count / target, 1.0 / 64.0, 64.0);
+      }
+    }
+    break;
+  }
+  std::ostringstream msg;
+  msg << "could not reach " << options.targetTets << " tets within "
+      << static_cast<int>(tolerance * 100) << " % for " << options.surfaceName << " in " << attempts
+      << " TetGen runs: closest was " << bestCount << " tets (" << bestSwitches << ")";
+  if (bestCount > target)
+    msg << "; the surface is finer than " << options.targetTets << " tets allow";
+  throw std::runtime_error(msg.str());
+}
+
+}  // namespace galsculpt

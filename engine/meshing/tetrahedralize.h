@@ -1,0 +1,55 @@
+// Closed surface -> tet mesh with about N tets, by running the `tetgen` program.
+//
+// TetGen runs as a subprocess with a time limit: it aborts on bad input and is AGPL, so it stays
+// out of our process. The surface is checked first (open, non-manifold, self-intersecting input
+// gets an error that says which). The volume bound (-a) is searched in log space until the tet
+// count lands within the tolerance of the target: counts jump with the bound, so a single guess
+// from volume / N is never enough. Where the count jumps across the target within a 1 % change
+// of the bound, the quality bound is nudged (a few percent) and the search resumes. A surface
+// finer than N tets allow (a scanned model with 50k triangles meshed to 40k tets) first forces
+// more tets than wanted. Then, in order: keep the surface as given (-Y); simplify the surface
+// (quadric edge collapses, to about one face per 12 tets) and try the strict levels again;
+// relax the radius-edge bound step by step. Each level is probed once without a volume bound.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "solver/mesh/tet_mesh.h"
+
+namespace galsculpt {
+
+struct TetrahedralizeOptions {
+  int targetTets = 10000;
+  double tolerance = 0.15;         // accept counts within +-15 % of targetTets
+  double radiusEdgeRatio = 1.414;  // TetGen -q quality bound
+  double timeoutSeconds = 300.0;   // per TetGen run
+  int maxAttempts = 30;
+  std::string program = "tetgen";
+  std::string surfaceName = "surface";               // used in messages
+  std::function<void(const std::string&)> progress;  // one line per attempt, optional
+};
+
+// How strictly TetGen shapes the tets: a radius-edge bound (0 = none) and whether the input
+// surface is kept as given (-Y: no Steiner points on it).
+struct TetQuality {
+  double radiusEdgeRatio = 1.414;
+  bool keepSurface = false;
+};
+
+struct TetrahedralizeResult {
+  TetMesh mesh;
+  double volumeBound = 0.0;  // 0: none was needed
+  TetQuality quality;
+  int attempts = 0;
+};
+
+// Throws InputError for a bad surface, std::runtime_error when TetGen fails, crashes, times out
+// or no bound reaches the target.
+TetrahedralizeResult tetrahedralize(const TriMesh& surface, const TetrahedralizeOptions& options);
+
+// Throws InputError naming the first problem of a surface that TetGen cannot mesh.
+void checkMeshableSurface(const TriMesh& surface, const std::string& name);
+
+}  // namespace galsculpt

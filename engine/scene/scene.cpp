@@ -1,0 +1,384 @@
+#include "engine/scene/scene.h"
+
+#include <limits>
+#include <stdexcept>
+
+#include "engine/scene/json_reader.h"
+#include "solver/io/input_error.h"
+#include "solver/multigrid/multigrid.h"
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+const std::vector<std::string> kPresets = {"clay", "rubber", "flesh", "steel"};
+// Enum values and their names, in enum order.
+template <typename E>
+struct Named {
+  E value;
+  const char* name;
+};
+constexpr Named<MaterialModel> kModelNames[] = {
+    {MaterialModel::Corotational, "corotational"},
+    {MaterialModel::StVK, "stvk"},
+    {MaterialModel::StableNeoHookean, "stable_neo_hookean"}};
+constexpr Named<SolverType> kSolverTypeNames[] = {{SolverType::Multigrid, "multigrid"},
+                                                  {SolverType::Reference, "reference"}};
+constexpr Named<Smoother> kSmootherNames[] = {{Smoother::GaussSeidel, "gauss_seidel"},
+                                              {Smoother::Jacobi, "jacobi"}};
+constexpr Named<CoarseSolver> kCoarseSolverNames[] = {{CoarseSolver::Cg, "cg"},
+                                                      {CoarseSolver::Cholesky, "cholesky"}};
+constexpr Named<Generator> kGeneratorNames[] = {
+    {Generator::Sphere, "sphere"}, {Generator::Charpy, "charpy"}, {Generator::Steak, "steak"}};
+constexpr Named<BackendRequest> kBackendNames[] = {
+    {BackendRequest::Auto, "auto"}, {BackendRequest::Cpu, "cpu"}, {BackendRequest::Cuda, "cuda"}};
+
+template <typename E, size_t N>
+const char* nameOf(const Named<E> (&names)[N], E value) {
+  for (const Named<E>& n : names)
+    if (n.value == value) return n.name;
+  return "?";
+}
+
+template <typename E, size_t N>
+std::optional<E> valueOf(const Named<E> (&names)[N], const std::string& name) {
+  for (const Named<E>& n : names)
+    if (name == n.name) return n.value;
+  return std::nullopt;
+}
+
+// An optional enum member of a scene object, by name; unknown names fail with the choices.
+template <typename E, size_t N>
+E readEnum(JsonObject& o, const std::string& key, E fallback, const Named<E> (&names)[N]) {
+  std::vector<std::string> allowed;
+  for (const Named<E>& n : names) allowed.push_back(n.name);
+  return valueOf(names, o.string(key, nameOf(names, fallback), allowed)).value_or(fallback);
+}
+
+// "50/1000/all": coarse to fine, counts strictly increasing, ending in "all".
+void checkGrid(JsonObject& o, const std::string& key, const std::string& grid) {
+  try {
+    parseGridSetup(grid);
+  } catch (const std::invalid_argument& e) {
+    o.fail(key, e.what());
+  }
+}
+
+MeshSource readMesh(JsonObject o, const fs::path& sceneDir) {
+  MeshSource m;
+  const int kinds = o.has("file") + o.has("generate") + o.has("import");
+  if (kinds != 1) o.fail("", "give exactly one of 'file', 'generate' or 'import'");
+  if (o.has("file")) {
+    m.kind = MeshSource::Kind::File;
+    const std::string f = o.string("file", "");
+    if (f.empty()) o.fail("file", "must not be empty");
+    m.path = fs::absolute(sceneDir / f).lexically_normal();
+  } else if (o.has("generate")) {
+    m.kind = MeshSource::Kind::Generate;
+    m.generator = readEnum(o, "generate", Generator::Sphere, kGeneratorNames);
+    m.tets = o.integer("tets", 0, 100, 5000000);
+    if (m.tets == 0) o.fail("tets", "is required with 'generate'");
+    m.radius = o.number("radius", 0.1, 1e-6, 1e3);
+  } else {
+    m.kind = MeshSource::Kind::Import;
+    const std::string source = o.string("import", "");
+    if (source.rfind("cgal:", 0) == 0) {
+      m.cgalMesh = source.substr(5);
+      if (m.cgalMesh.empty()) o.fail("import", "name the CGAL mesh, e.g. cgal:armadillo");
+    } else {
+      if (source.empty()) o.fail("import", "must not be empty");
+      m.path = fs::absolute(sceneDir / source).lexically_normal();
+    }
+    m.tets = o.integer("tets", 0, 100, 5000000);
+    if (m.tets == 0) o.fail("tets", "is required with 'import'");
+  }
+  m.scale = o.number("scale", 1.0, 1e-12, 1e12);
+  m.translate = o.vec3("translate", Eigen::Vector3d::Zero());
+  o.rejectUnknownKeys();
+  return m;
+}
+
+MaterialDesc readMaterial(JsonObject o) {
+  const std::string preset = o.string("preset", "rubber", kPresets);
+  MaterialDesc m = materialPreset(preset);
+  m.model = readEnum(o, "model", m.model, kModelNames);
+  m.youngsModulus = o.number("youngs_modulus", m.youngsModulus, 1e-3, 1e13);
+  m.poissonRatio = o.number("poisson_ratio", m.poissonRatio, -0.99, 0.4999);
+  m.density = o.number("density", m.density, 1e-3, 1e6);
+  m.yieldStress = o.number("yield_stress", m.yieldStress, 0.0, 1e13);
+  m.hardening = o.number("hardening", m.hardening, 0.0, 1e13);
+  m.fractureThreshold = o.number("fracture_threshold", m.fractureThreshold, 0.0, 1e13);
+  o.rejectUnknownKeys();
+  return m;
+}
+
+std::vector<PathKey> readPath(JsonObject& o, const std::string& key) {
+  std::vector<PathKey> keys;
+  const auto items = o.array(key);
+  for (size_t i = 0; i < items.size(); ++i) {
+    JsonObject k(items[i], o.childPath(key) + "[" + std::to_string(i) + "]", o.file());
+    PathKey p;
+    p.time = k.requiredNumber("t", 0.0, 1e9);
+    p.offset = k.vec3("offset", Eigen::Vector3d::Zero());
+    if (!keys.empty() && p.time <= keys.back().time) k.fail("t", "path times must increase");
+    k.rejectUnknownKeys();
+    keys.push_back(p);
+  }
+  return keys;
+}
+
+}  // namespace
+
+AnchorDesc readAnchorDesc(JsonObject o) {
+  AnchorDesc a;
+  const int shapes = o.has("box") + o.has("sphere") + o.has("vertices");
+  if (shapes != 1) o.fail("", "give exactly one of 'box', 'sphere' or 'vertices'");
+  if (o.has("box")) {
+    a.shape = AnchorDesc::Shape::Box;
+    JsonObject b = o.object("box");
+    a.min = b.vec3("min", Eigen::Vector3d::Constant(-kInf));
+    a.max = b.vec3("max", Eigen::Vector3d::Constant(kInf));
+    if (!b.has("min") && !b.has("max")) b.fail("", "give 'min' and/or 'max'");
+    if ((a.min.array() > a.max.array()).any()) b.fail("", "'min' must not exceed 'max'");
+    b.rejectUnknownKeys();
+  } else if (o.has("sphere")) {
+    a.shape = AnchorDesc::Shape::Sphere;
+    JsonObject s = o.object("sphere");
+    a.center = s.vec3("center", Eigen::Vector3d::Zero());
+    a.radius = s.requiredNumber("radius", 0.0, kInf);
+    s.rejectUnknownKeys();
+  } else {
+    a.shape = AnchorDesc::Shape::Vertices;
+    const auto items = o.array("vertices");
+    for (size_t i = 0; i < items.size(); ++i) {
+      if (!items[i].is_number_integer() || items[i].get<long long>() < 0 ||
+          items[i].get<long long>() > std::numeric_limits<int>::max()) {
+        o.fail("vertices", "element " + std::to_string(i) + " is not a vertex index");
+      }
+      a.vertices.push_back(items[i].get<int>());
+    }
+    if (a.vertices.empty()) o.fail("vertices", "must not be empty");
+  }
+  a.path = readPath(o, "path");
+  o.rejectUnknownKeys();
+  return a;
+}
+
+namespace {
+
+MotionDesc readMotion(JsonObject o) {
+  MotionDesc m;
+  const std::string type = o.string("type", "static", {"static", "linear", "pendulum"});
+  if (type == "linear") {
+    m.type = MotionDesc::Type::Linear;
+    m.velocity = o.vec3("velocity", Eigen::Vector3d::Zero());
+  } else if (type == "pendulum") {
+    m.type = MotionDesc::Type::Pendulum;
+    m.pivot = o.vec3("pivot", Eigen::Vector3d::Zero());
+    m.axis = o.vec3("axis", Eigen::Vector3d::UnitZ());
+    if (m.axis.norm() < 1e-12) o.fail("axis", "must not be zero");
+    m.axis.normalize();
+    m.angularVelocity = o.requiredNumber("angular_velocity", -1e6, 1e6);
+  }
+  o.rejectUnknownKeys();
+  return m;
+}
+
+ColliderDesc readCollider(JsonObject o) {
+  ColliderDesc c;
+  const std::string type = o.string("type", "", {"plane", "sphere", "box"});
+  if (type.empty()) o.fail("type", "is required (plane, sphere or box)");
+  if (type == "plane") {
+    c.type = ColliderDesc::Type::Plane;
+    c.point = o.vec3("point", Eigen::Vector3d::Zero());
+    c.normal = o.vec3("normal", Eigen::Vector3d::UnitY());
+    if (c.normal.norm() < 1e-12) o.fail("normal", "must not be zero");
+    c.normal.normalize();
+  } else if (type == "sphere") {
+    c.type = ColliderDesc::Type::Sphere;
+    c.center = o.vec3("center", Eigen::Vector3d::Zero());
+    c.radius = o.requiredNumber("radius", 1e-9, kInf);
+  } else {
+    c.type = ColliderDesc::Type::Box;
+    c.center = o.vec3("center", Eigen::Vector3d::Zero());
+    if (!o.has("half_extents")) o.fail("half_extents", "is required for a box");
+    c.halfExtents = o.vec3("half_extents", Eigen::Vector3d::Zero());
+    if ((c.halfExtents.array() <= 0.0).any()) o.fail("half_extents", "must be positive");
+  }
+  c.friction = o.number("friction", 0.0, 0.0, 10.0);
+  if (o.has("motion")) c.motion = readMotion(o.object("motion"));
+  o.rejectUnknownKeys();
+  return c;
+}
+
+FractureDesc readFracture(JsonObject o) {
+  FractureDesc f;
+  f.enabled = o.boolean("enabled", true);
+  f.threshold = o.number("threshold", 0.0, 0.0, 1e13);  // 0: the material preset's
+  f.kernelRadius = o.number("kernel_radius", 0.0, 0.0, 1e6);
+  f.thresholdJitter = o.number("threshold_jitter", 0.0, 0.0, 0.99);
+  f.seed = static_cast<unsigned>(o.integer("seed", 1, 0, std::numeric_limits<int>::max()));
+  f.compressionResists = o.boolean("compression_resists", true);
+  f.iterations = o.integer("iterations", 1, 1, 100);
+  f.compressiveThreshold = o.number("compressive_threshold", 0.0, 0.0, 1e13);
+  o.rejectUnknownKeys();
+  return f;
+}
+
+SolverDesc readSolver(JsonObject o) {
+  SolverDesc s;
+  s.type = readEnum(o, "type", s.type, kSolverTypeNames);
+  s.grid = o.string("grid", s.grid);
+  checkGrid(o, "grid", s.grid);
+  s.fineSweeps = o.integer("fine_sweeps", s.fineSweeps, 0, 10000);
+  s.coarseIterations = o.integer("coarse_iters", s.coarseIterations, 0, 100000);
+  s.smoother = readEnum(o, "smoother", s.smoother, kSmootherNames);
+  s.coarseSolver = readEnum(o, "coarse_solver", s.coarseSolver, kCoarseSolverNames);
+  s.newtonIterations = o.integer("newton_iters", s.newtonIterations, 1, 100);
+  s.cycles = o.integer("cycles", s.cycles, 1, 1000);
+  s.pcgTolerance = o.number("pcg_tolerance", s.pcgTolerance, 0.0, 0.5);
+  s.backend = readEnum(o, "backend", s.backend, kBackendNames);
+  s.splitAggregates = o.boolean("split_aggregates", s.splitAggregates);
+  o.rejectUnknownKeys();
+  return s;
+}
+
+}  // namespace
+
+const char* solverTypeName(SolverType t) {
+  return nameOf(kSolverTypeNames, t);
+}
+const char* smootherName(Smoother s) {
+  return nameOf(kSmootherNames, s);
+}
+const char* coarseSolverName(CoarseSolver c) {
+  return nameOf(kCoarseSolverNames, c);
+}
+const char* backendRequestName(BackendRequest b) {
+  return nameOf(kBackendNames, b);
+}
+const char* materialModelName(MaterialModel m) {
+  return nameOf(kModelNames, m);
+}
+const char* generatorName(Generator g) {
+  return nameOf(kGeneratorNames, g);
+}
+std::optional<Generator> generatorFromName(const std::string& name) {
+  return valueOf(kGeneratorNames, name);
+}
+std::optional<BackendRequest> backendRequestFromName(const std::string& name) {
+  return valueOf(kBackendNames, name);
+}
+
+MaterialDesc materialPreset(const std::string& name) {
+  MaterialDesc m;
+  m.preset = name;
+  if (name == "clay") {  // modelling clay: soft, nearly incompressible, yields early
+    m.model = MaterialModel::StVK;
+    m.youngsModulus = 2.0e5;
+    m.poissonRatio = 0.45;
+    m.density = 1800.0;
+    m.yieldStress = 5.0e3;
+    m.hardening = 1.0e4;
+    m.fractureThreshold = 3.0e4;
+  } else if (name == "rubber") {
+    m.model = MaterialModel::StableNeoHookean;
+    m.youngsModulus = 1.0e6;
+    m.poissonRatio = 0.48;
+    m.density = 1100.0;
+    m.fractureThreshold = 1.5e6;
+  } else if (name == "flesh") {  // soft tissue; plastic before it tears (ductile)
+    m.model = MaterialModel::StableNeoHookean;
+    m.youngsModulus = 5.0e4;
+    m.poissonRatio = 0.45;
+    m.density = 1060.0;
+    m.yieldStress = 2.0e4;
+    m.hardening = 1.0e4;
+    m.fractureThreshold = 5.0e4;
+  } else if (name == "steel") {  // structural steel, brittle fracture preset
+    m.model = MaterialModel::Corotational;
+    m.youngsModulus = 2.0e11;
+    m.poissonRatio = 0.3;
+    m.density = 7850.0;
+    m.fractureThreshold = 4.0e8;
+  } else {
+    throw std::invalid_argument("unknown material preset '" + name + "'");
+  }
+  return m;
+}
+
+SceneDescription loadScene(const fs::path& file) {
+  return parseScene(parseJsonFile(file), file);
+}
+
+SceneDescription parseScene(const nlohmann::json& root, const fs::path& file) {
+  JsonObject o(root, "$", file.string());
+  SceneDescription s;
+  s.source = root;
+  s.file = fs::absolute(file);
+  const fs::path dir = s.file.parent_path();
+  s.name = o.string("name", file.stem().string());
+  if (!o.has("mesh")) o.fail("mesh", "is required");
+  s.mesh = readMesh(o.object("mesh"), dir);
+  if (o.has("material"))
+    s.material = readMaterial(o.object("material"));
+  else
+    s.material = materialPreset("rubber");
+  s.gravity = o.vec3("gravity", s.gravity);
+  s.timeStep = o.number("time_step", s.timeStep, 1e-7, 1.0);
+  s.substeps = o.integer("substeps", s.substeps, 1, 1000);
+  if (o.has("damping")) {
+    JsonObject d = o.object("damping");
+    s.dampingMass = d.number("mass", 0.0, 0.0, 1e6);
+    s.dampingStiffness = d.number("stiffness", 0.0, 0.0, 1e6);
+    d.rejectUnknownKeys();
+  }
+  const auto anchors = o.array("anchors");
+  for (size_t i = 0; i < anchors.size(); ++i) {
+    s.anchors.push_back(readAnchorDesc(
+        JsonObject(anchors[i], "$.anchors[" + std::to_string(i) + "]", file.string())));
+  }
+  const auto colliders = o.array("colliders");
+  for (size_t i = 0; i < colliders.size(); ++i) {
+    s.colliders.push_back(readCollider(
+        JsonObject(colliders[i], "$.colliders[" + std::to_string(i) + "]", file.string())));
+  }
+  if (o.has("fracture")) {
+    JsonObject f = o.object("fracture");
+    s.fracture = readFracture(f);
+    if (s.fracture.enabled && s.fracture.threshold <= 0.0) {
+      s.fracture.threshold = s.material.fractureThreshold;
+      if (s.fracture.threshold <= 0.0)
+        f.fail("threshold",
+               "must be positive when fracture is enabled (the material has no default)");
+    }
+  }
+  if (o.has("solver")) s.solver = readSolver(o.object("solver"));
+  if (o.has("measure")) {
+    JsonObject m = o.object("measure");
+    if (m.has("opening")) {
+      const nlohmann::json& pts = m.raw("opening");
+      if (!pts.is_array() || pts.size() != 2)
+        m.fail("opening", "must be two points [[x, y, z], [x, y, z]]");
+      for (const nlohmann::json& p : pts) {
+        if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() ||
+            !p[2].is_number())
+          m.fail("opening", "must be two points [[x, y, z], [x, y, z]]");
+        s.measure.opening.emplace_back(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+      }
+    }
+    s.measure.loadCollider = m.integer("load_collider", -1, 0, 1000000);
+    if (s.measure.loadCollider >= static_cast<int>(s.colliders.size()))
+      m.fail("load_collider",
+             "names no collider (the scene has " + std::to_string(s.colliders.size()) + ")");
+    m.rejectUnknownKeys();
+  }
+  o.rejectUnknownKeys();
+  return s;
+}
+
+}  // namespace galsculpt

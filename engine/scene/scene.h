@@ -1,0 +1,164 @@
+// Scene files: what to simulate (mesh, material, anchors, colliders, gravity, fracture, solver).
+//
+// A scene is JSON, documented in docs/scenes.md. Loading validates every value and names the
+// JSON path of the first bad one. The description is plain data: the engine turns it into a
+// solver model; nothing here runs physics.
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/scene/json_reader.h"
+#include "solver/fem/material_types.h"
+
+namespace galsculpt {
+
+// The paper's shapes, made on demand (engine/scene/scene_mesh.h).
+enum class Generator { Sphere, Charpy, Steak };
+// "sphere", "charpy", "steak"; generatorFromName: none for another name.
+const char* generatorName(Generator g);
+std::optional<Generator> generatorFromName(const std::string& name);
+
+struct MeshSource {
+  enum class Kind { File, Generate, Import };
+  Kind kind = Kind::File;
+  std::filesystem::path path;               // File: tet mesh; Import: surface (absolute, resolved)
+  Generator generator = Generator::Sphere;  // Generate
+  std::string cgalMesh;  // Import from Debian's libcgal-demo data (e.g. "armadillo")
+  int tets = 0;          // Generate / Import: target tet count
+  double radius = 0.1;   // sphere
+  double scale = 1.0;    // applied to the surface before meshing (Import)
+  Eigen::Vector3d translate = Eigen::Vector3d::Zero();
+};
+
+struct MaterialDesc {
+  std::string preset = "rubber";  // clay | rubber | flesh | steel
+  MaterialModel model = MaterialModel::StableNeoHookean;
+  double youngsModulus = 0.0;  // Pa
+  double poissonRatio = 0.0;
+  double density = 0.0;            // kg/m^3
+  double yieldStress = 0.0;        // Pa, 0 = elastic
+  double hardening = 0.0;          // Pa (linear isotropic hardening modulus)
+  double fractureThreshold = 0.0;  // Pa, the preset's edge stress at break (fracture default)
+};
+
+// Default values of a named preset; throws std::invalid_argument for an unknown name.
+MaterialDesc materialPreset(const std::string& name);
+
+struct PathKey {
+  double time = 0.0;                                 // s
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // m, from the rest position
+};
+
+struct AnchorDesc {
+  enum class Shape { Box, Sphere, Vertices };
+  Shape shape = Shape::Box;
+  Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero();  // Box
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();                              // Sphere
+  double radius = 0.0;
+  std::vector<int> vertices;  // Vertices
+  std::vector<PathKey> path;  // empty: fixed; else offsets, linearly interpolated in time
+};
+
+struct MotionDesc {
+  enum class Type { Static, Linear, Pendulum };
+  Type type = Type::Static;
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // Linear, m/s
+  Eigen::Vector3d pivot = Eigen::Vector3d::Zero();     // Pendulum
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  double angularVelocity = 0.0;  // rad/s
+};
+
+struct ColliderDesc {
+  enum class Type { Plane, Sphere, Box };
+  Type type = Type::Plane;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // Plane
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  // Sphere, Box
+  double radius = 0.0;
+  Eigen::Vector3d halfExtents = Eigen::Vector3d::Zero();
+  double friction = 0.0;
+  MotionDesc motion;
+};
+
+struct FractureDesc {
+  bool enabled = false;
+  double threshold = 0.0;        // Pa, edge normal stress that damages an edge
+  double kernelRadius = 0.0;     // m, non-local averaging radius (0 = local)
+  double thresholdJitter = 0.0;  // relative spread of random thresholds (0 = uniform)
+  unsigned seed = 1;
+  bool compressionResists = true;     // damaged edges still resist compression
+  int iterations = 1;                 // solves per step while edges keep breaking
+  double compressiveThreshold = 0.0;  // Pa, edges crushed beyond it break too (0: never)
+};
+
+// The solver's choices, parsed once from their names (scene files, the command line, the Scene
+// settings panel); nothing compares their names after loading.
+enum class SolverType { Multigrid, Reference };
+enum class Smoother { GaussSeidel, Jacobi };
+enum class CoarseSolver { Cg, Cholesky };
+enum class BackendRequest { Auto, Cpu, Cuda };
+
+// Names as written in scene files: "multigrid", "gauss_seidel", "cholesky", "cuda", ...
+const char* solverTypeName(SolverType t);
+const char* smootherName(Smoother s);
+const char* coarseSolverName(CoarseSolver c);
+const char* backendRequestName(BackendRequest b);
+// "corotational", "stvk", "stable_neo_hookean".
+const char* materialModelName(MaterialModel m);
+// The request named `name`, or none for an unknown name.
+std::optional<BackendRequest> backendRequestFromName(const std::string& name);
+
+struct SolverDesc {
+  SolverType type = SolverType::Multigrid;
+  std::string grid = "50/all";
+  int fineSweeps = 3;
+  int coarseIterations = 20;
+  Smoother smoother = Smoother::GaussSeidel;
+  CoarseSolver coarseSolver = CoarseSolver::Cg;
+  int newtonIterations = 1;
+  int cycles = 1;             // V-cycles per linear solve (without PCG)
+  double pcgTolerance = 0.0;  // > 0: CG preconditioned by V-cycles, to this relative residual
+  BackendRequest backend = BackendRequest::Auto;
+  bool splitAggregates = true;  // crack-aware coarse levels
+};
+
+// Optional measurements written as metrics columns.
+struct MeasureDesc {
+  // Opening: the change in distance between the mesh vertices nearest two rest points (the
+  // Charpy test's crack-mouth opening displacement, CMOD). Empty: not measured.
+  std::vector<Eigen::Vector3d> opening;
+  // Load: the force magnitude of one collider (index into colliders; -1: not measured).
+  int loadCollider = -1;
+};
+
+struct SceneDescription {
+  std::filesystem::path file;
+  nlohmann::json source;  // the scene as read (projects store it)
+  std::string name;
+  MeshSource mesh;
+  MaterialDesc material;
+  Eigen::Vector3d gravity = Eigen::Vector3d(0.0, -9.81, 0.0);
+  double timeStep = 1.0 / 60.0;
+  int substeps = 1;
+  double dampingMass = 0.0;
+  double dampingStiffness = 0.0;
+  std::vector<AnchorDesc> anchors;
+  std::vector<ColliderDesc> colliders;
+  FractureDesc fracture;
+  SolverDesc solver;
+  MeasureDesc measure;
+};
+
+// One anchor object (box / sphere / vertices, optional path), as in a scene's "anchors" list.
+AnchorDesc readAnchorDesc(JsonObject o);
+
+// Reads and validates a scene; throws InputError naming file and JSON path.
+SceneDescription loadScene(const std::filesystem::path& file);
+// The same for a scene already parsed; `file` names it in errors and anchors relative paths.
+SceneDescription parseScene(const nlohmann::json& root, const std::filesystem::path& file);
+
+}  // namespace galsculpt

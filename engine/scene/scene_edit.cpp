@@ -1,0 +1,54 @@
+#include "engine/scene/scene_edit.h"
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+SceneSettings sceneSettings(const SceneDescription& scene) {
+  SceneSettings s;
+  s.material = scene.material;
+  s.fracture = scene.fracture.enabled;
+  s.fractureThreshold = scene.fracture.threshold;
+  s.solver = scene.solver;
+  return s;
+}
+
+SceneDescription editScene(const SceneDescription& base, const SceneSettings& s) {
+  nlohmann::json j = base.source;
+  const fs::path dir = base.file.parent_path();
+  if (j.contains("mesh") && j["mesh"].is_object()) {
+    nlohmann::json& mesh = j["mesh"];
+    for (const char* key : {"file", "import"}) {
+      if (!mesh.contains(key) || !mesh[key].is_string()) continue;
+      const std::string path = mesh[key].get<std::string>();
+      if (path.rfind("cgal:", 0) != 0)
+        mesh[key] = fs::absolute(dir / path).lexically_normal().string();
+    }
+  }
+  const MaterialDesc& m = s.material;
+  j["material"] = {{"preset", m.preset},
+                   {"model", materialModelName(m.model)},
+                   {"youngs_modulus", m.youngsModulus},
+                   {"poisson_ratio", m.poissonRatio},
+                   {"density", m.density},
+                   {"yield_stress", m.yieldStress},
+                   {"hardening", m.hardening},
+                   {"fracture_threshold", m.fractureThreshold}};
+  nlohmann::json fracture = j.contains("fracture") ? j["fracture"] : nlohmann::json::object();
+  fracture["enabled"] = s.fracture;
+  fracture["threshold"] = s.fractureThreshold;
+  j["fracture"] = fracture;
+  const SolverDesc& v = s.solver;
+  nlohmann::json solver = j.contains("solver") ? j["solver"] : nlohmann::json::object();
+  solver["type"] = solverTypeName(v.type);
+  solver["grid"] = v.grid;
+  solver["fine_sweeps"] = v.fineSweeps;
+  solver["coarse_iters"] = v.coarseIterations;
+  solver["smoother"] = smootherName(v.smoother);
+  solver["coarse_solver"] = coarseSolverName(v.coarseSolver);
+  solver["backend"] = backendRequestName(v.backend);
+  j["solver"] = solver;
+  return parseScene(j, base.file.parent_path() / (base.file.stem().string() + ".edited.json"));
+}
+
+}  // namespace galsculpt

@@ -1,0 +1,140 @@
+#include "engine/scene/scene_mesh.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "engine/meshing/mesh_files.h"
+#include "engine/meshing/tetrahedralize.h"
+#include "engine/surface/surface_io.h"
+#include "solver/io/input_error.h"
+#include "solver/io/tetgen_io.h"
+#include "solver/mesh/shape_generators.h"
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+fs::path cacheDirectory() {
+  if (const char* dir = std::getenv("GALSCULPT_CACHE_DIR"); dir && *dir) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    return fs::path(xdg) / "galsculpt";
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return fs::path(home) / ".cache" / "galsculpt";
+  return fs::temp_directory_path() / "galsculpt-cache";
+}
+
+fs::path cgalMeshPath(const std::string& name) {
+  return cacheDirectory() / "cgal" / (name + ".off");
+}
+
+namespace {
+// Finest subdivision whose 20 * 4^s faces stay below targetTets / tetsPerFace.
+int subdivisionsFor(int targetTets, double tetsPerFace, int minLevel, int maxLevel) {
+  int level = minLevel;
+  while (level < maxLevel && 20.0 * std::pow(4.0, level + 1) <= targetTets / tetsPerFace) ++level;
+  return level;
+}
+}  // namespace
+
+TriMesh generatorSurface(Generator generator, double radius, int targetTets) {
+  switch (generator) {
+    case Generator::Sphere:  // 1280 faces for the paper's 35k-tet sphere
+      return makeIcosphere(radius, subdivisionsFor(targetTets, 20.0, 1, 5));
+    case Generator::Charpy:
+      return makeCharpyBar();
+    case Generator::Steak: {
+      // Surface triangles of about the size of a tet edge at this count (8 surface faces per
+      // 100 tets keeps the boundary from forcing extra tets); never coarser than 15 mm.
+      const double area = 0.04;  // m^2, the slab's surface
+      const double faces = std::max(200.0, 0.08 * targetTets);
+      return makeSteakSlab(std::min(0.015, std::sqrt(area / (0.433 * faces))));
+    }
+  }
+  throw std::logic_error("unhandled generator");
+}
+
+namespace {
+
+TetMesh cachedTetrahedralization(const TriMesh& surface, const std::string& key,
+                                 const std::string& name, int tets, const ProgressFn& progress) {
+  const fs::path dir = cacheDirectory() / "meshes";
+  const fs::path stem = dir / key;
+  std::error_code ec;
+  if (fs::exists(fs::path(stem).concat(".node"), ec) &&
+      fs::exists(fs::path(stem).concat(".ele"), ec)) {
+    return readTetGen(stem);
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw OutputError("cannot create the mesh cache " + dir.string() + ": " + ec.message());
+  if (progress)
+    progress("meshing " + name + " (" + std::to_string(tets) + " tets), cached in " + dir.string());
+  TetrahedralizeOptions options;
+  options.targetTets = tets;
+  options.surfaceName = name;
+  options.progress = progress;
+  TetrahedralizeResult result = tetrahedralize(surface, options);
+  writeTetGen(stem, result.mesh);
+  return std::move(result.mesh);
+}
+
+void transformSurface(TriMesh& surface, const MeshSource& m) {
+  for (Vec3& v : surface.vertices) v = v * m.scale + m.translate;
+}
+
+}  // namespace
+
+TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress) {
+  const MeshSource& m = scene.mesh;
+  switch (m.kind) {
+    case MeshSource::Kind::File: {
+      std::error_code ec;
+      if (!fs::exists(m.path, ec) && !fs::exists(fs::path(m.path).concat(".node"), ec))
+        throw InputError(scene.file.string(), 0,
+                         "$.mesh.file: " + m.path.string() + " does not exist");
+      TetMesh mesh = readTetMesh(m.path);
+      for (Vec3& v : mesh.vertices) v = v * m.scale + m.translate;
+      return mesh;
+    }
+    case MeshSource::Kind::Generate: {
+      TriMesh surface = generatorSurface(m.generator, m.radius, m.tets);
+      transformSurface(surface, m);
+      std::ostringstream key;
+      key << generatorName(m.generator) << "-" << m.tets;
+      if (m.generator == Generator::Sphere) key << "-r" << m.radius;
+      if (m.scale != 1.0 || !m.translate.isZero())
+        key << "-s" << m.scale << "-t" << m.translate.transpose();
+      std::string k = key.str();
+      for (char& c : k)
+        if (c == ' ') c = '_';
+      return cachedTetrahedralization(surface, k, generatorName(m.generator), m.tets, progress);
+    }
+    case MeshSource::Kind::Import: {
+      fs::path source = m.path;
+      std::string name = m.path.filename().string();
+      if (!m.cgalMesh.empty()) {
+        source = cgalMeshPath(m.cgalMesh);
+        name = m.cgalMesh;
+        std::error_code ec;
+        if (!fs::exists(source, ec)) {
+          throw InputError(scene.file.string(), 0,
+                           "$.mesh.import: " + source.string() +
+                               " is missing; run scripts/fetch-cgal-meshes.sh (installs Debian's "
+                               "libcgal-demo and unpacks its meshes)");
+        }
+      }
+      std::error_code ec;
+      if (!fs::exists(source, ec))
+        throw InputError(scene.file.string(), 0,
+                         "$.mesh.import: " + source.string() + " does not exist");
+      TriMesh surface = readSurface(source);
+      transformSurface(surface, m);
+      std::ostringstream key;
+      key << "import-" << fs::path(name).stem().string() << "-" << m.tets << "-s" << m.scale;
+      return cachedTetrahedralization(surface, key.str(), name, m.tets, progress);
+    }
+  }
+  throw std::logic_error("unhandled mesh source");
+}
+
+}  // namespace galsculpt

@@ -1,0 +1,30 @@
+// Turns a scene's mesh source into a tet mesh: reads a file, or generates / imports and caches.
+//
+// Large meshes are never committed: they are generated on demand by a deterministic generator
+// (or meshed from Debian's CGAL data) and cached as TetGen files under the cache folder:
+// $GALSCULPT_CACHE_DIR, else $XDG_CACHE_HOME/galsculpt, else ~/.cache/galsculpt.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "engine/scene/scene.h"
+#include "solver/mesh/tet_mesh.h"
+
+namespace galsculpt {
+
+std::filesystem::path cacheDirectory();
+
+// Where Debian's libcgal-demo data are unpacked by scripts/fetch-cgal-meshes.sh.
+std::filesystem::path cgalMeshPath(const std::string& name);
+
+// The closed surface a generator makes, resolved for about
+// `targetTets` tets: a surface finer than the volume mesh needs would force extra tets.
+TriMesh generatorSurface(Generator generator, double radius, int targetTets);
+
+using ProgressFn = std::function<void(const std::string&)>;
+
+TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress = {});
+
+}  // namespace galsculpt

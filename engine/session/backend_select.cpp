@@ -1,0 +1,22 @@
+#include "engine/session/backend_select.h"
+
+#include "gpu/cuda_step_backend.h"
+
+namespace galsculpt {
+
+BackendChoice chooseBackend(BackendRequest requested, const SimModel& model,
+                            const StepSettings& settings) {
+  BackendChoice choice;
+  if (requested != BackendRequest::Cpu) {
+    std::string reason;
+    choice.backend = gpu::makeCudaStepBackend(model, settings, reason);
+    if (choice.backend) return choice;
+    choice.note = (requested == BackendRequest::Cuda ? "the CUDA backend is not available ("
+                                                     : "backend auto: (") +
+                  reason + "): running on the CPU";
+  }
+  choice.backend = std::make_unique<CpuStepBackend>(model);
+  return choice;
+}
+
+}  // namespace galsculpt

@@ -1,0 +1,490 @@
+#include "engine/session/simulation.h"
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+#include "engine/session/backend_select.h"
+#include "solver/io/damage_io.h"
+#include "solver/io/input_error.h"
+#include "solver/io/tetgen_io.h"
+#include "solver/io/vtk_io.h"
+#include "solver/mesh/union_find.h"
+
+namespace galsculpt {
+
+namespace {
+
+std::vector<int> selectAnchorVertices(const AnchorDesc& a, const TetMesh& mesh,
+                                      const std::string& file, const std::string& path) {
+  std::vector<int> out;
+  switch (a.shape) {
+    case AnchorDesc::Shape::Box:
+      for (int v = 0; v < mesh.numVertices(); ++v) {
+        const Vec3& p = mesh.vertices[v];
+        if ((p.array() >= a.min.array()).all() && (p.array() <= a.max.array()).all())
+          out.push_back(v);
+      }
+      break;
+    case AnchorDesc::Shape::Sphere:
+      for (int v = 0; v < mesh.numVertices(); ++v) {
+        if ((mesh.vertices[v] - a.center).norm() <= a.radius) out.push_back(v);
+      }
+      break;
+    case AnchorDesc::Shape::Vertices:
+      for (int v : a.vertices) {
+        if (v >= mesh.numVertices()) {
+          throw InputError(file, 0,
+                           path + ".vertices: vertex " + std::to_string(v) +
+                               " does not exist (the mesh has " +
+                               std::to_string(mesh.numVertices()) + ")");
+        }
+        out.push_back(v);
+      }
+      break;
+  }
+  if (out.empty()) throw InputError(file, 0, path + ": selects no vertex of the mesh");
+  return out;
+}
+
+Collider colliderFromScene(const ColliderDesc& d) {
+  Collider c;
+  c.type = d.type == ColliderDesc::Type::Plane    ? Collider::Type::Plane
+           : d.type == ColliderDesc::Type::Sphere ? Collider::Type::Sphere
+                                                  : Collider::Type::Box;
+  c.point = d.point;
+  c.normal = d.normal;
+  c.center = d.center;
+  c.radius = d.radius;
+  c.halfExtents = d.halfExtents;
+  c.motion.type = d.motion.type == MotionDesc::Type::Static   ? ColliderMotion::Type::Static
+                  : d.motion.type == MotionDesc::Type::Linear ? ColliderMotion::Type::Linear
+                                                              : ColliderMotion::Type::Pendulum;
+  c.motion.velocity = d.motion.velocity;
+  c.motion.pivot = d.motion.pivot;
+  c.motion.axis = d.motion.axis;
+  c.motion.angularVelocity = d.motion.angularVelocity;
+  return c;
+}
+
+}  // namespace
+
+void checkSceneAnchors(const SceneDescription& scene, const TetMesh& mesh) {
+  for (size_t i = 0; i < scene.anchors.size(); ++i)
+    selectAnchorVertices(scene.anchors[i], mesh, scene.file.string(),
+                         "$.anchors[" + std::to_string(i) + "]");
+}
+
+MaterialParams materialFromScene(const MaterialDesc& m) {
+  MaterialParams p;
+  p.model = m.model;
+  p.lame = lameFromYoungPoisson(m.youngsModulus, m.poissonRatio);
+  p.density = m.density;
+  p.plastic = {m.yieldStress, m.hardening};
+  return p;
+}
+
+Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, SolverChoice choice)
+    : model_(buildSimModel(mesh, materialFromScene(scene.material))),
+      state_(initialState(model_)),
+      surfaceBuilder_(model_) {
+  settings_.dt = scene.timeStep;
+  settings_.substeps = scene.substeps;
+  settings_.gravity = scene.gravity;
+  settings_.dampingMass = scene.dampingMass;
+  settings_.dampingStiffness = scene.dampingStiffness;
+  settings_.compressionResists = scene.fracture.compressionResists;
+  settings_.newtonIterations = scene.solver.newtonIterations;
+  for (size_t i = 0; i < scene.anchors.size(); ++i) {
+    AnchorConstraint a;
+    a.vertices = selectAnchorVertices(scene.anchors[i], mesh, scene.file.string(),
+                                      "$.anchors[" + std::to_string(i) + "]");
+    anchorIds_.push_back(-static_cast<int>(i) - 1);
+    for (const PathKey& k : scene.anchors[i].path) a.path.push_back({k.time, k.offset});
+    settings_.anchors.push_back(std::move(a));
+  }
+  for (const ColliderDesc& c : scene.colliders) {
+    settings_.colliders.push_back(colliderFromScene(c));
+    if (c.friction > 0.0 && notes_.empty())
+      notes_.push_back("collider friction is not modelled yet: contacts are frictionless");
+  }
+  if (choice == SolverChoice::Reference || scene.solver.type == SolverType::Reference) {
+    settings_ = referenceSettings(settings_);
+  } else {
+    settings_.multigrid = true;
+    settings_.gridHandles = parseGridSetup(scene.solver.grid);
+    MultigridSettings& mg = settings_.multigridSettings;
+    mg.preSweeps = mg.postSweeps = scene.solver.fineSweeps;
+    mg.jacobi = scene.solver.smoother == Smoother::Jacobi;
+    mg.coarseCholesky = scene.solver.coarseSolver == CoarseSolver::Cholesky;
+    mg.coarseIterations = scene.solver.coarseIterations;
+    mg.cycles = scene.solver.cycles;
+    mg.splitAggregates = scene.solver.splitAggregates;
+    mg.pcg = scene.solver.pcgTolerance > 0.0;
+    if (mg.pcg) mg.pcgTolerance = scene.solver.pcgTolerance;
+  }
+  if (scene.fracture.enabled) {
+    FractureSettings f;
+    f.threshold = scene.fracture.threshold;
+    f.kernelRadius = scene.fracture.kernelRadius;
+    f.thresholdJitter = scene.fracture.thresholdJitter;
+    f.seed = scene.fracture.seed;
+    f.compressiveThreshold = scene.fracture.compressiveThreshold;
+    settings_.fracture = std::make_shared<FractureField>(buildFractureField(model_, f));
+    settings_.fractureIterations = scene.fracture.iterations;
+  }
+  BackendChoice backend = chooseBackend(scene.solver.backend, model_, settings_);
+  backend_ = std::move(backend.backend);
+  if (!backend.note.empty()) notes_.push_back(backend.note);
+  for (const Vec3& p : scene.measure.opening) {
+    int best = 0;
+    for (int v = 1; v < mesh.numVertices(); ++v) {
+      if ((mesh.vertices[v] - p).squaredNorm() < (mesh.vertices[best] - p).squaredNorm()) best = v;
+    }
+    openingVertices_.push_back(best);
+  }
+  loadCollider_ = scene.measure.loadCollider;
+  updatePieces();
+}
+
+void Simulation::updatePieces() {
+  if (piecesRevision_ == state_.damageRevision) return;
+  piecesRevision_ = state_.damageRevision;
+  UnionFind uf(model_.numVertices());
+  pieces_ = model_.numVertices();
+  for (int e = 0; e < model_.numEdges(); ++e) {
+    if (!state_.damaged[e]) pieces_ -= uf.unite(model_.edges[e][0], model_.edges[e][1]);
+  }
+  // A tet whose corners lie in different pieces is no longer material (its vertices have
+  // parted): volumes count only tets inside one piece, at rest and now alike.
+  pieceOfVertex_.resize(model_.numVertices());
+  for (int v = 0; v < model_.numVertices(); ++v) pieceOfVertex_[v] = uf.find(v);
+  countedTets_.assign(model_.numTets(), 1);
+  restVolume_ = 0.0;
+  for (int t = 0; t < model_.numTets(); ++t) {
+    const Tet& tet = model_.mesh.tets[t];
+    const int p = pieceOfVertex_[tet[0]];
+    countedTets_[t] =
+        pieceOfVertex_[tet[1]] == p && pieceOfVertex_[tet[2]] == p && pieceOfVertex_[tet[3]] == p;
+    if (countedTets_[t]) restVolume_ += model_.rest[t].volume;
+  }
+}
+
+double Simulation::currentVolume() const {
+  double sum = 0.0;
+  for (int t = 0; t < model_.numTets(); ++t) {
+    if (!countedTets_[t]) continue;
+    const Tet& tet = model_.mesh.tets[t];
+    sum +=
+        tetSixVolume(state_.x[tet[0]], state_.x[tet[1]], state_.x[tet[2]], state_.x[tet[3]]) / 6.0;
+  }
+  return sum;
+}
+
+double Simulation::volumeChangePercent() const {
+  return restVolume_ > 0.0 ? 100.0 * (currentVolume() - restVolume_) / restVolume_ : 0.0;
+}
+
+const VisualSurface& Simulation::surface(SurfaceUpdateStats* stats) const {
+  // Positions change only in advance() and damage only with its revision: a second call for the
+  // same state (final.png, final.obj, final.EXT) reuses the surface.
+  if (surfaceFrame_ != frame_ || surfaceRevision_ != state_.damageRevision) {
+    const SurfaceUpdateStats s = surfaceBuilder_.update(model_, state_);
+    surfaceFrame_ = frame_;
+    surfaceRevision_ = state_.damageRevision;
+    if (stats) *stats = s;
+  } else if (stats) {
+    *stats = SurfaceUpdateStats{};
+  }
+  return surfaceBuilder_.surface();
+}
+
+void Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
+  TetMesh now = model_.mesh;
+  now.vertices = state_.x;
+  // The mesh and its damage are one set: committed together, stamped alike.
+  FileSet set;
+  addTetGen(set, stem, now);
+  addDamage(set, stem.string() + ".damage", model_.edges, state_.damaged, state_.crossing);
+  set.commit();
+  // Piece of each tet: numbered in tet order when all four corners share it, otherwise -1.
+  std::vector<int> label(model_.numVertices(), -1);
+  int pieces = 0;
+  VtkCellField piece{"piece", std::vector<double>(model_.numTets(), -1.0)};
+  for (int t = 0; t < model_.numTets(); ++t) {
+    if (!countedTets_[t]) continue;
+    int& id = label[pieceOfVertex_[model_.mesh.tets[t][0]]];
+    if (id < 0) id = pieces++;
+    piece.values[t] = id;
+  }
+  writeVtk(stem.string() + ".vtk", now,
+           {{"damage", tetDamageFraction(model_.tetEdges, state_.damaged)}, piece});
+}
+
+std::vector<int> Simulation::selectVertices(const AnchorDesc& shape, const std::string& file,
+                                            const std::string& jsonPath) const {
+  return selectAnchorVertices(shape, model_.mesh, file, jsonPath);
+}
+
+std::vector<int> Simulation::verticesNear(const Vec3& center, double radius) const {
+  std::vector<int> out;
+  for (int v = 0; v < model_.numVertices(); ++v) {
+    if ((state_.x[v] - center).norm() <= radius) out.push_back(v);
+  }
+  return out;
+}
+
+int Simulation::nearestVertex(const Vec3& point) const {
+  int best = 0;
+  double bestDistance = std::numeric_limits<double>::infinity();
+  for (int v = 0; v < model_.numVertices(); ++v) {
+    const double d = (state_.x[v] - point).squaredNorm();
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = v;
+    }
+  }
+  return best;
+}
+
+std::vector<double> Simulation::vertexDamage() const {
+  std::vector<double> damaged(model_.numVertices(), 0.0), total(model_.numVertices(), 0.0);
+  for (int e = 0; e < model_.numEdges(); ++e) {
+    for (int end : model_.edges[e]) {
+      total[end] += 1.0;
+      damaged[end] += state_.damaged[e];
+    }
+  }
+  for (int v = 0; v < model_.numVertices(); ++v)
+    if (total[v] > 0.0) damaged[v] /= total[v];
+  return damaged;
+}
+
+std::vector<double> Simulation::vertexStress() const {
+  // Von Mises stress of each intact tet's elastic deformation, the largest around each vertex.
+  std::vector<double> out(model_.numVertices(), 0.0);
+  const MaterialParams& m = model_.material;
+  for (int t = 0; t < model_.numTets(); ++t) {
+    const auto& edges = model_.tetEdges[t];
+    bool intact = true;
+    for (int e : edges) intact = intact && !state_.damaged[e];
+    if (!intact) continue;
+    const Tet& tet = model_.mesh.tets[t];
+    const TetPoints x{state_.x[tet[0]], state_.x[tet[1]], state_.x[tet[2]], state_.x[tet[3]]};
+    Eigen::Matrix3d f = deformationGradient(model_.rest[t], x);
+    if (!state_.plasticInverse.empty()) f = f * state_.plasticInverse[t];
+    const double j = f.determinant();
+    if (!(j > 1e-9)) continue;
+    const Eigen::Matrix3d sigma = firstPiolaStress(m.model, m.lame, f) * f.transpose() / j;
+    const Eigen::Matrix3d dev = sigma - sigma.trace() / 3.0 * Eigen::Matrix3d::Identity();
+    const double vonMises = std::sqrt(1.5 * dev.squaredNorm());
+    for (int v : tet) out[v] = std::max(out[v], vonMises);
+  }
+  return out;
+}
+
+std::size_t SimulationSnapshot::bytes() const {
+  std::size_t anchorBytes = 0;
+  for (const AnchorConstraint& a : anchors)
+    anchorBytes += a.vertices.size() * sizeof(int) + a.origin.size() * sizeof(Vec3) +
+                   a.path.size() * sizeof(AnchorKey);
+  return (x.size() + v.size()) * sizeof(Vec3) + damaged.size() + crossing.size() * sizeof(float) +
+         plasticInverse.size() * sizeof(Eigen::Matrix3d) + plasticStrain.size() * sizeof(double) +
+         anchorBytes + sizeof(*this);
+}
+
+SimulationSnapshot Simulation::snapshot() const {
+  SimulationSnapshot s;
+  s.x = state_.x;
+  s.v = state_.v;
+  s.damaged = state_.damaged;
+  s.crossing = state_.crossing;
+  s.plasticInverse = state_.plasticInverse;
+  s.plasticStrain = state_.plasticStrain;
+  s.time = state_.time;
+  s.frame = frame_;
+  s.anchors = settings_.anchors;
+  s.anchorIds = anchorIds_;
+  s.nextAnchorId = nextAnchorId_;
+  s.toolDamage = toolDamage_;
+  return s;
+}
+
+void Simulation::restore(const SimulationSnapshot& s) {
+  if (s.x.size() != state_.x.size() || s.v.size() != state_.v.size() ||
+      s.damaged.size() != state_.damaged.size() || s.crossing.size() != state_.crossing.size() ||
+      s.plasticInverse.size() != state_.plasticInverse.size() ||
+      s.plasticStrain.size() != state_.plasticStrain.size() ||
+      s.anchors.size() != s.anchorIds.size())
+    throw std::invalid_argument(
+        "the saved state does not fit this model (" + std::to_string(s.x.size()) + " vertices, " +
+        std::to_string(s.damaged.size()) + " edges, " +
+        (s.plasticInverse.empty() ? "elastic" : "plastic") + "; the model has " +
+        std::to_string(state_.x.size()) + ", " + std::to_string(state_.damaged.size()) + ", " +
+        (state_.plasticInverse.empty() ? "elastic" : "plastic") + ")");
+  state_.x = s.x;
+  state_.v = s.v;
+  // No NaN is ever stored in crossings, so == compares them exactly.
+  if (state_.damaged != s.damaged || state_.crossing != s.crossing) {
+    state_.damaged = s.damaged;
+    state_.crossing = s.crossing;
+    ++state_.damageRevision;
+  }
+  state_.plasticInverse = s.plasticInverse;
+  state_.plasticStrain = s.plasticStrain;
+  state_.time = s.time;
+  frame_ = s.frame;
+  settings_.anchors = s.anchors;
+  anchorIds_ = s.anchorIds;
+  nextAnchorId_ = s.nextAnchorId;
+  toolDamage_ = s.toolDamage;
+  surfaceFrame_ = -1;  // positions changed without a frame
+  ++generation_;
+  updatePieces();
+}
+
+int Simulation::cut(const std::vector<BladeTriangle>& surface) {
+  const int n = cutAlongSurface(model_, state_, surface);
+  toolDamage_ += n;
+  if (n > 0) updatePieces();  // volumes and exports see the new pieces before the next frame
+  return n;
+}
+
+int Simulation::addAnchor(const std::vector<int>& vertices, const std::vector<AnchorKey>& path) {
+  AnchorConstraint a;
+  a.vertices = vertices;
+  for (int v : vertices) a.origin.push_back(state_.x[v]);
+  for (const AnchorKey& k : path) a.path.push_back({state_.time + k.time, k.offset});
+  settings_.anchors.push_back(std::move(a));
+  anchorIds_.push_back(nextAnchorId_);
+  return nextAnchorId_++;
+}
+
+void Simulation::setAnchorTargets(int id, const std::vector<Vec3>& targets) {
+  for (size_t i = 0; i < anchorIds_.size(); ++i) {
+    if (anchorIds_[i] != id) continue;
+    AnchorConstraint& a = settings_.anchors[i];
+    if (targets.size() != a.vertices.size())
+      throw std::invalid_argument("anchor targets: one per anchored vertex");
+    a.origin = targets;
+    a.path.clear();
+    return;
+  }
+  throw std::out_of_range("no anchor with id " + std::to_string(id));
+}
+
+int Simulation::unanchor(const std::vector<int>& vertices) {
+  std::vector<char> drop(model_.numVertices(), 0);
+  for (int v : vertices) drop[v] = 1;
+  int dropped = 0;
+  for (AnchorConstraint& a : settings_.anchors) {
+    size_t kept = 0;
+    for (size_t i = 0; i < a.vertices.size(); ++i) {
+      if (drop[a.vertices[i]]) {
+        ++dropped;
+        continue;
+      }
+      if (!a.origin.empty()) a.origin[kept] = a.origin[i];
+      a.vertices[kept++] = a.vertices[i];
+    }
+    a.vertices.resize(kept);
+    if (!a.origin.empty()) a.origin.resize(kept);
+  }
+  return dropped;
+}
+
+std::vector<int> Simulation::anchoredVertices() const {
+  std::vector<char> held(model_.numVertices(), 0);
+  for (const AnchorConstraint& a : settings_.anchors)
+    for (int v : a.vertices) held[v] = 1;
+  std::vector<int> out;
+  for (int v = 0; v < model_.numVertices(); ++v)
+    if (held[v]) out.push_back(v);
+  return out;
+}
+
+void Simulation::removeAnchor(int id) {
+  for (size_t i = 0; i < anchorIds_.size(); ++i) {
+    if (anchorIds_[i] != id) continue;
+    anchorIds_.erase(anchorIds_.begin() + static_cast<long>(i));
+    settings_.anchors.erase(settings_.anchors.begin() + static_cast<long>(i));
+    return;
+  }
+  throw std::out_of_range("no anchor with id " + std::to_string(id));
+}
+
+FrameMetrics Simulation::advance() {
+  const auto start = std::chrono::steady_clock::now();
+  StepReport r;
+  try {
+    r = backend_->step(state_, settings_);
+  } catch (const std::exception& e) {
+    // A device failure (lost GPU, out of memory) throws before the state is written back: the
+    // frame runs again on the CPU, and so does the rest of the session.
+    if (!backend_->offloads()) throw;
+    notes_.push_back("the " + backend_->name() + " backend failed (" + e.what() +
+                     "): running on the CPU from frame " + std::to_string(frame_));
+    backend_ = std::make_unique<CpuStepBackend>(model_);
+    r = backend_->step(state_, settings_);
+  }
+  ++frame_;
+  ++generation_;
+  FrameMetrics m;
+  m.frame = frame_;
+  m.timeS = state_.time;
+  m.msElements = r.msElements;
+  m.msSolve = r.msSolve;
+  m.msPlastic = r.msPlastic;
+  m.residual = r.residual;
+  m.elasticEnergy = r.elasticEnergy;
+  m.warnings = r.retries;
+  m.newtonIterations = r.newtonIterations;
+  m.backtracks = r.backtracks;
+  Vec3 contact = Vec3::Zero();
+  for (const Vec3& f : r.contactForces) contact += f;
+  m.contactForceN = contact.norm();
+  m.msFracture = r.msFracture;
+  m.newlyDamaged = r.newlyDamaged + toolDamage_;
+  if (loadCollider_ >= 0 && loadCollider_ < static_cast<int>(r.contactForces.size()))
+    m.loadN = r.contactForces[loadCollider_].norm();
+  if (openingVertices_.size() == 2) {
+    const int a = openingVertices_[0], b = openingVertices_[1];
+    m.openingM = (state_.x[a] - state_.x[b]).norm() -
+                 (model_.mesh.vertices[a] - model_.mesh.vertices[b]).norm();
+  }
+  toolDamage_ = 0;
+  updatePieces();
+  m.pieces = pieces_;
+  m.volume = currentVolume();
+  m.volumeChangePct = restVolume_ > 0.0 ? 100.0 * (m.volume - restVolume_) / restVolume_ : 0.0;
+  for (int v = 0; v < model_.numVertices(); ++v) {
+    m.kineticEnergy += 0.5 * model_.mass[v] * state_.v[v].squaredNorm();
+    m.maxDisplacement = std::max(m.maxDisplacement, (state_.x[v] - model_.mesh.vertices[v]).norm());
+  }
+  for (std::uint8_t d : state_.damaged) m.damagedEdges += d;
+  m.msTotal =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  m.msOther = std::max(0.0, m.msTotal - m.msElements - m.msSolve - m.msPlastic - m.msFracture);
+  return m;
+}
+
+std::string metricsCsvHeader() {
+  return "frame,time_s,ms_total,ms_elements,ms_solve,ms_plastic,ms_other,volume,volume_change_pct,"
+         "kinetic_energy,elastic_energy,residual,max_displacement,damaged_edges,pieces,warnings,"
+         "newton_iterations,contact_force_n,ms_fracture,opening_m,load_n,backtracks";
+}
+
+std::string metricsCsvRow(const FrameMetrics& m) {
+  std::ostringstream s;
+  s << std::setprecision(9) << m.frame << ',' << m.timeS << ',' << m.msTotal << ',' << m.msElements
+    << ',' << m.msSolve << ',' << m.msPlastic << ',' << m.msOther << ',' << m.volume << ','
+    << m.volumeChangePct << ',' << m.kineticEnergy << ',' << m.elasticEnergy << ',' << m.residual
+    << ',' << m.maxDisplacement << ',' << m.damagedEdges << ',' << m.pieces << ',' << m.warnings
+    << ',' << m.newtonIterations << ',' << m.contactForceN << ',' << m.msFracture << ','
+    << m.openingM << ',' << m.loadN << ',' << m.backtracks;
+  return s.str();
+}
+
+}  // namespace galsculpt

@@ -1,0 +1,161 @@
+// A scene turned into a running simulation: the solver model, its state and step settings,
+// plus per-frame metrics. The engine's one place where scene descriptions meet the solver.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "engine/scene/scene.h"
+#include "engine/surface/surface_builder.h"
+#include "solver/fracture/knife.h"
+#include "solver/frame/step.h"
+#include "solver/frame/step_backend.h"
+
+namespace galsculpt {
+
+enum class SolverChoice { FromScene, Reference };
+
+// Everything a sculpting action can change, for undo: positions, velocities, damage, plastic
+// state, time and the anchors (with their ids). Restoring one gives back that state exactly.
+struct SimulationSnapshot {
+  std::vector<Vec3> x, v;                       // (nVerts)
+  std::vector<std::uint8_t> damaged;            // (nEdges)
+  std::vector<float> crossing;                  // (nEdges) where blades crossed, or kNoCrossing
+  std::vector<Eigen::Matrix3d> plasticInverse;  // (nTets) or empty
+  std::vector<double> plasticStrain;            // (nTets) or empty
+  double time = 0.0;
+  int frame = 0;
+  std::vector<AnchorConstraint> anchors;
+  std::vector<int> anchorIds;
+  int nextAnchorId = 0;
+  int toolDamage = 0;
+  std::size_t bytes() const;
+};
+
+struct FrameMetrics {
+  int frame = 0;
+  double timeS = 0.0;
+  double msTotal = 0.0, msElements = 0.0, msSolve = 0.0, msPlastic = 0.0, msOther = 0.0;
+  double volume = 0.0, volumeChangePct = 0.0;
+  double kineticEnergy = 0.0, elasticEnergy = 0.0;
+  double residual = 0.0;
+  double maxDisplacement = 0.0;
+  int damagedEdges = 0, pieces = 0, warnings = 0, newtonIterations = 0;
+  double contactForceN = 0.0;  // magnitude of the summed collider forces
+  double msFracture = 0.0;     // the fracture pass (part of ms_other before it had a column)
+  int newlyDamaged = 0;        // edges broken this frame (fracture and tools)
+  double openingM = 0.0;       // scene measure.opening: distance change of its two vertices, m
+  double loadN = 0.0;          // scene measure.load_collider: that collider's force magnitude, N
+  int backtracks = 0;          // Newton steps shortened by the energy guard / line search
+};
+
+// CSV header and row, in the column order documented in docs/cli.md.
+std::string metricsCsvHeader();
+std::string metricsCsvRow(const FrameMetrics& m);
+
+// Checks the scene's anchors against a mesh as the simulation will use them: each selects at
+// least one vertex and names only vertices that exist (InputError with the JSON path otherwise).
+void checkSceneAnchors(const SceneDescription& scene, const TetMesh& mesh);
+
+// Solver-side material from a scene material; throws InputError for an unknown model.
+MaterialParams materialFromScene(const MaterialDesc& m);
+
+class Simulation {
+ public:
+  // Throws InputError (naming the scene and JSON path) for anchors that select nothing or
+  // name vertices that do not exist.
+  Simulation(const SceneDescription& scene, const TetMesh& mesh,
+             SolverChoice choice = SolverChoice::FromScene);
+  // The backend refers to the model: a simulation stays where it was made.
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  FrameMetrics advance();
+
+  // Tools (engine/session/playback.h drives them from scripts; the app from the mouse).
+  // Damages every edge crossing the blade surface (current positions); returns how many.
+  int cut(const std::vector<BladeTriangle>& surface);
+  // Holds `vertices` where they are now, moved by `path` offsets (times from now); returns an
+  // id for removeAnchor.
+  int addAnchor(const std::vector<int>& vertices, const std::vector<AnchorKey>& path = {});
+  // Moves an anchor's vertices to `targets` (same order as its vertices) from the next frame
+  // on: brushes drag what they hold this way. Throws std::out_of_range for an unknown id.
+  void setAnchorTargets(int id, const std::vector<Vec3>& targets);
+  // Frees the given vertices from every anchor (scene, script and painted ones alike);
+  // returns how many anchor entries were dropped.
+  int unanchor(const std::vector<int>& vertices);
+  // Every vertex some anchor holds, ascending.
+  std::vector<int> anchoredVertices() const;
+  // Removes an anchor added by addAnchor or, with id < 0, the scene's anchor -id - 1. Throws
+  // std::out_of_range for an unknown id.
+  void removeAnchor(int id);
+  // Vertices whose rest position the anchor description selects (throws InputError naming
+  // the file and JSON path when it selects none).
+  std::vector<int> selectVertices(const AnchorDesc& shape, const std::string& file,
+                                  const std::string& jsonPath) const;
+  // Vertices within `radius` of `center` at the current positions.
+  std::vector<int> verticesNear(const Vec3& center, double radius) const;
+  // The vertex nearest to `point` at the current positions.
+  int nearestVertex(const Vec3& point) const;
+  // A representative vertex of the piece (part joined by undamaged edges) `vertex` lies in.
+  int pieceOf(int vertex) const { return pieceOfVertex_[vertex]; }
+  // Per vertex, for the views: the fraction of its edges that are damaged, and the largest
+  // tensile edge normal stress (Pa) of the tets around it.
+  std::vector<double> vertexDamage() const;
+  std::vector<double> vertexStress() const;
+
+  // Undo support: the whole mutable state, and its exact restoration (the damage revision
+  // moves on, so that the surface and the solver see the change).
+  SimulationSnapshot snapshot() const;
+  void restore(const SimulationSnapshot& snapshot);
+
+  const SimModel& model() const { return model_; }
+  const SimState& state() const { return state_; }
+  const StepSettings& settings() const { return settings_; }
+  // The backend computing the frames: "cpu" or "cuda" (the notes say why, if not as asked).
+  std::string backendName() const { return backend_->name(); }
+  // Replaces the backend that computes the frames (tests; an application with its own).
+  void setBackend(std::unique_ptr<StepBackend> backend) { backend_ = std::move(backend); }
+  // Notes for the user about how the scene is run (e.g. a solver that is not available yet).
+  const std::vector<std::string>& notes() const { return notes_; }
+  int frame() const { return frame_; }
+  // Changes whenever the positions may have changed (a frame, a restore): views and pick
+  // structures compare it to know when to refresh.
+  std::uint64_t generation() const { return generation_; }
+  // The visualization surface (engine/surface/surface_builder.h) at the current damage and positions,
+  // brought up to date on each call; `stats` (optional) gets what that update cost.
+  const VisualSurface& surface(SurfaceUpdateStats* stats = nullptr) const;
+  // Writes the tet mesh at the current positions with its damage: stem.node/.ele/.face,
+  // stem.damage (solver/io/damage_io.h) and stem.vtk (cell data: damage, piece).
+  void writeTetsWithDamage(const std::filesystem::path& stem) const;
+  // Volume of the tets that lie inside one piece (all of them until something breaks), and its
+  // change from their rest volume.
+  double currentVolume() const;
+  double volumeChangePercent() const;
+
+ private:
+  SimModel model_;
+  SimState state_;
+  StepSettings settings_;
+  std::unique_ptr<StepBackend> backend_;
+  std::vector<std::string> notes_;
+  mutable SurfaceBuilder surfaceBuilder_;
+  mutable int surfaceFrame_ = -1;  // the state the surface was last brought up to
+  mutable std::uint64_t surfaceRevision_ = 0;
+  std::vector<int> anchorIds_;  // id of each entry of settings_.anchors (scene anchors: -i - 1)
+  int nextAnchorId_ = 0;
+  int toolDamage_ = 0;  // edges cut by tools since the last frame
+  void updatePieces();  // pieces and counted tets, when the damage changed
+  std::uint64_t piecesRevision_ = ~0ull;
+  std::vector<char> countedTets_;
+  std::vector<int> pieceOfVertex_;  // a representative vertex of each vertex's piece
+  int pieces_ = 1;
+  std::vector<int> openingVertices_;  // measure.opening: the two probed vertices
+  int loadCollider_ = -1;
+  double restVolume_ = 0.0;
+  int frame_ = 0;
+  std::uint64_t generation_ = 0;
+};
+
+}  // namespace galsculpt

@@ -1,0 +1,83 @@
+// A rigid collider's signed distance in plain arrays, __host__ __device__: the CPU's
+// colliderDistance (colliders.h) and the device backend's contact both call it, with the pose
+// (rotation, translation) computed once per sub-step on the host.
+#pragma once
+
+#include <cmath>
+
+#include "solver/fem/element_kernels.h"
+
+namespace galsculpt::kernels {
+
+struct ColliderPose {
+  int type = 0;  // 0 plane, 1 sphere, 2 box (Collider::Type order)
+  double point[3] = {0, 0, 0}, normal[3] = {0, 1, 0};  // plane; normal unit
+  double center[3] = {0, 0, 0};                        // sphere, box (body frame)
+  double radius = 0.0;
+  double halfExtents[3] = {0, 0, 0};
+  M3 rotation = identity3();  // x_world = rotation x_body + translation
+  double translation[3] = {0, 0, 0};
+  double contactStiffness = 100.0;
+};
+
+// Signed distance (negative inside) and outward unit normal of p.
+GALSCULPT_HD double colliderDistance(const ColliderPose& c, const double p[3], double normal[3]) {
+  double local[3];  // R^T (p - t)
+  for (int i = 0; i < 3; ++i) {
+    local[i] = 0.0;
+    for (int k = 0; k < 3; ++k) local[i] += c.rotation(k, i) * (p[k] - c.translation[k]);
+  }
+  double n[3] = {0.0, 1.0, 0.0}, distance = 0.0;
+  if (c.type == 0) {
+    distance = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      distance += (local[i] - c.point[i]) * c.normal[i];
+      n[i] = c.normal[i];
+    }
+  } else if (c.type == 1) {
+    double d[3], len2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      d[i] = local[i] - c.center[i];
+      len2 += d[i] * d[i];
+    }
+    const double len = sqrt(len2);
+    distance = len - c.radius;
+    if (len > 0.0)
+      for (int i = 0; i < 3; ++i) n[i] = d[i] / len;
+  } else {
+    double d[3], q[3];
+    bool outside = false;
+    for (int i = 0; i < 3; ++i) {
+      d[i] = local[i] - c.center[i];
+      q[i] = fabs(d[i]) - c.halfExtents[i];
+      outside = outside || q[i] > 0.0;
+    }
+    if (outside) {
+      double o[3], len2 = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        o[i] = fmax(q[i], 0.0);
+        len2 += o[i] * o[i];
+      }
+      distance = sqrt(len2);
+      double m[3], mlen2 = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        m[i] = o[i] * (d[i] > 0.0 ? 1.0 : (d[i] < 0.0 ? -1.0 : 0.0));
+        mlen2 += m[i] * m[i];
+      }
+      if (mlen2 > 0.0)
+        for (int i = 0; i < 3; ++i) n[i] = m[i] / sqrt(mlen2);
+    } else {
+      // Inside: out through the nearest face.
+      int axis = 0;
+      for (int i = 1; i < 3; ++i)
+        if (q[i] > q[axis]) axis = i;
+      distance = q[axis];
+      for (int i = 0; i < 3; ++i) n[i] = i == axis ? (d[axis] >= 0.0 ? 1.0 : -1.0) : 0.0;
+    }
+  }
+  for (int i = 0; i < 3; ++i)
+    normal[i] = c.rotation(i, 0) * n[0] + c.rotation(i, 1) * n[1] + c.rotation(i, 2) * n[2];
+  return distance;
+}
+
+}  // namespace galsculpt::kernels

@@ -1,0 +1,1100 @@
+// The solver's frame on a device: the CPU backend's sub-step (solver/frame/step.cpp) written as
+// launches of an executor, so the same code runs on the GPU (cuda_executor.cuh) and, in tests,
+// on the CPU (host_executor.h) against the CPU backend.
+//
+// Per sub-step: the element pass (one thread per tet: the shared element kernels, damage from
+// the edge flags, plastic rest shapes) writes energies, forces and 12x12 stiffnesses per
+// element; gathers (one thread per vertex, per 3x3 block, in the CPU's order) assemble them
+// into the fixed pattern without atomics; the system matrix, right-hand side, Galerkin
+// multigrid (device_multigrid.h) and the energy-guarded step follow as on the CPU. The host
+// reads a handful of scalars once per Newton iteration (the backtracking test); everything
+// between those reads is captured once as a CUDA graph and replayed.
+//
+// Supported: everything the CPU multigrid solver does (sub-steps, Newton iterations, line
+// search, anchors with paths, colliders, Rayleigh damping, plasticity, local and non-local
+// fracture with re-solves, retries). The reference solver (direct sparse Cholesky) stays on
+// the CPU: supports() says why.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/fem/collider_kernels.h"
+#include "solver/fem/dense_kernels.h"
+#include "solver/frame/frame_loop.h"
+#include "solver/frame/model_layout.h"
+#include "solver/frame/step.h"
+#include "solver/frame/step_backend.h"
+#include "solver/multigrid/multigrid_cycle.h"
+
+namespace galsculpt::gpu {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Why a frame with these settings cannot run on the device backend ("" when it can).
+inline std::string deviceUnsupportedReason(const StepSettings& s) {
+  if (!s.multigrid) return "the reference solver (direct sparse Cholesky) runs on the CPU only";
+  if (s.colliders.size() > 16) return "more than 16 colliders run on the CPU only";
+  return "";
+}
+
+// What one thread needs to set an element up: its corners' positions, its intact-edge mask
+// and its rest data (the plastic rest shape where it has flowed). Plain pointers: captured by
+// value into the element, plasticity and fracture launches.
+struct ElementInputs {
+  const int* tetVertices;         // (4 nTets)
+  const int* tetEdges;            // (6 nTets)
+  const std::uint8_t* damaged;    // (nEdges)
+  const kernels::RestData* rest;  // (nTets)
+  const double* plasticInverse;   // (9 nTets) or null: elastic
+
+  GALSCULPT_HD void load(int t, const double* y, double x12[12], std::uint8_t& intact,
+                         kernels::RestData& r) const {
+    for (int a = 0; a < 4; ++a)
+      for (int k = 0; k < 3; ++k) x12[3 * a + k] = y[3 * tetVertices[4 * t + a] + k];
+    intact = 0;
+    for (int e = 0; e < 6; ++e)
+      if (!damaged[tetEdges[6 * t + e]]) intact |= static_cast<std::uint8_t>(1u << e);
+    r = rest[t];
+    if (plasticInverse && !isIdentity(plasticInverse + 9 * t)) {
+      kernels::M3 f;
+      for (int i = 0; i < 9; ++i) f.a[i] = plasticInverse[9 * t + i];
+      kernels::RestData plasticShape;
+      if (kernels::plasticRest(rest[t], f, plasticShape)) r = plasticShape;
+    }
+  }
+  GALSCULPT_HD static bool isIdentity(const double* m) {
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r)
+        if (m[r + 3 * c] != (r == c ? 1.0 : 0.0)) return false;
+    return true;
+  }
+};
+
+template <typename Exec>
+class DeviceSolver {
+ public:
+  template <typename T>
+  using Buffer = typename Exec::template Buffer<T>;
+
+  DeviceSolver(Exec& ex, const SimModel& model)
+      : ex_(ex), model_(model), layout_(buildModelLayout(model)), mg_(ex, layout_) {
+    n_ = layout_.vertices;
+    tets_ = layout_.tets;
+    tetVertices_.upload(layout_.tetVertices);
+    tetEdges_.upload(layout_.tetEdges);
+    rest_.upload(layout_.rest);
+    mass_.upload(layout_.mass);
+    rowStart_.upload(layout_.rowStart);
+    columns_.upload(layout_.columns);
+    diagonal_.upload(layout_.diagonal);
+    std::vector<int> blockRow(layout_.blocks);
+    for (int r = 0; r < n_; ++r)
+      for (int k = layout_.rowStart[r]; k < layout_.rowStart[r + 1]; ++k) blockRow[k] = r;
+    blockRow_.upload(blockRow);
+    vertexSlotStart_.upload(layout_.vertexSlotStart);
+    vertexSlots_.upload(layout_.vertexSlots);
+    blockSlotStart_.upload(layout_.blockSlotStart);
+    blockSlots_.upload(layout_.blockSlots);
+    // Every per-vertex buffer up front: nothing may allocate inside a captured section.
+    for (Buffer<double>* b :
+         {&x_,    &v_,     &xn_,    &vn_,      &xhat_, &grad_,   &trialGrad_, &acceptedGrad_,
+          &g_,    &delta_, &trial_, &dampedK_, &tmp_,  &savedX_, &savedV_,    &pcgB_,
+          &pcgR_, &pcgZ_,  &pcgP_,  &pcgAp_})
+      b->resize(3 * n_);
+    fixed_.resize(n_);
+    damaged_.resize(layout_.edges);
+    elemEnergy_.resize(tets_);
+    elemGrad_.resize(12 * static_cast<size_t>(tets_));
+    elemHess_.resize(kPackedHessian * static_cast<size_t>(tets_));
+    for (Buffer<double>* b : {&k_, &frozen_, &h_})
+      b->resize(9 * static_cast<size_t>(layout_.blocks));
+    scalars_.resize(kScalars);
+    contactPerVertex_.resize(n_);
+    const auto box = boundingBox(model.mesh.vertices);
+    modelSize_ = std::max(box.size().norm(), 1e-12);
+    double massNorm = 0.0;
+    for (double m : model.mass) massNorm += 3.0 * m * m;
+    massNorm_ = std::sqrt(massNorm);
+  }
+
+  // ---- the state shared with the host (SimState) ------------------------------------------
+
+  // Brings the device up to date with `state` (uploads only what changed since the last sync).
+  void syncIn(const SimState& state, const StepSettings& settings) {
+    uploadIfChanged(state.x, hostX_, x_);
+    uploadIfChanged(state.v, hostV_, v_);
+    if (state.damageRevision != damageRevision_ || hostDamaged_.size() != state.damaged.size()) {
+      hostDamaged_ = state.damaged;
+      damaged_.upload(hostDamaged_);
+      damageRevision_ = state.damageRevision;
+    }
+    plastic_ = !state.plasticInverse.empty();
+    if (plastic_) {
+      uploadIfChanged(state.plasticInverse, hostFp_, fp_);
+      uploadIfChanged(state.plasticStrain, hostStrain_, strain_);
+      if (savedFp_.size() != fp_.size()) {
+        savedFp_.resize(fp_.size());
+        savedStrain_.resize(strain_.size());
+      }
+      plasticFlowed_ = false;
+    }
+    time_ = state.time;
+    settings_ = &settings;
+    if (settings.fracture && fractureField_ != settings.fracture.get())
+      uploadFracture(*settings.fracture);
+    ensureMultigrid(settings);
+  }
+
+  // Writes positions, velocities, damage and plastic state back (positions through the
+  // executor's pinned staging buffer).
+  void syncOut(SimState& state) {
+    download(x_, hostX_, state.x);
+    download(v_, hostV_, state.v);
+    if (damageRevision_ != state.damageRevision) {
+      state.damaged = hostDamaged_;
+      state.damageRevision = damageRevision_;
+    }
+    if (plasticFlowed_) {  // otherwise the host's plastic state is still the device's
+      download(fp_, hostFp_, state.plasticInverse);
+      download(strain_, hostStrain_, state.plasticStrain);
+    }
+    state.time = time_;
+  }
+
+  // One frame, from the host state to the host state.
+  StepReport step(SimState& state, const StepSettings& settings) {
+    syncIn(state, settings);
+    Ops ops{*this};
+    StepReport report = runFrame(ops, settings);
+    syncOut(state);
+    return report;
+  }
+
+  // ---- the frame loop's operations (frame_loop.h) ---------------------------------------
+
+  struct Saved {
+    double time;
+  };
+  struct Ops {
+    DeviceSolver& s;
+    Saved save() { return s.save(); }
+    void restore(const Saved& saved, bool keepDamage) { s.restore(saved, keepDamage); }
+    SubstepOutcome substep(double h) { return s.substep(h); }
+    bool plastic() const { return s.plastic_; }
+    int plasticUpdate() { return s.plasticUpdate(); }
+    FractureReport fracturePass() { return s.fracturePass(); }
+    double time() const { return s.time_; }
+    void setTime(double t) { s.time_ = t; }
+  };
+
+  Saved save() {
+    ex_.copy(savedX_.data(), x_.data(), 3 * n_);
+    ex_.copy(savedV_.data(), v_.data(), 3 * n_);
+    if (plastic_) {
+      ex_.copy(savedFp_.data(), fp_.data(), 9 * static_cast<size_t>(tets_));
+      ex_.copy(savedStrain_.data(), strain_.data(), tets_);
+    }
+    return Saved{time_};
+  }
+  // Damage never needs restoring: a failed sub-step is rolled back before its fracture pass,
+  // and a fracture re-solve keeps the new damage.
+  void restore(const Saved& saved, bool /*keepDamage*/) {
+    ex_.copy(x_.data(), savedX_.data(), 3 * n_);
+    ex_.copy(v_.data(), savedV_.data(), 3 * n_);
+    if (plastic_) {
+      ex_.copy(fp_.data(), savedFp_.data(), 9 * static_cast<size_t>(tets_));
+      ex_.copy(strain_.data(), savedStrain_.data(), tets_);
+    }
+    time_ = saved.time;
+  }
+
+  // ---- kernels ----------------------------------------------------------------------------
+
+  // Energies, forces and (withHessian) stiffnesses of every element at positions y, gathered
+  // into `gradient` (3n) and, with the Hessian, into k_. The total energy goes to scalar slot.
+  void elementPass(const double* y, bool withHessian, double* gradient, int energySlot) {
+    const ElementInputs in = elementInputs();
+    double* energy = elemEnergy_.data();
+    double* eg = elemGrad_.data();
+    double* eh = elemHess_.data();
+    const MaterialModel model = model_.material.model;
+    const Lame lame = model_.material.lame;
+    const bool resists = settings_->compressionResists;
+    const kernels::Hessian mode =
+        withHessian ? kernels::Hessian::ProjectedSpd : kernels::Hessian::None;
+    ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
+      double x12[12];
+      std::uint8_t intact;
+      kernels::RestData r;
+      in.load(t, y, x12, intact, r);
+      double hess[144];
+      kernels::evaluateElement(model, lame, r, x12, intact, resists, mode, energy[t], eg + 12 * t,
+                               hess);
+      if (withHessian) packHessian(hess, eh + kPackedHessian * static_cast<size_t>(t));
+    });
+    ex_.sum(
+        tets_, [=] GALSCULPT_LAMBDA(int t) { return energy[t]; }, scalars_.data() + energySlot);
+    const int* vStart = vertexSlotStart_.data();
+    const int* vSlots = vertexSlots_.data();
+    ex_.forEach(n_, [=] GALSCULPT_LAMBDA(int v) {
+      double acc[3] = {0.0, 0.0, 0.0};
+      for (int i = vStart[v]; i < vStart[v + 1]; ++i) {
+        const int slot = vSlots[i], t = slot / 4, a = slot % 4;
+        for (int k = 0; k < 3; ++k) acc[k] += eg[12 * t + 3 * a + k];
+      }
+      for (int k = 0; k < 3; ++k) gradient[3 * v + k] = acc[k];
+    });
+    if (!withHessian) return;
+    const int* bStart = blockSlotStart_.data();
+    const int* bSlots = blockSlots_.data();
+    double* kb = k_.data();
+    ex_.forEach(layout_.blocks, [=] GALSCULPT_LAMBDA(int b) {
+      double acc[9] = {};
+      for (int i = bStart[b]; i < bStart[b + 1]; ++i) {
+        const int slot = bSlots[i], t = slot / 16, a = (slot % 16) / 4, c = slot % 4;
+        const double* h = eh + kPackedHessian * static_cast<size_t>(t);
+        if (a <= c) {
+          const double* blk = h + 9 * packedBlock(a, c);
+          for (int k = 0; k < 9; ++k) acc[k] += blk[k];
+        } else {  // the mirror of block (c, a)
+          const double* blk = h + 9 * packedBlock(c, a);
+          for (int j = 0; j < 3; ++j)
+            for (int r = 0; r < 3; ++r) acc[r + 3 * j] += blk[j + 3 * r];
+        }
+      }
+      for (int i = 0; i < 9; ++i) kb[9 * b + i] = acc[i];
+    });
+  }
+
+  // An element's 12x12 stiffness is kept as its ten upper 3x3 blocks (a <= c, each column-major):
+  // the gathers read 72 contiguous bytes per block and the buffer is 90 doubles per element,
+  // not 144, which is most of what a frame moves through memory.
+  static constexpr int kPackedHessian = 90;
+  GALSCULPT_HD static int packedBlock(int a, int c) { return 4 * a - a * (a - 1) / 2 + (c - a); }
+  GALSCULPT_HD static void packHessian(const double* h, double* packed) {
+    for (int a = 0; a < 4; ++a)
+      for (int c = a; c < 4; ++c) {
+        double* blk = packed + 9 * packedBlock(a, c);
+        for (int j = 0; j < 3; ++j)
+          for (int r = 0; r < 3; ++r) blk[r + 3 * j] = h[(3 * a + r) + 12 * (3 * c + j)];
+      }
+  }
+
+  ElementInputs elementInputs() const {
+    return {tetVertices_.data(), tetEdges_.data(), damaged_.data(), rest_.data(),
+            plastic_ ? fp_.data() : nullptr};
+  }
+
+  // out = beta K0 (y - x_n).
+  void dampedProduct(const double* y, double* out) {
+    const double* xn = xn_.data();
+    const double* frozen = frozenBlocks();
+    const int* rowStart = rowStart_.data();
+    const int* columns = columns_.data();
+    const double beta = settings_->dampingStiffness;
+    ex_.forEach(n_, [=] GALSCULPT_LAMBDA(int r) {
+      double acc[3] = {0.0, 0.0, 0.0};
+      for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
+        const int c = columns[k];
+        const double d[3] = {y[3 * c] - xn[3 * c], y[3 * c + 1] - xn[3 * c + 1],
+                             y[3 * c + 2] - xn[3 * c + 2]};
+        double t[3];
+        multiply3(frozen + 9 * k, d, t);
+        for (int i = 0; i < 3; ++i) acc[i] += t[i];
+      }
+      for (int i = 0; i < 3; ++i) out[3 * r + i] = beta * acc[i];
+    });
+  }
+
+  // Penalty contact at y: energy into a slot; gradient added (when given).
+  void contact(const double* y, double* gradient, int energySlot) {
+    const int colliders = static_cast<int>(poses_.size());
+    double* perVertex = contactPerVertex_.data();
+    if (colliders == 0) {
+      double* sc = scalars_.data();
+      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { sc[energySlot] = 0.0; });
+      return;
+    }
+    const kernels::ColliderPose* poses = poseBuffer_.data();
+    const std::uint8_t* fixed = fixed_.data();
+    const double* mass = mass_.data();
+    const double h = h_step_;
+    ex_.forEach(n_, [=] GALSCULPT_LAMBDA(int v) {
+      double energy = 0.0;
+      if (!fixed[v]) {
+        for (int c = 0; c < colliders; ++c) {
+          double normal[3];
+          const double d = kernels::colliderDistance(poses[c], y + 3 * v, normal);
+          if (d >= 0.0) continue;
+          const double stiffness = poses[c].contactStiffness * mass[v] / (h * h);
+          energy += 0.5 * stiffness * d * d;
+          if (gradient)
+            for (int k = 0; k < 3; ++k) gradient[3 * v + k] += stiffness * d * normal[k];
+        }
+      }
+      perVertex[v] = energy;
+    });
+    ex_.sum(
+        n_, [=] GALSCULPT_LAMBDA(int v) { return perVertex[v]; }, scalars_.data() + energySlot);
+  }
+
+  // The incremental potential at y (elastic and contact energies in slots) into a slot.
+  void objective(const double* y, int elasticSlot, int contactSlot, const double* dampedK,
+                 int outSlot) {
+    const double* xhat = xhat_.data();
+    const double* xn = xn_.data();
+    const double* mass = mass_.data();
+    const double h = h_step_;
+    const double alpha = settings_->dampingMass;
+    const double gx = settings_->gravity.x(), gy = settings_->gravity.y(),
+                 gz = settings_->gravity.z();
+    double* sc = scalars_.data();
+    ex_.sum(
+        3 * n_,
+        [=] GALSCULPT_LAMBDA(int i) {
+          const double m = mass[i / 3];
+          const double g = i % 3 == 0 ? gx : (i % 3 == 1 ? gy : gz);
+          const double inertia = y[i] - xhat[i], dx = y[i] - xn[i];
+          return 0.5 / (h * h) * inertia * (m * inertia) - m * g * y[i] +
+                 0.5 / h * (alpha * dx * (m * dx) + dx * dampedK[i]);
+        },
+        sc + outSlot);
+    ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { sc[outSlot] += sc[elasticSlot] + sc[contactSlot]; });
+  }
+
+  // g = M (y - xhat)/h^2 + grad - f_ext + (alpha M dx + dampedK)/h (+ contact, already in
+  // grad), zero on anchored vertices.
+  void backwardEulerGradient(const double* y, const double* grad, const double* dampedK,
+                             double* g) {
+    const double* xhat = xhat_.data();
+    const double* xn = xn_.data();
+    const double* mass = mass_.data();
+    const std::uint8_t* fixed = fixed_.data();
+    const double h = h_step_;
+    const double alpha = settings_->dampingMass;
+    const double gx = settings_->gravity.x(), gy = settings_->gravity.y(),
+                 gz = settings_->gravity.z();
+    ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
+      if (fixed[i / 3]) {
+        g[i] = 0.0;
+        return;
+      }
+      const double m = mass[i / 3];
+      const double gravity = i % 3 == 0 ? gx : (i % 3 == 1 ? gy : gz);
+      g[i] = m * (y[i] - xhat[i]) / (h * h) + grad[i] - m * gravity +
+             (alpha * (m * (y[i] - xn[i])) + dampedK[i]) / h;
+    });
+  }
+
+  // H = K + beta/h K0 + contact + M (1/h^2 + alpha/h), anchored rows and columns identity-scaled.
+  void buildSystem(const double* y) {
+    const double* kb = k_.data();
+    const double* frozen = frozenBlocks();
+    double* hb = h_.data();
+    const int* blockRow = blockRow_.data();
+    const int* columns = columns_.data();
+    const std::uint8_t* fixed = fixed_.data();
+    const double* mass = mass_.data();
+    const kernels::ColliderPose* poses = poseBuffer_.data();
+    const int colliders = static_cast<int>(poses_.size());
+    const double h = h_step_;
+    const double betaOverH = settings_->dampingStiffness / h;
+    const double alpha = settings_->dampingMass;
+    ex_.forEach(layout_.blocks, [=] GALSCULPT_LAMBDA(int b) {
+      const int r = blockRow[b], c = columns[b];
+      double out[9];
+      for (int i = 0; i < 9; ++i) out[i] = kb[9 * b + i] + betaOverH * frozen[9 * b + i];
+      if (r == c) {
+        if (!fixed[r]) {
+          for (int ci = 0; ci < colliders; ++ci) {
+            double normal[3];
+            const double d = kernels::colliderDistance(poses[ci], y + 3 * r, normal);
+            if (d >= 0.0) continue;
+            const double stiffness = poses[ci].contactStiffness * mass[r] / (h * h);
+            for (int j = 0; j < 3; ++j)
+              for (int i = 0; i < 3; ++i) out[i + 3 * j] += stiffness * normal[i] * normal[j];
+          }
+        }
+        const double m = mass[r] * (1.0 / (h * h) + alpha / h);
+        for (int i = 0; i < 3; ++i) out[4 * i] += m;
+      }
+      if (fixed[r] || fixed[c]) {
+        const double diag = r == c ? mass[r] / (h * h) : 0.0;
+        for (int i = 0; i < 9; ++i) out[i] = i % 4 == 0 ? diag : 0.0;
+      }
+      for (int i = 0; i < 9; ++i) hb[9 * b + i] = out[i];
+    });
+  }
+
+  // ---- one backward-Euler sub-step ----------------------------------------------------------
+
+  SubstepOutcome substep(double h) {
+    using Clock = std::chrono::steady_clock;
+    auto ms = [](Clock::time_point t) {
+      return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+    };
+    const StepSettings& s = *settings_;
+    SubstepOutcome result;
+    h_step_ = h;
+    prepareAnchorsAndColliders(time_ + h);
+    double* x = x_.data();
+    double* v = v_.data();
+    double* xn = xn_.data();
+    double* vn = vn_.data();
+    double* xhat = xhat_.data();
+    const int* anchorVertex = anchorVertices_.data();
+    const double* anchorTarget = anchorTargets_.data();
+    ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
+      xn[i] = x[i];
+      vn[i] = v[i];
+      xhat[i] = x[i] + h * v[i];
+    });
+    ex_.forEach(static_cast<int>(anchorCount_), [=] GALSCULPT_LAMBDA(int i) {
+      for (int k = 0; k < 3; ++k) x[3 * anchorVertex[i] + k] = anchorTarget[3 * i + k];
+    });
+    frozenIsK_ = true;
+    double* sc = scalars_.data();
+    const double sufficient = s.lineSearch ? 1e-4 : 0.0;
+    for (int it = 0; it < s.newtonIterations; ++it) {
+      const auto t0 = Clock::now();
+      // Structural changes first (host): the hierarchy follows the damage.
+      if (s.multigridSettings.splitAggregates &&
+          multigrid_->updateDamage(model_.edges, hostDamaged_, damageRevision_)) {
+        mg_.upload(buildMultigridLayout(*multigrid_, model_.pattern));
+        ++mgRevision_;
+      }
+      // The Newton step and its full-length trial: launches only, captured as one graph and
+      // replayed, unless a dense Cholesky or PCG needs host reads in between.
+      const bool frozenCopy = it == 0 && s.newtonIterations > 1;
+      auto newtonStep = [&] {
+        elementPass(x, true, grad_.data(), kElastic);
+        if (frozenCopy) ex_.copy(frozen_.data(), k_.data(), k_.size());
+        frozenIsK_ = !(frozenCopy || (it > 0 && s.newtonIterations > 1));
+        contact(x, grad_.data(), kContact);
+        dampedProduct(x, dampedK_.data());
+        backwardEulerGradient(x, grad_.data(), dampedK_.data(), g_.data());
+        buildSystem(x);
+        mg_.refresh(h_.data(), s.multigridSettings.coarseCholesky);
+        solveLinear();
+        stepMeasures();
+        evaluateTrial(1.0);
+      };
+      const bool capturable = !s.multigridSettings.coarseCholesky && !s.multigridSettings.pcg;
+      if (capturable) {
+        ex_.captured(0, graphKey(h, it), newtonStep);
+      } else {
+        newtonStep();
+      }
+      ++result.iterations;
+      double stepLength = 1.0;
+      bool failed = false;
+      double read[kScalars];
+      while (true) {
+        ex_.read(sc, read, kScalars);
+        if (stepLength == 1.0)
+          result.linearResidualReduction =
+              s.multigridSettings.pcg ? pcgReduction_
+                                      : (read[kR0] > 0.0 ? std::sqrt(read[kR1] / read[kR0]) : 0.0);
+        if (read[kBad] > 0.0 || !std::isfinite(read[kElastic])) {
+          failed = true;
+          break;
+        }
+        const double e0 = read[kE0], e1 = read[kE1];
+        if (std::isfinite(e1) &&
+            e1 <= e0 + sufficient * stepLength * read[kSlope] + 1e-12 * std::abs(e0))
+          break;
+        stepLength *= 0.5;
+        ++result.backtracks;
+        if (stepLength < 1e-8) break;
+        evaluateTrial(stepLength);
+      }
+      // The device does not split its phases (they run as one graph): all of it is "solve".
+      result.msSolve += ms(t0);
+      if (failed) {
+        result.ok = false;
+        return result;
+      }
+      if (stepLength < 1e-8) {
+        if (result.iterations == 1) {
+          result.ok = false;
+          return result;
+        }
+        break;
+      }
+      // Accept: the trial just evaluated is the new iterate (its energy and gradient too).
+      const double len = stepLength;
+      const double* delta = delta_.data();
+      ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { x[i] += len * delta[i]; });
+      ex_.copy(acceptedGrad_.data(), trialGrad_.data(), 3 * n_);
+      result.energy = read[kTrialElastic];
+      if (read[kDeltaMax] * stepLength < s.tolerance * modelSize_) break;
+    }
+    // The sub-step's end, one captured section and one read: the residual at the accepted
+    // positions (relative to the body's 1 g weight), contact forces, finiteness, velocities.
+    ex_.captured(1, graphKey(h, -1), [&] { finishSubstep(h); });
+    double read[kScalars];
+    ex_.read(sc, read, kScalars);
+    // |f_ext| = |g| |m| over the vertices, massNorm_ over the 3n DOFs: |m| sqrt 3.
+    const double perDofMass = massNorm_ / std::sqrt(3.0);
+    const double weight = std::max(settings_->gravity.norm() * perDofMass, 9.81 * perDofMass);
+    result.residual = std::sqrt(read[kResidual]) / weight;
+    result.contactForces.assign(poses_.size(), Vec3::Zero());
+    for (size_t c = 0; c < poses_.size(); ++c)
+      result.contactForces[c] =
+          Vec3(read[kForce + 3 * c], read[kForce + 3 * c + 1], read[kForce + 3 * c + 2]);
+    if (read[kBad] > 0.0 || !std::isfinite(result.energy)) {
+      result.ok = false;  // the caller restores x and v
+      return result;
+    }
+    time_ += h;
+    return result;
+  }
+
+  void finishSubstep(double h) {
+    double* sc = scalars_.data();
+    const double* x = x_.data();
+    const double* xn = xn_.data();
+    double* v = v_.data();
+    dampedProduct(x, dampedK_.data());
+    ex_.copy(tmp_.data(), acceptedGrad_.data(), 3 * n_);
+    contact(x, tmp_.data(), kContact);
+    backwardEulerGradient(x, tmp_.data(), dampedK_.data(), g_.data());
+    const double* g = g_.data();
+    ex_.sum(
+        3 * n_, [=] GALSCULPT_LAMBDA(int i) { return g[i] * g[i]; }, sc + kResidual);
+    ex_.sum(
+        3 * n_,
+        [=] GALSCULPT_LAMBDA(int i) { return x[i] == x[i] && fabs(x[i]) <= 1.7e308 ? 0.0 : 1.0; },
+        sc + kBad);
+    contactForces(x);
+    ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { v[i] = (x[i] - xn[i]) / h; });
+  }
+
+  // The Newton step's measures: e0 (kE0), the slope g.delta (kSlope), |delta|_inf
+  // (kDeltaMax), and whether g or delta holds a NaN or infinity (kBad).
+  void stepMeasures() {
+    double* sc = scalars_.data();
+    const double* x = x_.data();
+    objective(x, kElastic, kContact, dampedK_.data(), kE0);
+    const double* g = g_.data();
+    const double* delta = delta_.data();
+    ex_.sum(
+        3 * n_, [=] GALSCULPT_LAMBDA(int i) { return g[i] * delta[i]; }, sc + kSlope);
+    ex_.sum(
+        3 * n_,
+        [=] GALSCULPT_LAMBDA(int i) {
+          return g[i] == g[i] && fabs(g[i]) <= 1.7e308 && delta[i] == delta[i] &&
+                         fabs(delta[i]) <= 1.7e308
+                     ? 0.0
+                     : 1.0;
+        },
+        sc + kBad);
+    ex_.maximum(
+        3 * n_, [=] GALSCULPT_LAMBDA(int i) { return fabs(delta[i]); }, sc + kDeltaMax);
+  }
+
+  // Elastic and contact energies and the potential at x + length delta (slots kTrialElastic,
+  // kTrialContact, kE1), with the trial's gradient.
+  void evaluateTrial(double length) {
+    double* trial = trial_.data();
+    const double* x = x_.data();
+    const double* delta = delta_.data();
+    ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { trial[i] = x[i] + length * delta[i]; });
+    elementPass(trial, false, trialGrad_.data(), kTrialElastic);
+    dampedProduct(trial, tmp_.data());
+    contact(trial, nullptr, kTrialContact);
+    objective(trial, kTrialElastic, kTrialContact, tmp_.data(), kE1);
+  }
+
+  // Everything a captured Newton step bakes in: a replay is valid only for the same key.
+  std::uint64_t graphKey(double h, int iteration) const {
+    const StepSettings& s = *settings_;
+    const MultigridSettings& m = s.multigridSettings;
+    std::uint64_t key = 1469598103934665603ull;
+    auto mix = [&](std::uint64_t v) { key = (key ^ v) * 1099511628211ull; };
+    auto mixDouble = [&](double d) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &d, sizeof bits);
+      mix(bits);
+    };
+    mixDouble(h);
+    mix(static_cast<std::uint64_t>(iteration));
+    mix(static_cast<std::uint64_t>(s.newtonIterations));
+    mix(mgRevision_);
+    mix(anchorCount_);
+    mix(poses_.size());
+    mix(reinterpret_cast<std::uintptr_t>(anchorVertices_.data()));
+    mix(reinterpret_cast<std::uintptr_t>(anchorTargets_.data()));
+    mix(reinterpret_cast<std::uintptr_t>(poseBuffer_.data()));
+    mix(reinterpret_cast<std::uintptr_t>(fp_.data()));
+    mix(plastic_);
+    mix(s.compressionResists);
+    mixDouble(s.dampingMass);
+    mixDouble(s.dampingStiffness);
+    for (int i = 0; i < 3; ++i) mixDouble(s.gravity[i]);
+    mix(static_cast<std::uint64_t>(m.preSweeps) << 32 | static_cast<std::uint32_t>(m.postSweeps));
+    mix(static_cast<std::uint64_t>(m.coarseIterations) << 32 |
+        static_cast<std::uint32_t>(m.cycles));
+    mix(m.jacobi);
+    mixDouble(m.jacobiWeight);
+    return key;
+  }
+
+  // delta = A^-1 (-g) by the multigrid: V-cycles (the residual norms go to slots kR0, kR1; no
+  // host read) or PCG (host reads; its reduction in pcgReduction_).
+  void solveLinear() {
+    const StepSettings& s = *settings_;
+    const MultigridSettings& ms = s.multigridSettings;
+    typename DeviceMultigrid<Exec>::Settings mgs;
+    mgs.preSweeps = ms.preSweeps;
+    mgs.postSweeps = ms.postSweeps;
+    mgs.jacobi = ms.jacobi;
+    mgs.jacobiWeight = ms.jacobiWeight;
+    mgs.coarseCholesky = ms.coarseCholesky;
+    mgs.coarseIterations = ms.coarseIterations;
+    mgs.cycles = ms.cycles;
+    double* delta = delta_.data();
+    double* b = rhs();
+    const double* g = g_.data();
+    const std::uint8_t* fixed = fixed_.data();
+    ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
+      b[i] = -g[i];
+      delta[i] = 0.0;
+    });
+    const double* a = h_.data();
+    double* sc = scalars_.data();
+    double* r = pcgR_.data();
+    double* ap = pcgAp_.data();
+    ex_.sum(
+        3 * n_, [=] GALSCULPT_LAMBDA(int i) { return b[i] * b[i]; }, sc + kR0);
+    if (!ms.pcg) {
+      mg_.cycles(a, b, delta, mgs);
+      mg_.multiplyFine(a, delta, ap);
+      ex_.sum(
+          3 * n_, [=] GALSCULPT_LAMBDA(int i) { return (b[i] - ap[i]) * (b[i] - ap[i]); },
+          sc + kR1);
+    } else {
+      // CG preconditioned by one V-cycle per iteration (a host read per iteration).
+      double* z = pcgZ_.data();
+      double* p = pcgP_.data();
+      ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
+        r[i] = b[i];
+        z[i] = 0.0;
+      });
+      mg_.vcycle(a, 0, r, z, mgs);
+      ex_.copy(p, z, 3 * n_);
+      ex_.sum(
+          3 * n_, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, sc + kRz);
+      double read[kScalars];
+      ex_.read(sc, read, kScalars);
+      const double bnorm = std::sqrt(read[kR0]);
+      const double target = ms.pcgTolerance * std::max(bnorm, 1e-300);
+      double rz = read[kRz], rnorm = bnorm;
+      int iterations = 0;
+      while (iterations < ms.pcgMaxIterations && rnorm > target) {
+        mg_.multiplyFine(a, p, ap);
+        ex_.sum(
+            3 * n_, [=] GALSCULPT_LAMBDA(int i) { return p[i] * ap[i]; }, sc + kPap);
+        ex_.read(sc, read, kScalars);
+        if (!(read[kPap] > 0.0)) break;
+        const double alpha = rz / read[kPap];
+        ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
+          delta[i] += alpha * p[i];
+          r[i] -= alpha * ap[i];
+        });
+        ex_.sum(
+            3 * n_, [=] GALSCULPT_LAMBDA(int i) { return r[i] * r[i]; }, sc + kR1);
+        ex_.read(sc, read, kScalars);
+        rnorm = std::sqrt(read[kR1]);
+        ++iterations;
+        if (rnorm <= target) break;
+        ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { z[i] = 0.0; });
+        mg_.vcycle(a, 0, r, z, mgs);
+        ex_.sum(
+            3 * n_, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, sc + kRz);
+        ex_.read(sc, read, kScalars);
+        const double beta = read[kRz] / rz;
+        rz = read[kRz];
+        ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { p[i] = z[i] + beta * p[i]; });
+      }
+      pcgReduction_ = bnorm > 0.0 ? rnorm / bnorm : 0.0;
+    }
+    ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
+      if (fixed[i / 3]) delta[i] = 0.0;
+    });
+  }
+
+  // Force of each collider on the body at y, into slots kForce + 3 c + k.
+  void contactForces(const double* y) {
+    const kernels::ColliderPose* poses = poseBuffer_.data();
+    const std::uint8_t* fixed = fixed_.data();
+    const double* mass = mass_.data();
+    const double h = h_step_;
+    double* sc = scalars_.data();
+    for (size_t c = 0; c < poses_.size(); ++c) {
+      for (int k = 0; k < 3; ++k) {
+        const int ci = static_cast<int>(c);
+        ex_.sum(
+            n_,
+            [=] GALSCULPT_LAMBDA(int v) {
+              if (fixed[v]) return 0.0;
+              double normal[3];
+              const double d = kernels::colliderDistance(poses[ci], y + 3 * v, normal);
+              if (d >= 0.0) return 0.0;
+              return -poses[ci].contactStiffness * mass[v] / (h * h) * d * normal[k];
+            },
+            sc + kForce + 3 * ci + k);
+      }
+    }
+  }
+
+  // ---- plasticity and fracture --------------------------------------------------------------
+
+  int plasticUpdate() {
+    const int* tv = tetVertices_.data();
+    const int* te = tetEdges_.data();
+    const std::uint8_t* damaged = damaged_.data();
+    const kernels::RestData* rest = rest_.data();
+    const double* x = x_.data();
+    double* fp = fp_.data();
+    double* strain = strain_.data();
+    double* flowed = elemEnergy_.data();  // scratch: 1 where the element flowed
+    const Lame lame = model_.material.lame;
+    const kernels::PlasticParamsData params{model_.material.plastic.yieldStress,
+                                            model_.material.plastic.hardening};
+    ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
+      // As on the CPU (solver/frame/step.cpp plasticUpdate): damaged elements do not flow.
+      flowed[t] = 0.0;
+      for (int k = 0; k < 6; ++k)
+        if (damaged[te[6 * t + k]]) return;
+      double x12[12];
+      for (int a = 0; a < 4; ++a)
+        for (int k = 0; k < 3; ++k) x12[3 * a + k] = x[3 * tv[4 * t + a] + k];
+      const kernels::M3 f = kernels::deformationGradient(rest[t], x12);
+      kernels::M3 inv;
+      for (int i = 0; i < 9; ++i) inv.a[i] = fp[9 * t + i];
+      const bool flow = kernels::plasticReturn(lame, params, f, inv, strain[t]);
+      if (flow)
+        for (int i = 0; i < 9; ++i) fp[9 * t + i] = inv.a[i];
+      flowed[t] = flow ? 1.0 : 0.0;
+    });
+    double* sc = scalars_.data();
+    ex_.sum(
+        tets_, [=] GALSCULPT_LAMBDA(int t) { return flowed[t]; }, sc + kCount);
+    double read[kScalars];
+    ex_.read(sc, read, kScalars);
+    const int count = static_cast<int>(read[kCount]);
+    plasticFlowed_ = plasticFlowed_ || count > 0;
+    return count;
+  }
+
+  FractureReport fracturePass() {
+    const FractureField& field = *fractureField_;
+    FractureReport report;
+    const int edges = layout_.edges;
+    // Element edge stresses into slots 6 t + k.
+    const ElementInputs in = elementInputs();
+    const std::uint8_t* damaged = damaged_.data();
+    const double* x = x_.data();
+    double* slot = slotStress_.data();
+    const MaterialModel model = model_.material.model;
+    const Lame lame = model_.material.lame;
+    const bool resists = settings_->compressionResists;
+    ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
+      double x12[12];
+      std::uint8_t intact;
+      kernels::RestData r;
+      in.load(t, x, x12, intact, r);
+      kernels::edgeNormalStress(model, lame, r, x12, intact, resists, slot + 6 * t);
+    });
+    const int* slotStart = edgeSlotStart_.data();
+    const int* slots = edgeSlots_.data();
+    double* local = localStress_.data();
+    double* compression = compression_.data();
+    ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
+      local[e] = 0.0;
+      compression[e] = 0.0;
+      if (damaged[e]) return;
+      double hi = -kInf, lo = kInf;
+      for (int k = slotStart[e]; k < slotStart[e + 1]; ++k) {
+        hi = fmax(hi, slot[slots[k]]);
+        lo = fmin(lo, slot[slots[k]]);
+      }
+      local[e] = fabs(hi) <= 1.7e308 ? hi : 0.0;
+      compression[e] = fabs(lo) <= 1.7e308 ? lo : 0.0;
+    });
+    const double* threshold = threshold_.data();
+    std::uint8_t* breaks = breaks_.data();
+    double* ratio = mean_.data();
+    const double crush = field.settings.compressiveThreshold;
+    double* sc = scalars_.data();
+    if (field.settings.kernelRadius <= 0.0) {
+      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
+        breaks[e] = 0;
+        ratio[e] = -kInf;
+        if (damaged[e]) return;
+        breaks[e] = (crush > 0.0 && -compression[e] > crush) || local[e] > threshold[e];
+        ratio[e] = local[e] / threshold[e];
+      });
+    } else {
+      // Only edges within R_d of an edge over the smallest threshold can average above theirs.
+      const double minThreshold = field.minThreshold;
+      std::uint8_t* hot = hot_.data();
+      ex_.forEach(edges,
+                  [=] GALSCULPT_LAMBDA(int e) { hot[e] = !damaged[e] && local[e] > minThreshold; });
+      const double radius = field.settings.kernelRadius;
+      const double* mid = midpoint_.data();
+      const int* cellBegin = cellBegin_.data();
+      const int* cellEnd = cellEnd_.data();
+      const int* cellEdges = cellEdges_.data();
+      const int* edgeCell = edgeCell_.data();
+      const int* neighbors = cellNeighbors_.data();
+      std::uint8_t* cellHot = cellHot_.data();
+      ex_.forEach(fractureLayout_.cells(), [=] GALSCULPT_LAMBDA(int c) {
+        std::uint8_t any = 0;
+        for (int i = cellBegin[c]; i < cellEnd[c]; ++i) any |= hot[cellEdges[i]];
+        cellHot[c] = any;
+      });
+      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
+        breaks[e] = !damaged[e] && crush > 0.0 && -compression[e] > crush;
+        ratio[e] = -kInf;
+        if (damaged[e]) return;
+        const int* around = neighbors + 27 * edgeCell[e];
+        bool near = false;
+        for (int k = 0; k < 27; ++k) near = near || (around[k] >= 0 && cellHot[around[k]]);
+        if (!near) return;  // no edge close enough to break it: the common case, cheap
+        bool candidate = false;
+        double sum = 0.0, weights = 0.0;
+        const double r2 = radius * radius;
+        for (int k = 0; k < 27; ++k) {
+          const int c = around[k];
+          if (c < 0) continue;
+          for (int i = cellBegin[c]; i < cellEnd[c]; ++i) {
+            const int f = cellEdges[i];
+            double d2 = 0.0;
+            for (int j = 0; j < 3; ++j)
+              d2 += (mid[3 * f + j] - mid[3 * e + j]) * (mid[3 * f + j] - mid[3 * e + j]);
+            if (!(d2 < r2)) continue;
+            candidate = candidate || hot[f];
+            if (damaged[f]) continue;
+            const double w = (1.0 - d2 / r2) * (1.0 - d2 / r2);
+            sum += w * local[f];
+            weights += w;
+          }
+        }
+        if (!candidate) return;
+        const double mean = weights > 0.0 ? sum / weights : local[e];
+        ratio[e] = mean / threshold[e];
+        breaks[e] = breaks[e] || mean > threshold[e];
+      });
+      // Without any candidate the ratio is the local one (as the CPU reports it).
+      ex_.sum(
+          edges, [=] GALSCULPT_LAMBDA(int e) { return ratio[e] > -1.7e308 ? 1.0 : 0.0; },
+          sc + kCount);
+      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
+        if (sc[kCount] == 0.0 && !damaged[e]) ratio[e] = local[e] / threshold[e];
+      });
+    }
+    ex_.maximum(
+        edges, [=] GALSCULPT_LAMBDA(int e) { return ratio[e]; }, sc + kRatio);
+    ex_.sum(
+        edges, [=] GALSCULPT_LAMBDA(int e) { return breaks[e] ? 1.0 : 0.0; }, sc + kCount);
+    double read[kScalars];
+    ex_.read(sc, read, kScalars);
+    report.maxStressRatio = std::max(0.0, read[kRatio]);
+    report.newlyDamaged = static_cast<int>(read[kCount]);
+    if (report.newlyDamaged > 0) {
+      std::uint8_t* d = damaged_.data();
+      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
+        if (breaks[e]) d[e] = 1;
+      });
+      damaged_.download(hostDamaged_.data(), hostDamaged_.size());
+      ++damageRevision_;
+    }
+    return report;
+  }
+
+  // ---- setup ----------------------------------------------------------------------------
+
+  void ensureMultigrid(const StepSettings& s) {
+    if (multigrid_ && gridHandles_ == s.gridHandles) return;
+    multigrid_ = std::make_unique<Multigrid>(model_.pattern, model_.mesh.vertices, model_.edges,
+                                             s.gridHandles);
+    gridHandles_ = s.gridHandles;
+    if (s.multigridSettings.splitAggregates)
+      multigrid_->updateDamage(model_.edges, hostDamaged_, damageRevision_);
+    mg_.upload(buildMultigridLayout(*multigrid_, model_.pattern));
+    ++mgRevision_;
+  }
+
+  void uploadFracture(const FractureField& field) {
+    fractureField_ = &field;
+    fractureLayout_ = buildFractureLayout(field);
+    edgeSlotStart_.upload(fractureLayout_.slotStart);
+    edgeSlots_.upload(fractureLayout_.slots);
+    threshold_.upload(fractureLayout_.threshold);
+    midpoint_.upload(fractureLayout_.midpoint);
+    cellBegin_.upload(fractureLayout_.cellBegin);
+    cellEnd_.upload(fractureLayout_.cellEnd);
+    cellEdges_.upload(fractureLayout_.cellEdges);
+    edgeCell_.upload(fractureLayout_.edgeCell);
+    cellNeighbors_.upload(fractureLayout_.cellNeighbors);
+    cellHot_.resize(fractureLayout_.cells());
+    slotStress_.resize(6 * static_cast<size_t>(tets_));
+    for (Buffer<double>* b : {&localStress_, &compression_, &mean_}) b->resize(layout_.edges);
+    breaks_.resize(layout_.edges);
+    hot_.resize(layout_.edges);
+  }
+
+  // Anchored vertices and their targets at `time`, and the colliders' poses (host-computed,
+  // uploaded when they change).
+  void prepareAnchorsAndColliders(double time) {
+    const StepSettings& s = *settings_;
+    std::vector<std::uint8_t> fixed(n_, 0);
+    std::vector<int> vertices;
+    std::vector<double> targets;
+    for (const AnchorConstraint& a : s.anchors) {
+      const Vec3 offset = anchorOffset(a, time);
+      for (size_t i = 0; i < a.vertices.size(); ++i) {
+        const int v = a.vertices[i];
+        fixed[v] = 1;
+        const Vec3 p = (a.origin.empty() ? model_.mesh.vertices[v] : a.origin[i]) + offset;
+        vertices.push_back(v);
+        targets.insert(targets.end(), {p.x(), p.y(), p.z()});
+      }
+    }
+    if (fixed != hostFixed_) {
+      hostFixed_ = fixed;
+      fixed_.upload(hostFixed_);
+    }
+    anchorCount_ = vertices.size();
+    if (vertices != hostAnchorVertices_) {
+      hostAnchorVertices_ = vertices;
+      anchorVertices_.upload(vertices);
+    }
+    if (targets != hostAnchorTargets_) {
+      hostAnchorTargets_ = targets;
+      anchorTargets_.upload(targets);
+    }
+    std::vector<kernels::ColliderPose> poses;
+    for (const Collider& c : s.colliders) poses.push_back(colliderPose(c, time));
+    poses_ = poses;
+    if (!poses.empty()) poseBuffer_.upload(poses);
+  }
+
+  double* rhs() { return pcgB_.data(); }
+  const double* frozenBlocks() const { return frozenIsK_ ? k_.data() : frozen_.data(); }
+
+  // Host arrays of plain doubles (Vec3, Matrix3d, double) copied to and from device buffers;
+  // `shadow` is what the device holds, so an upload happens only when the host changed it.
+  template <typename V>
+  bool uploadIfChanged(const std::vector<V>& src, std::vector<double>& shadow,
+                       Buffer<double>& dst) {
+    static_assert(sizeof(V) % sizeof(double) == 0, "an array of doubles");
+    const size_t n = src.size() * (sizeof(V) / sizeof(double));
+    if (shadow.size() == n &&
+        std::memcmp(shadow.data(), static_cast<const void*>(src.data()), n * sizeof(double)) == 0)
+      return false;
+    shadow.resize(n);
+    std::memcpy(shadow.data(), static_cast<const void*>(src.data()), n * sizeof(double));
+    dst.upload(shadow);
+    return true;
+  }
+  template <typename V>
+  void download(const Buffer<double>& src, std::vector<double>& shadow, std::vector<V>& dst) {
+    static_assert(sizeof(V) % sizeof(double) == 0, "an array of doubles");
+    shadow.resize(dst.size() * (sizeof(V) / sizeof(double)));
+    ex_.download(src.data(), shadow.data(), shadow.size());
+    std::memcpy(static_cast<void*>(dst.data()), shadow.data(), shadow.size() * sizeof(double));
+  }
+
+  enum Slot {
+    kElastic,
+    kContact,
+    kTrialElastic,
+    kTrialContact,
+    kE0,
+    kE1,
+    kSlope,
+    kBad,
+    kDeltaMax,
+    kResidual,
+    kR0,
+    kR1,
+    kRz,
+    kPap,
+    kCount,
+    kRatio,
+    kForce,
+    kScalars = kForce + 3 * 16
+  };
+
+ private:
+  Exec& ex_;
+  const SimModel& model_;
+  ModelLayout layout_;
+  DeviceMultigrid<Exec> mg_;
+  std::unique_ptr<Multigrid> multigrid_;
+  std::vector<int> gridHandles_;
+  const StepSettings* settings_ = nullptr;
+  int n_ = 0, tets_ = 0;
+  double time_ = 0.0, h_step_ = 0.0, modelSize_ = 1.0, massNorm_ = 0.0, pcgReduction_ = 0.0;
+  std::uint64_t mgRevision_ = 0;  // bumped whenever the hierarchy is uploaded again
+  bool plastic_ = false, frozenIsK_ = true;
+  bool plasticFlowed_ = false;  // an element flowed this frame: the plastic state goes back
+  Buffer<int> tetVertices_, tetEdges_, rowStart_, columns_, diagonal_, blockRow_;
+  Buffer<int> vertexSlotStart_, vertexSlots_, blockSlotStart_, blockSlots_;
+  Buffer<kernels::RestData> rest_;
+  Buffer<double> mass_;
+  Buffer<double> x_, v_, xn_, vn_, xhat_, grad_, trialGrad_, acceptedGrad_, g_, delta_, trial_,
+      dampedK_, tmp_, savedX_, savedV_;
+  Buffer<double> elemEnergy_, elemGrad_, elemHess_, k_, frozen_, h_, scalars_, contactPerVertex_;
+  Buffer<double> pcgB_, pcgR_, pcgZ_, pcgP_, pcgAp_;
+  Buffer<double> fp_, strain_, savedFp_, savedStrain_;
+  Buffer<std::uint8_t> fixed_, damaged_;
+  Buffer<int> anchorVertices_;
+  Buffer<double> anchorTargets_;
+  size_t anchorCount_ = 0;
+  std::vector<kernels::ColliderPose> poses_;
+  Buffer<kernels::ColliderPose> poseBuffer_;
+  // Fracture.
+  const FractureField* fractureField_ = nullptr;
+  FractureLayout fractureLayout_;
+  Buffer<int> edgeSlotStart_, edgeSlots_, cellBegin_, cellEnd_, cellEdges_, edgeCell_,
+      cellNeighbors_;
+  Buffer<double> threshold_, midpoint_, slotStress_, localStress_, compression_, mean_;
+  Buffer<std::uint8_t> breaks_, hot_, cellHot_;
+  // Host shadows: what the device holds, to upload only changes.
+  std::vector<double> hostX_, hostV_, hostFp_, hostStrain_, hostAnchorTargets_;
+  std::vector<std::uint8_t> hostDamaged_, hostFixed_;
+  std::vector<int> hostAnchorVertices_;
+  std::uint64_t damageRevision_ = ~std::uint64_t{0};
+};
+
+// The device solver on its own executor, behind the solver's StepBackend interface ("cuda" on the
+// GPU; "host" in the tests). A device error mid-frame throws before the state is written back,
+// so the caller may run the frame again elsewhere.
+template <typename Exec>
+class DeviceStepBackend final : public StepBackend {
+ public:
+  explicit DeviceStepBackend(const SimModel& model) : solver_(executor_, model) {}
+  std::string name() const override { return Exec::kName; }
+  bool offloads() const override { return true; }
+  StepReport step(SimState& state, const StepSettings& settings) override {
+    return solver_.step(state, settings);
+  }
+
+ private:
+  Exec executor_;
+  DeviceSolver<Exec> solver_;
+};
+
+}  // namespace galsculpt::gpu

@@ -1,0 +1,93 @@
+// One frame of implicit backward Euler.
+//
+// Positions solve the incremental potential
+//   E(x) = 1/(2h^2) |x - x_n - h v_n|_M^2 + Psi(x) - f_ext . x + 1/(2h) |x - x_n|_D^2,
+// with D = alpha M + beta K(x_n) (Rayleigh damping). One Newton step from x_n is exactly the
+// paper's linearized system (eq. 3 / eq. 8): (M + h D + h^2 K) dv = h (f_ext - f_int - (D + hK)
+// v_n). The default takes that one step; the reference solver iterates Newton with a backtracking
+// line search and a direct sparse solve (Eigen's LDLT) to a tight tolerance. Anchored vertices
+// are Dirichlet conditions: they sit on their prescribed path and their rows are removed.
+// A Newton step that would raise the incremental potential is shortened (backtracking), which
+// keeps huge loads from exploding; a frame that still produces NaN or cannot descend is rolled
+// back and retried with halved sub-steps, each retry counted as a warning.
+#pragma once
+
+#include <vector>
+
+#include <memory>
+
+#include "solver/fem/colliders.h"
+#include "solver/fracture/fracture.h"
+#include "solver/model/sim_model.h"
+#include "solver/multigrid/multigrid.h"
+
+namespace galsculpt {
+
+struct AnchorKey {
+  double time = 0.0;
+  Vec3 offset = Vec3::Zero();
+};
+
+struct AnchorConstraint {
+  std::vector<int> vertices;    // anchored vertices
+  std::vector<AnchorKey> path;  // empty: fixed; else offset(t), linear, held at the ends
+  // Where each vertex sits at offset zero (same order as vertices); empty: its rest position.
+  // Tools that grab a deformed body anchor it where it is.
+  std::vector<Vec3> origin;
+};
+
+Vec3 anchorOffset(const AnchorConstraint& anchor, double time);
+
+struct StepSettings {
+  double dt = 1.0 / 60.0;
+  int substeps = 1;
+  Vec3 gravity = Vec3(0.0, -9.81, 0.0);
+  double dampingMass = 0.0;       // Rayleigh alpha (1/s)
+  double dampingStiffness = 0.0;  // Rayleigh beta (s)
+  int newtonIterations = 1;       // 1: the paper's linearized step
+  bool lineSearch = false;
+  double tolerance = 1e-9;  // Newton stops when |dx|_inf < tolerance * model size
+  bool compressionResists = true;
+  std::vector<AnchorConstraint> anchors;
+  std::vector<Collider> colliders;
+  // Linear solver of each Newton step: CHOLMOD's Cholesky, or the Galerkin multigrid.
+  bool multigrid = false;
+  std::vector<int> gridHandles = {50};  // handle counts, finest coarse level first
+  MultigridSettings multigridSettings;
+  int maxRetries = 4;  // halvings of the step after NaN or explosion
+  // The fracture pass after every sub-step (fracture.h); null: no fracture (and no cost).
+  std::shared_ptr<const FractureField> fracture;
+  // Solves of a sub-step while its fracture pass keeps breaking edges (1: the paper's one pass
+  // per step; more let a crack run within a step, at the cost of re-solving).
+  int fractureIterations = 1;
+};
+
+// The reference solver's settings: Newton with line search to a tight tolerance.
+StepSettings referenceSettings(StepSettings base);
+
+struct StepReport {
+  int newtonIterations = 0;
+  double residual = 0.0;       // |grad E| at the new positions, free DOFs, relative to |M g|
+  double elasticEnergy = 0.0;  // J
+  int retries = 0;             // step halvings (warnings)
+  int backtracks = 0;          // Newton steps shortened because the full step raised the energy
+  double msElements = 0.0, msSolve = 0.0, msPlastic = 0.0, msTotal = 0.0;
+  std::vector<Vec3> contactForces;       // (nColliders) force of each collider on the body, N
+  int plasticElements = 0;               // elements that flowed this frame
+  double linearResidualReduction = 0.0;  // |r_final| / |r_initial| of the last linear solve
+  int newlyDamaged = 0;                  // edges the fracture pass broke this frame
+  double maxStressRatio = 0.0;           // largest edge stress over its threshold (last pass)
+  double msFracture = 0.0;
+  int fractureRedos = 0;  // sub-steps solved again after new damage
+};
+
+StepReport step(const SimModel& model, SimState& state, const StepSettings& settings);
+
+// Elastic energy of positions `x`; the gradient (3 nVerts) and, when `hessian` is given, the
+// stiffness (projected to SPD). Parallel over element colours: deterministic.
+// Uses the state's damage and plastic rest shapes, not its positions.
+double assembleElastic(const SimModel& model, const std::vector<Vec3>& x, const SimState& state,
+                       bool compressionResists, Eigen::VectorXd& gradient,
+                       BlockSparseMatrix* hessian);
+
+}  // namespace galsculpt

@@ -1,0 +1,38 @@
+// Where a frame is computed: the CPU (step.h, the reference) or a device backend (gpu/). Both
+// run the same frame loop (frame_loop.h) and the same element kernels (element_kernels.h), take
+// the model and settings as they are, and leave the results in the caller's SimState, so the
+// engine never knows which one ran.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "solver/frame/step.h"
+
+namespace galsculpt {
+
+class StepBackend {
+ public:
+  virtual ~StepBackend() = default;
+  virtual std::string name() const = 0;  // "cpu", "cuda" (for display)
+  // Whether frames run elsewhere than on this CPU, so that a failure can fall back to it.
+  virtual bool offloads() const = 0;
+  // One frame of dt; the state is read at the start and written back at the end.
+  virtual StepReport step(SimState& state, const StepSettings& settings) = 0;
+};
+
+// The CPU backend: step() on the model it was made for.
+class CpuStepBackend final : public StepBackend {
+ public:
+  explicit CpuStepBackend(const SimModel& model) : model_(model) {}
+  std::string name() const override { return "cpu"; }
+  bool offloads() const override { return false; }
+  StepReport step(SimState& state, const StepSettings& settings) override {
+    return galsculpt::step(model_, state, settings);
+  }
+
+ private:
+  const SimModel& model_;
+};
+
+}  // namespace galsculpt

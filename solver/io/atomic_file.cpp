@@ -1,0 +1,164 @@
+#include "solver/io/atomic_file.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iomanip>
+#include <random>
+#include <sstream>
+
+#include "solver/io/input_error.h"
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Temporaries are ".NAME.tmpPID": those of `path` left behind by processes that are gone (a
+// kill -9 mid-write) are removed; a live writer's are left alone.
+void removeStaleTemporaries(const fs::path& dir, const std::string& name) {
+  const std::string prefix = "." + name + ".tmp";
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string entry = it->path().filename().string();
+    if (entry.size() <= prefix.size() || entry.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string pid = entry.substr(prefix.size());
+    if (pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
+    const pid_t owner = static_cast<pid_t>(std::stol(pid));
+    if (owner == getpid() || (kill(owner, 0) != 0 && errno == ESRCH)) {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
+    }
+  }
+}
+
+// Writes `path`'s content to its temporary and returns the temporary's path.
+fs::path writeTemporary(const fs::path& path, const std::function<void(std::ostream&)>& write) {
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) {
+    throw OutputError("cannot write " + path.string() + ": directory " + dir.string() +
+                      " does not exist");
+  }
+  removeStaleTemporaries(dir, path.filename().string());
+  // Built by appending: GCC 12 warns falsely (-Wrestrict) on chained operator+ here.
+  std::string tmpName = ".";
+  tmpName.append(path.filename().string()).append(".tmp").append(std::to_string(getpid()));
+  const fs::path tmp = dir / tmpName;
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      throw OutputError("cannot write " + path.string() + ": " + std::strerror(errno));
+    }
+    try {
+      write(out);
+    } catch (...) {
+      out.close();
+      fs::remove(tmp, ec);
+      throw;
+    }
+    out.flush();
+    if (!out) {
+      const std::string reason = std::strerror(errno);
+      out.close();
+      fs::remove(tmp, ec);
+      throw OutputError("cannot write " + path.string() + ": " + reason);
+    }
+  }
+  return tmp;
+}
+
+void commitTemporary(const fs::path& tmp, const fs::path& path) {
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw OutputError("cannot write " + path.string() + ": " + ec.message());
+  }
+}
+
+constexpr char kStampPrefix[] = "# galsculpt set ";
+
+}  // namespace
+
+void writeFileAtomically(const fs::path& path, const std::function<void(std::ostream&)>& write) {
+  commitTemporary(writeTemporary(path, write), path);
+}
+
+FileSet::FileSet() {
+  std::random_device device;
+  std::ostringstream s;
+  s << std::hex << std::setfill('0') << std::setw(8) << device() << std::setw(8) << device();
+  stamp_ = s.str();
+}
+
+FileSet::~FileSet() {
+  for (const auto& [tmp, target] : written_) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+  }
+}
+
+std::string FileSet::stampLine() const {
+  return std::string(kStampPrefix) + stamp_ + "\n";
+}
+
+void FileSet::add(const fs::path& path, const std::function<void(std::ostream&)>& write) {
+  written_.emplace_back(writeTemporary(path, write), path);
+}
+
+void FileSet::remove(const fs::path& path) {
+  removed_.push_back(path);
+}
+
+void FileSet::commit() {
+  for (const auto& [tmp, target] : written_) commitTemporary(tmp, target);
+  written_.clear();
+  for (const fs::path& p : removed_) {
+    std::error_code ec;
+    fs::remove(p, ec);
+    if (ec) throw OutputError("cannot remove the stale " + p.string() + ": " + ec.message());
+  }
+}
+
+std::string findSetStamp(const std::string& text) {
+  const size_t at = text.rfind(kStampPrefix);
+  if (at == std::string::npos) return {};
+  const size_t begin = at + sizeof(kStampPrefix) - 1;
+  size_t end = begin;
+  while (end < text.size() && std::isxdigit(static_cast<unsigned char>(text[end]))) ++end;
+  return text.substr(begin, end - begin);
+}
+
+std::string readWholeFile(const fs::path& path) {
+  // Only regular files, and their size known before anything is allocated: a device such as
+  // /dev/zero or a pipe would otherwise be read until memory runs out.
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) throw InputError(path.string(), 0, "file not found");
+  if (!fs::is_regular_file(status))
+    throw InputError(
+        path.string(), 0,
+        fs::is_directory(status) ? "is a folder, not a file" : "is not a regular file");
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) throw InputError(path.string(), 0, "cannot read its size: " + ec.message());
+  if (size > kMaxInputFileBytes)
+    throw InputError(path.string(), 0,
+                     "is " + std::to_string(size) + " bytes; input files are limited to " +
+                         std::to_string(kMaxInputFileBytes) + " bytes");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), 0, std::string("cannot open: ") + std::strerror(errno));
+  std::string data(static_cast<size_t>(size), '\0');
+  in.read(data.data(), static_cast<std::streamsize>(size));
+  if (static_cast<std::uintmax_t>(in.gcount()) != size)
+    throw InputError(path.string(), 0,
+                     "changed while it was read (expected " + std::to_string(size) + " bytes)");
+  return data;
+}
+
+}  // namespace galsculpt

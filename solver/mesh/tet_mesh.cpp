@@ -1,0 +1,148 @@
+#include "solver/mesh/tet_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "solver/mesh/union_find.h"
+
+namespace galsculpt {
+
+double tetVolume(const TetMesh& mesh, int tet) {
+  const Tet& t = mesh.tets[tet];
+  const auto& v = mesh.vertices;
+  return tetSixVolume(v[t[0]], v[t[1]], v[t[2]], v[t[3]]) / 6.0;
+}
+
+double totalVolume(const TetMesh& mesh) {
+  double sum = 0.0;
+  for (int t = 0; t < mesh.numTets(); ++t) sum += tetVolume(mesh, t);
+  return sum;
+}
+
+std::array<Tri, 4> tetFacesOutward(const Tet& t) {
+  return {Tri{t[1], t[2], t[3]}, Tri{t[0], t[3], t[2]}, Tri{t[0], t[1], t[3]},
+          Tri{t[0], t[2], t[1]}};
+}
+
+std::vector<Tri> boundaryFaces(const TetMesh& mesh) {
+  struct Keyed {
+    std::array<int, 3> key;
+    Tri face;
+  };
+  std::vector<Keyed> all;
+  all.reserve(mesh.tets.size() * 4);
+  for (const Tet& t : mesh.tets) {
+    for (const Tri& f : tetFacesOutward(t)) {
+      std::array<int, 3> key = f;
+      std::sort(key.begin(), key.end());
+      all.push_back({key, f});
+    }
+  }
+  std::sort(all.begin(), all.end(), [](const Keyed& a, const Keyed& b) { return a.key < b.key; });
+  std::vector<Tri> out;
+  for (size_t i = 0; i < all.size();) {
+    size_t j = i + 1;
+    while (j < all.size() && all[j].key == all[i].key) ++j;
+    if (j - i == 1) out.push_back(all[i].face);
+    i = j;
+  }
+  return out;
+}
+
+TriMesh boundarySurface(const TetMesh& mesh, std::vector<int>* toTetVertex) {
+  TriMesh surface;
+  std::vector<int> map(mesh.vertices.size(), -1);
+  std::vector<int> back;
+  for (Tri f : boundaryFaces(mesh)) {
+    for (int& v : f) {
+      if (map[v] < 0) {
+        map[v] = static_cast<int>(surface.vertices.size());
+        surface.vertices.push_back(mesh.vertices[v]);
+        back.push_back(v);
+      }
+      v = map[v];
+    }
+    surface.faces.push_back(f);
+  }
+  if (toTetVertex) *toTetVertex = std::move(back);
+  return surface;
+}
+
+std::vector<Edge> uniqueEdges(const TetMesh& mesh) {
+  std::vector<Edge> edges;
+  edges.reserve(mesh.tets.size() * 6);
+  for (const Tet& t : mesh.tets) {
+    for (int i = 0; i < 4; ++i) {
+      for (int j = i + 1; j < 4; ++j) {
+        edges.push_back({std::min(t[i], t[j]), std::max(t[i], t[j])});
+      }
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+BoundingBox boundingBox(const std::vector<Vec3>& points) {
+  BoundingBox box;
+  if (points.empty()) return box;
+  box.min = box.max = points[0];
+  for (const Vec3& p : points) {
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  return box;
+}
+
+double tetMeanRatio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const double volume = tetSixVolume(a, b, c, d) / 6.0;
+  const double sumSq = (b - a).squaredNorm() + (c - a).squaredNorm() + (d - a).squaredNorm() +
+                       (c - b).squaredNorm() + (d - b).squaredNorm() + (d - c).squaredNorm();
+  if (sumSq <= 0.0) return 0.0;
+  // 12 (3|V|)^(2/3) / sum l^2 equals 1 for the regular tet.
+  const double q = 12.0 * std::cbrt(9.0 * volume * volume) / sumSq;
+  return volume < 0.0 ? -q : q;
+}
+
+int countPieces(const TetMesh& mesh, std::vector<int>* pieceOfVertex) {
+  UnionFind uf(mesh.numVertices());
+  std::vector<char> used(mesh.vertices.size(), 0);
+  for (const Tet& t : mesh.tets) {
+    for (int i = 0; i < 4; ++i) used[t[i]] = 1;
+    uf.unite(t[0], t[1]);
+    uf.unite(t[0], t[2]);
+    uf.unite(t[0], t[3]);
+  }
+  std::vector<int> label(mesh.vertices.size(), -1);
+  std::vector<int> rootLabel(mesh.vertices.size(), -1);
+  int pieces = 0;
+  for (int v = 0; v < mesh.numVertices(); ++v) {
+    if (!used[v]) continue;
+    const int r = uf.find(v);
+    if (rootLabel[r] < 0) rootLabel[r] = pieces++;
+    label[v] = rootLabel[r];
+  }
+  if (pieceOfVertex) *pieceOfVertex = std::move(label);
+  return pieces;
+}
+
+std::vector<Vec3> vertexNormals(const std::vector<Vec3>& vertices, const std::vector<Tri>& faces) {
+  std::vector<Vec3> normals(vertices.size(), Vec3::Zero());
+  for (const Tri& f : faces) {
+    // The cross product's length is twice the area: area weighting for free.
+    const Vec3 n = (vertices[f[1]] - vertices[f[0]]).cross(vertices[f[2]] - vertices[f[0]]);
+    for (int k = 0; k < 3; ++k) normals[f[k]] += n;
+  }
+  for (Vec3& n : normals) {
+    const double len = n.norm();
+    if (len > 0.0) n /= len;
+  }
+  return normals;
+}
+
+std::vector<Vec3> vertexNormals(const TriMesh& mesh) {
+  return vertexNormals(mesh.vertices, mesh.faces);
+}
+
+}  // namespace galsculpt

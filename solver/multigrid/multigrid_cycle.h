@@ -1,0 +1,652 @@
+// The Galerkin multigrid of solver/multigrid/multigrid.h on the device: the same hierarchy (built and
+// split over cracks on the host by the CPU class, mirrored here as flat arrays), the same
+// refresh A_{l+1} = U^T A_l U, V-cycle, smoothers, coarse solves, per-piece coarse start and
+// fragment corrections, written as launches of an executor (host_executor.h, or the CUDA one).
+//
+// Nothing here waits for the device: scalars of the coarse CG (alpha, its stopping test) live in
+// device memory and steer the launches that follow, so a whole solve can be captured as one
+// CUDA graph. The only host decisions are structural (levels, colours, settings).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "solver/fem/dense_kernels.h"
+#include "solver/frame/model_layout.h"
+#include "solver/multigrid/multigrid.h"
+
+namespace galsculpt::gpu {
+
+template <typename Exec>
+class DeviceMultigrid {
+ public:
+  template <typename T>
+  using Buffer = typename Exec::template Buffer<T>;
+
+  DeviceMultigrid(Exec& ex, const ModelLayout& model) : ex_(ex) {
+    rows_ = model.vertices;
+    fineRowStart_.upload(model.rowStart);
+    fineColumns_.upload(model.columns);
+    fineDiagonal_.upload(model.diagonal);
+    ax_.resize(3 * rows_);
+    fragmentResidual_.resize(3 * rows_);
+    scalars_.resize(kScalars);
+  }
+
+  // Mirrors the host hierarchy; call after it was built or changed (updateDamage).
+  void upload(const MultigridLayout& m) {
+    fineColorStart_ = m.fineColorStart;
+    fineColorRows_.upload(m.fineColorRows);
+    levels_.clear();
+    levels_.resize(m.levels.size());
+    for (size_t l = 0; l < m.levels.size(); ++l) {
+      const LevelLayout& s = m.levels[l];
+      Level& d = levels_[l];
+      d.rows = s.rows;
+      d.handles = s.handles;
+      d.nnz = static_cast<int>(s.columns.size());
+      // Work per item, for the CPU executor's threading (the GPU ignores it).
+      d.refreshCost = (l == 0 ? 48 : 3 * 1728) *
+                      (1 + static_cast<long>(s.contribRow.size()) / std::max(1, d.nnz));
+      d.memberCost = 36 * (1 + s.rows / std::max(1, s.handles));
+      d.rowCost = 144 * (1 + d.nnz / std::max(1, s.handles));
+      d.parent.upload(s.parent);
+      d.y.upload(s.y);
+      d.toParent.upload(s.toParent);
+      d.rowStart.upload(s.rowStart);
+      d.columns.upload(s.columns);
+      d.diagonal.upload(s.diagonal);
+      d.contribStart.upload(s.contribStart);
+      d.contribBlock.upload(s.contribBlock);
+      d.contribRow.upload(s.contribRow);
+      d.memberStart.upload(s.memberStart);
+      d.members.upload(s.members);
+      d.empty.upload(s.empty);
+      d.colorStart = s.colorStart;
+      d.colorRows.upload(s.colorRows);
+      d.blocks.resize(144 * static_cast<size_t>(d.nnz));
+      d.diagonalFactor.resize(144 * static_cast<size_t>(d.handles));
+      d.b.resize(12 * d.handles);
+      d.x.resize(12 * d.handles);
+      d.ax.resize(12 * d.handles);
+    }
+    const Level& c = levels_.back();
+    cgR_.resize(12 * c.handles);
+    cgP_.resize(12 * c.handles);
+    cgAp_.resize(12 * c.handles);
+    pieceCount_ = m.pieceCount;
+    if (pieceCount_ >= 2) {
+      pieceOfHandle_.upload(m.pieceOfHandle);
+      pieceMap_.upload(m.pieceMap);
+      pieceContribStart_.upload(m.pieceContribStart);
+      pieceContribBlock_.upload(m.pieceContribBlock);
+      pieceContribRow_.upload(m.pieceContribRow);
+      std::vector<std::vector<int>> handlesOf(pieceCount_);
+      for (int h = 0; h < c.handles; ++h) handlesOf[m.pieceOfHandle[h]].push_back(h);
+      std::vector<int> start{0}, list;
+      for (const auto& hs : handlesOf) {
+        list.insert(list.end(), hs.begin(), hs.end());
+        start.push_back(static_cast<int>(list.size()));
+      }
+      pieceHandleStart_.upload(start);
+      pieceHandles_.upload(list);
+      pieceFactor_.resize(144 * static_cast<size_t>(pieceCount_));
+      pieceSolution_.resize(12 * static_cast<size_t>(pieceCount_));
+    }
+    fragments_ = static_cast<int>(m.fragmentStart.size()) - 1;
+    if (fragments_ > 0) {
+      fragmentStart_.upload(m.fragmentStart);
+      fragmentVertices_.upload(m.fragmentVertices);
+      fragmentOf_.upload(m.fragmentOf);
+      fragmentFrame_.upload(m.fragmentFrame);
+      restPositions_.upload(m.restPositions);
+      fragmentFactor_.resize(144 * static_cast<size_t>(fragments_));
+      fragmentPerm_.resize(12 * static_cast<size_t>(fragments_));
+      fragmentTranslation_.resize(9 * static_cast<size_t>(fragments_));
+      fragmentMode_.resize(fragments_);
+    }
+    denseSize_ = 12 * c.handles;
+    factored_ = false;
+  }
+
+  // A_{l+1} = U^T A_l U on every level from the fine matrix (9 doubles per block), the
+  // smoothers' diagonal factors, the fragments' and pieces' operators, and (when asked) the
+  // coarsest level's dense Cholesky. Returns nothing the host must wait for unless the dense
+  // Cholesky is asked for.
+  void refresh(const double* fine, bool coarseCholesky) {
+    for (size_t l = 0; l < levels_.size(); ++l) {
+      Level& d = levels_[l];
+      const double* finer = l == 0 ? fine : levels_[l - 1].blocks.data();
+      const int* finerColumns = l == 0 ? fineColumns_.data() : levels_[l - 1].columns.data();
+      const double* y = d.y.data();
+      const double* toParent = d.toParent.data();
+      const int* start = d.contribStart.data();
+      const int* block = d.contribBlock.data();
+      const int* row = d.contribRow.data();
+      double* out = d.blocks.data();
+      const bool first = l == 0;
+      ex_.forEach(
+          d.nnz,
+          [=] GALSCULPT_LAMBDA(int b) {
+            double acc[144];
+            for (double& a : acc) a = 0.0;
+            for (int i = start[b]; i < start[b + 1]; ++i) {
+              const int k = block[i], r = row[i], c = finerColumns[k];
+              if (first) {
+                addKron4x3(y + 4 * r, y + 4 * c, finer + 9 * k, acc);
+              } else {
+                addTripleProduct12(toParent + 144 * r, finer + 144 * k, toParent + 144 * c, acc);
+              }
+            }
+            for (int i = 0; i < 144; ++i) out[144 * b + i] = acc[i];
+          },
+          d.refreshCost);
+      // Modes no fine vertex sees: a relative shift (identity for a handle without rows).
+      const int* diagonal = d.diagonal.data();
+      const std::uint8_t* empty = d.empty.data();
+      double* factor = d.diagonalFactor.data();
+      ex_.forEach(
+          d.handles,
+          [=] GALSCULPT_LAMBDA(int h) {
+            double* blk = out + 144 * diagonal[h];
+            double trace = 0.0;
+            for (int i = 0; i < 12; ++i) trace += blk[13 * i];
+            const double shift = empty[h] ? 1.0 : 1e-9 * fmax(trace / 12.0, 1e-300);
+            for (int i = 0; i < 12; ++i) blk[13 * i] += shift;
+            double* f = factor + 144 * h;
+            for (int i = 0; i < 144; ++i) f[i] = blk[i];
+            cholesky(12, f);
+          },
+          1000);
+    }
+    if (fragments_ > 0) factorFragments(fine);
+    if (pieceCount_ >= 2) factorPieces();
+    factored_ = false;
+    if (coarseCholesky) {
+      const Level& c = levels_.back();
+      dense_.resize(static_cast<size_t>(denseSize_) * denseSize_);
+      double* dense = dense_.data();
+      const double* blocks = c.blocks.data();
+      const int* rowStart = c.rowStart.data();
+      const int* columns = c.columns.data();
+      const int n = denseSize_;
+      ex_.forEach(n * n, [=] GALSCULPT_LAMBDA(int i) { dense[i] = 0.0; });
+      ex_.forEach(c.handles, [=] GALSCULPT_LAMBDA(int r) {
+        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
+          const int col = columns[k];
+          for (int j = 0; j < 12; ++j)
+            for (int i = 0; i < 12; ++i)
+              dense[(12 * r + i) + static_cast<size_t>(n) * (12 * col + j)] =
+                  blocks[144 * k + i + 12 * j];
+        }
+      });
+      factored_ = ex_.denseCholesky(n, dense);
+    }
+  }
+
+  struct Settings {
+    int preSweeps = 3, postSweeps = 3;
+    bool jacobi = false;
+    double jacobiWeight = 0.66;
+    bool coarseCholesky = false;
+    int coarseIterations = 20;
+    int cycles = 1;
+  };
+
+  // x <- x + V-cycles for A x = b (A: fine blocks, 9 doubles each). No host waits.
+  void cycles(const double* a, const double* b, double* x, const Settings& s) {
+    for (int c = 0; c < s.cycles; ++c) vcycle(a, 0, b, x, s);
+  }
+  // One V-cycle from the given x (the preconditioner of PCG).
+  void vcycle(const double* a, int l, const double* b, double* x, const Settings& s) {
+    const int levels = static_cast<int>(levels_.size());
+    if (l == levels) {
+      solveCoarsest(b, x, s);
+      return;
+    }
+    double* ax = l == 0 ? ax_.data() : levels_[l - 1].ax.data();
+    if (l == 0) {
+      smoothFine(a, b, x, s.preSweeps, false, s);
+      multiplyFine(a, x, ax);
+    } else {
+      smoothCoarse(l, b, x, s.preSweeps, false, s);
+      multiplyCoarse(l - 1, x, ax);
+    }
+    Level& next = levels_[l];
+    restrictResidual(l, b, ax, next.b.data());
+    double* cx = next.x.data();
+    ex_.forEach(12 * next.handles, [=] GALSCULPT_LAMBDA(int i) { cx[i] = 0.0; });
+    vcycle(a, l + 1, next.b.data(), cx, s);
+    prolongAdd(l, cx, x);
+    if (l == 0) {
+      if (fragments_ > 0) correctFragments(a, b, x);
+      smoothFine(a, b, x, s.postSweeps, true, s);
+    } else {
+      smoothCoarse(l, b, x, s.postSweeps, true, s);
+    }
+  }
+
+  // y = A x on the fine level.
+  void multiplyFine(const double* a, const double* x, double* y) {
+    const int* rowStart = fineRowStart_.data();
+    const int* columns = fineColumns_.data();
+    ex_.forEach(rows_, [=] GALSCULPT_LAMBDA(int r) {
+      double acc[3] = {0.0, 0.0, 0.0};
+      for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
+        double t[3];
+        multiply3(a + 9 * k, x + 3 * columns[k], t);
+        for (int i = 0; i < 3; ++i) acc[i] += t[i];
+      }
+      for (int i = 0; i < 3; ++i) y[3 * r + i] = acc[i];
+    });
+  }
+
+  int numLevels() const { return static_cast<int>(levels_.size()); }
+
+  // Everything below is public only because CUDA's extended lambdas cannot live in private
+  // member functions; the data members stay private.
+  struct Level {
+    int rows = 0, handles = 0, nnz = 0;
+    long refreshCost = 1, memberCost = 1, rowCost = 1;
+    Buffer<int> parent;
+    Buffer<double> y, toParent;
+    Buffer<int> rowStart, columns, diagonal;
+    Buffer<int> contribStart, contribBlock, contribRow;
+    Buffer<int> memberStart, members;
+    Buffer<std::uint8_t> empty;
+    std::vector<int> colorStart;
+    Buffer<int> colorRows;
+    Buffer<double> blocks, diagonalFactor;
+    Buffer<double> b, x, ax;  // the right-hand side, solution and product of this level's rows
+  };
+  enum Scalar { kRr, kPap, kRrNew, kStop, kDone, kBB, kBad, kScalars };
+
+  // Gauss-Seidel order: colour by colour (backwards when reversed, for the symmetric cycle), the
+  // rows of one colour at once (no two share a block).
+  template <typename RowUpdate>
+  void forEachColour(const std::vector<int>& colorStart, const int* colorRows, bool reverse,
+                     const RowUpdate& update, long cost = 1) {
+    const int colors = static_cast<int>(colorStart.size()) - 1;
+    for (int ci = 0; ci < colors; ++ci) {
+      const int color = reverse ? colors - 1 - ci : ci;
+      const int* rowsOf = colorRows + colorStart[color];
+      ex_.forEach(
+          colorStart[color + 1] - colorStart[color],
+          [=] GALSCULPT_LAMBDA(int i) { update(rowsOf[i]); }, cost);
+    }
+  }
+
+  void smoothFine(const double* a, const double* b, double* x, int sweeps, bool reverse,
+                  const Settings& s) {
+    const int* rowStart = fineRowStart_.data();
+    const int* columns = fineColumns_.data();
+    const int* diagonal = fineDiagonal_.data();
+    for (int sweep = 0; sweep < sweeps; ++sweep) {
+      if (s.jacobi) {
+        double* ax = ax_.data();
+        multiplyFine(a, x, ax);
+        const double w = s.jacobiWeight;
+        ex_.forEach(rows_, [=] GALSCULPT_LAMBDA(int r) {
+          double res[3], dx[3];
+          for (int i = 0; i < 3; ++i) res[i] = b[3 * r + i] - ax[3 * r + i];
+          solve3(a + 9 * diagonal[r], res, dx);
+          for (int i = 0; i < 3; ++i) x[3 * r + i] += w * dx[i];
+        });
+        continue;
+      }
+      forEachColour(fineColorStart_, fineColorRows_.data(), reverse, [=] GALSCULPT_LAMBDA(int r) {
+        double rhs[3] = {b[3 * r], b[3 * r + 1], b[3 * r + 2]};
+        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
+          if (columns[k] != r) subtractMultiply3(a + 9 * k, x + 3 * columns[k], rhs);
+        solve3(a + 9 * diagonal[r], rhs, x + 3 * r);
+      });
+    }
+  }
+
+  // Smoothing of the operator of levels_[l - 1] (the rows of vcycle level l).
+  void smoothCoarse(int l, const double* b, double* x, int sweeps, bool reverse,
+                    const Settings& s) {
+    Level& d = levels_[l - 1];
+    const int* rowStart = d.rowStart.data();
+    const int* columns = d.columns.data();
+    const double* blocks = d.blocks.data();
+    const double* factor = d.diagonalFactor.data();
+    for (int sweep = 0; sweep < sweeps; ++sweep) {
+      if (s.jacobi) {
+        double* ax = d.ax.data();
+        multiplyCoarse(l - 1, x, ax);
+        const double w = s.jacobiWeight;
+        ex_.forEach(
+            d.handles,
+            [=] GALSCULPT_LAMBDA(int r) {
+              double res[12];
+              for (int i = 0; i < 12; ++i) res[i] = b[12 * r + i] - ax[12 * r + i];
+              choleskySolve(12, factor + 144 * r, res);
+              for (int i = 0; i < 12; ++i) x[12 * r + i] += w * res[i];
+            },
+            300);
+        continue;
+      }
+      forEachColour(
+          d.colorStart, d.colorRows.data(), reverse,
+          [=] GALSCULPT_LAMBDA(int r) {
+            double rhs[12];
+            for (int j = 0; j < 12; ++j) rhs[j] = b[12 * r + j];
+            for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
+              if (columns[k] == r) continue;
+              double t[12] = {};
+              addMultiply12(blocks + 144 * k, x + 12 * columns[k], t);
+              for (int j = 0; j < 12; ++j) rhs[j] -= t[j];
+            }
+            choleskySolve(12, factor + 144 * r, rhs);
+            for (int j = 0; j < 12; ++j) x[12 * r + j] = rhs[j];
+          },
+          d.rowCost);
+    }
+  }
+
+  // y = C x with C the operator of levels_[li].
+  void multiplyCoarse(int li, const double* x, double* y) {
+    Level& d = levels_[li];
+    const int* rowStart = d.rowStart.data();
+    const int* columns = d.columns.data();
+    const double* blocks = d.blocks.data();
+    ex_.forEach(
+        d.handles,
+        [=] GALSCULPT_LAMBDA(int r) {
+          double acc[12] = {};
+          for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
+            addMultiply12(blocks + 144 * k, x + 12 * columns[k], acc);
+          for (int i = 0; i < 12; ++i) y[12 * r + i] = acc[i];
+        },
+        d.rowCost);
+  }
+
+  // coarse = U_l^T (b - ax), one thread per handle over its aggregate's rows.
+  void restrictResidual(int l, const double* b, const double* ax, double* coarse) {
+    Level& d = levels_[l];
+    const int* start = d.memberStart.data();
+    const int* members = d.members.data();
+    const double* y = d.y.data();
+    const double* toParent = d.toParent.data();
+    const bool first = l == 0;
+    ex_.forEach(
+        d.handles,
+        [=] GALSCULPT_LAMBDA(int h) {
+          double acc[12] = {};
+          for (int i = start[h]; i < start[h + 1]; ++i) {
+            const int r = members[i];
+            if (first) {
+              for (int m = 0; m < 4; ++m)
+                for (int k = 0; k < 3; ++k)
+                  acc[3 * m + k] += y[4 * r + m] * (b[3 * r + k] - ax[3 * r + k]);
+            } else {
+              double res[12];
+              for (int k = 0; k < 12; ++k) res[k] = b[12 * r + k] - ax[12 * r + k];
+              addMultiplyTransposed12(toParent + 144 * r, res, acc);
+            }
+          }
+          for (int k = 0; k < 12; ++k) coarse[12 * h + k] = acc[k];
+        },
+        d.memberCost);
+  }
+
+  void prolongAdd(int l, const double* coarse, double* x) {
+    Level& d = levels_[l];
+    const int* parent = d.parent.data();
+    const double* y = d.y.data();
+    const double* toParent = d.toParent.data();
+    if (l == 0) {
+      ex_.forEach(d.rows, [=] GALSCULPT_LAMBDA(int v) {
+        const int p = parent[v];
+        if (p < 0) return;
+        for (int m = 0; m < 4; ++m)
+          for (int k = 0; k < 3; ++k) x[3 * v + k] += y[4 * v + m] * coarse[12 * p + 3 * m + k];
+      });
+    } else {
+      ex_.forEach(d.rows, [=] GALSCULPT_LAMBDA(int a) {
+        addMultiply12(toParent + 144 * a, coarse + 12 * parent[a], x + 12 * a);
+      });
+    }
+  }
+
+  void solveCoarsest(const double* b, double* x, const Settings& s) {
+    const Level& c = levels_.back();
+    const int n = 12 * c.handles;
+    if (s.coarseCholesky && factored_) {
+      ex_.copy(x, b, n);
+      ex_.denseCholeskySolve(n, dense_.data(), x);
+      return;
+    }
+    // CG for a fixed number of iterations; with pieces, from the exact per-piece affine
+    // solution. Its stopping tests are device scalars read by the launches that follow.
+    double* r = cgR_.data();
+    double* p = cgP_.data();
+    double* ap = cgAp_.data();
+    double* sc = scalars_.data();
+    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
+      x[i] = 0.0;
+      r[i] = b[i];
+    });
+    if (pieceCount_ >= 2) {
+      const int* hStart = pieceHandleStart_.data();
+      const int* handles = pieceHandles_.data();
+      const int* pieceOf = pieceOfHandle_.data();
+      const double* map = pieceMap_.data();
+      const double* factor = pieceFactor_.data();
+      double* e = pieceSolution_.data();
+      ex_.forEach(pieceCount_, [=] GALSCULPT_LAMBDA(int q) {
+        double rhs[12] = {};
+        for (int i = hStart[q]; i < hStart[q + 1]; ++i) {
+          const int h = handles[i];
+          addMultiplyTransposed12(map + 144 * h, b + 12 * h, rhs);
+        }
+        choleskySolve(12, factor + 144 * q, rhs);
+        for (int k = 0; k < 12; ++k) e[12 * q + k] = rhs[k];
+      });
+      ex_.forEach(c.handles, [=] GALSCULPT_LAMBDA(int h) {
+        double out[12] = {};
+        addMultiply12(map + 144 * h, e + 12 * pieceOf[h], out);
+        for (int k = 0; k < 12; ++k) x[12 * h + k] = out[k];
+      });
+      multiplyCoarse(numLevels() - 1, x, ap);
+      ex_.sum(
+          n, [=] GALSCULPT_LAMBDA(int i) { return x[i] == x[i] && fabs(x[i]) < 1e300 ? 0.0 : 1.0; },
+          sc + kBad);
+      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
+        if (sc[kBad] > 0.0) {
+          x[i] = 0.0;
+          r[i] = b[i];
+        } else {
+          r[i] = b[i] - ap[i];
+        }
+      });
+    }
+    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) { p[i] = r[i]; });
+    ex_.sum(
+        n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * r[i]; }, sc + kRr);
+    ex_.sum(
+        n, [=] GALSCULPT_LAMBDA(int i) { return b[i] * b[i]; }, sc + kBB);
+    ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
+      sc[kStop] = 1e-30 * fmax(sc[kBB], 1e-300);
+      sc[kDone] = 0.0;
+    });
+    // Each launch of an iteration decides alone whether the iteration is live, from scalars no
+    // launch of that iteration writes before the last one: 3 launches and 2 reductions each.
+    for (int it = 0; it < s.coarseIterations; ++it) {
+      multiplyCoarse(numLevels() - 1, p, ap);
+      ex_.sum(
+          n, [=] GALSCULPT_LAMBDA(int i) { return p[i] * ap[i]; }, sc + kPap);
+      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
+        if (!cgLive(sc)) return;
+        const double alpha = sc[kRr] / sc[kPap];
+        x[i] += alpha * p[i];
+        r[i] -= alpha * ap[i];
+      });
+      ex_.sum(
+          n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * r[i]; }, sc + kRrNew);
+      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
+        if (cgLive(sc)) p[i] = r[i] + (sc[kRrNew] / sc[kRr]) * p[i];
+      });
+      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
+        if (cgLive(sc)) {
+          sc[kRr] = sc[kRrNew];
+        } else {
+          sc[kDone] = 1.0;  // stopped for good, as the CPU's loop breaks
+        }
+      });
+    }
+  }
+
+  // Whether this coarse CG iteration runs: not stopped, residual above the stop, p^T A p > 0.
+  GALSCULPT_HD static bool cgLive(const double* sc) {
+    return sc[kDone] == 0.0 && sc[kRr] > sc[kStop] && sc[kPap] > 0.0;
+  }
+
+  void factorPieces() {
+    const Level& c = levels_.back();
+    const int* start = pieceContribStart_.data();
+    const int* block = pieceContribBlock_.data();
+    const int* row = pieceContribRow_.data();
+    const int* columns = c.columns.data();
+    const double* blocks = c.blocks.data();
+    const double* map = pieceMap_.data();
+    double* factor = pieceFactor_.data();
+    ex_.forEach(pieceCount_, [=] GALSCULPT_LAMBDA(int q) {
+      double m[144] = {};
+      for (int i = start[q]; i < start[q + 1]; ++i) {
+        const int k = block[i], h = row[i], g = columns[k];
+        addTripleProduct12(map + 144 * h, blocks + 144 * k, map + 144 * g, m);
+      }
+      double trace = 0.0;
+      for (int i = 0; i < 12; ++i) trace += m[13 * i];
+      for (int i = 0; i < 12; ++i) m[13 * i] += 1e-12 * fmax(trace / 12.0, 1e-300);
+      cholesky(12, m);
+      for (int i = 0; i < 144; ++i) factor[144 * q + i] = m[i];
+    });
+  }
+
+  // Fragment f's affine modes at vertex v: [(X_v - c_f) / s_f, 1].
+  GALSCULPT_HD static void fragmentModes(const double* frame, const double* rest, int v,
+                                         double* y) {
+    for (int k = 0; k < 3; ++k) y[k] = (rest[3 * v + k] - frame[k]) / frame[3];
+    y[3] = 1.0;
+  }
+
+  void factorFragments(const double* a) {
+    const int* start = fragmentStart_.data();
+    const int* vertices = fragmentVertices_.data();
+    const int* fragmentOf = fragmentOf_.data();
+    const double* frames = fragmentFrame_.data();
+    const double* rest = restPositions_.data();
+    const int* rowStart = fineRowStart_.data();
+    const int* columns = fineColumns_.data();
+    double* factor = fragmentFactor_.data();
+    int* perm = fragmentPerm_.data();
+    double* translation = fragmentTranslation_.data();
+    std::uint8_t* mode = fragmentMode_.data();
+    ex_.forEach(fragments_, [=] GALSCULPT_LAMBDA(int f) {
+      double m[144] = {};
+      const double* frame = frames + 4 * f;
+      for (int i = start[f]; i < start[f + 1]; ++i) {
+        const int r = vertices[i];
+        double yr[4];
+        fragmentModes(frame, rest, r, yr);
+        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
+          const int c = columns[k];
+          if (fragmentOf[c] != f) continue;
+          double yc[4];
+          fragmentModes(frame, rest, c, yc);
+          addKron4x3(yr, yc, a + 9 * k, m);
+        }
+      }
+      double trace = 0.0;
+      for (int i = 0; i < 12; ++i) trace += m[13 * i];
+      double* t = translation + 9 * f;
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) t[i + 3 * j] = m[(9 + i) + 12 * (9 + j)];
+      const bool translationOk = cholesky(3, t);
+      double* l = factor + 144 * f;
+      for (int i = 0; i < 144; ++i) l[i] = m[i];
+      bool affine = start[f + 1] - start[f] >= 4 && ldlt12(l, perm + 12 * f);
+      for (int i = 0; affine && i < 12; ++i) affine = l[13 * i] > 1e-12 * trace;
+      mode[f] = affine ? 2 : (translationOk ? 1 : 0);
+    });
+  }
+
+  // Galerkin correction of each fragment in its own affine modes (or its translation), from the
+  // residual of all fragment vertices taken before any moves.
+  void correctFragments(const double* a, const double* b, double* x) {
+    const int* start = fragmentStart_.data();
+    const int* vertices = fragmentVertices_.data();
+    const int* fragmentOf = fragmentOf_.data();
+    const double* frames = fragmentFrame_.data();
+    const double* rest = restPositions_.data();
+    const int* rowStart = fineRowStart_.data();
+    const int* columns = fineColumns_.data();
+    const double* factor = fragmentFactor_.data();
+    const int* perm = fragmentPerm_.data();
+    const double* translation = fragmentTranslation_.data();
+    const std::uint8_t* mode = fragmentMode_.data();
+    double* residual = fragmentResidual_.data();
+    ex_.forEach(rows_, [=] GALSCULPT_LAMBDA(int r) {
+      if (fragmentOf[r] < 0) return;
+      double res[3] = {b[3 * r], b[3 * r + 1], b[3 * r + 2]};
+      for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
+        subtractMultiply3(a + 9 * k, x + 3 * columns[k], res);
+      for (int i = 0; i < 3; ++i) residual[3 * r + i] = res[i];
+    });
+    ex_.forEach(fragments_, [=] GALSCULPT_LAMBDA(int f) {
+      if (mode[f] == 0) return;
+      const double* frame = frames + 4 * f;
+      double rhs[12] = {};
+      for (int i = start[f]; i < start[f + 1]; ++i) {
+        const int r = vertices[i];
+        double y[4];
+        fragmentModes(frame, rest, r, y);
+        for (int j = 0; j < 4; ++j)
+          for (int k = 0; k < 3; ++k) rhs[3 * j + k] += y[j] * residual[3 * r + k];
+      }
+      double e[12] = {};
+      if (mode[f] == 2) {
+        ldlt12Solve(factor + 144 * f, perm + 12 * f, rhs, e);
+      } else {
+        double t[3] = {rhs[9], rhs[10], rhs[11]};
+        choleskySolve(3, translation + 9 * f, t);
+        for (int k = 0; k < 3; ++k) e[9 + k] = t[k];
+      }
+      for (double value : e)
+        if (!(value == value) || fabs(value) > 1e300) return;
+      for (int i = start[f]; i < start[f + 1]; ++i) {
+        const int v = vertices[i];
+        double y[4];
+        fragmentModes(frame, rest, v, y);
+        for (int j = 0; j < 4; ++j)
+          for (int k = 0; k < 3; ++k) x[3 * v + k] += y[j] * e[3 * j + k];
+      }
+    });
+  }
+
+ private:
+  Exec& ex_;
+  int rows_ = 0;
+  Buffer<int> fineRowStart_, fineColumns_, fineDiagonal_;
+  std::vector<int> fineColorStart_;
+  Buffer<int> fineColorRows_;
+  std::vector<Level> levels_;
+  Buffer<double> ax_, fragmentResidual_, scalars_;
+  Buffer<double> cgR_, cgP_, cgAp_;
+  int pieceCount_ = 0;
+  Buffer<int> pieceOfHandle_, pieceContribStart_, pieceContribBlock_, pieceContribRow_;
+  Buffer<int> pieceHandleStart_, pieceHandles_;
+  Buffer<double> pieceMap_, pieceFactor_, pieceSolution_;
+  int fragments_ = 0;
+  Buffer<int> fragmentStart_, fragmentVertices_, fragmentOf_, fragmentPerm_;
+  Buffer<double> fragmentFrame_, restPositions_, fragmentFactor_, fragmentTranslation_;
+  Buffer<std::uint8_t> fragmentMode_;
+  int denseSize_ = 0;
+  Buffer<double> dense_;
+  bool factored_ = false;
+};
+
+}  // namespace galsculpt::gpu

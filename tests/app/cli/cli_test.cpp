@@ -1,0 +1,254 @@
+#include "app/cli/cli.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "engine/surface/surface_io.h"
+#include "gpu/cuda_step_backend.h"
+#include "solver/mesh/shape_generators.h"
+#include "tests/app/cli/cli_run.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+namespace fs = std::filesystem;
+
+using test::CliRun;
+CliRun run(const std::vector<std::string>& args) {
+  return test::runCliCapture(args);
+}
+
+TEST(Cli, HelpAndVersion) {
+  EXPECT_EQ(run({"--help"}).code, kExitOk);
+  EXPECT_NE(run({"help"}).out.find("mesh import SURFACE OUT --tets N"), std::string::npos);
+  EXPECT_NE(run({"--version"}).out.find("galsculpt "), std::string::npos);
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  EXPECT_EQ(run({"frobnicate"}).code, kExitUsage);
+  EXPECT_EQ(run({"mesh"}).code, kExitUsage);
+  EXPECT_EQ(run({"mesh", "info"}).code, kExitUsage);
+  EXPECT_EQ(run({"mesh", "info", "a.node", "--bogus"}).code, kExitUsage);
+  const CliRun r = run({"mesh", "import", "a.obj", "b.node"});
+  EXPECT_EQ(r.code, kExitUsage);
+  EXPECT_NE(r.err.find("needs --tets N"), std::string::npos);
+  EXPECT_EQ(run({"mesh", "import", "a.obj", "b.node", "--tets", "ten"}).code, kExitUsage);
+  EXPECT_EQ(run({"mesh", "convert", "a.node", "b.docx"}).code, kExitUsage);
+}
+
+TEST(Cli, BadInputExitsThreeWithFileAndLine) {
+  const fs::path broken = fs::path(GALSCULPT_TEST_DATA) / "broken" / "nan_coordinate.node";
+  const CliRun r = run({"mesh", "info", broken.string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("nan_coordinate.node:3: coordinate is not finite"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(run({"mesh", "info", "/nonexistent/x.obj"}).code, kExitBadInput);
+}
+
+TEST(Cli, InfoOfTetMeshAndSurface) {
+  test::TempDir dir;
+  writeSurface(dir / "s.ply", makeIcosphere(1.0, 2));
+  const CliRun surface = run({"mesh", "info", (dir / "s.ply").string()});
+  ASSERT_EQ(surface.code, kExitOk) << surface.err;
+  EXPECT_NE(surface.out.find("kind: surface"), std::string::npos);
+  EXPECT_NE(surface.out.find("faces: 320"), std::string::npos);
+  EXPECT_NE(surface.out.find("watertight: yes"), std::string::npos);
+  EXPECT_NE(surface.out.find("pieces: 1"), std::string::npos);
+
+  const fs::path tricky = fs::path(GALSCULPT_TEST_DATA) / "valid" / "tricky.node";
+  const CliRun tet = run({"mesh", "info", tricky.string(), "--json"});
+  ASSERT_EQ(tet.code, kExitOk) << tet.err;
+  const auto j = nlohmann::json::parse(tet.out);
+  EXPECT_EQ(j["tets"], 2);
+  EXPECT_EQ(j["reoriented_tets"], 1);
+  EXPECT_EQ(j["pieces"], 1);
+  EXPECT_EQ(j["quality_histogram"].size(), 10u);
+}
+
+TEST(Cli, ConvertBetweenFormats) {
+  test::TempDir dir;
+  const CliRun gen = run({"mesh", "generate", "sphere", (dir / "s.node").string(), "--tets", "2000",
+                          "--radius", "0.5"});
+  ASSERT_EQ(gen.code, kExitOk) << gen.err;
+  for (const char* out : {"s.msh", "s.vtk", "s.obj", "s.stl", "s.glb"}) {
+    const CliRun r = run({"mesh", "convert", (dir / "s.node").string(), (dir / out).string()});
+    EXPECT_EQ(r.code, kExitOk) << out << ": " << r.err;
+    EXPECT_TRUE(fs::exists(dir / out)) << out;
+  }
+  const CliRun back = run({"mesh", "convert", (dir / "s.msh").string(), (dir / "t.node").string()});
+  ASSERT_EQ(back.code, kExitOk) << back.err;
+  // The same tets; each set carries its own stamp (its last line).
+  auto withoutStamp = [](std::string text) {
+    return text.substr(0, text.rfind("# galsculpt set"));
+  };
+  EXPECT_EQ(withoutStamp(test::readText(dir / "t.ele")),
+            withoutStamp(test::readText(dir / "s.ele")));
+  const CliRun surf = run({"mesh", "convert", (dir / "s.obj").string(), (dir / "s2.ply").string()});
+  EXPECT_EQ(surf.code, kExitOk) << surf.err;
+  const CliRun vol = run({"mesh", "convert", (dir / "s.obj").string(), (dir / "s3.node").string()});
+  EXPECT_EQ(vol.code, kExitUsage) << "surface to tets needs --tets";
+}
+
+TEST(Cli, ImportRejectsAnOpenSurfaceWithExitThree) {
+  test::TempDir dir;
+  TriMesh open = makeIcosphere(1.0, 2);
+  open.faces.resize(open.faces.size() - 4);
+  writeSurface(dir / "open.obj", open);
+  const CliRun r = run(
+      {"mesh", "import", (dir / "open.obj").string(), (dir / "o.node").string(), "--tets", "500"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("the surface is open"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "o.node"));
+}
+
+TEST(Cli, RunWritesMetricsAndSurfaces) {
+  test::TempDir dir;
+  const fs::path scene = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
+  const CliRun r = run({"run", scene.string(), "--frames", "4", "--out", (dir / "out").string(),
+                        "--metrics", (dir / "m.csv").string(), "--export-every", "2"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "out" / "final.obj"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "frame_00002.obj"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "frame_00004.obj"));
+  std::istringstream csv(test::readText(dir / "m.csv"));
+  std::string line;
+  int rows = 0;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("frame,time_s,ms_total,", 0), 0u);
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, 4);
+  EXPECT_EQ(run({"run", scene.string(), "--frames", "2"}).code, kExitUsage) << "--out is required";
+  EXPECT_EQ(run({"run", scene.string(), "--out", "x", "--frames", "0"}).code, kExitUsage);
+}
+
+TEST(Cli, PlayRunsAScriptHeadlessAndWritesTheFinalSurface) {
+  test::TempDir dir;
+  const fs::path script = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scripts" / "sphere_cut.json";
+  const CliRun r =
+      run({"play", script.string(), "--out", (dir / "out").string(), "--export-every", "30"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("2 piece(s)"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(dir / "out" / "final.obj"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "frame_00060.obj"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "metrics.csv"));
+  EXPECT_EQ(run({"play", script.string()}).code, kExitUsage) << "--out is required";
+  EXPECT_EQ(
+      run({"play", script.string(), "--out", (dir / "o3").string(), "--export-format", "fbx"}).code,
+      kExitUsage);
+
+  // Other formats and the tet mesh with its damage.
+  const CliRun formats =
+      run({"play", script.string(), "--out", (dir / "glb").string(), "--export-every", "60",
+           "--export-format", "glb", "--export-tets", "--png-every", "30", "--size", "160x100"});
+  ASSERT_EQ(formats.code, kExitOk) << formats.err;
+  for (const char* name :
+       {"final.obj", "final.glb", "frame_00060.glb", "final.node", "final.ele", "final.face",
+        "final.damage", "final.vtk", "frame_00030.png", "frame_00060.png", "final.png"}) {
+    EXPECT_TRUE(fs::exists(dir / "glb" / name)) << name;
+  }
+  test::writeText(dir / "bad.json", "{\"frames\": 2}");
+  const CliRun bad = run({"play", (dir / "bad.json").string(), "--out", (dir / "o2").string()});
+  EXPECT_EQ(bad.code, kExitBadInput);
+  EXPECT_NE(bad.err.find("$.scene"), std::string::npos) << bad.err;
+}
+
+TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
+  // A private assets folder whose "sphere" scene uses the small committed mesh.
+  test::TempDir dir;
+  fs::create_directories(dir / "scenes");
+  test::writeText(
+      dir / "scenes" / "hanging_sphere.json",
+      std::string(R"({"mesh": {"file": ")") + GALSCULPT_SOURCE_DIR +
+          R"(/assets/meshes/sphere_small.node"}, "material": {"youngs_modulus": 8000, "poisson_ratio": 0.48,
+                      "density": 1000}, "anchors": [{"box": {"min": [-1, 0.08, -1]}}]})");
+  setenv("GALSCULPT_ASSETS", dir.path().c_str(), 1);
+  const CliRun r =
+      run({"bench", "--scene", "sphere", "--frames", "3", "--json", (dir / "b.json").string()});
+  const CliRun cracks =
+      run({"bench", "--cracks", "--frames", "2", "--json", (dir / "c.json").string()});
+  unsetenv("GALSCULPT_ASSETS");
+  ASSERT_EQ(cracks.code, kExitOk) << cracks.err;
+  const auto c = nlohmann::json::parse(test::readText(dir / "c.json"));
+  ASSERT_EQ(c["results"].size(), 3u);
+  EXPECT_EQ(c["results"][0]["cuts"], 0);
+  EXPECT_EQ(c["results"][2]["cuts"], 100);
+  EXPECT_EQ(c["results"][0]["damaged_edges"], 0);
+  EXPECT_GT(c["results"][2]["damaged_edges"].get<int>(),
+            c["results"][1]["damaged_edges"].get<int>());
+  EXPECT_GT(c["results"][1]["damaged_edges"].get<int>(), 0);
+  EXPECT_TRUE(c["results"][2]["rel_position_error"].is_null());
+  // The surface brought up to date after each cut: measured when there are cuts.
+  EXPECT_EQ(c["results"][0]["ms_surface_cut"].get<double>(), 0.0);
+  EXPECT_GT(c["results"][2]["ms_surface_cut"].get<double>(), 0.0);
+  EXPECT_GE(c["results"][2]["ms_surface_cut_max"].get<double>(),
+            c["results"][2]["ms_surface_cut"].get<double>());
+  EXPECT_NE(cracks.out.find("ms surface per cut"), std::string::npos) << cracks.out;
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const auto j = nlohmann::json::parse(test::readText(dir / "b.json"));
+  ASSERT_EQ(j["results"].size(), 2u);
+  for (const char* key :
+       {"scene", "tets", "solver", "grid", "fine_sweeps", "coarse_iters", "frames", "ms_per_frame",
+        "fps", "peak_rss_mb", "rel_position_error", "volume_change_pct"}) {
+    EXPECT_TRUE(j["results"][1].contains(key)) << key;
+  }
+  EXPECT_EQ(j["results"][0]["solver"], "reference");
+  EXPECT_EQ(j["results"][1]["solver"], "multigrid");
+  EXPECT_EQ(j["results"][0]["backend"], "cpu") << "the reference always runs on the CPU";
+  EXPECT_TRUE(j["results"][1]["backend"] == "cpu" || j["results"][1]["backend"] == "cuda");
+  if (j["results"][1]["backend"] == "cpu") {
+    EXPECT_TRUE(j["results"][1].contains("backend_note")) << "auto says why it is not on a GPU";
+  }
+  EXPECT_GT(j["results"][1]["rel_position_error"].get<double>(), 0.0);
+  EXPECT_LT(j["results"][1]["rel_position_error"].get<double>(), 1.0);
+  EXPECT_EQ(run({"bench", "--scene", "moon"}).code, kExitUsage);
+}
+
+// --backend on run (and play, bench, open): cpu runs without a note; cuda runs on the GPU or
+// says why not; anything else is a usage error.
+TEST(Cli, BackendFlag) {
+  test::TempDir dir;
+  const fs::path scene = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
+  const CliRun cpu = run(
+      {"run", scene.string(), "--frames", "1", "--out", (dir / "a").string(), "--backend", "cpu"});
+  ASSERT_EQ(cpu.code, kExitOk) << cpu.err;
+  EXPECT_EQ(cpu.err.find("running on the CPU"), std::string::npos) << cpu.err;
+  const CliRun cuda = run(
+      {"run", scene.string(), "--frames", "1", "--out", (dir / "b").string(), "--backend", "cuda"});
+  ASSERT_EQ(cuda.code, kExitOk) << cuda.err;
+  std::string reason;
+  const SimModel probe = buildSimModel(test::gridBar(1, 1, 1, 0.1), MaterialParams{});
+  StepSettings multigrid;
+  multigrid.multigrid = true;
+  if (!gpu::makeCudaStepBackend(probe, multigrid, reason)) {
+    EXPECT_NE(cuda.err.find("note: the CUDA backend is not available (" + reason + ")"),
+              std::string::npos)
+        << cuda.err;
+  }
+  const fs::path script = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scripts" / "sphere_cut.json";
+  const std::vector<std::vector<std::string>> bad = {
+      {"run", scene.string(), "--frames", "1", "--out", (dir / "c").string()},
+      {"play", script.string(), "--out", (dir / "c").string()},
+      {"bench"},
+      {"open", scene.string(), "--headless", "--out", (dir / "c").string()}};
+  for (std::vector<std::string> args : bad) {
+    args.insert(args.end(), {"--backend", "gpu"});
+    const CliRun r = run(args);
+    EXPECT_EQ(r.code, kExitUsage) << args[0];
+    EXPECT_NE(r.err.find("--backend must be auto, cpu or cuda"), std::string::npos)
+        << args[0] << ": " << r.err;
+  }
+}
+
+TEST(Cli, SceneCheck) {
+  const fs::path scene = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
+  const CliRun r = run({"scene", "check", scene.string(), "--load-mesh"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("material: clay"), std::string::npos);
+  EXPECT_NE(r.out.find("tets\n"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace galsculpt

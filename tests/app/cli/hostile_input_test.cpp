@@ -1,0 +1,295 @@
+// Hostile input through the real command line: the committed corpus (tests/data/hostile), cases
+// too large or too binary to commit (generated here), file sets killed mid-write, and the
+// headless `open` paths. Every malformed input must end in the documented exit code with a
+// message naming the file and the place; none may crash, hang or be accepted.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <random>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "app/cli/cli.h"
+#include "engine/scene/scene_mesh.h"
+#include "engine/session/project_file.h"
+#include "solver/io/tetgen_io.h"
+#include "tests/app/cli/cli_run.h"
+#include "tests/project_bytes.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kCorpus = fs::path(GALSCULPT_TEST_DATA) / "hostile";
+const fs::path kAssets = fs::path(GALSCULPT_SOURCE_DIR) / "assets";
+
+using test::CliRun;
+CliRun run(const std::vector<std::string>& args) {
+  return test::runCliCapture(args);
+}
+
+std::vector<std::string> split(const std::string& s) {
+  std::istringstream in(s);
+  std::vector<std::string> out;
+  for (std::string t; in >> t;) out.push_back(t);
+  return out;
+}
+
+TEST(HostileInput, TheCommittedCorpusIsRefusedWithFileAndPlace) {
+  test::TempDir dir;
+  std::ifstream manifest(kCorpus / "cases.tsv");
+  ASSERT_TRUE(manifest) << "tests/data/hostile/cases.tsv";
+  std::set<fs::path> named;
+  int cases = 0;
+  for (std::string line; std::getline(manifest, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cols;
+    std::istringstream fields(line);
+    for (std::string c; std::getline(fields, c, '\t');) cols.push_back(c);
+    if (cols.size() == 3) cols.push_back("");  // an accepted case: no message to look for
+    ASSERT_EQ(cols.size(), 4u) << line;
+    const fs::path file = kCorpus / cols[1];
+    named.insert(fs::path(cols[1]).replace_extension());
+    std::vector<std::string> args;
+    for (std::string a : split(cols[0])) {
+      if (a == "FILE") a = file.string();
+      if (a.rfind("OUT", 0) == 0)
+        a = (dir / ("out" + std::to_string(cases))).string() + a.substr(3);  // OUT, OUT.node
+      args.push_back(a);
+    }
+    const CliRun r = run(args);
+    EXPECT_EQ(r.code, std::stoi(cols[2])) << cols[1] << ": " << r.err;
+    EXPECT_NE(r.err.find(cols[3]), std::string::npos) << cols[1] << ": " << r.err;
+    ++cases;
+  }
+  EXPECT_GE(cases, 60);
+  // Every file is a case, or the companion of one (same stem: a TetGen set, a glTF's buffer).
+  for (const auto& entry : fs::recursive_directory_iterator(kCorpus)) {
+    if (!entry.is_regular_file() || entry.path().filename() == "cases.tsv") continue;
+    const fs::path stem = fs::relative(entry.path(), kCorpus).replace_extension();
+    EXPECT_TRUE(named.count(stem)) << entry.path() << " is in the corpus but no case names it";
+  }
+}
+
+// Cases too large to commit, or that are not plain files.
+TEST(HostileInput, GeneratedCasesAreRefused) {
+  test::TempDir dir;
+  // 200,000 levels of nesting (it once overflowed the stack while parsing).
+  const std::string deep = std::string(200000, '[') + std::string(200000, ']');
+  test::writeText(dir / "deep_scene.json", "{\"name\": \"x\", \"solver\": " + deep + "}");
+  CliRun r = run({"scene", "check", (dir / "deep_scene.json").string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("deep_scene.json:1: JSON nests deeper than 256 levels"), std::string::npos)
+      << r.err;
+  test::writeText(dir / "deep_script.json", "{\"scene\": \"" +
+                                                (kAssets / "scenes" / "default.json").string() +
+                                                "\", \"frames\": 1, \"events\": " + deep + "}");
+  r = run({"play", (dir / "deep_script.json").string(), "--out", (dir / "o").string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("deep_script.json:1: JSON nests deeper"), std::string::npos) << r.err;
+
+  // A glTF whose JSON nests 200,000 deep: assimp's recursive parser overflowed the stack.
+  const std::string gltf = "{\"asset\": {\"version\": \"2.0\"}, \"x\": " + deep + "}";
+  test::writeText(dir / "deep.gltf", gltf);
+  r = run({"mesh", "info", (dir / "deep.gltf").string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("deep.gltf: byte 290: JSON nests deeper than 256 levels"), std::string::npos)
+      << r.err;
+  std::string chunk = gltf;
+  chunk.resize((chunk.size() + 3) / 4 * 4, ' ');
+  std::string glb = "glTF";
+  auto u32 = [&glb](std::uint32_t v) { glb.append(reinterpret_cast<const char*>(&v), 4); };
+  u32(2);
+  u32(static_cast<std::uint32_t>(20 + chunk.size()));
+  u32(static_cast<std::uint32_t>(chunk.size()));
+  glb += "JSON" + chunk;
+  test::writeText(dir / "deep.glb", glb);
+  r = run({"mesh", "info", (dir / "deep.glb").string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("deep.glb: byte 310: JSON nests deeper"), std::string::npos) << r.err;
+
+  // A device and a folder where a mesh file should be (/dev/zero ended in std::bad_alloc).
+  fs::create_symlink("/dev/zero", dir / "zero.node");
+  fs::create_symlink("/dev/zero", dir / "zero.ele");
+  r = run({"mesh", "info", (dir / "zero.node").string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("zero.node: is not a regular file"), std::string::npos) << r.err;
+  fs::create_directories(dir / "folder.node");
+  test::writeText(dir / "folder.ele", "1 4 0\n0 0 1 2 3\n");
+  r = run({"mesh", "info", (dir / "folder.node").string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("folder.node: is a folder"), std::string::npos) << r.err;
+}
+
+// A project saved from a cut clay ball, and its damaged copies.
+class HostileProjects : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const fs::path script = kAssets / "scripts" / "sphere_cut.json";
+    const CliRun r = run({"open", script.string(), "--headless", "--out", (dir / "views").string(),
+                          "--save-project", good().string(), "--save-recording",
+                          (dir / "rec.json").string(), "--size", "64x40"});
+    ASSERT_EQ(r.code, kExitOk) << r.err;
+    bytes = test::readText(good());
+  }
+  fs::path good() const { return dir / "good.gsproj"; }
+  std::string errorOf(const std::string& content, const std::string& name = "bad.gsproj") {
+    test::writeText(dir / name, content);
+    const CliRun r =
+        run({"open", (dir / name).string(), "--headless", "--out", (dir / "v").string()});
+    EXPECT_EQ(r.code, kExitBadInput) << name << ": " << r.err;
+    return r.err;
+  }
+  std::string withHeader(const std::function<void(nlohmann::json&)>& edit) const {
+    return test::withProjectHeader(bytes, edit);
+  }
+  std::string replaced(const std::string& from, const std::string& to) const {
+    std::string s = bytes;
+    const size_t at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return s.replace(at, from.size(), to);
+  }
+  test::TempDir dir;
+  std::string bytes;
+};
+
+// `open` replays a playback script headless (it was refused: "$.mesh: is required"), and its
+// --save-project and --save-recording write their files headless (they exited 0 and wrote
+// nothing); --input-script needs the window and is refused headless.
+TEST_F(HostileProjects, HeadlessOpenReplaysScriptsAndSavesWhatItIsAskedTo) {
+  ASSERT_TRUE(fs::exists(good()));
+  ASSERT_TRUE(fs::exists(dir / "rec.json"));
+  const Project p = readProject(good());
+  EXPECT_EQ(p.state.frame, 120) << "the script was replayed to its end";
+  int damaged = 0;
+  for (auto d : p.state.damaged) damaged += d;
+  EXPECT_GT(damaged, 0) << "its knife cut";
+  const CliRun replay = run({"play", (dir / "rec.json").string(), "--out", (dir / "p").string()});
+  EXPECT_EQ(replay.code, kExitOk) << replay.err;
+  const CliRun input = run({"open", good().string(), "--headless", "--input-script",
+                            (dir / "rec.json").string(), "--out", (dir / "v").string()});
+  EXPECT_EQ(input.code, kExitUsage);
+  EXPECT_NE(input.err.find("--input-script drives the window"), std::string::npos) << input.err;
+}
+
+TEST_F(HostileProjects, MalformedProjectsAreRefusedWithFileAndPlace) {
+  EXPECT_NE(errorOf(replaced("GALSCULPT PROJECT", "GALSCULPT PROJECX"))
+                .find("bad.gsproj:1: not a Galsculpt project"),
+            std::string::npos)
+      << "a broken magic is a broken project, not 'unknown mesh format'";
+  for (const char* version : {"1garbage", "1.9", "-1", ""}) {
+    EXPECT_NE(errorOf(replaced("PROJECT 2\n", std::string("PROJECT ") + version + "\n"))
+                  .find("bad.gsproj:1: the format version is not a whole number"),
+              std::string::npos)
+        << version;
+  }
+  EXPECT_NE(errorOf(bytes.substr(0, bytes.size() / 2)).find("bad.gsproj: truncated"),
+            std::string::npos);
+  // The last array is the plastic strain (a double per tet): a NaN there was accepted.
+  std::string nan = bytes;
+  const double value = std::nan("");
+  std::memcpy(&nan[nan.size() - sizeof(double)], &value, sizeof(double));
+  EXPECT_NE(errorOf(nan).find("bad.gsproj: plastic strain: value"), std::string::npos);
+  // An invalid scene inside names the project (it named the scene's recorded path).
+  const std::string scene =
+      errorOf(withHeader([](nlohmann::json& h) { h["scene"]["material"]["preset"] = "cheese"; }));
+  EXPECT_NE(scene.find("bad.gsproj: $.scene (saved from"), std::string::npos) << scene;
+  EXPECT_NE(scene.find("$.material.preset: unknown value 'cheese'"), std::string::npos) << scene;
+  // An anchor without its vertices (found by the fuzzing run: the library's bare exception).
+  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) {
+              h["anchors"][0].erase("vertices");
+            })).find("bad.gsproj: $.anchors[0].vertices: is required"),
+            std::string::npos);
+  // A 200,000-deep header.
+  const size_t line1 = bytes.find('\n'), line2 = bytes.find('\n', line1 + 1);
+  const std::string deep = std::string(200000, '[') + std::string(200000, ']');
+  EXPECT_NE(errorOf(bytes.substr(0, line1 + 1) + std::to_string(deep.size()) + "\n" + deep)
+                .find("bad.gsproj:3: JSON nests deeper than 256 levels"),
+            std::string::npos);
+  (void)line2;
+}
+
+// `mesh convert/import/generate` take an output without extension as a TetGen basename.
+TEST(HostileInput, AnOutputWithoutExtensionIsATetGenBasename) {
+  test::TempDir dir;
+  const CliRun r = run({"mesh", "convert", (kAssets / "meshes" / "sphere_small.node").string(),
+                        (dir / "ball").string()});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  for (const char* ext : {".node", ".ele", ".face"})
+    EXPECT_TRUE(fs::exists(dir / ("ball" + std::string(ext)))) << ext;
+  EXPECT_EQ(run({"mesh", "info", (dir / "ball.node").string()}).code, kExitOk);
+  // mesh import too (it was refused: "unknown output format ''").
+  const CliRun import = run({"mesh", "import", (kAssets / "meshes" / "sphere_small.node").string(),
+                             (dir / "again").string(), "--tets", "100"});
+  EXPECT_EQ(import.code, kExitBadInput) << "a tet mesh is not a surface to import";
+  const CliRun surface =
+      run({"mesh", "convert", (kAssets / "meshes" / "sphere_small.node").string(),
+           (dir / "ball.obj").string()});
+  ASSERT_EQ(surface.code, kExitOk) << surface.err;
+  const CliRun meshed = run(
+      {"mesh", "import", (dir / "ball.obj").string(), (dir / "meshed").string(), "--tets", "3000"});
+  ASSERT_EQ(meshed.code, kExitOk) << meshed.err;
+  EXPECT_TRUE(fs::exists(dir / "meshed.node") && fs::exists(dir / "meshed.ele"));
+}
+
+// The tet mesh and its damage are one set: a reader never accepts a set mixed from two writes,
+// whenever the writer is killed, and temporaries left by a killed writer are cleaned up.
+TEST(HostileInput, KilledWritersNeverLeaveASetThatReadsAsOneMesh) {
+  test::TempDir dir;
+  // Two different meshes written in turn to the same stem.
+  const fs::path a = kAssets / "meshes" / "sphere_small.node";
+  TetMesh bar = test::gridBar(28, 28, 28, 0.01);  // about 0.1 s to write: kills land mid-write
+  writeTetGen(dir / "bar", bar);
+  const fs::path b = dir / "bar.node";
+  const int verticesA = readTetGen(a).numVertices(), verticesB = bar.numVertices();
+  ASSERT_EQ(run({"mesh", "convert", a.string(), (dir / "out.node").string()}).code, kExitOk);
+  std::mt19937 rng(19);
+  std::uniform_int_distribution<int> delayUs(0, 250000);
+  int refusedMixes = 0, killed = 0;
+  for (int i = 0; i < 40; ++i) {
+    const fs::path from = i % 2 ? a : b;
+    const pid_t pid = fork();
+    if (pid == 0) {
+      execl(GALSCULPT_BINARY, GALSCULPT_BINARY, "mesh", "convert", from.c_str(),
+            (dir / "out.node").c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(delayUs(rng)));
+    kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    killed += WIFSIGNALED(status);
+    const CliRun info = run({"mesh", "info", (dir / "out.node").string()});
+    if (info.code == kExitOk) {
+      const bool isA =
+          info.out.find("vertices: " + std::to_string(verticesA) + "\n") != std::string::npos;
+      const bool isB =
+          info.out.find("vertices: " + std::to_string(verticesB) + "\n") != std::string::npos;
+      EXPECT_TRUE(isA || isB) << info.out;
+    } else {
+      EXPECT_NE(info.err.find("belongs to another write"), std::string::npos) << info.err;
+      ++refusedMixes;
+    }
+  }
+  std::cout << killed << " of 40 writers killed before they finished, " << refusedMixes
+            << " mixed sets refused\n";
+  EXPECT_GT(killed, 10) << "the kills must land while writing for this test to mean anything";
+  // The next write completes the set and leaves no temporary behind.
+  ASSERT_EQ(run({"mesh", "convert", a.string(), (dir / "out.node").string()}).code, kExitOk);
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    EXPECT_EQ(e.path().filename().string().find(".out."), std::string::npos)
+        << e.path() << ": a temporary of a killed writer was left behind";
+  EXPECT_EQ(run({"mesh", "info", (dir / "out.node").string()}).code, kExitOk);
+}
+
+}  // namespace
+}  // namespace galsculpt

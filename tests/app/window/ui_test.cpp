@@ -1,0 +1,402 @@
+// The application under Xvfb: the real window, driven by synthetic input through the same
+// handlers as the mouse and keys (app/window/input_script.h). Each test starts `galsculpt open` on the
+// default clay ball, applies a tool, lets the app save the project when it closes and checks
+// the effect on the mesh.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+
+#include <signal.h>
+
+#include <cerrno>
+#include <cstdlib>
+
+#include "engine/scene/scene_mesh.h"
+#include "engine/session/playback.h"
+#include "engine/session/project_file.h"
+#include "solver/model/sim_model.h"
+#include "tests/test_util.h"
+
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+
+namespace galsculpt {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kDefaultScene =
+    fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
+
+struct UiRun {
+  int exitCode = -1;
+  std::string log;
+  Project project;
+  fs::path recording;
+};
+
+// Runs the app with `steps` (the "steps" list of an input script) and reads what it saved.
+UiRun runApp(const test::TempDir& dir, const std::string& steps,
+             const fs::path& scene = kDefaultScene, bool realtime = false) {
+  test::writeText(dir / "steps.json", std::string("{\"realtime\": ") +
+                                          (realtime ? "true" : "false") + ", \"steps\": [" + steps +
+                                          "]}");
+  const fs::path log = dir / "log.txt";
+  const std::string command =
+      "GALSCULPT_RECOVERY_DIR='" + (dir / "recovery").string() +
+      "' xvfb-run -a -s '-screen 0 1280x800x24' '" + std::string(GALSCULPT_BINARY) + "' open '" +
+      scene.string() + "' --paused --no-recovery --autosave 0 --size 1280x800 --input-script '" +
+      (dir / "steps.json").string() + "' --save-project '" + (dir / "out.gsproj").string() +
+      "' --save-recording '" + (dir / "recording.json").string() + "' > '" + log.string() +
+      "' 2>&1";
+  UiRun run;
+  const int status = std::system(command.c_str());
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.log = test::readText(log);
+  if (fs::exists(dir / "out.gsproj")) run.project = readProject(dir / "out.gsproj");
+  run.recording = dir / "recording.json";
+  return run;
+}
+
+// The rest positions of the ball, and which vertices moved by more than `at` least.
+double largestMotion(const Project& p) {
+  double m = 0.0;
+  for (size_t v = 0; v < p.mesh.vertices.size(); ++v)
+    m = std::max(m, (p.state.x[v] - p.mesh.vertices[v]).norm());
+  return m;
+}
+
+int pieces(const Project& p) {
+  const SimModel model = buildSimModel(p.mesh, MaterialParams{});
+  SimState state = initialState(model);
+  state.damaged = p.state.damaged;
+  return countDamagePieces(model, state);
+}
+
+int damagedEdges(const Project& p) {
+  int n = 0;
+  for (std::uint8_t d : p.state.damaged) n += d;
+  return n;
+}
+
+const char* kSteps = R"({"command": "step"}, {"wait": 1}, {"command": "step"}, {"wait": 1})";
+
+TEST(AppUi, KnifeStrokeAcrossTheBallCutsItInTwo) {
+  test::TempDir dir;
+  const UiRun run = runApp(dir, std::string(
+                                    R"({"key": "K"}, {"move": [0.2, 0.52]}, {"press": "left"},
+      {"move": [[0.3, 0.52], [0.4, 0.52], [0.5, 0.52], [0.6, 0.52], [0.7, 0.52], [0.8, 0.52]]},
+      {"release": "left"}, )") + kSteps);
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  EXPECT_GT(damagedEdges(run.project), 50);
+  EXPECT_EQ(pieces(run.project), 2) << "a stroke across the whole ball cuts through it";
+}
+
+TEST(AppUi, GrabDragsTheSurfaceAndThePhysicsFollows) {
+  test::TempDir dir;
+  const UiRun run =
+      runApp(dir, std::string(R"({"key": "G"}, {"move": [0.5, 0.45]}, {"press": "left"},
+      {"move": [[0.52, 0.42], [0.56, 0.38]]}, )") +
+                      kSteps + R"(, {"release": "left"})");
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  EXPECT_GT(largestMotion(run.project), 0.01) << "the grabbed region followed the cursor";
+  EXPECT_EQ(run.project.state.frame, 2);
+}
+
+// Push, pull, inflate and pinch at the centre of the view: the vertices under the brush move
+// in, out, outwards and towards the brush axis.
+TEST(AppUi, ShapingBrushesMoveTheSurfaceTheirWay) {
+  struct Case {
+    const char* key;
+    const char* name;
+  };
+  for (const Case c :
+       {Case{"B", "push"}, Case{"U", "pull"}, Case{"I", "inflate"}, Case{"P", "pinch"}}) {
+    test::TempDir dir;
+    const UiRun run = runApp(dir, std::string(R"({"key": ")") + c.key +
+                                      R"("}, {"command": "strength", "argument": "0.6"},
+        {"move": [0.5, 0.5]}, {"press": "left"}, )" +
+                                      kSteps + R"(, {"release": "left"})");
+    ASSERT_EQ(run.exitCode, 0) << c.name << "\n" << run.log;
+    const Project& p = run.project;
+    // The brush centre: the surface vertex that moved most.
+    int center = 0;
+    for (size_t v = 0; v < p.mesh.vertices.size(); ++v)
+      if ((p.state.x[v] - p.mesh.vertices[v]).norm() >
+          (p.state.x[center] - p.mesh.vertices[center]).norm())
+        center = static_cast<int>(v);
+    const Vec3 at = p.mesh.vertices[center];
+    const Vec3 moved = p.state.x[center] - at;
+    const Vec3 outward = at.normalized();
+    EXPECT_GT(moved.norm(), 0.005) << c.name;
+    const std::string name = c.name;
+    if (name == "push") {
+      EXPECT_LT(moved.dot(outward), -0.8 * moved.norm()) << "push goes in";
+    } else if (name == "pull") {
+      EXPECT_GT(moved.dot(outward), 0.8 * moved.norm()) << "pull comes out";
+    } else if (name == "inflate") {
+      EXPECT_GT(moved.dot(outward), 0.0) << "inflate goes out";
+    }
+    if (name == "pinch") {
+      // Vertices around the centre draw towards it (sideways, along the surface).
+      double before = 0.0, after = 0.0;
+      for (size_t v = 0; v < p.mesh.vertices.size(); ++v) {
+        const double d = (p.mesh.vertices[v] - at).norm();
+        if (d < 0.005 || d > 0.015) continue;
+        before += d;
+        after += (p.state.x[v] - p.state.x[center]).norm();
+      }
+      EXPECT_LT(after, before) << "pinch draws the surface together";
+    }
+  }
+}
+
+TEST(AppUi, AnchorPaintHoldsVerticesAndEraseFreesThem) {
+  test::TempDir dir;
+  const UiRun painted = runApp(dir, R"({"key": "A"}, {"move": [0.45, 0.5]}, {"press": "left"},
+      {"move": [[0.5, 0.5], [0.55, 0.5]]}, {"release": "left"})");
+  ASSERT_EQ(painted.exitCode, 0) << painted.log;
+  size_t sceneAnchored = 0, paintedAnchored = 0;
+  {
+    test::TempDir plain;
+    const UiRun none = runApp(plain, R"({"wait": 1})");
+    for (const AnchorConstraint& a : none.project.state.anchors) sceneAnchored += a.vertices.size();
+  }
+  for (const AnchorConstraint& a : painted.project.state.anchors)
+    paintedAnchored += a.vertices.size();
+  EXPECT_GT(paintedAnchored, sceneAnchored + 5) << "the stroke painted anchors";
+
+  test::TempDir dir2;
+  const UiRun erased = runApp(dir2, R"({"key": "A"}, {"move": [0.5, 0.5]}, {"press": "left"},
+      {"release": "left"}, {"key": "E"}, {"command": "radius", "argument": "0.5"},
+      {"press": "left"}, {"release": "left"})");
+  ASSERT_EQ(erased.exitCode, 0) << erased.log;
+  size_t left = 0;
+  for (const AnchorConstraint& a : erased.project.state.anchors) left += a.vertices.size();
+  EXPECT_EQ(left, 0u) << "a wide erase frees every anchor, the scene's too";
+}
+
+TEST(AppUi, SymmetryMirrorsAnchorPaintAcrossTheXPlane) {
+  test::TempDir dir;
+  const UiRun run = runApp(dir, R"({"key": "A"}, {"key": "X"}, {"key": "1"},
+      {"move": [0.58, 0.5]}, {"press": "left"}, {"release": "left"})");
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  int right = 0, left = 0;
+  for (const AnchorConstraint& a : run.project.state.anchors) {
+    for (int v : a.vertices) {
+      const Vec3& p = run.project.mesh.vertices[v];
+      if (p.y() < -0.07) continue;  // the scene's anchor at the bottom
+      (p.x() > 0.0 ? right : left) += 1;
+    }
+  }
+  EXPECT_GT(right, 2);
+  EXPECT_GT(left, 2) << "the mirrored dab anchors the other side";
+}
+
+TEST(AppUi, CtrlZUndoesAStrokeExactly) {
+  test::TempDir dir;
+  const UiRun run =
+      runApp(dir, std::string(R"({"key": "K"}, {"move": [0.2, 0.52]}, {"press": "left"},
+      {"move": [[0.5, 0.52], [0.8, 0.52]]}, {"release": "left"}, {"key": "Z", "ctrl": true})"));
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  EXPECT_EQ(damagedEdges(run.project), 0) << "the cut is undone";
+  test::TempDir dir2;
+  const UiRun redo =
+      runApp(dir2, std::string(R"({"key": "K"}, {"move": [0.2, 0.52]}, {"press": "left"},
+      {"move": [[0.5, 0.52], [0.8, 0.52]]}, {"release": "left"}, {"key": "Z", "ctrl": true},
+      {"key": "Z", "ctrl": true, "shift": true})"));
+  EXPECT_GT(damagedEdges(redo.project), 50) << "and redone";
+}
+
+// Bad files get a clear message and the app keeps working.
+TEST(AppUi, BadFilesGetClearErrorsAndTheAppKeepsRunning) {
+  test::TempDir dir;
+  test::writeText(dir / "bad_scene.json", "{\"mesh\": {\"file\": \"x.node\"}, \"gravity\": 3}");
+  test::writeText(dir / "bad.gsproj", "GALSCULPT PROJECT 99\n2\n{}");
+  const UiRun run =
+      runApp(dir, "{\"command\": \"open\", \"argument\": \"" + (dir / "bad_scene.json").string() +
+                      "\"}, {\"wait\": 2}, " + "{\"command\": \"open\", \"argument\": \"" +
+                      (dir / "bad.gsproj").string() + "\"}, {\"wait\": 2}, " +
+                      R"({"key": "G"}, {"move": [0.5, 0.45]}, {"press": "left"},
+      {"move": [0.56, 0.38]}, {"command": "step"}, {"wait": 1}, {"release": "left"})");
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  EXPECT_NE(run.log.find("bad_scene.json: $.gravity"), std::string::npos) << run.log;
+  EXPECT_NE(run.log.find("made by a newer Galsculpt"), std::string::npos) << run.log;
+  EXPECT_GT(largestMotion(run.project), 0.005) << "the ball is still there and still sculpts";
+}
+
+// What the app recorded replays headless to exactly the state the app saved.
+TEST(AppUi, TheAppsRecordingReplaysToTheSavedState) {
+  test::TempDir dir;
+  const UiRun run = runApp(
+      dir, std::string(R"({"key": "G"}, {"move": [0.5, 0.45]}, {"press": "left"},
+      {"move": [[0.52, 0.42], [0.56, 0.38]]}, )") +
+               kSteps + R"(, {"release": "left"},
+      {"key": "K"}, {"move": [0.2, 0.6]}, {"press": "left"}, {"move": [[0.5, 0.62], [0.8, 0.64]]},
+      {"release": "left"}, {"key": "B"}, {"move": [0.5, 0.3]}, {"press": "left"},
+      {"move": [0.52, 0.32]}, )" +
+               kSteps + R"(, {"release": "left"}, )" +
+               R"({"press": "right"}, {"move": [0.6, 0.3]}, {"release": "right"}, )" + kSteps);
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  const PlaybackScript script = loadPlaybackScript(run.recording);
+  Simulation sim(script.scene, loadSceneMesh(script.scene));
+  Playback playback(script, sim);
+  while (!playback.finished()) playback.advance();
+  EXPECT_EQ(sim.frame(), run.project.state.frame);
+  double worst = 0.0;
+  for (size_t v = 0; v < sim.state().x.size(); ++v)
+    worst = std::max(worst, (sim.state().x[v] - run.project.state.x[v]).norm());
+  EXPECT_TRUE(sim.state().x == run.project.state.x)
+      << "positions replay bit for bit; largest difference " << worst << " m\n"
+      << test::readText(run.recording);
+  EXPECT_TRUE(sim.state().damaged == run.project.state.damaged);
+  ASSERT_TRUE(playback.camera().has_value());
+  EXPECT_EQ(playback.camera()->yaw, run.project.camera->yaw) << "the orbit was recorded";
+}
+
+// The Scene settings panel: a bad value is refused with its JSON path and the session stays;
+// a good one restarts the simulation with it, and the recording brings the edited scene along.
+TEST(AppUi, SceneSettingsRestartTheSimulationAndTravelWithTheRecording) {
+  test::TempDir dir;
+  const UiRun run = runApp(dir, std::string(R"({"command": "preset", "argument": "rubber"},
+      {"command": "grid", "argument": "all/50"}, {"key": "G"}, {"move": [0.5, 0.45]},
+      {"press": "left"}, {"move": [0.56, 0.38]}, )") +
+                                    kSteps + R"(, {"release": "left"})");
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  EXPECT_NE(run.log.find("$.solver.grid"), std::string::npos) << run.log;
+  EXPECT_NE(run.log.find("restarted with the new settings"), std::string::npos) << run.log;
+  EXPECT_EQ(run.project.scene.material.preset, "rubber");
+  ASSERT_TRUE(fs::exists(dir / "recording.scene.json"));
+  const PlaybackScript script = loadPlaybackScript(run.recording);
+  EXPECT_EQ(script.scene.material.preset, "rubber");
+  Simulation sim(script.scene, run.project.mesh);
+  Playback playback(script, sim);
+  while (!playback.finished()) playback.advance();
+  EXPECT_TRUE(sim.state().x == run.project.state.x) << "the edited scene replays exactly";
+}
+
+// A playback script opens in the window: replayed to its end, then sculpted on; a bad one is
+// reported and the app keeps running.
+TEST(AppUi, OpensAPlaybackScriptReplayedAndRefusesABadOne) {
+  test::TempDir dir;
+  const fs::path cut = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scripts" / "sphere_cut.json";
+  test::writeText(dir / "bad_script.json",
+                  "{\"scene\": \"" + kDefaultScene.string() +
+                      "\", \"frames\": 5, \"events\": [{\"tool\": \"saw\"}]}");
+  const UiRun run = runApp(dir,
+                           "{\"command\": \"open\", \"argument\": \"" +
+                               (dir / "bad_script.json").string() + "\"}, {\"wait\": 2}",
+                           cut);
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  EXPECT_NE(run.log.find("bad_script.json: $.events[0].tool"), std::string::npos) << run.log;
+  const PlaybackScript script = loadPlaybackScript(cut);
+  EXPECT_EQ(run.project.state.frame, script.frames) << "the script ran to its end";
+  EXPECT_EQ(pieces(run.project), 2) << "its knife cut the ball in two";
+  ASSERT_GE(run.project.recording.size(), script.events.size()) << "its events start the recording";
+  EXPECT_TRUE(std::any_of(run.project.recording.begin(),
+                          run.project.recording.begin() + script.events.size(),
+                          [](const ToolEvent& e) { return e.tool == ToolEvent::Tool::Knife; }))
+      << "the script's knife is among them";
+}
+
+TEST(AppUi, ExportsFromTheMenuCommandsAreWritten) {
+  test::TempDir dir;
+  const UiRun run = runApp(dir, R"({"key": "K"}, {"move": [0.2, 0.52]}, {"press": "left"},
+      {"move": [[0.5, 0.52], [0.8, 0.52]]}, {"release": "left"}, {"command": "step"}, {"wait": 1},
+      {"command": "export", "argument": ")" +
+                                    (dir / "cut.glb").string() + R"("},
+      {"command": "export_tets", "argument": ")" +
+                                    (dir / "cut").string() + R"("})");
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  EXPECT_TRUE(fs::exists(dir / "cut.glb"));
+  for (const char* ext : {".node", ".ele", ".face", ".damage", ".vtk"})
+    EXPECT_TRUE(fs::exists(dir / (std::string("cut") + ext))) << ext;
+}
+
+// A file left in the recovery folder by a crashed run comes back as it was autosaved.
+TEST(AppUi, RecoversTheAutosaveOfACrashedRun) {
+  test::TempDir dir;
+  {
+    const SceneDescription scene = loadScene(kDefaultScene);
+    SculptSession crashed(scene, loadSceneMesh(scene));
+    for (int f = 0; f < 4; ++f) crashed.step();
+    crashed.knife(Vec3(0.02, 0.3, -0.3), Vec3(0.02, 0.3, 0.3), Vec3(0.02, -0.3, -0.3),
+                  Vec3(0.02, -0.3, 0.3), {});
+    crashed.step();
+    long dead = 4000000;
+    while (kill(static_cast<pid_t>(dead), 0) == 0 || errno == EPERM) ++dead;
+    fs::create_directories(dir / "recovery");
+    writeProject(dir / "recovery" / ("recovery-" + std::to_string(dead) + ".gsproj"), crashed,
+                 std::nullopt);
+  }
+  const UiRun run = runApp(dir, R"({"command": "recover"}, {"wait": 3})");
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  EXPECT_EQ(run.project.state.frame, 5);
+  EXPECT_EQ(pieces(run.project), 2);
+}
+
+// As a user works: the simulation plays on its worker thread while the window draws and takes
+// input; tools wait for the frame in flight and act between frames, so the recording still
+// replays to exactly the saved state.
+TEST(AppUi, RealtimeSessionWithTheSolverOnItsThreadStillReplaysExactly) {
+  test::TempDir dir;
+  const UiRun run = runApp(dir, R"({"command": "play"}, {"wait": 10},
+      {"press": "right"}, {"move": [0.55, 0.5]}, {"release": "right"}, {"scroll": 1},
+      {"key": "G"}, {"move": [0.5, 0.45]}, {"press": "left"}, {"move": [0.53, 0.42]},
+      {"wait": 5}, {"move": [0.56, 0.4]}, {"wait": 5}, {"release": "left"},
+      {"key": "K"}, {"move": [0.2, 0.6]}, {"press": "left"}, {"move": [0.5, 0.6]},
+      {"move": [0.8, 0.6]}, {"release": "left"}, {"wait": 10}, {"command": "pause"})",
+                           kDefaultScene, true);
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  EXPECT_GT(run.project.state.frame, 0);
+  EXPECT_GT(damagedEdges(run.project), 0);
+  const PlaybackScript script = loadPlaybackScript(run.recording);
+  Simulation sim(script.scene, run.project.mesh);
+  Playback playback(script, sim);
+  while (!playback.finished()) playback.advance();
+  EXPECT_EQ(sim.frame(), run.project.state.frame);
+  EXPECT_TRUE(sim.state().x == run.project.state.x) << "positions replay bit for bit";
+  EXPECT_TRUE(sim.state().damaged == run.project.state.damaged);
+}
+
+// The overlay stays on the screen however long its text: a scene with a long name (and, on a
+// machine without a GPU, the backend's long note) once widened it past the window's right edge.
+// The viewport's background is a vertical gradient, the same along a row: right of the overlay
+// the screenshot must show that background, and the overlay must be there left of it.
+TEST(AppUi, TheOverlayStaysOnTheScreen) {
+  test::TempDir dir;
+  test::writeText(
+      dir / "long.json",
+      "{\"name\": \"" + std::string(60, 'x') + " a scene whose name runs on and on " +
+          std::string(60, 'y') + "\", \"mesh\": {\"file\": \"" +
+          (kDefaultScene.parent_path().parent_path() / "meshes" / "sphere_small.node").string() +
+          "\"}}");
+  const fs::path shot = dir / "shot.png";
+  const UiRun run = runApp(dir,
+                           R"({"wait": 3}, {"command": "screenshot", "argument": ")" +
+                               shot.string() + R"("}, {"wait": 1})",
+                           dir / "long.json");
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  int w = 0, h = 0, channels = 0;
+  unsigned char* pixels = stbi_load(shot.c_str(), &w, &h, &channels, 3);
+  ASSERT_NE(pixels, nullptr) << shot;
+  auto at = [&](int x, int y) {
+    const unsigned char* p = pixels + 3 * (static_cast<size_t>(y) * w + x);
+    return std::array<int, 3>{p[0], p[1], p[2]};
+  };
+  auto close = [](const std::array<int, 3>& a, const std::array<int, 3>& b) {
+    return std::abs(a[0] - b[0]) <= 3 && std::abs(a[1] - b[1]) <= 3 && std::abs(a[2] - b[2]) <= 3;
+  };
+  int overlayRows = 0;
+  for (int y = 35; y < 60; ++y) {
+    const std::array<int, 3> background = at(w / 2 + 40, y);
+    EXPECT_TRUE(close(at(w - 3, y), background)) << "row " << y << ": the overlay reaches the edge";
+    overlayRows += !close(at(w - 150, y), background);
+  }
+  EXPECT_GT(overlayRows, 15) << "the overlay is drawn at the top right";
+  stbi_image_free(pixels);
+}
+
+}  // namespace
+}  // namespace galsculpt

@@ -1,0 +1,104 @@
+#include "engine/meshing/tetrahedralize.h"
+
+#include <gtest/gtest.h>
+
+#include "solver/io/input_error.h"
+#include "solver/mesh/mesh_stats.h"
+#include "solver/mesh/shape_generators.h"
+#include "solver/mesh/surface_checks.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+TEST(Tetrahedralize, SphereLandsWithinTolerance) {
+  TetrahedralizeOptions o;
+  o.targetTets = 3000;
+  const TetrahedralizeResult r = tetrahedralize(makeIcosphere(0.1, 2), o);
+  EXPECT_NEAR(r.mesh.numTets(), 3000, 0.15 * 3000);
+  const TetMeshStats s = computeStats(r.mesh);
+  EXPECT_TRUE(s.watertight);
+  EXPECT_EQ(s.pieces, 1);
+  EXPECT_NEAR(s.volume, enclosedVolume(makeIcosphere(0.1, 2)), 1e-9)
+      << "TetGen fills the surface exactly";
+  EXPECT_GT(s.minQuality, 0.05);
+}
+
+TEST(Tetrahedralize, CharpyBarAtTwoSizes) {
+  for (int target : {2000, 8000}) {
+    TetrahedralizeOptions o;
+    o.targetTets = target;
+    const TetrahedralizeResult r = tetrahedralize(makeCharpyBar(), o);
+    EXPECT_NEAR(r.mesh.numTets(), target, 0.15 * target);
+  }
+}
+
+TEST(Tetrahedralize, ASurfaceFinerThanTheCountAllowsIsSimplified) {
+  const TriMesh fine = makeIcosphere(0.1, 5);  // 20480 faces: far more than 3000 tets allow
+  TetrahedralizeOptions o;
+  o.targetTets = 3000;
+  std::vector<std::string> log;
+  o.progress = [&](const std::string& line) { log.push_back(line); };
+  const TetrahedralizeResult r = tetrahedralize(fine, o);
+  EXPECT_NEAR(r.mesh.numTets(), 3000, 0.15 * 3000);
+  const TetMeshStats s = computeStats(r.mesh);
+  EXPECT_TRUE(s.watertight);
+  EXPECT_NEAR(s.volume / enclosedVolume(fine), 1.0, 0.03);
+  bool simplified = false;
+  for (const std::string& line : log) simplified |= line.rfind("simplified", 0) == 0;
+  EXPECT_TRUE(simplified);
+}
+
+TEST(Tetrahedralize, InsideOutSurfaceIsFlippedNotRejected) {
+  TriMesh m = makeIcosphere(1.0, 1);
+  for (Tri& f : m.faces) std::swap(f[1], f[2]);
+  TetrahedralizeOptions o;
+  o.targetTets = 500;
+  EXPECT_NEAR(tetrahedralize(m, o).mesh.numTets(), 500, 75);
+}
+
+TEST(Tetrahedralize, BadSurfacesSayWhatIsWrong) {
+  TetrahedralizeOptions o;
+  o.targetTets = 100;
+  o.surfaceName = "bad.obj";
+  TriMesh open = makeIcosphere(1.0, 1);
+  open.faces.pop_back();
+  EXPECT_THROW_WITH(tetrahedralize(open, o), InputError,
+                    "bad.obj: cannot tetrahedralize: the surface is open");
+
+  TriMesh two = makeIcosphere(1.0, 2);
+  const TriMesh copy = two;
+  for (const Vec3& v : copy.vertices) two.vertices.push_back(v + Vec3(0.5, 0.1, 0.0));
+  for (Tri f : copy.faces)
+    two.faces.push_back(
+        {f[0] + copy.numVertices(), f[1] + copy.numVertices(), f[2] + copy.numVertices()});
+  EXPECT_THROW_WITH(tetrahedralize(two, o), InputError, "self-intersecting");
+
+  TriMesh fin = makeIcosphere(1.0, 1);
+  fin.vertices.push_back(Vec3(2, 2, 2));
+  fin.faces.push_back({fin.faces[0][0], fin.faces[0][1], fin.numVertices() - 1});
+  EXPECT_THROW_WITH(tetrahedralize(fin, o), InputError, "non-manifold");
+}
+
+TEST(Tetrahedralize, CrashAndTimeoutOfTheProgramAreReported) {
+  test::TempDir dir;
+  const auto fake = dir / "fake-tetgen";
+  test::writeText(fake, "#!/bin/sh\nkill -ABRT $$\n");
+  std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
+  TetrahedralizeOptions o;
+  o.targetTets = 100;
+  o.program = fake.string();
+  EXPECT_THROW_WITH(tetrahedralize(makeIcosphere(1.0, 1), o), std::runtime_error,
+                    "crashed with signal 6");
+
+  test::writeText(fake, "#!/bin/sh\nsleep 20\n");
+  o.timeoutSeconds = 0.5;
+  EXPECT_THROW_WITH(tetrahedralize(makeIcosphere(1.0, 1), o), std::runtime_error, "timed out");
+
+  o.program = (dir / "missing").string();
+  EXPECT_THROW_WITH(tetrahedralize(makeIcosphere(1.0, 1), o), std::runtime_error,
+                    "is TetGen installed?");
+}
+
+}  // namespace
+}  // namespace galsculpt

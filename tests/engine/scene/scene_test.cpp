@@ -1,0 +1,213 @@
+#include "engine/scene/scene.h"
+
+#include <gtest/gtest.h>
+
+#include "engine/scene/scene_mesh.h"
+#include "solver/io/input_error.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kScenes = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes";
+
+TEST(Scene, EveryShippedSceneValidates) {
+  int count = 0;
+  for (const char* name : {"default", "hanging_sphere", "human", "armadillo", "steak", "charpy"}) {
+    SCOPED_TRACE(name);
+    const SceneDescription s = loadScene(kScenes / (std::string(name) + ".json"));
+    EXPECT_FALSE(s.name.empty());
+    EXPECT_GT(s.material.youngsModulus, 0.0);
+    ++count;
+  }
+  EXPECT_EQ(count, 6);
+}
+
+TEST(Scene, HangingSphereHasThePaperParameters) {
+  const SceneDescription s = loadScene(kScenes / "hanging_sphere.json");
+  EXPECT_EQ(s.mesh.kind, MeshSource::Kind::Generate);
+  EXPECT_EQ(s.mesh.generator, Generator::Sphere);
+  EXPECT_EQ(s.mesh.tets, 35000);
+  EXPECT_DOUBLE_EQ(s.mesh.radius, 0.1);
+  EXPECT_DOUBLE_EQ(s.material.youngsModulus, 8000.0);
+  EXPECT_DOUBLE_EQ(s.material.poissonRatio, 0.48);
+  EXPECT_DOUBLE_EQ(s.material.density, 1000.0);
+  EXPECT_EQ(s.material.model, MaterialModel::StableNeoHookean);
+  EXPECT_NEAR(s.timeStep, 1.0 / 60.0, 1e-6);
+  EXPECT_DOUBLE_EQ(s.dampingMass, 0.1);
+  EXPECT_DOUBLE_EQ(s.dampingStiffness, 0.01);
+  ASSERT_EQ(s.anchors.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.anchors[0].min.y(), 0.08);
+  EXPECT_EQ(s.solver.grid, "50/all");
+  EXPECT_FALSE(s.fracture.enabled);
+}
+
+TEST(Scene, CharpyHasAPendulumAndFracture) {
+  const SceneDescription s = loadScene(kScenes / "charpy.json");
+  EXPECT_TRUE(s.fracture.enabled);
+  EXPECT_EQ(s.material.preset, "steel");
+  ASSERT_EQ(s.colliders.size(), 4u);
+  EXPECT_EQ(s.colliders[3].motion.type, MotionDesc::Type::Pendulum);
+}
+
+// Brittle and ductile presets carry their own break stress; a scene may leave it out.
+TEST(Scene, FractureThresholdDefaultsToTheMaterialPreset) {
+  test::TempDir dir;
+  const std::string mesh = R"("mesh": {"generate": "sphere", "tets": 500})";
+  test::writeText(dir / "steel.json", "{" + mesh + R"(, "material": {"preset": "steel"},
+                  "fracture": {"enabled": true}})");
+  test::writeText(dir / "flesh.json", "{" + mesh + R"(, "material": {"preset": "flesh"},
+                  "fracture": {"enabled": true, "threshold": 1234}, "solver": {"split_aggregates": false}})");
+  const SceneDescription steel = loadScene(dir / "steel.json");
+  const SceneDescription flesh = loadScene(dir / "flesh.json");
+  EXPECT_DOUBLE_EQ(steel.fracture.threshold, materialPreset("steel").fractureThreshold);
+  EXPECT_GT(materialPreset("steel").fractureThreshold, 1e8);
+  EXPECT_GT(materialPreset("flesh").yieldStress, 0.0) << "ductile: plastic before it breaks";
+  EXPECT_LT(materialPreset("flesh").yieldStress, materialPreset("flesh").fractureThreshold);
+  EXPECT_DOUBLE_EQ(flesh.fracture.threshold, 1234.0);
+  EXPECT_TRUE(steel.solver.splitAggregates);
+  EXPECT_FALSE(flesh.solver.splitAggregates);
+}
+
+TEST(Scene, MeasureProbesAreReadAndChecked) {
+  const SceneDescription charpy = loadScene(kScenes / "charpy.json");
+  ASSERT_EQ(charpy.measure.opening.size(), 2u);
+  EXPECT_EQ(charpy.measure.loadCollider, 3);
+  test::TempDir dir;
+  test::writeText(dir / "bad.json", R"({"mesh": {"generate": "sphere", "tets": 500},
+                  "measure": {"load_collider": 2}})");
+  try {
+    loadScene(dir / "bad.json");
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("$.measure.load_collider: names no collider"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Scene, DefaultSceneMeshIsCommittedAndLoads) {
+  const SceneDescription s = loadScene(kScenes / "default.json");
+  const TetMesh mesh = loadSceneMesh(s);
+  EXPECT_GT(mesh.numTets(), 1000);
+  EXPECT_LT(mesh.numTets(), 20000) << "the committed mesh stays small";
+}
+
+struct BadScene {
+  std::string json, message;
+};
+
+void PrintTo(const BadScene& b, std::ostream* os) {
+  *os << "'" << b.message << "'";
+}
+
+class SceneErrors : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(SceneErrors, NameTheJsonPath) {
+  test::TempDir dir;
+  test::writeText(dir / "s.json", GetParam().json);
+  EXPECT_THROW_WITH(loadScene(dir / "s.json"), InputError, GetParam().message);
+}
+
+const char* kMesh = R"("mesh": {"generate": "sphere", "tets": 1000})";
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SceneErrors,
+    ::testing::Values(
+        BadScene{"{}", "s.json: $.mesh: is required"},
+        BadScene{"[1, 2]", "s.json: $: expected an object"},
+        BadScene{"{\"mesh\": {}}", "$.mesh: give exactly one of 'file', 'generate' or 'import'"},
+        BadScene{"{\"mesh\": {\"generate\": \"cube\", \"tets\": 10}}",
+                 "$.mesh.generate: unknown value 'cube'"},
+        BadScene{"{\"mesh\": {\"generate\": \"sphere\"}}", "$.mesh.tets: is required"},
+        BadScene{std::string("{") + kMesh + R"(, "material": {"poisson_ratio": 0.5}})",
+                 "$.material.poisson_ratio: must be at most 0.4999"},
+        BadScene{std::string("{") + kMesh + R"(, "material": {"preset": "jelly"}})",
+                 "$.material.preset: unknown value 'jelly'"},
+        BadScene{std::string("{") + kMesh + R"(, "anchors": [{"box": {"min": [0, 0]}}]})",
+                 "$.anchors[0].box.min: expected an array of 3 numbers"},
+        BadScene{std::string("{") + kMesh +
+                     R"(, "anchors": [{"sphere": {"radius": 1}, "path": [{"t": 1}, {"t": 0.5}]}]})",
+                 "$.anchors[0].path[1].t: path times must increase"},
+        BadScene{
+            std::string("{") + kMesh + R"(, "colliders": [{"type": "box", "center": [0, 0, 0]}]})",
+            "$.colliders[0].half_extents: is required for a box"},
+        BadScene{std::string("{") + kMesh + R"(, "solver": {"grid": "1000/50/all"}})",
+                 "$.solver.grid: grid levels must be positive and increase"},
+        BadScene{std::string("{") + kMesh + R"(, "solver": {"grid": "50"}})",
+                 "$.solver.grid: grid '50' must list"},
+        BadScene{std::string("{") + kMesh +
+                     R"(, "material": {"fracture_threshold": 0}, "fracture": {"enabled": true}})",
+                 "$.fracture.threshold: must be positive when fracture is enabled"},
+        BadScene{std::string("{") + kMesh + R"(, "time_step": "fast"})",
+                 "$.time_step: expected a number, got string"},
+        BadScene{std::string("{") + kMesh + R"(, "gravty": [0, -9.81, 0]})",
+                 "$.gravty: unknown key"},
+        BadScene{std::string("{") + kMesh + ",\n\"substeps\": 0}",
+                 "$.substeps: must be at least 1"},
+        BadScene{std::string("{") + kMesh + R"(, "material": {"model": "neo"}})",
+                 "$.material.model: unknown value 'neo' (expected one of: corotational, stvk, "
+                 "stable_neo_hookean)"},
+        BadScene{std::string("{") + kMesh + R"(, "solver": {"smoother": "sor"}})",
+                 "$.solver.smoother: unknown value 'sor' (expected one of: gauss_seidel, jacobi)"},
+        BadScene{std::string("{") + kMesh + R"(, "solver": {"backend": "gpu"}})",
+                 "$.solver.backend: unknown value 'gpu' (expected one of: auto, cpu, cuda)"},
+        BadScene{"{\n\"mesh\": {\n\"file\": \"x.node\",\n}\n}", "s.json:4: JSON syntax error"}));
+
+// Settings are parsed once into enums; their names come back as written.
+TEST(Scene, SolverChoicesAreTypedAndKeepTheirNames) {
+  test::TempDir dir;
+  test::writeText(dir / "s.json", std::string("{") + kMesh + R"(, "material": {"model": "stvk"},
+      "solver": {"type": "reference", "smoother": "jacobi", "coarse_solver": "cholesky",
+                 "backend": "cpu"}})");
+  const SceneDescription s = loadScene(dir / "s.json");
+  EXPECT_EQ(s.material.model, MaterialModel::StVK);
+  EXPECT_EQ(s.solver.type, SolverType::Reference);
+  EXPECT_EQ(s.solver.smoother, Smoother::Jacobi);
+  EXPECT_EQ(s.solver.coarseSolver, CoarseSolver::Cholesky);
+  EXPECT_EQ(s.solver.backend, BackendRequest::Cpu);
+  EXPECT_STREQ(materialModelName(s.material.model), "stvk");
+  EXPECT_STREQ(solverTypeName(s.solver.type), "reference");
+  EXPECT_STREQ(smootherName(s.solver.smoother), "jacobi");
+  EXPECT_STREQ(coarseSolverName(s.solver.coarseSolver), "cholesky");
+  EXPECT_STREQ(backendRequestName(s.solver.backend), "cpu");
+  EXPECT_EQ(backendRequestFromName("cuda"), BackendRequest::Cuda);
+  EXPECT_FALSE(backendRequestFromName("gpu").has_value());
+}
+
+TEST(Scene, MissingMeshFileIsReportedWhenLoading) {
+  test::TempDir dir;
+  test::writeText(dir / "s.json", R"({"mesh": {"file": "nothing.node"}})");
+  const SceneDescription s = loadScene(dir / "s.json");
+  EXPECT_THROW_WITH(loadSceneMesh(s), InputError, "s.json: $.mesh.file:");
+  EXPECT_THROW_WITH(loadSceneMesh(s), InputError, "nothing.node does not exist");
+}
+
+TEST(Scene, MissingCgalDataSaysHowToGetIt) {
+  test::TempDir dir;
+  setenv("GALSCULPT_CACHE_DIR", dir.path().c_str(), 1);
+  const SceneDescription s = loadScene(kScenes / "armadillo.json");
+  EXPECT_THROW_WITH(loadSceneMesh(s), InputError, "scripts/fetch-cgal-meshes.sh");
+  unsetenv("GALSCULPT_CACHE_DIR");
+}
+
+TEST(Scene, GeneratedMeshesAreCached) {
+  test::TempDir dir;
+  setenv("GALSCULPT_CACHE_DIR", dir.path().c_str(), 1);
+  test::writeText(dir / "s.json", R"({"mesh": {"generate": "charpy", "tets": 1500}})");
+  const SceneDescription s = loadScene(dir / "s.json");
+  int progressLines = 0;
+  const TetMesh first = loadSceneMesh(s, [&](const std::string&) { ++progressLines; });
+  EXPECT_GT(progressLines, 0);
+  int secondLines = 0;
+  const TetMesh second = loadSceneMesh(s, [&](const std::string&) { ++secondLines; });
+  EXPECT_EQ(secondLines, 0) << "the second load comes from the cache";
+  EXPECT_EQ(first.tets, second.tets);
+  EXPECT_NEAR(first.numTets(), 1500, 225);
+  unsetenv("GALSCULPT_CACHE_DIR");
+}
+
+}  // namespace
+}  // namespace galsculpt

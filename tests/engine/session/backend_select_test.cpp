@@ -1,0 +1,72 @@
+#include "engine/session/backend_select.h"
+
+#include <gtest/gtest.h>
+
+#include "gpu/cuda_step_backend.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+SimModel smallModel() {
+  return buildSimModel(
+      test::gridBar(1, 2, 1, 0.1),
+      {MaterialModel::StableNeoHookean, lameFromYoungPoisson(1e5, 0.4), 1000.0, {}});
+}
+
+StepSettings multigridSettings() {
+  StepSettings s;
+  s.multigrid = true;
+  s.gridHandles = {4};
+  return s;
+}
+
+TEST(BackendSelect, CpuIsTakenAsAskedWithoutANote) {
+  const SimModel m = smallModel();
+  const BackendChoice c = chooseBackend(BackendRequest::Cpu, m, multigridSettings());
+  EXPECT_EQ(c.backend->name(), "cpu");
+  EXPECT_TRUE(c.note.empty());
+}
+
+// Where the CUDA backend cannot run (no GPU here, or a build without nvcc), auto and cuda both
+// fall back to the CPU and say why; where it can, they take it.
+TEST(BackendSelect, AutoAndCudaTakeTheGpuOrSayWhyNot) {
+  const SimModel m = smallModel();
+  std::string reason;
+  const bool gpu = gpu::makeCudaStepBackend(m, multigridSettings(), reason) != nullptr;
+  for (BackendRequest requested : {BackendRequest::Auto, BackendRequest::Cuda}) {
+    const BackendChoice c = chooseBackend(requested, m, multigridSettings());
+    if (gpu) {
+      EXPECT_EQ(c.backend->name(), "cuda");
+      EXPECT_TRUE(c.note.empty());
+    } else {
+      EXPECT_EQ(c.backend->name(), "cpu");
+      EXPECT_NE(c.note.find(reason), std::string::npos) << c.note;
+      EXPECT_NE(c.note.find("running on the CPU"), std::string::npos) << c.note;
+      if (!gpu::cudaBackendBuilt()) {
+        EXPECT_NE(c.note.find("no CUDA backend"), std::string::npos) << c.note;
+      }
+    }
+  }
+}
+
+TEST(BackendSelect, TheReferenceSolverStaysOnTheCpuAndSaysSo) {
+  const SimModel m = smallModel();
+  StepSettings reference;  // multigrid off: the direct sparse Cholesky
+  const BackendChoice c = chooseBackend(BackendRequest::Cuda, m, reference);
+  EXPECT_EQ(c.backend->name(), "cpu");
+  EXPECT_NE(c.note.find("reference solver"), std::string::npos) << c.note;
+}
+
+TEST(BackendSelect, TheCpuBackendRunsTheSolversFrame) {
+  const SimModel m = smallModel();
+  const BackendChoice c = chooseBackend(BackendRequest::Cpu, m, multigridSettings());
+  SimState a = initialState(m), b = initialState(m);
+  c.backend->step(a, multigridSettings());
+  step(m, b, multigridSettings());
+  for (int v = 0; v < m.numVertices(); ++v) EXPECT_EQ(a.x[v], b.x[v]);
+  EXPECT_GT(a.time, 0.0);
+}
+
+}  // namespace
+}  // namespace galsculpt

@@ -1,0 +1,95 @@
+// Determinism pinned, as Box2D's determinism test: the hash of positions, damage and blade
+// crossings after a fixed run, at one and at two threads, against literals. Every reduction sums
+// in a fixed order, so the thread count must not change a bit. A change that alters results on
+// purpose updates the literals knowingly (and says so in its commit); one that alters them by
+// accident fails here.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cstdint>
+#include <cstdio>
+
+#include "engine/scene/scene_mesh.h"
+#include "engine/session/playback.h"
+#include "engine/session/simulation.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kAssets = fs::path(GALSCULPT_SOURCE_DIR) / "assets";
+
+std::uint64_t hashState(const SimState& s) {
+  std::uint64_t hash = 1469598103934665603ull;  // FNV-1a
+  auto mix = [&hash](const void* data, size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 1099511628211ull;
+  };
+  mix(s.x.data(), s.x.size() * sizeof(Vec3));
+  mix(s.damaged.data(), s.damaged.size());
+  mix(s.crossing.data(), s.crossing.size() * sizeof(float));
+  return hash;
+}
+
+std::string hex(std::uint64_t h) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "0x%016llx", static_cast<unsigned long long>(h));
+  return buffer;
+}
+
+// The committed ball (1.5k vertices) as rubber hanging from its top under gravity, 30 frames on
+// the scene's multigrid, on the CPU backend.
+std::uint64_t hangingBall() {
+  test::TempDir dir;
+  test::writeText(dir / "hanging.json",
+                  "{\"name\": \"hanging ball\", \"mesh\": {\"file\": \"" +
+                      (kAssets / "meshes" / "sphere_small.node").string() +
+                      "\"}, \"material\": {\"preset\": \"rubber\"}, \"gravity\": [0, -9.81, 0], "
+                      "\"anchors\": [{\"box\": {\"min\": [-1, 0.085, -1]}}], "
+                      "\"solver\": {\"type\": \"multigrid\", \"grid\": \"50/all\", "
+                      "\"backend\": \"cpu\"}}");
+  const SceneDescription scene = loadScene(dir / "hanging.json");
+  Simulation sim(scene, loadSceneMesh(scene));
+  for (int f = 0; f < 30; ++f) sim.advance();
+  return hashState(sim.state());
+}
+
+// The default clay ball cut through by a knife stroke over ten frames (the stroke of
+// assets/scripts/sphere_cut.json, written here so that editing the demo does not move the pin),
+// 60 frames.
+std::uint64_t sphereCut() {
+  test::TempDir dir;
+  test::writeText(dir / "cut.json",
+                  "{\"scene\": \"" + (kAssets / "scenes" / "default.json").string() +
+                      "\", \"frames\": 60, \"events\": [{\"frame\": 5, \"tool\": \"knife\", "
+                      "\"duration\": 10, \"from\": [[-0.2, 0.2, 0.02], [0.2, 0.2, 0.02]], "
+                      "\"to\": [[-0.2, -0.2, 0.02], [0.2, -0.2, 0.02]]}]}");
+  PlaybackScript script = loadPlaybackScript(dir / "cut.json");
+  script.scene.solver.backend = BackendRequest::Cpu;
+  Simulation sim(script.scene, loadSceneMesh(script.scene));
+  Playback playback(script, sim);
+  while (!playback.finished()) playback.advance();
+  return hashState(sim.state());
+}
+
+// Pinned on 2026-11-30 (x86-64, GCC 12, Release), after damaged clay elements stopped flowing
+// plastically (solver/frame/step.cpp plasticUpdate).
+constexpr std::uint64_t kHangingBall = 0xa52b2fed375c4bbf;
+constexpr std::uint64_t kSphereCut = 0x5647867a5ad711c4;
+
+TEST(Determinism, PinnedHashesAtOneAndTwoThreads) {
+  const int threads = omp_get_max_threads();
+  for (int n : {1, 2}) {
+    omp_set_num_threads(n);
+    const std::uint64_t hanging = hangingBall();
+    const std::uint64_t cut = sphereCut();
+    EXPECT_EQ(hex(hanging), hex(kHangingBall)) << "hanging ball, " << n << " thread(s)";
+    EXPECT_EQ(hex(cut), hex(kSphereCut)) << "sphere cut, " << n << " thread(s)";
+  }
+  omp_set_num_threads(threads);
+}
+
+}  // namespace
+}  // namespace galsculpt

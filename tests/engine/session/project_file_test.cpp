@@ -1,0 +1,201 @@
+#include "engine/session/project_file.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <functional>
+
+#include "engine/scene/scene_mesh.h"
+#include "solver/io/input_error.h"
+#include "tests/project_bytes.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SculptedBall {
+  SceneDescription scene =
+      loadScene(fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json");
+  SculptSession session{scene, loadSceneMesh(scene)};
+  SculptedBall() {
+    session.step();
+    session.knife(Vec3(0.05, 0.2, -0.2), Vec3(0.05, 0.2, 0.2), Vec3(0.05, 0.0, -0.2),
+                  Vec3(0.05, 0.0, 0.2), {});
+    BrushStroke push;
+    push.kind = BrushKind::Push;
+    push.center = Vec3(-0.02, 0.098, 0.0);
+    push.radius = 0.03;
+    push.strength = 0.2;
+    session.beginStroke(push);
+    for (int f = 0; f < 3; ++f) session.step();
+    session.endStroke();
+    session.paint(Vec3(0.1, 0.0, 0.0), 0.02, -1, false, {});
+    session.step();
+  }
+};
+
+TEST(ProjectFile, RoundTripRestoresTheSessionExactlyAndItRunsOnIdentically) {
+  test::TempDir dir;
+  SculptedBall ball;
+  const CameraPose pose{Vec3(0.01, 0.02, 0.03), 0.7, 0.4, 0.2};
+  writeProject(dir / "ball.gsproj", ball.session, pose);
+  EXPECT_TRUE(looksLikeProject(dir / "ball.gsproj"));
+  EXPECT_FALSE(
+      looksLikeProject(fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json"));
+
+  const Project p = readProject(dir / "ball.gsproj");
+  ASSERT_TRUE(p.camera.has_value());
+  EXPECT_EQ(p.camera->target, pose.target);
+  EXPECT_EQ(p.camera->distance, pose.distance);
+  EXPECT_EQ(p.mesh.vertices, ball.session.simulation().model().mesh.vertices);
+  EXPECT_EQ(p.recording.size(), ball.session.recording().size());
+  std::unique_ptr<SculptSession> reopened = sessionFromProject(p, dir / "ball.gsproj");
+  const SimulationSnapshot a = ball.session.simulation().snapshot();
+  const SimulationSnapshot b = reopened->simulation().snapshot();
+  EXPECT_EQ(a.frame, b.frame);
+  EXPECT_TRUE(a.x == b.x && a.v == b.v && a.damaged == b.damaged);
+  EXPECT_EQ(a.crossing, b.crossing);
+  EXPECT_GT(std::count_if(a.crossing.begin(), a.crossing.end(), hasCrossing), 0)
+      << "the knife's crossings are saved";
+  EXPECT_TRUE(a.plasticStrain == b.plasticStrain);
+  ASSERT_FALSE(a.plasticInverse.empty()) << "the clay ball has a plastic state to save";
+  for (size_t t = 0; t < a.plasticInverse.size(); ++t)
+    ASSERT_TRUE(a.plasticInverse[t] == b.plasticInverse[t]);
+  EXPECT_EQ(a.anchorIds, b.anchorIds);
+  EXPECT_EQ(reopened->simulation().anchoredVertices(),
+            ball.session.simulation().anchoredVertices());
+  for (int f = 0; f < 3; ++f) {
+    ball.session.step();
+    reopened->step();
+  }
+  EXPECT_TRUE(ball.session.simulation().state().x == reopened->simulation().state().x)
+      << "the reopened project runs on exactly like the original";
+  // Its recording still replays from the scene's start.
+  reopened->saveRecording(dir / "replay.json");
+  const PlaybackScript script = loadPlaybackScript(dir / "replay.json");
+  EXPECT_EQ(script.frames, reopened->simulation().frame());
+}
+
+TEST(ProjectFile, MalformedProjectsGetClearErrors) {
+  test::TempDir dir;
+  SculptedBall ball;
+  writeProject(dir / "good.gsproj", ball.session, std::nullopt);
+  const std::string good = test::readText(dir / "good.gsproj");
+  auto errorOf = [&](const std::string& bytes) {
+    test::writeText(dir / "bad.gsproj", bytes);
+    try {
+      readProject(dir / "bad.gsproj");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string s = good;
+    const size_t at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return s.replace(at, from.size(), to);
+  };
+  EXPECT_NE(errorOf("hello").find("bad.gsproj:1: not a Galsculpt project"), std::string::npos);
+  EXPECT_NE(errorOf(replaced("PROJECT 2", "PROJECT 7")).find("made by a newer Galsculpt"),
+            std::string::npos);
+  EXPECT_NE(errorOf(good.substr(0, good.size() - 100)).find("truncated"), std::string::npos);
+  EXPECT_NE(errorOf(good.substr(0, 40)).find("truncated"), std::string::npos);
+  EXPECT_NE(errorOf(good + "x").find("unexpected data after byte"), std::string::npos);
+  // The header edited (its length line follows it).
+  auto withHeader = [&](const std::function<void(nlohmann::json&)>& edit) {
+    return test::withProjectHeader(good, edit);
+  };
+  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) {
+              h["anchors"][0]["vertices"][0] = 1 << 30;
+            })).find("$.anchors[0].vertices: holds 1073741824, not a vertex of the mesh"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) { h["frxme"] = 1; })).find("$.frxme"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withHeader([](nlohmann::json& h) {
+              h["scene"]["material"]["preset"] = "cheese";
+            })).find("$.material.preset"),
+            std::string::npos);
+  const std::string fewerEdges =
+      errorOf(withHeader([](nlohmann::json& h) { h["edges"] = h["edges"].get<int>() - 1; }));
+  EXPECT_TRUE(fewerEdges.find("unexpected data") != std::string::npos ||
+              fewerEdges.find("blade crossing of edge") != std::string::npos)
+      << fewerEdges;
+  const SimModel& model = ball.session.simulation().model();
+  // Arrays from the end: plastic state (10 doubles a tet), crossings (a float an edge), damage.
+  const size_t crossingEnd = good.size() - 10 * static_cast<size_t>(model.numTets()) * 8;
+  const size_t damageEnd = crossingEnd - 4 * static_cast<size_t>(model.numEdges());
+  std::string damaged = good;
+  damaged[damageEnd - 1] = 5;
+  EXPECT_NE(errorOf(damaged).find("must be 0 or 1"), std::string::npos) << errorOf(damaged);
+  // A crossing out of range, and one on an undamaged edge.
+  const SimulationSnapshot state = ball.session.simulation().snapshot();
+  auto withCrossing = [&](int edge, float value) {
+    std::string s = good;
+    std::memcpy(&s[damageEnd + 4 * static_cast<size_t>(edge)], &value, sizeof(float));
+    return s;
+  };
+  const int cutEdge =
+      static_cast<int>(std::find_if(state.crossing.begin(), state.crossing.end(), hasCrossing) -
+                       state.crossing.begin());
+  const int intactEdge = static_cast<int>(std::find(state.damaged.begin(), state.damaged.end(), 0) -
+                                          state.damaged.begin());
+  EXPECT_NE(errorOf(withCrossing(cutEdge, 1.5f)).find("blade crossing of edge"), std::string::npos);
+  EXPECT_NE(errorOf(withCrossing(cutEdge, std::nanf(""))).find("blade crossing of edge"),
+            std::string::npos);
+  EXPECT_NE(errorOf(withCrossing(intactEdge, 0.5f)).find("on an undamaged edge"),
+            std::string::npos);
+  // The version is a whole number and nothing else.
+  for (const char* version : {"1garbage", "1.9", "", "-2", "2 ", "99999999999"}) {
+    EXPECT_NE(errorOf(replaced("PROJECT 2\n", std::string("PROJECT ") + version + "\n"))
+                  .find("bad.gsproj:1: the format version is not a whole number"),
+              std::string::npos)
+        << version;
+  }
+}
+
+// Version 1 files (before blade crossings were saved) still open: their cuts have no crossings.
+TEST(ProjectFile, Version1ProjectsStillOpen) {
+  test::TempDir dir;
+  SculptedBall ball;
+  writeProject(dir / "new.gsproj", ball.session, std::nullopt);
+  std::string bytes = test::readText(dir / "new.gsproj");
+  const SimModel& model = ball.session.simulation().model();
+  const size_t crossingEnd = bytes.size() - 10 * static_cast<size_t>(model.numTets()) * 8;
+  const size_t crossingBytes = 4 * static_cast<size_t>(model.numEdges());
+  bytes.erase(crossingEnd - crossingBytes, crossingBytes);
+  bytes.replace(bytes.find("PROJECT 2\n"), 10, "PROJECT 1\n");
+  test::writeText(dir / "old.gsproj", bytes);
+  const Project p = readProject(dir / "old.gsproj");
+  EXPECT_EQ(p.state.damaged, ball.session.simulation().state().damaged);
+  EXPECT_EQ(p.state.crossing, std::vector<float>(model.numEdges(), kNoCrossing));
+  std::unique_ptr<SculptSession> reopened = sessionFromProject(p, dir / "old.gsproj");
+  EXPECT_EQ(reopened->simulation().state().x, ball.session.simulation().state().x);
+}
+
+// Saved while a brush is still held: the file records the stroke as ending there (it once wrote
+// an end frame no reader accepts).
+TEST(ProjectFile, SavingDuringAStrokeWritesAReadableProject) {
+  test::TempDir dir;
+  SculptedBall ball;
+  BrushStroke grab;
+  grab.center = Vec3(0.0, 0.1, 0.0);
+  grab.radius = 0.02;
+  ball.session.beginStroke(grab);
+  ball.session.moveStroke(Vec3(0.0, 0.11, 0.0), Vec3::UnitY());
+  ball.session.step();
+  writeProject(dir / "held.gsproj", ball.session, std::nullopt);
+  const Project p = readProject(dir / "held.gsproj");
+  ASSERT_FALSE(p.recording.empty());
+  EXPECT_EQ(p.recording.back().end, ball.session.simulation().frame());
+  ball.session.saveRecording(dir / "held.json");
+  EXPECT_EQ(loadPlaybackScript(dir / "held.json").events.back().end,
+            ball.session.simulation().frame());
+}
+
+}  // namespace
+}  // namespace galsculpt

@@ -1,0 +1,177 @@
+// The element kernels shared by the CPU and CUDA backends, called directly (plain arrays), as
+// the device runs them: SVD and eigen-solves on hard matrices, the two Hessian paths against
+// each other, the rest data, and the plastic return.
+#include "solver/fem/element_kernels.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <random>
+
+namespace galsculpt::kernels {
+namespace {
+
+Eigen::Matrix3d toEigen(const M3& m) {
+  return Eigen::Map<const Eigen::Matrix3d>(m.a);
+}
+M3 fromEigen(const Eigen::Matrix3d& m) {
+  M3 out;
+  for (int i = 0; i < 9; ++i) out.a[i] = m.data()[i];
+  return out;
+}
+
+// Matrices that break naive SVDs: repeated, zero and negative singular values, huge ranges.
+std::vector<Eigen::Matrix3d> hardMatrices() {
+  std::mt19937 gen(7);
+  std::normal_distribution<double> n(0.0, 1.0);
+  auto rotation = [&] {
+    Eigen::Quaterniond q(n(gen), n(gen), n(gen), n(gen));
+    return q.normalized().toRotationMatrix();
+  };
+  std::vector<Eigen::Matrix3d> out;
+  for (int i = 0; i < 200; ++i) out.push_back(Eigen::Matrix3d::NullaryExpr([&] { return n(gen); }));
+  const Eigen::Vector3d diagonals[] = {
+      {1, 1, 1},    {2, 2, 0.5},    {1, 1, -1},   {3, 0, 0},         {0, 0, 0},
+      {1, 1e-9, 0}, {1e6, 1, 1e-6}, {-1, -1, -1}, {1, 1 + 1e-12, 1}, {5, -5, 1e-3}};
+  for (const Eigen::Vector3d& d : diagonals) {
+    out.push_back(d.asDiagonal());
+    out.push_back(rotation() * d.asDiagonal() * rotation().transpose());
+  }
+  return out;
+}
+
+TEST(ElementKernels, RotationVariantSvdReconstructsHardMatrices) {
+  for (const Eigen::Matrix3d& f : hardMatrices()) {
+    M3 u, v;
+    double s[3];
+    rotationVariantSvd(fromEigen(f), u, s, v);
+    const Eigen::Matrix3d ue = toEigen(u), ve = toEigen(v);
+    const double scale = std::max(f.cwiseAbs().maxCoeff(), 1e-300);
+    EXPECT_LT((ue * Eigen::Vector3d(s[0], s[1], s[2]).asDiagonal() * ve.transpose() - f)
+                  .cwiseAbs()
+                  .maxCoeff(),
+              1e-11 * scale)
+        << f;
+    EXPECT_LT((ue.transpose() * ue - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+    EXPECT_LT((ve.transpose() * ve - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+    EXPECT_NEAR(ue.determinant(), 1.0, 1e-12);
+    EXPECT_NEAR(ve.determinant(), 1.0, 1e-12);
+    EXPECT_GE(s[0], std::abs(s[1]) - 1e-12 * scale);
+    EXPECT_GE(s[1], std::abs(s[2]) - 1e-12 * scale);
+    EXPECT_EQ(s[2] < -1e-12 * scale, f.determinant() < -1e-12 * scale * scale * scale) << f;
+  }
+}
+
+TEST(ElementKernels, ClosedFormEigenAgreesWithJacobiOrRefuses) {
+  int accepted = 0;
+  for (const Eigen::Matrix3d& m : hardMatrices()) {
+    const Eigen::Matrix3d a = m.transpose() * m;
+    double w[3], wj[3];
+    M3 q, qj;
+    symmetricEigen(fromEigen(a), wj, qj);
+    const Eigen::Matrix3d qe = toEigen(qj);
+    const double scale = std::max(a.cwiseAbs().maxCoeff(), 1e-300);
+    EXPECT_LT((qe * Eigen::Vector3d(wj[0], wj[1], wj[2]).asDiagonal() * qe.transpose() - a)
+                  .cwiseAbs()
+                  .maxCoeff(),
+              1e-13 * scale);
+    if (!closedFormSymmetricEigen(fromEigen(a), w, q)) continue;
+    ++accepted;
+    std::sort(w, w + 3);
+    std::sort(wj, wj + 3);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(w[i], wj[i], 1e-10 * scale);
+  }
+  EXPECT_GT(accepted, 150) << "the closed form is the fast path: it must take most matrices";
+}
+
+RestData restOf(const double p[12]) {
+  RestData r;
+  EXPECT_TRUE(computeRest(p, r));
+  return r;
+}
+
+// The 12x12 element Hessian (built from the modes' 12-vectors) equals D^T (dP/dF) D built from
+// the 9x9 stress derivative, for each model, exact and projected.
+TEST(ElementKernels, ElementHessianMatchesStressDerivative) {
+  const double rest[12] = {0, 0, 0, 1, 0.1, 0, 0.2, 0.9, 0.1, 0.1, 0.2, 1.1};
+  const RestData r = restOf(rest);
+  const Lame lame{3e4, 8e4};
+  std::mt19937 gen(3);
+  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  for (MaterialModel model :
+       {MaterialModel::Corotational, MaterialModel::StVK, MaterialModel::StableNeoHookean}) {
+    for (Hessian mode : {Hessian::Exact, Hessian::ProjectedSpd}) {
+      double x[12];
+      for (int i = 0; i < 12; ++i) x[i] = rest[i] + u(gen);
+      double energy, gradient[12], hessian[144], dpdf[81];
+      evaluateElement(model, lame, r, x, kIntact, true, mode, energy, gradient, hessian);
+      stressDerivative(model, lame, deformationGradient(r, x), mode == Hessian::ProjectedSpd, dpdf);
+      double c[4][3];
+      shapeGradients(r, c);
+      Eigen::Matrix<double, 9, 12> d = Eigen::Matrix<double, 9, 12>::Zero();  // d vec F / d x
+      for (int a = 0; a < 4; ++a)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) d(i + 3 * j, 3 * a + i) = c[a][j];
+      const Eigen::Matrix<double, 12, 12> expected =
+          r.volume * d.transpose() * Eigen::Map<Eigen::Matrix<double, 9, 9>>(dpdf) * d;
+      const Eigen::Map<Eigen::Matrix<double, 12, 12>> got(hessian);
+      EXPECT_LT((got - expected).cwiseAbs().maxCoeff(), 1e-9 * expected.cwiseAbs().maxCoeff());
+      EXPECT_EQ((got - got.transpose()).cwiseAbs().maxCoeff(), 0.0) << "exactly symmetric";
+    }
+  }
+}
+
+TEST(ElementKernels, RestDataOfADegenerateTetIsRefused) {
+  const double flat[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+  RestData r;
+  EXPECT_FALSE(computeRest(flat, r));
+  const double good[12] = {0, 0, 0, 2, 0, 0, 0, 1, 0, 0, 0, 3};
+  ASSERT_TRUE(computeRest(good, r));
+  EXPECT_DOUBLE_EQ(r.volume, 1.0);
+  EXPECT_DOUBLE_EQ(r.restLengthSq[0], 4.0);
+  EXPECT_DOUBLE_EQ(r.restLengthSq[5], 10.0);
+}
+
+TEST(ElementKernels, Invert6MatchesEigenAndRefusesSingular) {
+  std::mt19937 gen(5);
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::Matrix<double, 6, 6> m = Eigen::Matrix<double, 6, 6>::NullaryExpr([&] { return n(gen); });
+  double inv[36];
+  ASSERT_TRUE(invert6(m.data(), inv));
+  EXPECT_LT(
+      (Eigen::Map<Eigen::Matrix<double, 6, 6>>(inv) * m - Eigen::Matrix<double, 6, 6>::Identity())
+          .cwiseAbs()
+          .maxCoeff(),
+      1e-12);
+  m.row(4) = m.row(2);
+  m.col(1).setZero();
+  EXPECT_FALSE(invert6(m.data(), inv));
+}
+
+// The return lands on the yield surface and keeps det Fp = 1; a second return barely moves.
+TEST(ElementKernels, PlasticReturnLandsOnTheYieldSurface) {
+  const Lame lame{1e5, 2e5};
+  const PlasticParamsData params{2000.0, 500.0};
+  Eigen::Matrix3d f;
+  f << 1.2, 0.1, 0.0, 0.05, 0.9, 0.02, 0.0, 0.03, 0.95;
+  M3 fp = identity3();
+  double strain = 0.0;
+  ASSERT_TRUE(plasticReturn(lame, params, fromEigen(f), fp, strain));
+  EXPECT_GT(strain, 0.0);
+  EXPECT_NEAR(determinant(fp), 1.0, 1e-12);
+  const Eigen::Matrix3d fe = f * toEigen(fp);
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(fe);
+  const Eigen::Vector3d logs = svd.singularValues().array().log();
+  const double q = std::sqrt(1.5) * 2.0 * lame.mu * (logs.array() - logs.mean()).matrix().norm();
+  EXPECT_NEAR(q, params.yieldStress + params.hardening * strain, 1e-6 * params.yieldStress);
+  const double before = strain;
+  plasticReturn(lame, params, fromEigen(f), fp, strain);
+  EXPECT_NEAR(strain, before, 1e-12) << "on the surface: at most a round-off flow";
+  M3 inverted = fromEigen(Eigen::Vector3d(1.5, 1.0, -0.5).asDiagonal());
+  M3 fpInverted = identity3();
+  EXPECT_FALSE(plasticReturn(lame, params, inverted, fpInverted, strain))
+      << "no flow when inverted";
+}
+
+}  // namespace
+}  // namespace galsculpt::kernels

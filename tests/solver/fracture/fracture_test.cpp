@@ -1,0 +1,181 @@
+#include "solver/fracture/fracture.h"
+
+#include <gtest/gtest.h>
+
+#include "solver/frame/step.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+SimModel barModel(double youngs = 1e5) {
+  return buildSimModel(test::gridBar(2, 8, 2, 0.1),
+                       {MaterialModel::StVK, lameFromYoungPoisson(youngs, 0.3), 1000.0, {}});
+}
+
+TEST(Fracture, RandomThresholdsAreReproducibleAndBounded) {
+  const SimModel m = barModel();
+  const FractureField a = buildFractureField(m, {1000.0, 0.0, 0.25, 9});
+  const FractureField b = buildFractureField(m, {1000.0, 0.0, 0.25, 9});
+  const FractureField c = buildFractureField(m, {1000.0, 0.0, 0.25, 10});
+  EXPECT_EQ(a.threshold, b.threshold);
+  EXPECT_NE(a.threshold, c.threshold);
+  double mean = 0.0;
+  for (double t : a.threshold) {
+    EXPECT_GE(t, 750.0);
+    EXPECT_LE(t, 1250.0);
+    mean += t / a.threshold.size();
+  }
+  EXPECT_NEAR(mean, 1000.0, 25.0);
+  EXPECT_THROW(buildFractureField(m, {0.0, 0.0, 0.0, 1}), std::invalid_argument);
+  EXPECT_THROW(buildFractureField(m, {1.0, 0.0, 1.0, 1}), std::invalid_argument);
+}
+
+// The kernel mean, checked edge by edge against a brute-force average over all edges.
+TEST(Fracture, KernelAveragesStressOverTheRadius) {
+  const SimModel m = barModel();
+  SimState s = initialState(m);
+  for (int v = 0; v < m.numVertices(); ++v) {
+    const Vec3 p = m.mesh.vertices[v];
+    s.x[v] = p + Vec3(0.02 * std::sin(9 * p.y()), 0.15 * p.y() * p.y(), 0.01 * p.x());
+  }
+  s.damaged[3] = 1;
+  const FractureField local = buildFractureField(m, {1.0, 0.0, 0.0, 1});
+  const FractureField smooth = buildFractureField(m, {1.0, 0.17, 0.0, 1});
+  const std::vector<double> l = fractureEdgeStress(m, local, s, true);
+  const std::vector<double> k = fractureEdgeStress(m, smooth, s, true);
+  EXPECT_EQ(l[3], 0.0);
+  for (int e = 0; e < m.numEdges(); e += 7) {
+    if (s.damaged[e]) continue;
+    double sum = 0.0, w = 0.0;
+    for (int f = 0; f < m.numEdges(); ++f) {
+      const double d2 = (smooth.midpoint[f] - smooth.midpoint[e]).squaredNorm();
+      if (s.damaged[f] || d2 >= 0.17 * 0.17) continue;
+      const double wf = (1 - d2 / (0.17 * 0.17)) * (1 - d2 / (0.17 * 0.17));
+      sum += wf * l[f];
+      w += wf;
+    }
+    EXPECT_NEAR(k[e], sum / w, 1e-9 * std::abs(sum / w) + 1e-12) << "edge " << e;
+  }
+}
+
+// A bar hangs from its top and its bottom is pulled down ever further: edges break where the
+// stress passes the threshold, damage only grows, and the bar ends in pieces.
+struct TensionRun {
+  int firstBreakFrame = -1;
+  int pieces = 0;
+};
+
+// No gravity; the top held, the bottom pulled down 0.4 m per second; threshold 2e4 Pa.
+StepSettings tensionSettings(const SimModel& m, double kernel) {
+  StepSettings st;
+  st.gravity.setZero();
+  AnchorConstraint top, bottom;
+  for (int v = 0; v < m.numVertices(); ++v) {
+    if (m.mesh.vertices[v].y() > 0.8 - 1e-9) top.vertices.push_back(v);
+    if (m.mesh.vertices[v].y() < 1e-9) bottom.vertices.push_back(v);
+  }
+  bottom.path = {{0.0, Vec3::Zero()}, {1.0, Vec3(0, -0.4, 0)}};
+  st.anchors = {top, bottom};
+  st.fracture = std::make_shared<FractureField>(buildFractureField(m, {2.0e4, kernel, 0.0, 1}));
+  return st;
+}
+
+TensionRun pullApart(bool multigrid, double kernel) {
+  const SimModel m = barModel();
+  SimState s = initialState(m);
+  StepSettings st = tensionSettings(m, kernel);
+  st.multigrid = multigrid;
+  st.gridHandles = {12};
+  st.multigridSettings.pcg = true;
+  st.multigridSettings.pcgTolerance = 1e-8;
+  st.multigridSettings.pcgMaxIterations = 500;
+  if (!multigrid) st = referenceSettings(st);  // the multigrid takes one linearized step
+  TensionRun run;
+  int previous = 0;
+  for (int f = 1; f <= 60; ++f) {
+    const StepReport r = step(m, s, st);
+    EXPECT_EQ(r.retries, 0) << "frame " << f << (multigrid ? " multigrid" : " reference");
+    int damaged = 0;
+    for (auto d : s.damaged) damaged += d;
+    EXPECT_GE(damaged, previous);
+    EXPECT_EQ(damaged - previous, r.newlyDamaged);
+    if (damaged > 0 && run.firstBreakFrame < 0) run.firstBreakFrame = f;
+    previous = damaged;
+  }
+  run.pieces = countDamagePieces(m, s);
+  return run;
+}
+
+TEST(Fracture, TensionBreaksTheBarAndMultigridAgreesOnTheFirstBreak) {
+  const TensionRun reference = pullApart(false, 0.0);
+  const TensionRun multigrid = pullApart(true, 0.0);
+  EXPECT_GT(reference.firstBreakFrame, 1) << "the bar holds at first";
+  EXPECT_LT(reference.firstBreakFrame, 60);
+  EXPECT_LE(std::abs(multigrid.firstBreakFrame - reference.firstBreakFrame), 1);
+  EXPECT_GE(reference.pieces, 2);
+  EXPECT_GE(multigrid.pieces, 2);
+}
+
+// With several fracture iterations a step is solved again after new damage, so the crack runs
+// further within the step than with the paper's single pass (same loading, same frame).
+TEST(Fracture, IterationsLetACrackRunWithinAStep) {
+  auto damageAfter = [](int iterations, int& redos) {
+    const SimModel m = barModel();
+    SimState s = initialState(m);
+    StepSettings st = referenceSettings(tensionSettings(m, 0.0));
+    st.fractureIterations = iterations;
+    redos = 0;
+    int damaged = 0;
+    for (int f = 1; f <= 60 && damaged == 0; ++f) {
+      const StepReport r = step(m, s, st);
+      redos += r.fractureRedos;
+      for (auto d : s.damaged) damaged += d;
+    }
+    return damaged;
+  };
+  int redosOne = 0, redosMany = 0;
+  const int one = damageAfter(1, redosOne);
+  const int many = damageAfter(8, redosMany);
+  EXPECT_EQ(redosOne, 0);
+  EXPECT_GT(redosMany, 0);
+  EXPECT_GT(one, 0);
+  EXPECT_GT(many, one) << "damage in the first breaking frame";
+}
+
+// Crushing: squeezed edges break only when a compressive threshold is set (the paper's
+// criterion is tension only).
+TEST(Fracture, CompressiveThresholdCrushesSqueezedEdges) {
+  auto crushed = [](double compressive) {
+    const SimModel m = barModel();
+    SimState s = initialState(m);
+    StepSettings st = tensionSettings(m, 0.0);
+    st.anchors[1].path = {{0.0, Vec3::Zero()}, {1.0, Vec3(0, 0.3, 0)}};  // push up instead
+    FractureSettings f{1e9, 0.0, 0.0, 1};
+    f.compressiveThreshold = compressive;
+    st.fracture = std::make_shared<FractureField>(buildFractureField(m, f));
+    int damaged = 0;
+    for (int frame = 0; frame < 30; ++frame) {
+      const StepReport r = step(m, s, st);
+      damaged += r.newlyDamaged;
+    }
+    return damaged;
+  };
+  EXPECT_EQ(crushed(0.0), 0) << "tension only: a squeezed bar never breaks";
+  EXPECT_GT(crushed(1.0e4), 0);
+}
+
+TEST(Fracture, NoPassAndNoDamageWhenFractureIsOff) {
+  const SimModel m = barModel();
+  SimState s = initialState(m);
+  StepSettings st;
+  for (int f = 0; f < 5; ++f) {
+    const StepReport r = step(m, s, st);
+    EXPECT_EQ(r.msFracture, 0.0);
+    EXPECT_EQ(r.newlyDamaged, 0);
+  }
+  EXPECT_EQ(s.damageRevision, 0u);
+}
+
+}  // namespace
+}  // namespace galsculpt

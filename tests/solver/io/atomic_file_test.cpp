@@ -1,0 +1,103 @@
+#include "solver/io/atomic_file.h"
+
+#include <gtest/gtest.h>
+
+#include "solver/io/input_error.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+namespace fs = std::filesystem;
+
+size_t filesIn(const fs::path& dir) {
+  size_t n = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++n;
+  return n;
+}
+
+TEST(AtomicFile, WritesAndReplaces) {
+  test::TempDir dir;
+  writeFileAtomically(dir / "a.txt", [](std::ostream& out) { out << "first"; });
+  writeFileAtomically(dir / "a.txt", [](std::ostream& out) { out << "second"; });
+  EXPECT_EQ(readWholeFile(dir / "a.txt"), "second");
+  EXPECT_EQ(filesIn(dir.path()), 1u) << "no temporary file is left behind";
+}
+
+TEST(AtomicFile, FailureInsideTheWriterKeepsTheOldFile) {
+  test::TempDir dir;
+  writeFileAtomically(dir / "a.txt", [](std::ostream& out) { out << "old"; });
+  EXPECT_THROW(writeFileAtomically(dir / "a.txt",
+                                   [](std::ostream& out) {
+                                     out << "half a fi";
+                                     throw std::runtime_error("disk on fire");
+                                   }),
+               std::runtime_error);
+  EXPECT_EQ(readWholeFile(dir / "a.txt"), "old");
+  EXPECT_EQ(filesIn(dir.path()), 1u);
+}
+
+TEST(AtomicFile, RenameFailureIsReportedAndCleanedUp) {
+  test::TempDir dir;
+  fs::create_directories(dir / "occupied" / "child");  // a non-empty folder cannot be replaced
+  EXPECT_THROW_WITH(writeFileAtomically(dir / "occupied", [](std::ostream& out) { out << "x"; }),
+                    OutputError, "cannot write");
+  EXPECT_TRUE(fs::is_directory(dir / "occupied" / "child"));
+  EXPECT_EQ(filesIn(dir.path()), 1u);
+}
+
+TEST(AtomicFile, MissingFolderIsAClearError) {
+  test::TempDir dir;
+  EXPECT_THROW_WITH(writeFileAtomically(dir / "nope" / "a.txt", [](std::ostream&) {}), OutputError,
+                    "does not exist");
+}
+
+TEST(AtomicFile, ReadingAMissingFileNamesIt) {
+  EXPECT_THROW_WITH(readWholeFile("/nonexistent/galsculpt.txt"), InputError,
+                    "/nonexistent/galsculpt.txt: file not found");
+}
+
+// /dev/zero as an input was read until memory ran out (std::bad_alloc); a folder, a device or a
+// pipe is refused before anything is read.
+TEST(AtomicFile, OnlyRegularFilesAreRead) {
+  test::TempDir dir;
+  EXPECT_THROW_WITH(readWholeFile("/dev/zero"), InputError, "/dev/zero: is not a regular file");
+  EXPECT_THROW_WITH(readWholeFile(dir.path()), InputError, "is a folder, not a file");
+}
+
+// A set is written whole: a failing member leaves the previous set untouched and no temporary;
+// members carry the set's stamp; temporaries of dead writers are cleaned by the next write.
+TEST(AtomicFile, FileSetsAreCommittedWholeAndStamped) {
+  test::TempDir dir;
+  test::writeText(dir / "m.a", "old a");
+  test::writeText(dir / "m.b", "old b");
+  {
+    FileSet set;
+    set.add(dir / "m.a", [&](std::ostream& out) { out << "new a\n" << set.stampLine(); });
+    EXPECT_THROW(set.add(dir / "m.b", [](std::ostream&) { throw OutputError("disk full"); }),
+                 OutputError);
+  }  // not committed
+  EXPECT_EQ(test::readText(dir / "m.a"), "old a");
+  EXPECT_EQ(test::readText(dir / "m.b"), "old b");
+  test::writeText(dir / ".m.a.tmp999999999", "left by a killed writer");  // no such process
+  test::writeText(dir / "m.stale", "x");
+  FileSet set;
+  set.add(dir / "m.a", [&](std::ostream& out) { out << "new a\n" << set.stampLine(); });
+  set.add(dir / "m.b", [&](std::ostream& out) { out << "new b\n" << set.stampLine(); });
+  set.remove(dir / "m.stale");
+  set.commit();
+  EXPECT_EQ(findSetStamp(test::readText(dir / "m.a")), set.stamp());
+  EXPECT_EQ(findSetStamp(test::readText(dir / "m.b")), set.stamp());
+  EXPECT_EQ(set.stamp().size(), 16u);
+  EXPECT_FALSE(fs::exists(dir / "m.stale"));
+  EXPECT_FALSE(fs::exists(dir / ".m.a.tmp999999999")) << "a dead writer's temporary is cleaned";
+  size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path())) ++entries;
+  EXPECT_EQ(entries, 2u);
+  EXPECT_EQ(findSetStamp("no stamp here"), "");
+  FileSet other;
+  EXPECT_NE(other.stamp(), set.stamp());
+}
+
+}  // namespace
+}  // namespace galsculpt

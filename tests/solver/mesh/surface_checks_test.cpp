@@ -1,0 +1,89 @@
+#include "solver/mesh/surface_checks.h"
+
+#include <gtest/gtest.h>
+
+#include "solver/mesh/shape_generators.h"
+
+namespace galsculpt {
+namespace {
+
+TriMesh merged(const TriMesh& a, const TriMesh& b, const Vec3& shift) {
+  TriMesh m = a;
+  const int offset = m.numVertices();
+  for (const Vec3& v : b.vertices) m.vertices.push_back(v + shift);
+  for (Tri f : b.faces) {
+    for (int& i : f) i += offset;
+    m.faces.push_back(f);
+  }
+  return m;
+}
+
+TEST(SurfaceChecks, ClosedSphere) {
+  const TriMesh m = makeIcosphere(1.0, 2);
+  const SurfaceTopology t = analyzeSurface(m);
+  EXPECT_TRUE(t.closedManifold());
+  EXPECT_EQ(t.describeProblem(), "");
+  EXPECT_EQ(t.pieces, 1);
+  EXPECT_NEAR(surfaceArea(m), 4 * M_PI, 0.3);
+}
+
+TEST(SurfaceChecks, OpenSurfaceNamesABoundaryEdge) {
+  TriMesh m = makeIcosphere(1.0, 1);
+  m.faces.pop_back();
+  const SurfaceTopology t = analyzeSurface(m);
+  EXPECT_EQ(t.boundaryEdges, 3);
+  EXPECT_NE(t.describeProblem().find("open: 3 boundary edge(s)"), std::string::npos)
+      << t.describeProblem();
+}
+
+TEST(SurfaceChecks, FlippedFaceIsInconsistent) {
+  TriMesh m = makeIcosphere(1.0, 1);
+  std::swap(m.faces[5][1], m.faces[5][2]);
+  const SurfaceTopology t = analyzeSurface(m);
+  EXPECT_EQ(t.inconsistentEdges, 3);
+  EXPECT_NE(t.describeProblem().find("inconsistently oriented"), std::string::npos);
+}
+
+TEST(SurfaceChecks, ThreeFacesOnAnEdgeAreNonManifold) {
+  TriMesh m = makeIcosphere(1.0, 1);
+  const Tri f = m.faces[0];
+  m.vertices.push_back(Vec3(3, 3, 3));
+  m.faces.push_back({f[0], f[1], m.numVertices() - 1});
+  const SurfaceTopology t = analyzeSurface(m);
+  EXPECT_GE(t.nonManifoldEdges, 1);
+  EXPECT_NE(t.describeProblem().find("non-manifold"), std::string::npos);
+}
+
+TEST(SurfaceChecks, TwoSpheresTouchingAtAVertexAreNonManifold) {
+  const TriMesh a = makeIcosphere(1.0, 1);
+  TriMesh m = merged(a, a, Vec3(0, 0, 0));
+  // Weld one vertex of the second copy onto the first: a pinch point.
+  const int n = a.numVertices();
+  for (Tri& f : m.faces) {
+    for (int& i : f) {
+      if (i == n) i = 0;
+    }
+  }
+  const SurfaceTopology t = analyzeSurface(m);
+  EXPECT_EQ(t.nonManifoldVertices, 1);
+}
+
+TEST(SurfaceChecks, OverlappingSpheresIntersect) {
+  const TriMesh a = makeIcosphere(1.0, 2);
+  const TriMesh both = merged(a, a, Vec3(1.0, 0.1, 0.05));
+  EXPECT_TRUE(analyzeSurface(both).closedManifold()) << "topologically fine, geometrically not";
+  EXPECT_FALSE(findSelfIntersections(both).empty());
+  EXPECT_TRUE(findSelfIntersections(merged(a, a, Vec3(3.0, 0, 0))).empty());
+  EXPECT_EQ(countSurfacePieces(both), 2);
+}
+
+TEST(SurfaceChecks, VolumeSignFollowsOrientation) {
+  TriMesh m = makeIcosphere(2.0, 3);
+  const double v = enclosedVolume(m);
+  EXPECT_NEAR(v, 4.0 / 3.0 * M_PI * 8.0, 0.02 * v);
+  for (Tri& f : m.faces) std::swap(f[1], f[2]);
+  EXPECT_NEAR(enclosedVolume(m), -v, 1e-9);
+}
+
+}  // namespace
+}  // namespace galsculpt

@@ -1,0 +1,278 @@
+#include "solver/multigrid/multigrid.h"
+
+#include <gtest/gtest.h>
+
+#include <omp.h>
+#include <Eigen/SparseCholesky>
+
+#include "solver/frame/step.h"
+#include "solver/model/sim_model.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+using test::gridBar;
+
+// The backward-Euler matrix M/h^2 + K of a deformed, hanging bar.
+struct System {
+  SimModel model;
+  BlockSparseMatrix a;
+  Eigen::VectorXd b;
+};
+
+System elasticitySystem(int nx = 3, int ny = 12, int nz = 3) {
+  System s{
+      buildSimModel(gridBar(nx, ny, nz, 0.02),
+                    {MaterialModel::StableNeoHookean, lameFromYoungPoisson(1e5, 0.45), 1000.0, {}}),
+      BlockSparseMatrix(BlockPattern{}), Eigen::VectorXd()};
+  s.a = BlockSparseMatrix(s.model.pattern);
+  SimState state = initialState(s.model);
+  for (int v = 0; v < s.model.numVertices(); ++v) {
+    const Vec3 p = s.model.mesh.vertices[v];
+    state.x[v] +=
+        0.01 * Vec3(std::sin(20 * p.y()), 0.3 * std::cos(13 * p.x()), std::sin(7 * p.z() + p.y()));
+  }
+  Eigen::VectorXd g;
+  assembleElastic(s.model, state.x, state, true, g, &s.a);
+  const double h = 1.0 / 60.0;
+  for (int v = 0; v < s.model.numVertices(); ++v) {
+    s.a.blocks[s.model.pattern.diagonal[v]] +=
+        s.model.mass[v] / (h * h) * Eigen::Matrix3d::Identity();
+  }
+  s.b = -g;
+  for (int v = 0; v < s.model.numVertices(); ++v)
+    s.b.segment<3>(3 * v) += s.model.mass[v] * Vec3(0, -9.81, 0);
+  return s;
+}
+
+TEST(Multigrid, ParsesGridSetups) {
+  EXPECT_EQ(parseGridSetup("50/all"), std::vector<int>{50});
+  EXPECT_EQ(parseGridSetup("50/1000/all"), (std::vector<int>{1000, 50}));
+  EXPECT_THROW(parseGridSetup("1000/50/all"), std::invalid_argument);
+  EXPECT_THROW(parseGridSetup("50"), std::invalid_argument);
+}
+
+TEST(Multigrid, FarthestPointSamplingIsGeodesicAndDeterministic) {
+  const TetMesh bar = gridBar(1, 20, 1, 0.1);
+  const std::vector<Edge> edges = uniqueEdges(bar);
+  std::vector<int> all(bar.vertices.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  std::vector<int> nearest;
+  const std::vector<int> samples = farthestPointSamples(bar.vertices, edges, all, 3, &nearest);
+  ASSERT_EQ(samples.size(), 3u);
+  // The first two samples sit at opposite ends of the bar; the third near the middle.
+  const double y0 = bar.vertices[samples[0]].y(), y1 = bar.vertices[samples[1]].y();
+  EXPECT_NEAR(std::abs(y0 - y1), 2.0, 1e-12);
+  EXPECT_NEAR(bar.vertices[samples[2]].y(), 1.0, 0.11);
+  for (size_t v = 0; v < bar.vertices.size(); ++v) {
+    ASSERT_GE(nearest[v], 0);
+    ASSERT_LT(nearest[v], 3);
+  }
+  std::vector<int> again;
+  EXPECT_EQ(farthestPointSamples(bar.vertices, edges, all, 3, &again), samples);
+  EXPECT_EQ(again, nearest);
+}
+
+TEST(Multigrid, ProlongationHasOneBlockPerFineRow) {
+  const System s = elasticitySystem();
+  const Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {40, 6});
+  const Eigen::MatrixXd u = mg.prolongationMatrix(0);
+  for (int r = 0; r < s.model.numVertices(); ++r) {
+    int blocks = 0;
+    for (int h = 0; h < mg.level(0).handles; ++h)
+      blocks += u.block(3 * r, 12 * h, 3, 12).norm() > 0.0;
+    EXPECT_EQ(blocks, 1);
+  }
+  const Eigen::MatrixXd u2 = mg.prolongationMatrix(1);
+  for (int a = 0; a < mg.level(0).handles; ++a) {
+    int blocks = 0;
+    for (int h = 0; h < mg.level(1).handles; ++h)
+      blocks += u2.block(12 * a, 12 * h, 12, 12).norm() > 0.0;
+    EXPECT_EQ(blocks, 1);
+  }
+}
+
+TEST(Multigrid, CoarseOperatorsAreGalerkinProductsAndPositiveDefinite) {
+  // 150 handles on ~200 vertices: many single-vertex aggregates that cannot carry 12 DOFs.
+  for (const std::vector<int>& counts : {std::vector<int>{40, 6}, std::vector<int>{150, 30}}) {
+    const System s = elasticitySystem();
+    Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, counts);
+    mg.refresh(s.a, MultigridSettings{});
+    const Eigen::MatrixXd a = Eigen::MatrixXd(s.a.toEigen());
+    const Eigen::MatrixXd u = mg.prolongationMatrix(0);
+    const Eigen::MatrixXd a1 = mg.coarseMatrix(1);
+    const Eigen::MatrixXd galerkin = u.transpose() * a * u;
+    EXPECT_LT((a1 - galerkin).norm(), 1e-8 * galerkin.norm())
+        << "up to the tiny regularizing shift";
+    EXPECT_LT((a1 - a1.transpose()).norm(), 1e-10 * a1.norm());
+    EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(a1).info(), Eigen::Success);
+    const Eigen::MatrixXd a2 = mg.coarseMatrix(2);
+    const Eigen::MatrixXd u2 = mg.prolongationMatrix(1);
+    EXPECT_LT((a2 - u2.transpose() * a1 * u2).norm(), 1e-8 * a2.norm());
+    EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(a2).info(), Eigen::Success);
+  }
+}
+
+TEST(Multigrid, AffineMotionsArePreservedByProlongation) {
+  // A coarse correction that is the same affine map on every handle moves the fine mesh
+  // affinely: the skinning space holds rigid and linear motions exactly.
+  const System s = elasticitySystem();
+  const Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {30});
+  const Eigen::MatrixXd u = mg.prolongationMatrix(0);
+  Eigen::Matrix<double, 3, 4> t;
+  t << 0.1, 0.2, -0.3, 0.01, 0.05, -0.1, 0.2, 0.02, 0.3, 0.1, 0.0, -0.03;
+  Eigen::VectorXd q(12 * mg.level(0).handles);
+  const double scale =
+      (s.model.mesh.vertices[mg.level(0).handleVertex[0]] - s.model.mesh.vertices[0]).norm();
+  (void)scale;
+  // Per handle: T_j acting on (x - c_j)/s + 1 must equal the global map G x + g0.
+  for (int h = 0; h < mg.level(0).handles; ++h) {
+    // Find s from any member: y = (x - c)/s.
+    int member = -1;
+    for (int v = 0; v < s.model.numVertices(); ++v)
+      if (mg.level(0).parent[v] == h && v != mg.level(0).handleVertex[h]) member = v;
+    const Vec3 c = s.model.mesh.vertices[mg.level(0).handleVertex[h]];
+    double sc = 1.0;
+    if (member >= 0)
+      sc = (s.model.mesh.vertices[member] - c).norm() / mg.level(0).y[member].head<3>().norm();
+    Eigen::Matrix<double, 3, 4> th;
+    th.leftCols<3>() = t.leftCols<3>() * sc;
+    th.col(3) = t.leftCols<3>() * c + t.col(3);
+    q.segment<12>(12 * h) = Eigen::Map<const Eigen::Matrix<double, 12, 1>>(th.data());
+  }
+  const Eigen::VectorXd fine = u * q;
+  for (int v = 0; v < s.model.numVertices(); ++v) {
+    const Vec3 expected = t.leftCols<3>() * s.model.mesh.vertices[v] + t.col(3);
+    EXPECT_LT((fine.segment<3>(3 * v) - expected).norm(), 1e-12);
+  }
+}
+
+TEST(Multigrid, VCycleReducesTheResidualAndPcgReachesTheDirectSolution) {
+  const System s = elasticitySystem();
+  Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {60, 8});
+  MultigridSettings cholesky;
+  cholesky.coarseCholesky = true;
+  mg.refresh(s.a, cholesky);  // factors the coarsest level too, for the Jacobi + Cholesky case
+  MultigridSettings settings;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(s.b.size());
+  const MultigridReport one = mg.solve(s.a, s.b, x, settings);
+  EXPECT_LT(one.finalResidual, 0.2 * one.initialResidual) << "one V-cycle cuts the residual 5x";
+  settings.cycles = 10;
+  Eigen::VectorXd x10 = Eigen::VectorXd::Zero(s.b.size());
+  const MultigridReport ten = mg.solve(s.a, s.b, x10, settings);
+  EXPECT_LT(ten.finalResidual, 1e-3 * ten.initialResidual);
+  std::printf("one V-cycle: %.3g, ten: %.3g\n", one.finalResidual / one.initialResidual,
+              ten.finalResidual / ten.initialResidual);
+
+  settings.pcg = true;
+  settings.pcgTolerance = 1e-12;
+  Eigen::VectorXd xp = Eigen::VectorXd::Zero(s.b.size());
+  const MultigridReport pcg = mg.solve(s.a, s.b, xp, settings);
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> direct(s.a.toEigen());
+  const Eigen::VectorXd exact = direct.solve(s.b);
+  EXPECT_LT((xp - exact).norm(), 1e-9 * exact.norm());
+  EXPECT_LT(pcg.iterations, 30);
+  std::printf("PCG to 1e-12: %d iterations\n", pcg.iterations);
+  EXPECT_TRUE(pcg.finite);
+
+  for (bool cholesky : {true}) {
+    settings = MultigridSettings{};
+    settings.coarseCholesky = cholesky;
+    settings.jacobi = true;
+    settings.cycles = 30;
+    Eigen::VectorXd xj = Eigen::VectorXd::Zero(s.b.size());
+    const MultigridReport j = mg.solve(s.a, s.b, xj, settings);
+    EXPECT_LT(j.finalResidual, 1e-3 * j.initialResidual)
+        << "Jacobi smoothing converges too, slower";
+  }
+}
+
+TEST(Multigrid, SolvesAreDeterministic) {
+  const System s = elasticitySystem();
+  Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {60});
+  mg.refresh(s.a, MultigridSettings{});
+  Eigen::VectorXd a = Eigen::VectorXd::Zero(s.b.size()), b = a;
+  mg.solve(s.a, s.b, a, MultigridSettings{});
+  mg.solve(s.a, s.b, b, MultigridSettings{});
+  EXPECT_EQ(a, b);
+}
+
+// Damage splits aggregates into their connected parts (each part its own handle, one U block
+// per row still), loose vertices get no handle at all, and the coarse matrices stay SPD.
+TEST(Multigrid, DamageSplitsAggregatesAndLeavesLooseVerticesToTheSmoother) {
+  const System s = elasticitySystem();
+  Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {8});
+  const int baseHandles = mg.level(0).handles;
+  std::vector<std::uint8_t> damaged(s.model.numEdges(), 0);
+  EXPECT_FALSE(mg.updateDamage(s.model.edges, damaged, 1)) << "no damage, no change";
+  // Cut the bar across at y = 0.12 (between vertex layers) and free vertex 0 entirely.
+  for (int e = 0; e < s.model.numEdges(); ++e) {
+    const Edge& ed = s.model.edges[e];
+    const double y0 = s.model.mesh.vertices[ed[0]].y(), y1 = s.model.mesh.vertices[ed[1]].y();
+    if ((y0 - 0.11) * (y1 - 0.11) < 0.0 || ed[0] == 0 || ed[1] == 0) damaged[e] = 1;
+  }
+  EXPECT_TRUE(mg.updateDamage(s.model.edges, damaged, 2));
+  EXPECT_FALSE(mg.updateDamage(s.model.edges, damaged, 2)) << "same revision: nothing to do";
+  const MultigridLevel& level = mg.level(0);
+  EXPECT_GT(level.handles, baseHandles) << "the aggregate across the cut is split";
+  EXPECT_EQ(level.parent[0], -1) << "a loose vertex gets no coarse handle";
+  // No aggregate holds vertices from both sides of the cut.
+  for (int h = 0; h < level.handles; ++h) {
+    int below = 0, above = 0;
+    for (int v : level.members[h]) (s.model.mesh.vertices[v].y() < 0.11 ? below : above) += 1;
+    EXPECT_TRUE(below == 0 || above == 0) << "handle " << h;
+  }
+  // U: one block per fine row that has a handle, none for the loose vertex.
+  const Eigen::MatrixXd u = mg.prolongationMatrix(0);
+  EXPECT_EQ(u.topRows(3).norm(), 0.0);
+  for (int v = 1; v < s.model.numVertices(); ++v) {
+    int blocks = 0;
+    for (int h = 0; h < level.handles; ++h) blocks += u.block(3 * v, 12 * h, 3, 12).norm() > 0.0;
+    EXPECT_EQ(blocks, 1) << "vertex " << v;
+  }
+  mg.refresh(s.a, MultigridSettings{});
+  const Eigen::MatrixXd coarse = mg.coarseMatrix(1);
+  EXPECT_LT((coarse - coarse.transpose()).norm(), 1e-9 * coarse.norm());
+  EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(coarse).info(), Eigen::Success);
+  // Undoing the damage (a fresh revision with none) restores the base hierarchy.
+  std::fill(damaged.begin(), damaged.end(), 0);
+  EXPECT_TRUE(mg.updateDamage(s.model.edges, damaged, 3));
+  EXPECT_EQ(mg.level(0).handles, baseHandles);
+}
+
+// Many small fragments next to each other (slices cut off the top of a bar): their corrections
+// run in parallel, and each reads its neighbours' positions, so they must not depend on which
+// thread moved a neighbour first. The same solve with 1 and 2 threads, bit for bit (an app
+// session replayed headless differed in its last bits before).
+TEST(Multigrid, FragmentCorrectionsDoNotDependOnTheThreadCount) {
+  const System s = elasticitySystem(3, 200, 3);
+  Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {20});
+  std::vector<std::uint8_t> damaged(s.model.numEdges(), 0);
+  for (int e = 0; e < s.model.numEdges(); ++e) {
+    const double y0 = s.model.mesh.vertices[s.model.edges[e][0]].y();
+    const double y1 = s.model.mesh.vertices[s.model.edges[e][1]].y();
+    for (int cut = 0; cut < 90; ++cut) {
+      const double y = 0.3 + 0.04 * cut + 0.01;  // between vertex layers, every second one
+      if ((y0 - y) * (y1 - y) < 0.0) damaged[e] = 1;
+    }
+  }
+  ASSERT_TRUE(mg.updateDamage(s.model.edges, damaged, 1));
+  ASSERT_GE(mg.fragmentStart().size(), 80u) << "many fragments, more than a thread's chunk";
+  MultigridSettings settings;
+  mg.refresh(s.a, settings);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  Eigen::VectorXd serial = Eigen::VectorXd::Zero(s.b.size());
+  mg.solve(s.a, s.b, serial, settings);
+  omp_set_num_threads(2);
+  for (int run = 0; run < 20; ++run) {
+    Eigen::VectorXd parallel = Eigen::VectorXd::Zero(s.b.size());
+    mg.solve(s.a, s.b, parallel, settings);
+    EXPECT_TRUE(parallel == serial) << "run " << run << ": " << (parallel - serial).norm();
+  }
+  omp_set_num_threads(threads);
+}
+
+}  // namespace
+}  // namespace galsculpt
