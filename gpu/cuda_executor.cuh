@@ -125,6 +125,7 @@ class PinnedStaging {
 class CudaExecutor {
  public:
   static constexpr const char* kName = "cuda";
+  static constexpr bool kHostMemory = false;
 
   template <typename T>
   class Buffer {

@@ -12,7 +12,7 @@ bool cudaBackendBuilt() {
 std::unique_ptr<StepBackend> makeCudaStepBackend(const SimModel& model,
                                                  const StepSettings& settings,
                                                  std::string& reason) {
-  reason = deviceUnsupportedReason(settings);
+  reason = cudaUnsupportedReason(settings);
   if (!reason.empty()) return nullptr;
   const DeviceInfo info = queryDevice();
   if (!info.available) {
@@ -25,7 +25,7 @@ std::unique_ptr<StepBackend> makeCudaStepBackend(const SimModel& model,
     return nullptr;
   }
   try {
-    return std::make_unique<DeviceStepBackend<CudaExecutor>>(model);
+    return std::make_unique<ExecutorStepBackend<CudaExecutor>>(model);
   } catch (const std::exception& e) {
     reason = std::string("the CUDA backend could not start: ") + e.what();
     return nullptr;

@@ -11,7 +11,7 @@ bool cudaBackendBuilt() {
 
 std::unique_ptr<StepBackend> makeCudaStepBackend(const SimModel&, const StepSettings& settings,
                                                  std::string& reason) {
-  reason = deviceUnsupportedReason(settings);
+  reason = cudaUnsupportedReason(settings);
   if (reason.empty())
     reason = "this build has no CUDA backend (nvcc was not found when it was configured)";
   return nullptr;

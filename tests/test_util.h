@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 
+#include "solver/frame/cpu_backend.h"
 #include "solver/mesh/tet_mesh.h"
 
 namespace galsculpt::test {
@@ -97,3 +98,14 @@ inline TetMesh gridBar(int nx, int ny, int nz, double size) {
           << "message: " << e.what() << "\nexpected to contain: " << (substring); \
     }                                                                             \
   } while (0)
+
+namespace galsculpt {
+
+// One frame on a fresh CPU backend: for tests on small meshes (a session keeps its backend and
+// the hierarchy in it; the results are the same either way).
+inline StepReport step(const SimModel& model, SimState& state, const StepSettings& settings) {
+  CpuStepBackend cpu(model);
+  return cpu.step(state, settings);
+}
+
+}  // namespace galsculpt

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "engine/scene/scene.h"
-#include "solver/frame/step_backend.h"
+#include "solver/frame/cpu_backend.h"
 
 namespace galsculpt {
 

@@ -10,7 +10,7 @@
 #include "engine/surface/surface_builder.h"
 #include "solver/fracture/knife.h"
 #include "solver/frame/step.h"
-#include "solver/frame/step_backend.h"
+#include "solver/frame/cpu_backend.h"
 
 namespace galsculpt {
 

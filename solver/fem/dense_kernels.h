@@ -12,7 +12,7 @@
 #define GALSCULPT_LAMBDA
 #endif
 
-namespace galsculpt::gpu {
+namespace galsculpt {
 
 // y = A x for a 3x3 block.
 GALSCULPT_HD void multiply3(const double* a, const double* x, double* y) {
@@ -159,4 +159,4 @@ GALSCULPT_HD void addMultiplyTransposed12(const double* a, const double* x, doub
   }
 }
 
-}  // namespace galsculpt::gpu
+}  // namespace galsculpt

@@ -1,4 +1,6 @@
-// The graph-based fracture pass (paper section 3.1, Algorithm 1), on the finest level.
+// The graph-based fracture pass (paper section 3.1, Algorithm 1), on the finest level: its
+// parameters and per-mesh data here; the pass itself is part of the frame
+// (solver/frame/frame_solver.h, fracturePass), the same on every executor.
 //
 // After each sub-step every element's stress is projected on its six edges (edgeNormalStress:
 // n^T sigma n, Cauchy stress, current edge direction). An edge's stress is the largest over the
@@ -63,19 +65,9 @@ inline std::int64_t fractureCellKey(std::int64_t x, std::int64_t y, std::int64_t
 // Throws std::invalid_argument for a non-positive threshold or a jitter outside [0, 1).
 FractureField buildFractureField(const SimModel& model, const FractureSettings& settings);
 
-// Each edge's stress as the pass sees it (element maximum, then the kernel when it has one).
-// Damaged edges read 0. For tests and visualization; the pass itself averages lazily.
-std::vector<double> fractureEdgeStress(const SimModel& model, const FractureField& field,
-                                       const SimState& state, bool compressionResists);
-
 struct FractureReport {
   int newlyDamaged = 0;
   double maxStressRatio = 0.0;  // largest edge stress / its threshold among undamaged edges
 };
-
-// One pass at the state's positions: damages every undamaged edge over its threshold and bumps
-// state.damageRevision when any broke.
-FractureReport fracturePass(const SimModel& model, const FractureField& field, SimState& state,
-                            bool compressionResists);
 
 }  // namespace galsculpt

@@ -1,8 +1,7 @@
-// The device backend's executor on the CPU: buffers are vectors, a launch is a loop. The device
-// solver (device_solver.h) runs on it unchanged, so every kernel and the whole frame are tested
-// on machines without a GPU against the CPU backend. Reductions add fixed blocks of 256 items
-// and then the block sums in order, as the CUDA executor does, so the results do not depend on
-// the thread count.
+// The CPU executor: buffers are vectors, a launch is an OpenMP loop over independent items (each
+// writes only its own outputs), so the frame (frame_solver.h) gives bit-identical results for
+// any thread count. Reductions add fixed blocks of 256 items and then the block sums in order,
+// as the CUDA executor does. The CPU backend is the frame on this executor.
 #pragma once
 
 #include <Eigen/Dense>
@@ -13,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace galsculpt::gpu {
+namespace galsculpt {
 
 namespace detail {
 // Set while a captured section runs: what the CUDA executor records as a graph may not read
@@ -24,9 +23,11 @@ inline void forbidInCapture(const char* what) {
 }
 }  // namespace detail
 
-class HostExecutor {
+class CpuExecutor {
  public:
-  static constexpr const char* kName = "host";
+  static constexpr const char* kName = "cpu";
+  // Buffers live in host memory: the frame may hand them to host libraries (CHOLMOD).
+  static constexpr bool kHostMemory = true;
   // Below this much work (items x cost) a launch runs on one thread: waking the others costs more.
   static constexpr long kParallelWork = 4096;
 
@@ -146,4 +147,4 @@ class HostExecutor {
   }
 };
 
-}  // namespace galsculpt::gpu
+}  // namespace galsculpt

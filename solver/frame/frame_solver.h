@@ -1,19 +1,21 @@
-// The solver's frame on a device: the CPU backend's sub-step (solver/frame/step.cpp) written as
-// launches of an executor, so the same code runs on the GPU (cuda_executor.cuh) and, in tests,
-// on the CPU (host_executor.h) against the CPU backend.
+// The frame, written once: backward Euler's sub-step as launches of an executor, run by the CPU
+// executor (cpu_executor.h: OpenMP, the CPU backend and the reference) and by the CUDA one
+// (gpu/cuda_executor.cuh). Nothing above the element math exists anywhere else.
 //
-// Per sub-step: the element pass (one thread per tet: the shared element kernels, damage from
-// the edge flags, plastic rest shapes) writes energies, forces and 12x12 stiffnesses per
-// element; gathers (one thread per vertex, per 3x3 block, in the CPU's order) assemble them
-// into the fixed pattern without atomics; the system matrix, right-hand side, Galerkin
-// multigrid (device_multigrid.h) and the energy-guarded step follow as on the CPU. The host
-// reads a handful of scalars once per Newton iteration (the backtracking test); everything
+// Per sub-step: the element pass (one item per tet: the shared element kernels, damage from
+// the edge flags, plastic rest shapes) writes energies, forces and the upper 3x3 blocks of the
+// 12x12 stiffness per element; gathers (one item per vertex, per 3x3 block, each over its own
+// list of contributions in a fixed order) assemble them into the fixed pattern without atomics,
+// so the sums are the same for any thread count and on either executor; then the system matrix,
+// the right-hand side, the linear solve (the Galerkin multigrid, multigrid_cycle.h, or for the
+// reference CHOLMOD's Cholesky, direct_solver.h) and the energy-guarded step. The host reads a
+// handful of scalars once per Newton iteration (the backtracking test); on the GPU everything
 // between those reads is captured once as a CUDA graph and replayed.
 //
-// Supported: everything the CPU multigrid solver does (sub-steps, Newton iterations, line
-// search, anchors with paths, colliders, Rayleigh damping, plasticity, local and non-local
-// fracture with re-solves, retries). The reference solver (direct sparse Cholesky) stays on
-// the CPU: supports() says why.
+// Supported everywhere: sub-steps, Newton iterations, line search, anchors with paths,
+// colliders, Rayleigh damping, plasticity, local and non-local fracture with re-solves,
+// retries. The reference's direct solve needs the system in host memory: CPU executor only
+// (cudaUnsupportedReason says so).
 #pragma once
 
 #include <algorithm>
@@ -23,23 +25,25 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "solver/fem/collider_kernels.h"
 #include "solver/fem/dense_kernels.h"
+#include "solver/frame/direct_solver.h"
 #include "solver/frame/frame_loop.h"
 #include "solver/frame/model_layout.h"
 #include "solver/frame/step.h"
 #include "solver/frame/step_backend.h"
 #include "solver/multigrid/multigrid_cycle.h"
 
-namespace galsculpt::gpu {
+namespace galsculpt {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Why a frame with these settings cannot run on the device backend ("" when it can).
-inline std::string deviceUnsupportedReason(const StepSettings& s) {
+inline std::string cudaUnsupportedReason(const StepSettings& s) {
   if (!s.multigrid) return "the reference solver (direct sparse Cholesky) runs on the CPU only";
   if (s.colliders.size() > 16) return "more than 16 colliders run on the CPU only";
   return "";
@@ -79,12 +83,12 @@ struct ElementInputs {
 };
 
 template <typename Exec>
-class DeviceSolver {
+class FrameSolver {
  public:
   template <typename T>
   using Buffer = typename Exec::template Buffer<T>;
 
-  DeviceSolver(Exec& ex, const SimModel& model)
+  FrameSolver(Exec& ex, const SimModel& model)
       : ex_(ex), model_(model), layout_(buildModelLayout(model)), mg_(ex, layout_) {
     n_ = layout_.vertices;
     tets_ = layout_.tets;
@@ -131,7 +135,8 @@ class DeviceSolver {
   void syncIn(const SimState& state, const StepSettings& settings) {
     uploadIfChanged(state.x, hostX_, x_);
     uploadIfChanged(state.v, hostV_, v_);
-    if (state.damageRevision != damageRevision_ || hostDamaged_.size() != state.damaged.size()) {
+    // Compared by content too: a backend may step several states (tests, undo snapshots).
+    if (state.damageRevision != damageRevision_ || hostDamaged_ != state.damaged) {
       hostDamaged_ = state.damaged;
       damaged_.upload(hostDamaged_);
       damageRevision_ = state.damageRevision;
@@ -150,7 +155,7 @@ class DeviceSolver {
     settings_ = &settings;
     if (settings.fracture && fractureField_ != settings.fracture.get())
       uploadFracture(*settings.fracture);
-    ensureMultigrid(settings);
+    if (settings.multigrid) ensureMultigrid(settings);
   }
 
   // Writes positions, velocities, damage and plastic state back (positions through the
@@ -184,7 +189,7 @@ class DeviceSolver {
     double time;
   };
   struct Ops {
-    DeviceSolver& s;
+    FrameSolver& s;
     Saved save() { return s.save(); }
     void restore(const Saved& saved, bool keepDamage) { s.restore(saved, keepDamage); }
     SubstepOutcome substep(double h) { return s.substep(h); }
@@ -465,8 +470,9 @@ class DeviceSolver {
     const double sufficient = s.lineSearch ? 1e-4 : 0.0;
     for (int it = 0; it < s.newtonIterations; ++it) {
       const auto t0 = Clock::now();
+      const double elementsBefore = result.msElements;
       // Structural changes first (host): the hierarchy follows the damage.
-      if (s.multigridSettings.splitAggregates &&
+      if (s.multigrid && s.multigridSettings.splitAggregates &&
           multigrid_->updateDamage(model_.edges, hostDamaged_, damageRevision_)) {
         mg_.upload(buildMultigridLayout(*multigrid_, model_.pattern));
         ++mgRevision_;
@@ -475,19 +481,28 @@ class DeviceSolver {
       // replayed, unless a dense Cholesky or PCG needs host reads in between.
       const bool frozenCopy = it == 0 && s.newtonIterations > 1;
       auto newtonStep = [&] {
+        const auto tElements = Clock::now();
         elementPass(x, true, grad_.data(), kElastic);
+        // Phases are timed where launches run as they are issued (the CPU); on the GPU they
+        // run as one graph and all of it counts as solve.
+        if constexpr (Exec::kHostMemory) result.msElements += ms(tElements);
         if (frozenCopy) ex_.copy(frozen_.data(), k_.data(), k_.size());
         frozenIsK_ = !(frozenCopy || (it > 0 && s.newtonIterations > 1));
         contact(x, grad_.data(), kContact);
         dampedProduct(x, dampedK_.data());
         backwardEulerGradient(x, grad_.data(), dampedK_.data(), g_.data());
         buildSystem(x);
-        mg_.refresh(h_.data(), s.multigridSettings.coarseCholesky);
-        solveLinear();
+        if (s.multigrid) {
+          mg_.refresh(h_.data(), s.multigridSettings.coarseCholesky);
+          solveLinear();
+        } else {
+          solveDirect();
+        }
         stepMeasures();
         evaluateTrial(1.0);
       };
-      const bool capturable = !s.multigridSettings.coarseCholesky && !s.multigridSettings.pcg;
+      const bool capturable =
+          s.multigrid && !s.multigridSettings.coarseCholesky && !s.multigridSettings.pcg;
       if (capturable) {
         ex_.captured(0, graphKey(h, it), newtonStep);
       } else {
@@ -516,8 +531,8 @@ class DeviceSolver {
         if (stepLength < 1e-8) break;
         evaluateTrial(stepLength);
       }
-      // The device does not split its phases (they run as one graph): all of it is "solve".
       result.msSolve += ms(t0);
+      if constexpr (Exec::kHostMemory) result.msSolve -= result.msElements - elementsBefore;
       if (failed) {
         result.ok = false;
         return result;
@@ -650,10 +665,31 @@ class DeviceSolver {
 
   // delta = A^-1 (-g) by the multigrid: V-cycles (the residual norms go to slots kR0, kR1; no
   // host read) or PCG (host reads; its reduction in pcgReduction_).
+  // The reference's linear solve: CHOLMOD on the system in host memory. A system that is not
+  // positive definite leaves a NaN step, which fails the sub-step (retried with half the step).
+  void solveDirect() {
+    double* delta = delta_.data();
+    double* b = rhs();
+    const double* g = g_.data();
+    double* sc = scalars_.data();
+    ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
+      b[i] = -g[i];
+      delta[i] = 0.0;
+    });
+    ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { sc[kR0] = sc[kR1] = 0.0; });
+    if constexpr (Exec::kHostMemory) {
+      if (!direct_) direct_ = std::make_unique<DirectSolver>(model_.pattern);
+      if (!direct_->solve(h_.data(), b, delta))
+        delta[0] = std::numeric_limits<double>::quiet_NaN();
+    } else {
+      throw std::logic_error(cudaUnsupportedReason(*settings_));
+    }
+  }
+
   void solveLinear() {
     const StepSettings& s = *settings_;
     const MultigridSettings& ms = s.multigridSettings;
-    typename DeviceMultigrid<Exec>::Settings mgs;
+    typename MultigridCycle<Exec>::Settings mgs;
     mgs.preSweeps = ms.preSweeps;
     mgs.postSweeps = ms.postSweeps;
     mgs.jacobi = ms.jacobi;
@@ -796,9 +832,50 @@ class DeviceSolver {
     return count;
   }
 
+  // Each edge's stress as the fracture pass sees it at `state` (element maximum, then the
+  // kernel mean when the field has one), 0 on damaged edges: for tests and views. The kernel
+  // mean is taken on every edge, not only near hot ones; no damage changes.
+  std::vector<double> edgeStress(const SimState& state, const StepSettings& settings) {
+    syncIn(state, settings);
+    evaluateEdgeStress(true);
+    std::vector<double> ratio(layout_.edges), out(layout_.edges, 0.0);
+    if (layout_.edges > 0) ex_.download(mean_.data(), ratio.data(), ratio.size());
+    for (int e = 0; e < layout_.edges; ++e)
+      if (!hostDamaged_[e]) out[e] = ratio[e] * fractureLayout_.threshold[e];
+    return out;
+  }
+
   FractureReport fracturePass() {
-    const FractureField& field = *fractureField_;
     FractureReport report;
+    const int edges = layout_.edges;
+    evaluateEdgeStress(false);
+    std::uint8_t* breaks = breaks_.data();
+    double* ratio = mean_.data();
+    double* sc = scalars_.data();
+    ex_.maximum(
+        edges, [=] GALSCULPT_LAMBDA(int e) { return ratio[e]; }, sc + kRatio);
+    ex_.sum(
+        edges, [=] GALSCULPT_LAMBDA(int e) { return breaks[e] ? 1.0 : 0.0; }, sc + kCount);
+    double read[kScalars];
+    ex_.read(sc, read, kScalars);
+    report.maxStressRatio = std::max(0.0, read[kRatio]);
+    report.newlyDamaged = static_cast<int>(read[kCount]);
+    if (report.newlyDamaged > 0) {
+      std::uint8_t* d = damaged_.data();
+      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
+        if (breaks[e]) d[e] = 1;
+      });
+      damaged_.download(hostDamaged_.data(), hostDamaged_.size());
+      ++damageRevision_;
+    }
+    return report;
+  }
+
+
+  // Per edge: its stress over its threshold (`mean_`; -inf where no edge near it is close to
+  // breaking, unless `everyEdge`) and whether it breaks (`breaks_`).
+  void evaluateEdgeStress(bool everyEdge) {
+    const FractureField& field = *fractureField_;
     const int edges = layout_.edges;
     // Element edge stresses into slots 6 t + k.
     const ElementInputs in = elementInputs();
@@ -870,7 +947,7 @@ class DeviceSolver {
         const int* around = neighbors + 27 * edgeCell[e];
         bool near = false;
         for (int k = 0; k < 27; ++k) near = near || (around[k] >= 0 && cellHot[around[k]]);
-        if (!near) return;  // no edge close enough to break it: the common case, cheap
+        if (!near && !everyEdge) return;  // nothing near it can break it: common and cheap
         bool candidate = false;
         double sum = 0.0, weights = 0.0;
         const double r2 = radius * radius;
@@ -890,7 +967,7 @@ class DeviceSolver {
             weights += w;
           }
         }
-        if (!candidate) return;
+        if (!candidate && !everyEdge) return;
         const double mean = weights > 0.0 ? sum / weights : local[e];
         ratio[e] = mean / threshold[e];
         breaks[e] = breaks[e] || mean > threshold[e];
@@ -903,23 +980,6 @@ class DeviceSolver {
         if (sc[kCount] == 0.0 && !damaged[e]) ratio[e] = local[e] / threshold[e];
       });
     }
-    ex_.maximum(
-        edges, [=] GALSCULPT_LAMBDA(int e) { return ratio[e]; }, sc + kRatio);
-    ex_.sum(
-        edges, [=] GALSCULPT_LAMBDA(int e) { return breaks[e] ? 1.0 : 0.0; }, sc + kCount);
-    double read[kScalars];
-    ex_.read(sc, read, kScalars);
-    report.maxStressRatio = std::max(0.0, read[kRatio]);
-    report.newlyDamaged = static_cast<int>(read[kCount]);
-    if (report.newlyDamaged > 0) {
-      std::uint8_t* d = damaged_.data();
-      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
-        if (breaks[e]) d[e] = 1;
-      });
-      damaged_.download(hostDamaged_.data(), hostDamaged_.size());
-      ++damageRevision_;
-    }
-    return report;
   }
 
   // ---- setup ----------------------------------------------------------------------------
@@ -1041,8 +1101,9 @@ class DeviceSolver {
   Exec& ex_;
   const SimModel& model_;
   ModelLayout layout_;
-  DeviceMultigrid<Exec> mg_;
+  MultigridCycle<Exec> mg_;
   std::unique_ptr<Multigrid> multigrid_;
+  std::unique_ptr<DirectSolver> direct_;  // the reference's (host memory only)
   std::vector<int> gridHandles_;
   const StepSettings* settings_ = nullptr;
   int n_ = 0, tets_ = 0;
@@ -1083,18 +1144,18 @@ class DeviceSolver {
 // GPU; "host" in the tests). A device error mid-frame throws before the state is written back,
 // so the caller may run the frame again elsewhere.
 template <typename Exec>
-class DeviceStepBackend final : public StepBackend {
+class ExecutorStepBackend final : public StepBackend {
  public:
-  explicit DeviceStepBackend(const SimModel& model) : solver_(executor_, model) {}
+  explicit ExecutorStepBackend(const SimModel& model) : solver_(executor_, model) {}
   std::string name() const override { return Exec::kName; }
-  bool offloads() const override { return true; }
+  bool offloads() const override { return !Exec::kHostMemory; }
   StepReport step(SimState& state, const StepSettings& settings) override {
     return solver_.step(state, settings);
   }
 
  private:
   Exec executor_;
-  DeviceSolver<Exec> solver_;
+  FrameSolver<Exec> solver_;
 };
 
-}  // namespace galsculpt::gpu
+}  // namespace galsculpt

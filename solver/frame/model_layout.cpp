@@ -4,7 +4,7 @@
 #include <cmath>
 #include <unordered_map>
 
-namespace galsculpt::gpu {
+namespace galsculpt {
 
 namespace {
 
@@ -161,4 +161,4 @@ MultigridLayout buildMultigridLayout(const Multigrid& mg, const BlockPattern& fi
   return out;
 }
 
-}  // namespace galsculpt::gpu
+}  // namespace galsculpt

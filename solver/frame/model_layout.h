@@ -16,7 +16,7 @@
 #include "solver/model/sim_model.h"
 #include "solver/multigrid/multigrid.h"
 
-namespace galsculpt::gpu {
+namespace galsculpt {
 
 struct ModelLayout {
   int vertices = 0, tets = 0, edges = 0, blocks = 0;
@@ -82,4 +82,4 @@ struct MultigridLayout {
 
 MultigridLayout buildMultigridLayout(const Multigrid& mg, const BlockPattern& fine);
 
-}  // namespace galsculpt::gpu
+}  // namespace galsculpt

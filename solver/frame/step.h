@@ -81,10 +81,10 @@ struct StepReport {
   int fractureRedos = 0;  // sub-steps solved again after new damage
 };
 
-StepReport step(const SimModel& model, SimState& state, const StepSettings& settings);
-
 // Elastic energy of positions `x`; the gradient (3 nVerts) and, when `hessian` is given, the
-// stiffness (projected to SPD). Parallel over element colours: deterministic.
+// stiffness (projected to SPD), assembled on the host over element colours (deterministic).
+// Not the frame's assembly (frame_solver.h): an independent one, for tests (derivatives against
+// finite differences, multigrid operators) and tools.
 // Uses the state's damage and plastic rest shapes, not its positions.
 double assembleElastic(const SimModel& model, const std::vector<Vec3>& x, const SimState& state,
                        bool compressionResists, Eigen::VectorXd& gradient,

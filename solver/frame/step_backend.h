@@ -21,18 +21,4 @@ class StepBackend {
   virtual StepReport step(SimState& state, const StepSettings& settings) = 0;
 };
 
-// The CPU backend: step() on the model it was made for.
-class CpuStepBackend final : public StepBackend {
- public:
-  explicit CpuStepBackend(const SimModel& model) : model_(model) {}
-  std::string name() const override { return "cpu"; }
-  bool offloads() const override { return false; }
-  StepReport step(SimState& state, const StepSettings& settings) override {
-    return galsculpt::step(model_, state, settings);
-  }
-
- private:
-  const SimModel& model_;
-};
-
 }  // namespace galsculpt

@@ -3,7 +3,8 @@
 // velocities, damage). One pipeline of plain functions works on them:
 //   SimModel model = buildSimModel(mesh, material);
 //   SimState state = initialState(model);
-//   StepReport r = step(model, state, settings);      // solver/frame/step.h
+//   CpuStepBackend cpu(model);                         // solver/frame/cpu_backend.h
+//   StepReport r = cpu.step(state, settings);
 #pragma once
 
 #include <array>
@@ -51,8 +52,6 @@ inline bool hasCrossing(float at) {
   return at >= 0.0f && at <= 1.0f;
 }
 
-struct StepWorkspace;  // solver scratch kept between frames (factorization pattern, buffers)
-
 struct SimState {
   std::vector<Vec3> x;                // (nVerts) positions, m
   std::vector<Vec3> v;                // (nVerts) velocities, m/s
@@ -65,7 +64,6 @@ struct SimState {
   std::vector<Eigen::Matrix3d> plasticInverse;  // (nTets) Fp^-1; empty for elastic materials
   std::vector<double> plasticStrain;            // (nTets) accumulated, for hardening
   double time = 0.0;                            // s
-  std::shared_ptr<StepWorkspace> workspace;
 };
 
 SimState initialState(const SimModel& model);

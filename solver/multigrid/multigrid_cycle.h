@@ -15,15 +15,15 @@
 #include "solver/frame/model_layout.h"
 #include "solver/multigrid/multigrid.h"
 
-namespace galsculpt::gpu {
+namespace galsculpt {
 
 template <typename Exec>
-class DeviceMultigrid {
+class MultigridCycle {
  public:
   template <typename T>
   using Buffer = typename Exec::template Buffer<T>;
 
-  DeviceMultigrid(Exec& ex, const ModelLayout& model) : ex_(ex) {
+  MultigridCycle(Exec& ex, const ModelLayout& model) : ex_(ex) {
     rows_ = model.vertices;
     fineRowStart_.upload(model.rowStart);
     fineColumns_.upload(model.columns);
@@ -649,4 +649,4 @@ class DeviceMultigrid {
   bool factored_ = false;
 };
 
-}  // namespace galsculpt::gpu
+}  // namespace galsculpt

@@ -1,5 +1,5 @@
 // Runs a scene on the CPU backend and on another backend from the same state and compares them
-// frame by frame (tests of the device solver on the host executor, and of the CUDA backend).
+// frame by frame (the CUDA backend's tests).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -13,9 +13,9 @@
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/simulation.h"
 #include "solver/fracture/knife.h"
-#include "solver/frame/step_backend.h"
+#include "solver/frame/cpu_backend.h"
 
-namespace galsculpt::gpu {
+namespace galsculpt {
 
 // The named scene of assets/scenes with a smaller mesh.
 inline SceneDescription sceneNamed(const std::string& name, int tets) {
@@ -36,13 +36,12 @@ inline Comparison compareWithCpu(const Simulation& sim, StepBackend& backend, in
                                  StepSettings settings = {}) {
   if (settings.gridHandles.empty() || !settings.multigrid) settings = sim.settings();
   SimState cpu = sim.state();
-  cpu.workspace = nullptr;
   SimState device = sim.state();
-  device.workspace = nullptr;
+  CpuStepBackend cpuBackend(sim.model());
   Comparison c;
   const std::vector<Vec3> start = cpu.x;
   for (int f = 0; f < frames; ++f) {
-    const StepReport rc = step(sim.model(), cpu, settings);
+    const StepReport rc = cpuBackend.step(cpu, settings);
     const StepReport rd = backend.step(device, settings);
     EXPECT_EQ(rc.retries, rd.retries) << "frame " << f;
     if (std::getenv("GALSCULPT_DEBUG_COMPARE"))
@@ -68,4 +67,4 @@ inline Comparison compareWithCpu(const Simulation& sim, StepBackend& backend, in
   return c;
 }
 
-}  // namespace galsculpt::gpu
+}  // namespace galsculpt

@@ -74,10 +74,12 @@ std::uint64_t sphereCut() {
   return hashState(sim.state());
 }
 
-// Pinned on 2026-11-30 (x86-64, GCC 12, Release), after damaged clay elements stopped flowing
-// plastically (solver/frame/step.cpp plasticUpdate).
-constexpr std::uint64_t kHangingBall = 0xa52b2fed375c4bbf;
-constexpr std::uint64_t kSphereCut = 0x5647867a5ad711c4;
+// Pinned on 2026-11-30 (x86-64, GCC 12, Release). Changed knowingly when the CPU backend became
+// the one frame on the CPU executor (solver/frame/frame_solver.h): the same arithmetic in
+// another order (per-element stiffness gathered per block, symmetric from its upper blocks), a
+// round-off change of about 1e-13 of the motion (docs/benchmarks.md).
+constexpr std::uint64_t kHangingBall = 0x2ba87e9e762c808b;
+constexpr std::uint64_t kSphereCut = 0x86c9e4885388cdc9;
 
 TEST(Determinism, PinnedHashesAtOneAndTwoThreads) {
   const int threads = omp_get_max_threads();

@@ -14,7 +14,7 @@ namespace {
 // same order.
 TEST(DeviceLayout, ModelLayoutListsEveryContributionOnceInTheCpusOrder) {
   const SimModel model = buildSimModel(test::gridBar(3, 2, 2, 0.1), MaterialParams{});
-  const gpu::ModelLayout m = gpu::buildModelLayout(model);
+  const ModelLayout m = buildModelLayout(model);
   ASSERT_EQ(m.vertices, model.numVertices());
   ASSERT_EQ(m.tets, model.numTets());
   ASSERT_EQ(m.tetVertices.size(), 4u * model.numTets());
