@@ -109,9 +109,8 @@ class FrameSolver {
     blockSlots_.upload(layout_.blockSlots);
     // Every per-vertex buffer up front: nothing may allocate inside a captured section.
     for (Buffer<double>* b :
-         {&x_,    &v_,     &xn_,    &vn_,      &xhat_, &grad_,   &trialGrad_, &acceptedGrad_,
-          &g_,    &delta_, &trial_, &dampedK_, &tmp_,  &savedX_, &savedV_,    &pcgB_,
-          &pcgR_, &pcgZ_,  &pcgP_,  &pcgAp_})
+         {&x_, &v_, &xn_, &vn_, &xhat_, &grad_, &trialGrad_, &acceptedGrad_, &g_, &delta_, &trial_,
+          &dampedK_, &tmp_, &savedX_, &savedV_, &pcgB_, &pcgAp_})
       b->resize(3 * n_);
     fixed_.resize(n_);
     damaged_.resize(layout_.edges);
@@ -679,8 +678,7 @@ class FrameSolver {
     ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { sc[kR0] = sc[kR1] = 0.0; });
     if constexpr (Exec::kHostMemory) {
       if (!direct_) direct_ = std::make_unique<DirectSolver>(model_.pattern);
-      if (!direct_->solve(h_.data(), b, delta))
-        delta[0] = std::numeric_limits<double>::quiet_NaN();
+      if (!direct_->solve(h_.data(), b, delta)) delta[0] = std::numeric_limits<double>::quiet_NaN();
     } else {
       throw std::logic_error(cudaUnsupportedReason(*settings_));
     }
@@ -707,7 +705,6 @@ class FrameSolver {
     });
     const double* a = h_.data();
     double* sc = scalars_.data();
-    double* r = pcgR_.data();
     double* ap = pcgAp_.data();
     ex_.sum(
         3 * n_, [=] GALSCULPT_LAMBDA(int i) { return b[i] * b[i]; }, sc + kR0);
@@ -718,50 +715,7 @@ class FrameSolver {
           3 * n_, [=] GALSCULPT_LAMBDA(int i) { return (b[i] - ap[i]) * (b[i] - ap[i]); },
           sc + kR1);
     } else {
-      // CG preconditioned by one V-cycle per iteration (a host read per iteration).
-      double* z = pcgZ_.data();
-      double* p = pcgP_.data();
-      ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
-        r[i] = b[i];
-        z[i] = 0.0;
-      });
-      mg_.vcycle(a, 0, r, z, mgs);
-      ex_.copy(p, z, 3 * n_);
-      ex_.sum(
-          3 * n_, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, sc + kRz);
-      double read[kScalars];
-      ex_.read(sc, read, kScalars);
-      const double bnorm = std::sqrt(read[kR0]);
-      const double target = ms.pcgTolerance * std::max(bnorm, 1e-300);
-      double rz = read[kRz], rnorm = bnorm;
-      int iterations = 0;
-      while (iterations < ms.pcgMaxIterations && rnorm > target) {
-        mg_.multiplyFine(a, p, ap);
-        ex_.sum(
-            3 * n_, [=] GALSCULPT_LAMBDA(int i) { return p[i] * ap[i]; }, sc + kPap);
-        ex_.read(sc, read, kScalars);
-        if (!(read[kPap] > 0.0)) break;
-        const double alpha = rz / read[kPap];
-        ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
-          delta[i] += alpha * p[i];
-          r[i] -= alpha * ap[i];
-        });
-        ex_.sum(
-            3 * n_, [=] GALSCULPT_LAMBDA(int i) { return r[i] * r[i]; }, sc + kR1);
-        ex_.read(sc, read, kScalars);
-        rnorm = std::sqrt(read[kR1]);
-        ++iterations;
-        if (rnorm <= target) break;
-        ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { z[i] = 0.0; });
-        mg_.vcycle(a, 0, r, z, mgs);
-        ex_.sum(
-            3 * n_, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, sc + kRz);
-        ex_.read(sc, read, kScalars);
-        const double beta = read[kRz] / rz;
-        rz = read[kRz];
-        ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { p[i] = z[i] + beta * p[i]; });
-      }
-      pcgReduction_ = bnorm > 0.0 ? rnorm / bnorm : 0.0;
+      pcgReduction_ = mg_.pcg(a, b, delta, mgs, ms.pcgTolerance, ms.pcgMaxIterations);
     }
     ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
       if (fixed[i / 3]) delta[i] = 0.0;
@@ -870,7 +824,6 @@ class FrameSolver {
     }
     return report;
   }
-
 
   // Per edge: its stress over its threshold (`mean_`; -inf where no edge near it is close to
   // breaking, unless `everyEdge`) and whether it breaks (`breaks_`).
@@ -1089,7 +1042,6 @@ class FrameSolver {
     kResidual,
     kR0,
     kR1,
-    kRz,
     kPap,
     kCount,
     kRatio,
@@ -1118,7 +1070,7 @@ class FrameSolver {
   Buffer<double> x_, v_, xn_, vn_, xhat_, grad_, trialGrad_, acceptedGrad_, g_, delta_, trial_,
       dampedK_, tmp_, savedX_, savedV_;
   Buffer<double> elemEnergy_, elemGrad_, elemHess_, k_, frozen_, h_, scalars_, contactPerVertex_;
-  Buffer<double> pcgB_, pcgR_, pcgZ_, pcgP_, pcgAp_;
+  Buffer<double> pcgB_, pcgAp_;  // the linear system's right-hand side and A delta
   Buffer<double> fp_, strain_, savedFp_, savedStrain_;
   Buffer<std::uint8_t> fixed_, damaged_;
   Buffer<int> anchorVertices_;

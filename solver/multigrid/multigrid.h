@@ -45,9 +45,9 @@ struct MultigridLevel {
   std::vector<int> parent;         // (rows of the finer level) handle of this level
   std::vector<Eigen::Vector4d> y;  // level 1: (fine vertices) [(x - c_parent)/s; 1]
   std::vector<Eigen::Matrix<double, 12, 12>> toParent;  // levels > 1: (finer handles) 12x12 U block
-  // Coarse operator: dense handle-by-handle 12x12 blocks over the handle adjacency.
+  // Coarse operator's pattern: handle-by-handle 12x12 blocks over the handle adjacency (the
+  // values live with the cycle, multigrid_cycle.h).
   std::vector<int> rowStart, columns;  // block CSR
-  std::vector<Eigen::Matrix<double, 12, 12>> blocks;
   // For level 1, the fine block (index into the fine pattern) -> coarse block map.
   std::vector<int> fineToCoarseBlock;
   std::vector<int> finerToCoarseBlock;    // levels > 1: finer coarse block -> this level's block
@@ -69,13 +69,6 @@ struct MultigridSettings {
   bool splitAggregates = true;  // crack-aware: split aggregates that damage disconnects
 };
 
-struct MultigridReport {
-  double initialResidual = 0.0;  // |b - A x0|
-  double finalResidual = 0.0;    // |b - A x|
-  int iterations = 0;            // V-cycles or PCG iterations
-  bool finite = true;            // false: NaN appeared (the caller must not use x)
-};
-
 class Multigrid {
  public:
   // `fine` is the fine-level pattern, `restPositions` the rest mesh, `edges` its edge graph.
@@ -90,19 +83,10 @@ class Multigrid {
                     std::uint64_t revision);
   std::uint64_t damageRevision() const { return damageRevision_; }
 
-  // Refreshes A_{l+1} = U^T A_l U for every level from the current fine matrix; factors the
-  // coarsest level densely only when the settings ask for a Cholesky coarse solve.
-  void refresh(const BlockSparseMatrix& fineMatrix, const MultigridSettings& settings);
-  // Solves A x = b from the initial guess in x.
-  MultigridReport solve(const BlockSparseMatrix& fineMatrix, const Eigen::VectorXd& b,
-                        Eigen::VectorXd& x, const MultigridSettings& settings) const;
-
   int numLevels() const { return static_cast<int>(levels_.size()); }
   const MultigridLevel& level(int l) const { return levels_[l]; }
   // Dense U of level l (for tests): rows = finer DOFs, columns = 12 * handles.
   Eigen::MatrixXd prolongationMatrix(int l) const;
-  // Dense coarse operator of level l (for tests).
-  Eigen::MatrixXd coarseMatrix(int l) const;
 
   // Read access for device backends, which mirror the hierarchy (solver/frame/model_layout.h).
   const std::vector<std::vector<int>>& fineColors() const { return fineColors_; }
@@ -118,18 +102,6 @@ class Multigrid {
   const std::vector<Eigen::Matrix<double, 12, 12>>& pieceMaps() const { return pieceMap_; }
 
  private:
-  void vcycle(const BlockSparseMatrix& fine, int level, const Eigen::VectorXd& b,
-              Eigen::VectorXd& x, const MultigridSettings& s) const;
-  void smoothFine(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                  int sweeps, bool reverse, const MultigridSettings& s) const;
-  void smoothCoarse(int level, const Eigen::VectorXd& b, Eigen::VectorXd& x, int sweeps,
-                    bool reverse, const MultigridSettings& s) const;
-  void coarseMultiply(int level, const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
-  void solveCoarsest(const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                     const MultigridSettings& s) const;
-  void restrict(int level, const Eigen::VectorXd& fineResidual, Eigen::VectorXd& coarse) const;
-  void prolongAdd(int level, const Eigen::VectorXd& coarse, Eigen::VectorXd& fine) const;
-
   struct BaseLevel {
     std::vector<int> samples;    // farthest-point samples (fine vertex indices)
     std::vector<int> sampleRow;  // each sample's row in the finer level
@@ -146,20 +118,13 @@ class Multigrid {
   void assignCoarsestPieces(const std::vector<int>& vertexPiece);
   // Pieces too small for coarse handles (but more than one vertex), and their correction.
   void collectFragments(const std::vector<int>& vertexPiece);
-  void factorFragments(const BlockSparseMatrix& a);
-  void correctFragments(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
-                        Eigen::VectorXd& x) const;
-  Eigen::Vector4d fragmentModes(int fragment, int v) const;  // y_v in the fragment's frame
-  struct FragmentCorrection {
+  struct FragmentFrame {
     Vec3 center = Vec3::Zero();
     double scale = 1.0;
-    bool affine = false;  // else: translation only
-    Eigen::LDLT<Eigen::Matrix<double, 12, 12>> affineSolver;
-    Eigen::LLT<Eigen::Matrix3d> translationSolver;
   };
   std::vector<int> fragmentStart_{0}, fragmentVertices_;  // CSR: vertices of each fragment
   std::vector<int> fragmentOf_;                           // (nVerts) fragment, -1: none
-  std::vector<FragmentCorrection> fragments_;             // (nFragments)
+  std::vector<FragmentFrame> fragments_;                  // (nFragments)
 
   const BlockPattern* finePattern_;
   std::vector<Vec3> rest_;
@@ -167,14 +132,10 @@ class Multigrid {
   std::uint64_t damageRevision_ = 0;
   std::vector<std::vector<int>> fineColors_;
   std::vector<MultigridLevel> levels_;
-  Eigen::LLT<Eigen::MatrixXd> coarsestCholesky_;
-  Eigen::MatrixXd coarsestDense_;
   // Per-piece coarse correction (only with two or more pieces holding handles).
   int pieceCount_ = 0;
   std::vector<int> piece_;                               // (coarsest handles) piece
   std::vector<Eigen::Matrix<double, 12, 12>> pieceMap_;  // (coarsest handles) piece -> handle
-  std::vector<Eigen::LLT<Eigen::Matrix<double, 12, 12>>> pieceSolvers_;
-  bool coarsestFactored_ = false;
 };
 
 }  // namespace galsculpt

@@ -1,13 +1,20 @@
-// The Galerkin multigrid of solver/multigrid/multigrid.h on the device: the same hierarchy (built and
-// split over cracks on the host by the CPU class, mirrored here as flat arrays), the same
-// refresh A_{l+1} = U^T A_l U, V-cycle, smoothers, coarse solves, per-piece coarse start and
-// fragment corrections, written as launches of an executor (host_executor.h, or the CUDA one).
+// The Galerkin multigrid's solve (paper section 3.2-3.3, Algorithm 2) as launches of an
+// executor (the CPU one or the CUDA one): the hierarchy of multigrid.h (built and split over
+// cracks on the host), mirrored as flat arrays (model_layout.h); refresh A_{l+1} = U^T A_l U;
+// V-cycles with multi-colour Gauss-Seidel or Jacobi smoothing; CG or a dense Cholesky on the
+// coarsest level; per-piece coarse start; fragment corrections; PCG with a V-cycle
+// preconditioner. Precompute (the hierarchy, once per mesh and damage change) apart from solve
+// (values refreshed per Newton step, then cycles), as libigl's *_precomputation / *_solve.
 //
-// Nothing here waits for the device: scalars of the coarse CG (alpha, its stopping test) live in
-// device memory and steer the launches that follow, so a whole solve can be captured as one
-// CUDA graph. The only host decisions are structural (levels, colours, settings).
+// Nothing in a V-cycle waits for the executor: scalars of the coarse CG (alpha, its stopping
+// test) live in executor memory and steer the launches that follow, so a whole solve can be
+// captured as one CUDA graph. The only host decisions are structural (levels, colours,
+// settings); PCG reads its scalars and is not captured.
 #pragma once
 
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -197,6 +204,82 @@ class MultigridCycle {
   void cycles(const double* a, const double* b, double* x, const Settings& s) {
     for (int c = 0; c < s.cycles; ++c) vcycle(a, 0, b, x, s);
   }
+  // CG on A x = b from x = 0, preconditioned by one V-cycle per iteration, until
+  // |r| <= tolerance |b| or maxIterations. Reads two scalars per iteration (not capturable).
+  // Returns |r| / |b| (0 for b = 0).
+  double pcg(const double* a, const double* b, double* x, const Settings& s, double tolerance,
+             int maxIterations) {
+    const int n = 3 * rows_;
+    if (pcgR_.size() != static_cast<size_t>(n)) {
+      for (Buffer<double>* v : {&pcgR_, &pcgZ_, &pcgP_, &pcgAp_}) v->resize(n);
+      pcgScalars_.resize(kPcgScalars);
+    }
+    double* r = pcgR_.data();
+    double* z = pcgZ_.data();
+    double* p = pcgP_.data();
+    double* ap = pcgAp_.data();
+    double* sc = pcgScalars_.data();
+    double read[kPcgScalars];
+    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
+      x[i] = 0.0;
+      r[i] = b[i];
+      z[i] = 0.0;
+    });
+    ex_.sum(
+        n, [=] GALSCULPT_LAMBDA(int i) { return b[i] * b[i]; }, sc + kPcgBb);
+    vcycle(a, 0, r, z, s);
+    ex_.copy(p, z, n);
+    ex_.sum(
+        n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, sc + kPcgRz);
+    ex_.read(sc, read, kPcgScalars);
+    const double bnorm = std::sqrt(read[kPcgBb]);
+    const double target = tolerance * std::max(bnorm, 1e-300);
+    double rz = read[kPcgRz], rnorm = bnorm;
+    for (int it = 0; it < maxIterations && rnorm > target; ++it) {
+      multiplyFine(a, p, ap);
+      ex_.sum(
+          n, [=] GALSCULPT_LAMBDA(int i) { return p[i] * ap[i]; }, sc + kPcgPap);
+      ex_.read(sc, read, kPcgScalars);
+      if (!(read[kPcgPap] > 0.0)) break;
+      const double alpha = rz / read[kPcgPap];
+      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
+        x[i] += alpha * p[i];
+        r[i] -= alpha * ap[i];
+      });
+      ex_.sum(
+          n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * r[i]; }, sc + kPcgRr);
+      ex_.read(sc, read, kPcgScalars);
+      rnorm = std::sqrt(read[kPcgRr]);
+      if (rnorm <= target) break;
+      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) { z[i] = 0.0; });
+      vcycle(a, 0, r, z, s);
+      ex_.sum(
+          n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, sc + kPcgRz);
+      ex_.read(sc, read, kPcgScalars);
+      const double beta = read[kPcgRz] / rz;
+      rz = read[kPcgRz];
+      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) { p[i] = z[i] + beta * p[i]; });
+    }
+    return bnorm > 0.0 ? rnorm / bnorm : 0.0;
+  }
+
+  // The operator of coarse level l (1: the first coarse level) as a dense matrix, read back
+  // from the executor after refresh(): for tests.
+  Eigen::MatrixXd coarseMatrix(int l) const {
+    const Level& d = levels_[l - 1];
+    std::vector<double> blocks(144 * static_cast<size_t>(d.nnz));
+    std::vector<int> rowStart(d.handles + 1), columns(d.nnz);
+    ex_.download(d.blocks.data(), blocks.data(), blocks.size());
+    ex_.download(d.rowStart.data(), rowStart.data(), rowStart.size());
+    ex_.download(d.columns.data(), columns.data(), columns.size());
+    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(12 * d.handles, 12 * d.handles);
+    for (int r = 0; r < d.handles; ++r)
+      for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
+        out.block<12, 12>(12 * r, 12 * columns[k]) =
+            Eigen::Map<const Eigen::Matrix<double, 12, 12>>(blocks.data() + 144 * k);
+    return out;
+  }
+
   // One V-cycle from the given x (the preconditioner of PCG).
   void vcycle(const double* a, int l, const double* b, double* x, const Settings& s) {
     const int levels = static_cast<int>(levels_.size());
@@ -260,6 +343,7 @@ class MultigridCycle {
     Buffer<double> b, x, ax;  // the right-hand side, solution and product of this level's rows
   };
   enum Scalar { kRr, kPap, kRrNew, kStop, kDone, kBB, kBad, kScalars };
+  enum PcgScalar { kPcgBb, kPcgRz, kPcgPap, kPcgRr, kPcgScalars };
 
   // Gauss-Seidel order: colour by colour (backwards when reversed, for the symmetric cycle), the
   // rows of one colour at once (no two share a block).
@@ -635,6 +719,7 @@ class MultigridCycle {
   Buffer<int> fineColorRows_;
   std::vector<Level> levels_;
   Buffer<double> ax_, fragmentResidual_, scalars_;
+  Buffer<double> pcgR_, pcgZ_, pcgP_, pcgAp_, pcgScalars_;  // allocated on the first pcg()
   Buffer<double> cgR_, cgP_, cgAp_;
   int pieceCount_ = 0;
   Buffer<int> pieceOfHandle_, pieceContribStart_, pieceContribBlock_, pieceContribRow_;
