@@ -7,12 +7,6 @@ namespace galsculpt {
 
 namespace {
 
-const std::vector<std::string> kCommands = {
-    "open",   "save_project", "save_recording", "export", "export_tets", "undo",
-    "redo",   "reset",        "play",           "pause",  "step",        "tool",
-    "radius", "strength",     "symmetry",       "view",   "screenshot",  "preset",
-    "grid",   "recover",      "frame_piece"};
-
 MouseButton buttonNamed(JsonObject& o, const std::string& key) {
   const std::string name = o.string(key, "left", {"left", "right", "middle"});
   return name == "left"    ? MouseButton::Left
@@ -79,7 +73,7 @@ InputScript loadInputScript(const std::filesystem::path& file) {
       s.key = keyNamed(o);
     } else if (o.has("command")) {
       s.kind = InputStep::Kind::Command;
-      s.command = o.string("command", "", kCommands);
+      s.command = *scriptCommandNamed(o.string("command", "", scriptCommandNames()));
       s.argument = o.string("argument", "");
     } else {
       o.fail("", "needs one of wait, move, press, release, scroll, key or command");

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/window/app_command.h"
 #include "app/window/tool_controller.h"
 
 namespace galsculpt {
@@ -21,9 +22,10 @@ struct InputStep {
   MouseButton button = MouseButton::Left;
   bool shift = false, ctrl = false;
   double scroll = 0.0;
-  int key = 0;                    // Key: 'A'..'Z', '0'..'9', ' ', '[', ']', '.', or kKeyEscape
-  std::string command, argument;  // Command: open, save_project, save_recording, export, ...
-  std::string jsonPath;           // for messages
+  int key = 0;  // Key: 'A'..'Z', '0'..'9', ' ', '[', ']', '.', or kKeyEscape
+  AppCommand command = AppCommand::Play;  // Command (app_command.h: the names scripts use)
+  std::string argument;
+  std::string jsonPath;  // for messages
 };
 
 constexpr int kKeyEscape = 256;

@@ -31,7 +31,7 @@ TEST(InputScript, ReadsEveryKindOfStep) {
   EXPECT_TRUE(s[6].ctrl);
   EXPECT_EQ(s[7].key, ' ');
   EXPECT_EQ(s[8].key, kKeyEscape);
-  EXPECT_EQ(s[9].command, "save_project");
+  EXPECT_EQ(s[9].command, AppCommand::SaveProject);
   EXPECT_EQ(s[9].argument, "out.gsproj");
 }
 

@@ -1,0 +1,197 @@
+#include "app/window/sculpt_app.h"
+
+#include <cstdio>
+#include <stdexcept>
+
+#include "engine/session/project_file.h"
+#include "engine/surface/surface_io.h"
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+void SculptApp::execute(const Command& command) {
+  const std::string& argument = command.argument;
+  // Without a path, a file command asks for one.
+  if (takesPath(command.kind) && argument.empty()) {
+    if (command.kind == AppCommand::Open || session_) askingPath_ = command.kind;
+    return;
+  }
+  switch (command.kind) {  // what needs no session, and no pause of the frame in flight
+    case AppCommand::TogglePlay:
+      playing_ = !playing_;
+      return;
+    case AppCommand::Play:
+      playing_ = true;
+      return;
+    case AppCommand::Pause:
+      playing_ = false;
+      return;
+    case AppCommand::Step:
+      stepOnce_ = true;
+      return;
+    case AppCommand::Quit:
+      glfwSetWindowShouldClose(window_, 1);
+      return;
+    case AppCommand::ViewFront:
+      camera_.viewFront();
+      return;
+    case AppCommand::ViewSide:
+      camera_.viewSide();
+      return;
+    case AppCommand::ViewTop:
+      camera_.viewTop();
+      return;
+    case AppCommand::ToggleWireframe:
+      wireframe_ = !wireframe_;
+      return;
+    case AppCommand::ToggleCrackTint:
+      style_.tintCracks = !style_.tintCracks;
+      return;
+    case AppCommand::CycleView:
+      style_.view = static_cast<SurfaceView>((static_cast<int>(style_.view) + 1) % 3);
+      return;
+    case AppCommand::ScaleRadius:
+      toolSettings_.radius *= std::stod(argument);
+      return;
+    case AppCommand::ScaleStrength:
+      toolSettings_.strength *= std::stod(argument);
+      return;
+    case AppCommand::ToggleSymmetry:
+      toolSettings_.symmetry = !toolSettings_.symmetry;
+      return;
+    default:
+      break;
+  }
+  finishStep();  // the rest acts between frames
+  try {
+    switch (command.kind) {
+      case AppCommand::Open:
+        startLoading(argument);
+        return;
+      case AppCommand::Recover: {  // as the Recover button of the crash-recovery offer
+        const std::vector<fs::path> orphans = recovery_->orphans();
+        if (orphans.empty()) throw std::runtime_error("nothing to recover");
+        startLoading(orphans.front());
+        return;
+      }
+      case AppCommand::Screenshot:
+        pendingScreenshot_ = argument;  // taken once this frame is drawn, panels included
+        return;
+      case AppCommand::View:
+        style_.view = argument == "damage"   ? SurfaceView::Damage
+                      : argument == "stress" ? SurfaceView::Stress
+                                             : SurfaceView::Shaded;
+        return;
+      case AppCommand::Tool:
+        if (controller_ && controller_->strokeActive()) return;  // a stroke keeps its tool
+        for (int t = 0; t < kToolCount; ++t)
+          if (argument == toolName(static_cast<Tool>(t))) {
+            toolSettings_.tool = static_cast<Tool>(t);
+            return;
+          }
+        throw std::runtime_error("unknown tool '" + argument + "'");
+      case AppCommand::Radius:
+        toolSettings_.radius = std::stod(argument);
+        return;
+      case AppCommand::Strength:
+        toolSettings_.strength = std::stod(argument);
+        return;
+      case AppCommand::Symmetry:
+        toolSettings_.symmetry = argument != "off";
+        if (toolSettings_.symmetry)
+          toolSettings_.symmetryAxis = argument == "y" ? 1 : argument == "z" ? 2 : 0;
+        return;
+      default:
+        break;
+    }
+    if (!session_) throw std::runtime_error("nothing is open");
+    // A file or a history step holds whole actions: a stroke still held ends here.
+    const AppCommand k = command.kind;
+    if (k == AppCommand::SaveProject || k == AppCommand::SaveRecording || k == AppCommand::Undo ||
+        k == AppCommand::Redo || k == AppCommand::Reset)
+      controller_->cancelStroke();
+    switch (command.kind) {
+      case AppCommand::SaveProject:
+        writeProject(argument, *session_, camera_.pose());
+        projectFile_ = argument;
+        session_->markSaved();
+        report("saved project " + argument);
+        break;
+      case AppCommand::SaveRecording:
+        session_->saveRecording(argument);
+        report("saved recording " + argument + " (" + std::to_string(session_->recording().size()) +
+               " events, " + std::to_string(session_->simulation().frame()) + " frames)");
+        break;
+      case AppCommand::Export:
+        writeVisualSurface(argument, session_->simulation().surface());
+        report("exported surface " + argument);
+        break;
+      case AppCommand::ExportTets:
+        session_->simulation().writeTetsWithDamage(argument);
+        report("exported tets " + argument + ".node/.ele/.face/.damage/.vtk");
+        break;
+      case AppCommand::Undo:
+        session_->undo();
+        break;
+      case AppCommand::Redo:
+        session_->redo();
+        break;
+      case AppCommand::Reset:
+        session_->reset();
+        break;
+      case AppCommand::Preset:  // as the Scene settings panel: edit, then apply
+        editing_.material = materialPreset(argument);
+        applySceneSettings();
+        break;
+      case AppCommand::Grid:
+        std::snprintf(grid_, sizeof grid_, "%s", argument.c_str());
+        applySceneSettings();
+        break;
+      case AppCommand::FrameAll:
+        camera_.frame(boundingBox(session_->simulation().state().x));
+        break;
+      case AppCommand::FramePiece:
+        frameHoveredPiece();
+        break;
+      default:
+        break;
+    }
+  } catch (const std::exception& e) {
+    const char* name = scriptCommandName(command.kind);
+    fail(std::string(name ? name : "command") + " " + argument + ": " + e.what());
+  }
+}
+
+void SculptApp::frameHoveredPiece() {
+  // Shift+F: frame the piece under the cursor (after cuts, one fragment fills the view).
+  const Simulation& sim = session_->simulation();
+  const std::optional<RayHit> hit =
+      controller_->pick(controller_->cursorX(), controller_->cursorY());
+  if (!hit) return;
+  const int piece = sim.pieceOf(sim.surface().cellVertex[hit->face]);
+  std::vector<Vec3> points;
+  for (int v = 0; v < sim.model().numVertices(); ++v)
+    if (sim.pieceOf(v) == piece) points.push_back(sim.state().x[v]);
+  camera_.frame(boundingBox(points));
+}
+
+void SculptApp::applySceneSettings() {
+  finishStep();
+  try {
+    SceneSettings s = editing_;
+    s.solver.grid = grid_;
+    const SceneDescription scene = editScene(session_->scene(), s);
+    const TetMesh mesh = session_->simulation().model().mesh;
+    OpenedSession opened;
+    opened.session = std::make_unique<SculptSession>(scene, mesh);
+    opened.session->markSceneEdited();
+    opened.camera = camera_.pose();
+    adopt(std::move(opened), currentFile_);
+    report("restarted with the new settings");
+  } catch (const std::exception& e) {
+    fail(std::string("scene settings: ") + e.what());  // the running session stays
+  }
+}
+
+}  // namespace galsculpt

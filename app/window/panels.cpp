@@ -1,0 +1,352 @@
+#include "app/window/sculpt_app.h"
+
+#include <imgui.h>
+
+#include <cstdio>
+
+namespace galsculpt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A combo box over the values of a settings enum, shown by their scene-file names.
+template <typename E, size_t N>
+void pickEnum(const char* label, E& value, const E (&values)[N], const char* (*nameOf)(E)) {
+  const char* names[N];
+  int current = 0;
+  for (size_t k = 0; k < N; ++k) {
+    names[k] = nameOf(values[k]);
+    if (values[k] == value) current = static_cast<int>(k);
+  }
+  if (ImGui::Combo(label, &current, names, static_cast<int>(N))) value = values[current];
+}
+
+// Wrap width of the overlay's free text, in pixels (its figures' lines are about this wide).
+constexpr float kOverlayTextWidth = 340.0f;
+
+}  // namespace
+
+void SculptApp::drawUi() {
+  drawMenu();
+  drawToolsPanel();
+  drawScenePanel();
+  drawOverlay();
+  drawCursor();
+  drawDialogs();
+}
+
+void SculptApp::drawMenu() {
+  if (!ImGui::BeginMainMenuBar()) return;
+  if (ImGui::BeginMenu("File")) {
+    const bool open = session_ != nullptr;
+    if (ImGui::MenuItem("Open...", "Ctrl+O")) execute({AppCommand::Open, ""});
+    if (ImGui::MenuItem("Save project", "Ctrl+S", false, open))
+      execute({AppCommand::SaveProject, projectFile_.string()});
+    if (ImGui::MenuItem("Save project as...", "Ctrl+Shift+S", false, open))
+      execute({AppCommand::SaveProject, ""});
+    if (ImGui::MenuItem("Save recording...", nullptr, false, open))
+      execute({AppCommand::SaveRecording, ""});
+    ImGui::Separator();
+    if (ImGui::MenuItem("Export surface...", "Ctrl+E", false, open))
+      execute({AppCommand::Export, ""});
+    if (ImGui::MenuItem("Export tet mesh...", nullptr, false, open))
+      execute({AppCommand::ExportTets, ""});
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) execute({AppCommand::Quit, ""});
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Edit")) {
+    const std::string undo =
+        session_ && session_->canUndo() ? "Undo " + session_->undoLabel() : "Undo";
+    const std::string redo =
+        session_ && session_->canRedo() ? "Redo " + session_->redoLabel() : "Redo";
+    if (ImGui::MenuItem(undo.c_str(), "Ctrl+Z", false, session_ && session_->canUndo()))
+      execute({AppCommand::Undo, ""});
+    if (ImGui::MenuItem(redo.c_str(), "Ctrl+Shift+Z", false, session_ && session_->canRedo()))
+      execute({AppCommand::Redo, ""});
+    if (ImGui::MenuItem("Reset to the start", nullptr, false, session_ != nullptr))
+      execute({AppCommand::Reset, ""});
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    if (ImGui::MenuItem("Shaded", nullptr, style_.view == SurfaceView::Shaded))
+      style_.view = SurfaceView::Shaded;
+    if (ImGui::MenuItem("Damage", nullptr, style_.view == SurfaceView::Damage))
+      style_.view = SurfaceView::Damage;
+    if (ImGui::MenuItem("Stress", nullptr, style_.view == SurfaceView::Stress))
+      style_.view = SurfaceView::Stress;
+    ImGui::MenuItem("Wireframe", "W", &wireframe_);
+    ImGui::MenuItem("Tint crack faces", "C", &style_.tintCracks);
+    ImGui::Separator();
+    if (ImGui::MenuItem("Frame", "F", false, session_ != nullptr))
+      execute({AppCommand::FrameAll, ""});
+    if (ImGui::MenuItem("Front", "1")) execute({AppCommand::ViewFront, ""});
+    if (ImGui::MenuItem("Side", "3")) execute({AppCommand::ViewSide, ""});
+    if (ImGui::MenuItem("Top", "7")) execute({AppCommand::ViewTop, ""});
+    ImGui::EndMenu();
+  }
+  ImGui::EndMainMenuBar();
+}
+
+void SculptApp::drawToolsPanel() {
+  ImGui::SetNextWindowPos(ImVec2(10, 30), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Tools", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  for (int t = 0; t < kToolCount; ++t) {
+    const std::string label =
+        std::string(toolName(static_cast<Tool>(t))) + " (" + toolKey(static_cast<Tool>(t)) + ")";
+    if (ImGui::RadioButton(label.c_str(), toolSettings_.tool == static_cast<Tool>(t)))
+      execute({AppCommand::Tool, toolName(static_cast<Tool>(t))});
+  }
+  ImGui::Separator();
+  float radius = static_cast<float>(toolSettings_.radius);
+  if (ImGui::SliderFloat("radius (m)", &radius, 1e-4f, 1.0f, "%.4f", ImGuiSliderFlags_Logarithmic))
+    toolSettings_.radius = radius;
+  float strength = static_cast<float>(toolSettings_.strength);
+  if (ImGui::SliderFloat("strength (m/s)", &strength, 1e-4f, 10.0f, "%.4f",
+                         ImGuiSliderFlags_Logarithmic))
+    toolSettings_.strength = strength;
+  ImGui::Checkbox("symmetry (X)", &toolSettings_.symmetry);
+  if (toolSettings_.symmetry) {
+    ImGui::SameLine();
+    const char* axes[] = {"x", "y", "z"};
+    ImGui::SetNextItemWidth(50);
+    ImGui::Combo("plane", &toolSettings_.symmetryAxis, axes, 3);
+    float offset = static_cast<float>(toolSettings_.symmetryOffset);
+    if (ImGui::InputFloat("offset (m)", &offset)) toolSettings_.symmetryOffset = offset;
+  }
+  ImGui::Separator();
+  if (ImGui::Button(playing_ ? "Pause (space)" : "Play (space)"))
+    execute({AppCommand::TogglePlay, ""});
+  ImGui::SameLine();
+  if (ImGui::Button("Step (.)")) execute({AppCommand::Step, ""});
+  ImGui::SameLine();
+  if (ImGui::Button("Reset")) execute({AppCommand::Reset, ""});
+  const char* views[] = {"shaded", "damage", "stress"};
+  int view = static_cast<int>(style_.view);
+  if (ImGui::Combo("view (V)", &view, views, 3)) style_.view = static_cast<SurfaceView>(view);
+  if (style_.view == SurfaceView::Stress) {
+    float scale = static_cast<float>(style_.scaleMax);
+    if (ImGui::SliderFloat("hottest (Pa)", &scale, 1.0f, 1e9f, "%.3g",
+                           ImGuiSliderFlags_Logarithmic))
+      style_.scaleMax = scale;
+  }
+  ImGui::Checkbox("wireframe (W)", &wireframe_);
+  ImGui::SameLine();
+  ImGui::Checkbox("tint cracks (C)", &style_.tintCracks);
+  ImGui::TextDisabled("left: tool   right: orbit   middle: pan   wheel: zoom");
+  ImGui::End();
+}
+
+void SculptApp::drawOverlay() {
+  // Pinned by its top-right corner to the screen's: as its figures widen it grows leftwards,
+  // never off the edge.
+  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 10, 30), ImGuiCond_Always,
+                          ImVec2(1.0f, 0.0f));
+  ImGui::SetNextWindowBgAlpha(0.6f);
+  ImGui::Begin("Simulation", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  // Long lines (a scene's name, a backend fallback's reason) wrap instead of widening it.
+  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kOverlayTextWidth);
+  ImGui::Text("%.1f fps (window)", static_cast<double>(ImGui::GetIO().Framerate));
+  if (session_) {
+    const Simulation& sim = session_->simulation();
+    const SceneDescription& scene = session_->scene();
+    ImGui::Text("%s: %d vertices, %d tets", scene.name.c_str(), sim.model().numVertices(),
+                sim.model().numTets());
+    ImGui::Text("material: %s (%s)", scene.material.preset.c_str(),
+                materialModelName(scene.material.model));
+    ImGui::Text("solver: %s %s on the %s backend", solverTypeName(scene.solver.type),
+                scene.solver.grid.c_str(),
+                (stepInFlight() ? backendName_ : sim.backendName()).c_str());
+    ImGui::Separator();
+    ImGui::Text("frame %d  (%s)", metrics_.frame, playing_ ? "playing" : "paused");
+    ImGui::Text("ms: total %.1f  elements %.1f  solve %.1f", metrics_.msTotal, metrics_.msElements,
+                metrics_.msSolve);
+    ImGui::Text("    fracture %.1f  plastic %.1f  surface %.1f", metrics_.msFracture,
+                metrics_.msPlastic, msSurface_);
+    ImGui::Text("residual %.2e   volume change %+.3f %%", metrics_.residual,
+                metrics_.volumeChangePct);
+    ImGui::Text("pieces %d   damaged edges %d   anchored %zu", metrics_.pieces,
+                metrics_.damagedEdges, anchored_.size());
+    if (metrics_.warnings > 0)
+      ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "step retries: %d", metrics_.warnings);
+    ImGui::Text("history %.1f MB, %zu recorded events", session_->historyBytes() / 1048576.0,
+                session_->recording().size());
+    for (const std::string& note : stepInFlight() ? notes_ : sim.notes())
+      ImGui::TextDisabled("%s", note.c_str());
+  }
+  if (!status_.empty()) ImGui::TextDisabled("%s", status_.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::End();
+}
+
+void SculptApp::drawScenePanel() {
+  if (!session_) return;
+  ImGui::SetNextWindowPos(ImVec2(10, 470), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
+  ImGui::Begin("Scene settings", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  MaterialDesc& m = editing_.material;
+  static const char* presets[] = {"clay", "rubber", "flesh", "steel"};
+  int preset = 0;
+  for (int i = 0; i < 4; ++i)
+    if (m.preset == presets[i]) preset = i;
+  if (ImGui::Combo("preset", &preset, presets, 4)) m = materialPreset(presets[preset]);
+  pickEnum("model", m.model,
+           {MaterialModel::Corotational, MaterialModel::StVK, MaterialModel::StableNeoHookean},
+           materialModelName);
+  ImGui::InputDouble("Young's modulus (Pa)", &m.youngsModulus, 0.0, 0.0, "%.4g");
+  ImGui::InputDouble("Poisson ratio", &m.poissonRatio, 0.0, 0.0, "%.4g");
+  ImGui::InputDouble("density (kg/m^3)", &m.density, 0.0, 0.0, "%.4g");
+  ImGui::InputDouble("yield stress (Pa, 0: elastic)", &m.yieldStress, 0.0, 0.0, "%.4g");
+  ImGui::InputDouble("hardening (Pa)", &m.hardening, 0.0, 0.0, "%.4g");
+  ImGui::Checkbox("fracture", &editing_.fracture);
+  if (editing_.fracture)
+    ImGui::InputDouble("threshold (Pa, 0: material's)", &editing_.fractureThreshold, 0.0, 0.0,
+                       "%.4g");
+  ImGui::Separator();
+  SolverDesc& v = editing_.solver;
+  pickEnum("solver", v.type, {SolverType::Multigrid, SolverType::Reference}, solverTypeName);
+  ImGui::InputText("grid (e.g. 50/1000/all)", grid_, sizeof grid_);
+  ImGui::InputInt("fine sweeps", &v.fineSweeps);
+  ImGui::InputInt("coarse iterations", &v.coarseIterations);
+  pickEnum("smoother", v.smoother, {Smoother::GaussSeidel, Smoother::Jacobi}, smootherName);
+  pickEnum("coarse solver", v.coarseSolver, {CoarseSolver::Cg, CoarseSolver::Cholesky},
+           coarseSolverName);
+  pickEnum("backend", v.backend, {BackendRequest::Auto, BackendRequest::Cpu, BackendRequest::Cuda},
+           backendRequestName);
+  if (ImGui::Button("Apply (restarts the simulation)")) applySceneSettings();
+  ImGui::SameLine();
+  if (ImGui::Button("Revert")) {
+    editing_ = sceneSettings(session_->scene());
+    std::snprintf(grid_, sizeof grid_, "%s", editing_.solver.grid.c_str());
+  }
+  ImGui::End();
+}
+
+void SculptApp::drawCursor() {
+  if (!controller_ || (ImGui::GetIO().WantCaptureMouse && !scripted_)) return;
+  int width = 1, height = 1;
+  glfwGetWindowSize(window_, &width, &height);
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  const double x = controller_->cursorX(), y = controller_->cursorY();
+  if (toolSettings_.tool == Tool::Knife) {
+    draw->AddLine(ImVec2(float(x) - 8, float(y) + 8), ImVec2(float(x) + 8, float(y) - 8),
+                  IM_COL32(255, 80, 60, 255), 2.0f);
+    return;
+  }
+  if (stepInFlight()) return;  // no pick while the surface is being recomputed
+  const std::optional<RayHit> hit = controller_->hover();
+  if (!hit) return;
+  // The brush radius on screen: project a point one radius away on the plane facing the camera.
+  const Vec3 side = camera_.forward().cross(Vec3::UnitY()).normalized();
+  const Vec3 c = camera_.project(hit->point, width, height);
+  const Vec3 r = camera_.project(hit->point + toolSettings_.radius * side, width, height);
+  const float pixels = static_cast<float>((r - c).head<2>().norm());
+  const ImU32 color =
+      toolSettings_.tool == Tool::AnchorPaint || toolSettings_.tool == Tool::AnchorErase
+          ? IM_COL32(60, 110, 255, 255)
+          : IM_COL32(255, 255, 255, 220);
+  draw->AddCircle(ImVec2(float(c.x()), float(c.y())), pixels, color, 48, 1.5f);
+  if (toolSettings_.symmetry) {
+    const Symmetry plane{toolSettings_.symmetryAxis, toolSettings_.symmetryOffset};
+    const Vec3 m = camera_.project(plane.point(hit->point), width, height);
+    draw->AddCircle(ImVec2(float(m.x()), float(m.y())), pixels, IM_COL32(255, 255, 255, 110), 48,
+                    1.0f);
+  }
+}
+
+void SculptApp::drawDialogs() {
+  if (busy()) {
+    ImGui::OpenPopup("Loading");
+  }
+  if (ImGui::BeginPopupModal("Loading", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    const char spinner[] = "|/-\\";
+    ImGui::Text("%c %s", spinner[static_cast<int>(ImGui::GetTime() * 8) % 4],
+                opener_.progress().c_str());
+    if (!busy()) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+  if (showError_) {
+    ImGui::OpenPopup("Error");
+    showError_ = false;
+  }
+  if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::TextUnformatted(error_.c_str());
+    if (ImGui::Button("OK") || scripted_) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+  drawRecoveryDialog();
+  drawPathDialog();
+}
+
+void SculptApp::drawRecoveryDialog() {
+  if (askRecovery_ && !busy()) {
+    ImGui::OpenPopup("Recover");
+    askRecovery_ = false;
+  }
+  if (ImGui::BeginPopupModal("Recover", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("Galsculpt did not close normally. Recover the autosaved work?");
+    ImGui::TextDisabled("%s", recoverable_.front().string().c_str());
+    if (ImGui::Button("Recover")) {
+      execute({AppCommand::Open, recoverable_.front().string()});
+      // Keep the file until the recovered work is saved elsewhere or autosaved anew.
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Discard")) {
+      for (const fs::path& f : recoverable_) recovery_->remove(f);
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Later")) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+}
+
+// The path dialog of a file command (Open, Save project, ...) that came without a path.
+void SculptApp::drawPathDialog() {
+  // Titles, hints and default names, by AppCommand::Open .. ExportTets.
+  struct Kind {
+    AppCommand command;
+    const char *title, *hint, *suffix;
+  };
+  static const Kind kinds[] = {
+      {AppCommand::Open, "Open", "a project (.gsproj), scene (.json) or mesh", ""},
+      {AppCommand::SaveProject, "Save project", "a .gsproj file", ".gsproj"},
+      {AppCommand::SaveRecording, "Save recording", "a .json playback script", "-recording.json"},
+      {AppCommand::Export, "Export surface", ".obj, .ply, .stl, .gltf or .glb", ".obj"},
+      {AppCommand::ExportTets, "Export tet mesh",
+       "a path without extension (writes .node/.ele/.face/.damage/.vtk)", "-tets"},
+  };
+  if (!askingPath_) return;
+  const Kind* kind = nullptr;
+  for (const Kind& k : kinds)
+    if (k.command == *askingPath_) kind = &k;
+  if (!kind) return;
+  ImGui::OpenPopup("Path");
+  if (path_[0] == '\0') {
+    const std::string stem = session_ ? session_->scene().name : "galsculpt";
+    const std::string guess =
+        kind->command == AppCommand::Open ? currentFile_.string() : stem + kind->suffix;
+    std::snprintf(path_, sizeof path_, "%s", guess.c_str());
+  }
+  if (ImGui::BeginPopupModal("Path", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("%s: %s", kind->title, kind->hint);
+    ImGui::SetNextItemWidth(520);
+    const bool enter =
+        ImGui::InputText("##path", path_, sizeof path_, ImGuiInputTextFlags_EnterReturnsTrue);
+    const bool ok = ImGui::Button("OK") || enter;
+    ImGui::SameLine();
+    const bool cancel = ImGui::Button("Cancel");
+    if (ok || cancel) {
+      const Command chosen{kind->command, path_};
+      askingPath_.reset();
+      path_[0] = '\0';
+      ImGui::CloseCurrentPopup();
+      if (ok && !chosen.argument.empty()) execute(chosen);
+    }
+    ImGui::EndPopup();
+  }
+}
+
+}  // namespace galsculpt

@@ -1,0 +1,63 @@
+#include "app/window/simulation_worker.h"
+
+#include <chrono>
+
+namespace galsculpt {
+
+namespace {
+template <typename T>
+bool finished(const std::future<T>& f) {
+  return f.valid() && f.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+}
+}  // namespace
+
+bool FrameWorker::ready() const {
+  return finished(frame_);
+}
+
+void FrameWorker::start(SculptSession& session) {
+  SculptSession* s = &session;
+  frame_ = std::async(std::launch::async, [s] { return s->step(); });
+}
+
+FrameMetrics FrameWorker::wait() {
+  return frame_.get();
+}
+
+bool OpenWorker::ready() const {
+  return finished(opening_);
+}
+
+void OpenWorker::start(const std::filesystem::path& file, std::optional<BackendRequest> backend) {
+  if (busy()) return;
+  file_ = file;
+  {
+    std::lock_guard<std::mutex> lock(progressMutex_);
+    progress_ = "opening " + file.string();
+  }
+  opening_ = std::async(std::launch::async, [this, file, backend] {
+    return openSession(
+        file,
+        [this](const std::string& line) {
+          std::lock_guard<std::mutex> lock(progressMutex_);
+          progress_ = line;
+        },
+        20000, backend);
+  });
+}
+
+OpenedSession OpenWorker::take() {
+  std::future<OpenedSession> f = std::move(opening_);
+  return f.get();
+}
+
+void OpenWorker::wait() const {
+  if (busy()) opening_.wait();
+}
+
+std::string OpenWorker::progress() const {
+  std::lock_guard<std::mutex> lock(progressMutex_);
+  return progress_;
+}
+
+}  // namespace galsculpt

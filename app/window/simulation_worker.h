@@ -1,0 +1,48 @@
+// The window's background work, so that it keeps drawing and navigating: a frame of the
+// simulation, and opening a file (a scene may need meshing first). Each runs on its own thread;
+// the window collects the result between its frames, and tools act only between simulation
+// frames, exactly as recorded.
+#pragma once
+
+#include <filesystem>
+#include <future>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "engine/scene/scene.h"
+#include "engine/session/session_loader.h"
+
+namespace galsculpt {
+
+class FrameWorker {
+ public:
+  bool inFlight() const { return frame_.valid(); }
+  bool ready() const;  // in flight and finished
+  void start(SculptSession& session);
+  FrameMetrics wait();  // the frame's metrics (in flight only)
+
+ private:
+  std::future<FrameMetrics> frame_;
+};
+
+class OpenWorker {
+ public:
+  bool busy() const { return opening_.valid(); }
+  bool ready() const;  // busy and finished
+  // Does nothing while busy.
+  void start(const std::filesystem::path& file, std::optional<BackendRequest> backend);
+  // The opened session; throws what opening threw. Busy no more either way.
+  OpenedSession take();
+  void wait() const;
+  const std::filesystem::path& file() const { return file_; }
+  std::string progress() const;
+
+ private:
+  std::future<OpenedSession> opening_;
+  std::filesystem::path file_;
+  mutable std::mutex progressMutex_;
+  std::string progress_;
+};
+
+}  // namespace galsculpt
