@@ -17,149 +17,166 @@ void SculptApp::execute(const Command& command) {
     if (command.kind == AppCommand::Open || session_) askingPath_ = command.kind;
     return;
   }
-  switch (command.kind) {  // what needs no session, and no pause of the frame in flight
-    case AppCommand::TogglePlay:
-      playing_ = !playing_;
-      return;
-    case AppCommand::Play:
-      playing_ = true;
-      return;
-    case AppCommand::Pause:
-      playing_ = false;
-      return;
-    case AppCommand::Step:
-      stepOnce_ = true;
-      return;
-    case AppCommand::Quit:
-      glfwSetWindowShouldClose(window_, 1);
-      return;
-    case AppCommand::ViewFront:
-      camera_.viewFront();
-      return;
-    case AppCommand::ViewSide:
-      camera_.viewSide();
-      return;
-    case AppCommand::ViewTop:
-      camera_.viewTop();
-      return;
-    case AppCommand::ToggleWireframe:
-      wireframe_ = !wireframe_;
-      return;
-    case AppCommand::ToggleCrackTint:
-      style_.tintCracks = !style_.tintCracks;
-      return;
-    case AppCommand::CycleView:
-      style_.view = static_cast<SurfaceView>((static_cast<int>(style_.view) + 1) % 3);
-      return;
-    case AppCommand::ScaleRadius:
-      toolSettings_.radius *= std::stod(argument);
-      return;
-    case AppCommand::ScaleStrength:
-      toolSettings_.strength *= std::stod(argument);
-      return;
-    case AppCommand::ToggleSymmetry:
-      toolSettings_.symmetry = !toolSettings_.symmetry;
-      return;
-    default:
-      break;
-  }
+  if (applyAtOnce(command)) return;
   finishStep();  // the rest acts between frames
   try {
-    switch (command.kind) {
-      case AppCommand::Open:
-        startLoading(argument);
-        return;
-      case AppCommand::Recover: {  // as the Recover button of the crash-recovery offer
-        const std::vector<fs::path> orphans = recovery_->orphans();
-        if (orphans.empty()) throw std::runtime_error("nothing to recover");
-        startLoading(orphans.front());
-        return;
-      }
-      case AppCommand::Screenshot:
-        pendingScreenshot_ = argument;  // taken once this frame is drawn, panels included
-        return;
-      case AppCommand::View:
-        style_.view = argument == "damage"   ? SurfaceView::Damage
-                      : argument == "stress" ? SurfaceView::Stress
-                                             : SurfaceView::Shaded;
-        return;
-      case AppCommand::Tool:
-        if (controller_ && controller_->strokeActive()) return;  // a stroke keeps its tool
-        for (int t = 0; t < kToolCount; ++t)
-          if (argument == toolName(static_cast<Tool>(t))) {
-            toolSettings_.tool = static_cast<Tool>(t);
-            return;
-          }
-        throw std::runtime_error("unknown tool '" + argument + "'");
-      case AppCommand::Radius:
-        toolSettings_.radius = std::stod(argument);
-        return;
-      case AppCommand::Strength:
-        toolSettings_.strength = std::stod(argument);
-        return;
-      case AppCommand::Symmetry:
-        toolSettings_.symmetry = argument != "off";
-        if (toolSettings_.symmetry)
-          toolSettings_.symmetryAxis = argument == "y" ? 1 : argument == "z" ? 2 : 0;
-        return;
-      default:
-        break;
-    }
-    if (!session_) throw std::runtime_error("nothing is open");
-    // A file or a history step holds whole actions: a stroke still held ends here.
-    const AppCommand k = command.kind;
-    if (k == AppCommand::SaveProject || k == AppCommand::SaveRecording || k == AppCommand::Undo ||
-        k == AppCommand::Redo || k == AppCommand::Reset)
-      controller_->cancelStroke();
-    switch (command.kind) {
-      case AppCommand::SaveProject:
-        writeProject(argument, *session_, camera_.pose());
-        projectFile_ = argument;
-        session_->markSaved();
-        report("saved project " + argument);
-        break;
-      case AppCommand::SaveRecording:
-        session_->saveRecording(argument);
-        report("saved recording " + argument + " (" + std::to_string(session_->recording().size()) +
-               " events, " + std::to_string(session_->simulation().frame()) + " frames)");
-        break;
-      case AppCommand::Export:
-        writeVisualSurface(argument, session_->simulation().surface());
-        report("exported surface " + argument);
-        break;
-      case AppCommand::ExportTets:
-        session_->simulation().writeTetsWithDamage(argument);
-        report("exported tets " + argument + ".node/.ele/.face/.damage/.vtk");
-        break;
-      case AppCommand::Undo:
-        session_->undo();
-        break;
-      case AppCommand::Redo:
-        session_->redo();
-        break;
-      case AppCommand::Reset:
-        session_->reset();
-        break;
-      case AppCommand::Preset:  // as the Scene settings panel: edit, then apply
-        editing_.material = materialPreset(argument);
-        applySceneSettings();
-        break;
-      case AppCommand::Grid:
-        std::snprintf(grid_, sizeof grid_, "%s", argument.c_str());
-        applySceneSettings();
-        break;
-      case AppCommand::FrameAll:
-        camera_.frame(boundingBox(session_->simulation().state().x));
-        break;
-      case AppCommand::FramePiece:
-        frameHoveredPiece();
-        break;
-      default:
-        break;
-    }
+    if (!applyToTools(command)) applyToSession(command);
   } catch (const std::exception& e) {
     const char* name = scriptCommandName(command.kind);
     fail(std::string(name ? name : "command") + " " + argument + ": " + e.what());
+  }
+}
+
+// What needs no session and no pause of the frame in flight: play, camera, view toggles.
+bool SculptApp::applyAtOnce(const Command& command) {
+  const std::string& argument = command.argument;
+  switch (command.kind) {
+    case AppCommand::TogglePlay:
+      playing_ = !playing_;
+      return true;
+    case AppCommand::Play:
+      playing_ = true;
+      return true;
+    case AppCommand::Pause:
+      playing_ = false;
+      return true;
+    case AppCommand::Step:
+      stepOnce_ = true;
+      return true;
+    case AppCommand::Quit:
+      glfwSetWindowShouldClose(window_, 1);
+      return true;
+    case AppCommand::ViewFront:
+      camera_.viewFront();
+      return true;
+    case AppCommand::ViewSide:
+      camera_.viewSide();
+      return true;
+    case AppCommand::ViewTop:
+      camera_.viewTop();
+      return true;
+    case AppCommand::ToggleWireframe:
+      wireframe_ = !wireframe_;
+      return true;
+    case AppCommand::ToggleCrackTint:
+      style_.tintCracks = !style_.tintCracks;
+      return true;
+    case AppCommand::CycleView:
+      style_.view = static_cast<SurfaceView>((static_cast<int>(style_.view) + 1) % 3);
+      return true;
+    case AppCommand::ScaleRadius:
+      toolSettings_.radius *= std::stod(argument);
+      return true;
+    case AppCommand::ScaleStrength:
+      toolSettings_.strength *= std::stod(argument);
+      return true;
+    case AppCommand::ToggleSymmetry:
+      toolSettings_.symmetry = !toolSettings_.symmetry;
+      return true;
+    default:
+      return false;
+  }
+}
+
+// Files to open, tools, the surface's view, screenshots. False: a session command.
+bool SculptApp::applyToTools(const Command& command) {
+  const std::string& argument = command.argument;
+  switch (command.kind) {
+    case AppCommand::Open:
+      startLoading(argument);
+      return true;
+    case AppCommand::Recover: {  // as the Recover button of the crash-recovery offer
+      const std::vector<fs::path> orphans = recovery_->orphans();
+      if (orphans.empty()) throw std::runtime_error("nothing to recover");
+      startLoading(orphans.front());
+      return true;
+    }
+    case AppCommand::Screenshot:
+      pendingScreenshot_ = argument;  // taken once this frame is drawn, panels included
+      return true;
+    case AppCommand::View:
+      style_.view = argument == "damage"   ? SurfaceView::Damage
+                    : argument == "stress" ? SurfaceView::Stress
+                                           : SurfaceView::Shaded;
+      return true;
+    case AppCommand::Tool:
+      if (controller_ && controller_->strokeActive()) return true;  // a stroke keeps its tool
+      for (int t = 0; t < kToolCount; ++t)
+        if (argument == toolName(static_cast<Tool>(t))) {
+          toolSettings_.tool = static_cast<Tool>(t);
+          return true;
+        }
+      throw std::runtime_error("unknown tool '" + argument + "'");
+    case AppCommand::Radius:
+      toolSettings_.radius = std::stod(argument);
+      return true;
+    case AppCommand::Strength:
+      toolSettings_.strength = std::stod(argument);
+      return true;
+    case AppCommand::Symmetry:
+      toolSettings_.symmetry = argument != "off";
+      if (toolSettings_.symmetry)
+        toolSettings_.symmetryAxis = argument == "y" ? 1 : argument == "z" ? 2 : 0;
+      return true;
+    default:
+      return false;
+  }
+}
+
+// What acts on the open session: saving, exporting, history, scene settings, framing.
+void SculptApp::applyToSession(const Command& command) {
+  const std::string& argument = command.argument;
+  if (!session_) throw std::runtime_error("nothing is open");
+  // A file or a history step holds whole actions: a stroke still held ends here.
+  const AppCommand k = command.kind;
+  if (k == AppCommand::SaveProject || k == AppCommand::SaveRecording || k == AppCommand::Undo ||
+      k == AppCommand::Redo || k == AppCommand::Reset)
+    controller_->cancelStroke();
+  switch (command.kind) {
+    case AppCommand::SaveProject:
+      writeProject(argument, *session_, camera_.pose());
+      projectFile_ = argument;
+      session_->markSaved();
+      report("saved project " + argument);
+      break;
+    case AppCommand::SaveRecording:
+      session_->saveRecording(argument);
+      report("saved recording " + argument + " (" + std::to_string(session_->recording().size()) +
+             " events, " + std::to_string(session_->simulation().frame()) + " frames)");
+      break;
+    case AppCommand::Export:
+      writeVisualSurface(argument, session_->simulation().surface());
+      report("exported surface " + argument);
+      break;
+    case AppCommand::ExportTets:
+      session_->simulation().writeTetsWithDamage(argument);
+      report("exported tets " + argument + ".node/.ele/.face/.damage/.vtk");
+      break;
+    case AppCommand::Undo:
+      session_->undo();
+      break;
+    case AppCommand::Redo:
+      session_->redo();
+      break;
+    case AppCommand::Reset:
+      session_->reset();
+      break;
+    case AppCommand::Preset:  // as the Scene settings panel: edit, then apply
+      editing_.material = materialPreset(argument);
+      applySceneSettings();
+      break;
+    case AppCommand::Grid:
+      std::snprintf(grid_, sizeof grid_, "%s", argument.c_str());
+      applySceneSettings();
+      break;
+    case AppCommand::FrameAll:
+      camera_.frame(boundingBox(session_->simulation().state().x));
+      break;
+    case AppCommand::FramePiece:
+      frameHoveredPiece();
+      break;
+    default:
+      break;
   }
 }
 

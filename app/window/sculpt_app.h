@@ -73,6 +73,9 @@ class SculptApp {
 
   // app_command_dispatch.cpp
   void execute(const Command& command);
+  bool applyAtOnce(const Command& command);
+  bool applyToTools(const Command& command);
+  void applyToSession(const Command& command);
   void applySceneSettings();
   void frameHoveredPiece();
 

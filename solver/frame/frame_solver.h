@@ -440,13 +440,29 @@ class FrameSolver {
 
   // ---- one backward-Euler sub-step ----------------------------------------------------------
 
+  using Clock = std::chrono::steady_clock;
+  static double msSince(Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+  }
+
   SubstepOutcome substep(double h) {
-    using Clock = std::chrono::steady_clock;
-    auto ms = [](Clock::time_point t) {
-      return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-    };
-    const StepSettings& s = *settings_;
     SubstepOutcome result;
+    beginSubstep(h);
+    for (int it = 0; it < settings_->newtonIterations; ++it) {
+      const NewtonOutcome n = newtonIteration(h, it, result);
+      if (n == NewtonOutcome::Failed) {
+        result.ok = false;
+        return result;
+      }
+      if (n == NewtonOutcome::Converged) break;
+    }
+    endSubstep(h, result);
+    if (result.ok) time_ += h;
+    return result;
+  }
+
+  // x_n, v_n and the inertial target from the state; anchored vertices on their paths.
+  void beginSubstep(double h) {
     h_step_ = h;
     prepareAnchorsAndColliders(time_ + h);
     double* x = x_.data();
@@ -465,97 +481,109 @@ class FrameSolver {
       for (int k = 0; k < 3; ++k) x[3 * anchorVertex[i] + k] = anchorTarget[3 * i + k];
     });
     frozenIsK_ = true;
-    double* sc = scalars_.data();
-    const double sufficient = s.lineSearch ? 1e-4 : 0.0;
-    for (int it = 0; it < s.newtonIterations; ++it) {
-      const auto t0 = Clock::now();
-      const double elementsBefore = result.msElements;
-      // Structural changes first (host): the hierarchy follows the damage.
-      if (s.multigrid && s.multigridSettings.splitAggregates &&
-          multigrid_->updateDamage(model_.edges, hostDamaged_, damageRevision_)) {
-        mg_.upload(buildMultigridLayout(*multigrid_, model_.pattern));
-        ++mgRevision_;
-      }
-      // The Newton step and its full-length trial: launches only, captured as one graph and
-      // replayed, unless a dense Cholesky or PCG needs host reads in between.
-      const bool frozenCopy = it == 0 && s.newtonIterations > 1;
-      auto newtonStep = [&] {
-        const auto tElements = Clock::now();
-        elementPass(x, true, grad_.data(), kElastic);
-        // Phases are timed where launches run as they are issued (the CPU); on the GPU they
-        // run as one graph and all of it counts as solve.
-        if constexpr (Exec::kHostMemory) result.msElements += ms(tElements);
-        if (frozenCopy) ex_.copy(frozen_.data(), k_.data(), k_.size());
-        frozenIsK_ = !(frozenCopy || (it > 0 && s.newtonIterations > 1));
-        contact(x, grad_.data(), kContact);
-        dampedProduct(x, dampedK_.data());
-        backwardEulerGradient(x, grad_.data(), dampedK_.data(), g_.data());
-        buildSystem(x);
-        if (s.multigrid) {
-          mg_.refresh(h_.data(), s.multigridSettings.coarseCholesky);
-          solveLinear();
-        } else {
-          solveDirect();
-        }
-        stepMeasures();
-        evaluateTrial(1.0);
-      };
-      const bool capturable =
-          s.multigrid && !s.multigridSettings.coarseCholesky && !s.multigridSettings.pcg;
-      if (capturable) {
-        ex_.captured(0, graphKey(h, it), newtonStep);
-      } else {
-        newtonStep();
-      }
-      ++result.iterations;
-      double stepLength = 1.0;
-      bool failed = false;
-      double read[kScalars];
-      while (true) {
-        ex_.read(sc, read, kScalars);
-        if (stepLength == 1.0)
-          result.linearResidualReduction =
-              s.multigridSettings.pcg ? pcgReduction_
-                                      : (read[kR0] > 0.0 ? std::sqrt(read[kR1] / read[kR0]) : 0.0);
-        if (read[kBad] > 0.0 || !std::isfinite(read[kElastic])) {
-          failed = true;
-          break;
-        }
-        const double e0 = read[kE0], e1 = read[kE1];
-        if (std::isfinite(e1) &&
-            e1 <= e0 + sufficient * stepLength * read[kSlope] + 1e-12 * std::abs(e0))
-          break;
-        stepLength *= 0.5;
-        ++result.backtracks;
-        if (stepLength < 1e-8) break;
-        evaluateTrial(stepLength);
-      }
-      result.msSolve += ms(t0);
-      if constexpr (Exec::kHostMemory) result.msSolve -= result.msElements - elementsBefore;
-      if (failed) {
-        result.ok = false;
-        return result;
-      }
-      if (stepLength < 1e-8) {
-        if (result.iterations == 1) {
-          result.ok = false;
-          return result;
-        }
-        break;
-      }
-      // Accept: the trial just evaluated is the new iterate (its energy and gradient too).
-      const double len = stepLength;
-      const double* delta = delta_.data();
-      ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { x[i] += len * delta[i]; });
-      ex_.copy(acceptedGrad_.data(), trialGrad_.data(), 3 * n_);
-      result.energy = read[kTrialElastic];
-      if (read[kDeltaMax] * stepLength < s.tolerance * modelSize_) break;
+  }
+
+  enum class NewtonOutcome { Continue, Converged, Failed };
+
+  // One Newton iteration: the step (assembled, solved, measured, its full length tried),
+  // shortened while it raises the incremental potential, then accepted.
+  NewtonOutcome newtonIteration(double h, int it, SubstepOutcome& result) {
+    const StepSettings& s = *settings_;
+    const auto t0 = Clock::now();
+    const double elementsBefore = result.msElements;
+    // Structural changes first (host): the hierarchy follows the damage.
+    if (s.multigrid && s.multigridSettings.splitAggregates &&
+        multigrid_->updateDamage(model_.edges, hostDamaged_, damageRevision_)) {
+      mg_.upload(buildMultigridLayout(*multigrid_, model_.pattern));
+      ++mgRevision_;
     }
-    // The sub-step's end, one captured section and one read: the residual at the accepted
-    // positions (relative to the body's 1 g weight), contact forces, finiteness, velocities.
+    // The Newton step and its full-length trial: launches only, captured as one graph and
+    // replayed, unless a dense Cholesky, PCG or the direct solve needs host reads in between.
+    const bool capturable =
+        s.multigrid && !s.multigridSettings.coarseCholesky && !s.multigridSettings.pcg;
+    if (capturable) {
+      ex_.captured(0, graphKey(h, it), [&] { newtonStep(it, result); });
+    } else {
+      newtonStep(it, result);
+    }
+    ++result.iterations;
+    double read[kScalars];
+    const double stepLength = lineSearch(result, read);
+    result.msSolve += msSince(t0);
+    if constexpr (Exec::kHostMemory) result.msSolve -= result.msElements - elementsBefore;
+    if (stepLength < 0.0) return NewtonOutcome::Failed;
+    if (stepLength < kShortestStep)  // no descent: a failure only before any progress
+      return result.iterations == 1 ? NewtonOutcome::Failed : NewtonOutcome::Converged;
+    // Accept: the trial just evaluated is the new iterate (its energy and gradient too).
+    double* x = x_.data();
+    const double* delta = delta_.data();
+    ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { x[i] += stepLength * delta[i]; });
+    ex_.copy(acceptedGrad_.data(), trialGrad_.data(), 3 * n_);
+    result.energy = read[kTrialElastic];
+    return read[kDeltaMax] * stepLength < s.tolerance * modelSize_ ? NewtonOutcome::Converged
+                                                                   : NewtonOutcome::Continue;
+  }
+
+  // Assembles and solves the Newton system at x, measures the step and tries its full length.
+  void newtonStep(int it, SubstepOutcome& result) {
+    const StepSettings& s = *settings_;
+    const double* x = x_.data();
+    const bool frozenCopy = it == 0 && s.newtonIterations > 1;
+    const auto tElements = Clock::now();
+    elementPass(x, true, grad_.data(), kElastic);
+    // Phases are timed where launches run as they are issued (the CPU); on the GPU they run as
+    // one graph and all of it counts as solve.
+    if constexpr (Exec::kHostMemory) result.msElements += msSince(tElements);
+    if (frozenCopy) ex_.copy(frozen_.data(), k_.data(), k_.size());
+    frozenIsK_ = !(frozenCopy || (it > 0 && s.newtonIterations > 1));
+    contact(x, grad_.data(), kContact);
+    dampedProduct(x, dampedK_.data());
+    backwardEulerGradient(x, grad_.data(), dampedK_.data(), g_.data());
+    buildSystem(x);
+    if (s.multigrid) {
+      mg_.refresh(h_.data(), s.multigridSettings.coarseCholesky);
+      solveLinear();
+    } else {
+      solveDirect();
+    }
+    stepMeasures();
+    evaluateTrial(1.0);
+  }
+
+  static constexpr double kShortestStep = 1e-8;
+
+  // Backtracking on the step evaluated at full length: halves it until the potential drops
+  // (Armijo with the line search, plain decrease without). Returns the accepted length,
+  // something under kShortestStep when none descends, or -1 for NaN; `read` holds the scalars
+  // of the last trial.
+  double lineSearch(SubstepOutcome& result, double* read) {
+    const StepSettings& s = *settings_;
+    const double sufficient = s.lineSearch ? 1e-4 : 0.0;
+    double stepLength = 1.0;
+    while (true) {
+      ex_.read(scalars_.data(), read, kScalars);
+      if (stepLength == 1.0)
+        result.linearResidualReduction =
+            s.multigridSettings.pcg ? pcgReduction_
+                                    : (read[kR0] > 0.0 ? std::sqrt(read[kR1] / read[kR0]) : 0.0);
+      if (read[kBad] > 0.0 || !std::isfinite(read[kElastic])) return -1.0;
+      const double e0 = read[kE0], e1 = read[kE1];
+      if (std::isfinite(e1) &&
+          e1 <= e0 + sufficient * stepLength * read[kSlope] + 1e-12 * std::abs(e0))
+        return stepLength;
+      stepLength *= 0.5;
+      ++result.backtracks;
+      if (stepLength < kShortestStep) return stepLength;
+      evaluateTrial(stepLength);
+    }
+  }
+
+  // The sub-step's end, one captured section and one read: the residual at the accepted
+  // positions (relative to the body's 1 g weight), contact forces, finiteness, velocities.
+  void endSubstep(double h, SubstepOutcome& result) {
     ex_.captured(1, graphKey(h, -1), [&] { finishSubstep(h); });
     double read[kScalars];
-    ex_.read(sc, read, kScalars);
+    ex_.read(scalars_.data(), read, kScalars);
     // |f_ext| = |g| |m| over the vertices, massNorm_ over the 3n DOFs: |m| sqrt 3.
     const double perDofMass = massNorm_ / std::sqrt(3.0);
     const double weight = std::max(settings_->gravity.norm() * perDofMass, 9.81 * perDofMass);
@@ -564,12 +592,8 @@ class FrameSolver {
     for (size_t c = 0; c < poses_.size(); ++c)
       result.contactForces[c] =
           Vec3(read[kForce + 3 * c], read[kForce + 3 * c + 1], read[kForce + 3 * c + 2]);
-    if (read[kBad] > 0.0 || !std::isfinite(result.energy)) {
-      result.ok = false;  // the caller restores x and v
-      return result;
-    }
-    time_ += h;
-    return result;
+    // Otherwise the caller restores x and v.
+    if (read[kBad] > 0.0 || !std::isfinite(result.energy)) result.ok = false;
   }
 
   void finishSubstep(double h) {
@@ -865,7 +889,6 @@ class FrameSolver {
     std::uint8_t* breaks = breaks_.data();
     double* ratio = mean_.data();
     const double crush = field.settings.compressiveThreshold;
-    double* sc = scalars_.data();
     if (field.settings.kernelRadius <= 0.0) {
       ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
         breaks[e] = 0;
@@ -875,64 +898,81 @@ class FrameSolver {
         ratio[e] = local[e] / threshold[e];
       });
     } else {
-      // Only edges within R_d of an edge over the smallest threshold can average above theirs.
-      const double minThreshold = field.minThreshold;
-      std::uint8_t* hot = hot_.data();
-      ex_.forEach(edges,
-                  [=] GALSCULPT_LAMBDA(int e) { hot[e] = !damaged[e] && local[e] > minThreshold; });
-      const double radius = field.settings.kernelRadius;
-      const double* mid = midpoint_.data();
-      const int* cellBegin = cellBegin_.data();
-      const int* cellEnd = cellEnd_.data();
-      const int* cellEdges = cellEdges_.data();
-      const int* edgeCell = edgeCell_.data();
-      const int* neighbors = cellNeighbors_.data();
-      std::uint8_t* cellHot = cellHot_.data();
-      ex_.forEach(fractureLayout_.cells(), [=] GALSCULPT_LAMBDA(int c) {
-        std::uint8_t any = 0;
-        for (int i = cellBegin[c]; i < cellEnd[c]; ++i) any |= hot[cellEdges[i]];
-        cellHot[c] = any;
-      });
-      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
-        breaks[e] = !damaged[e] && crush > 0.0 && -compression[e] > crush;
-        ratio[e] = -kInf;
-        if (damaged[e]) return;
-        const int* around = neighbors + 27 * edgeCell[e];
-        bool near = false;
-        for (int k = 0; k < 27; ++k) near = near || (around[k] >= 0 && cellHot[around[k]]);
-        if (!near && !everyEdge) return;  // nothing near it can break it: common and cheap
-        bool candidate = false;
-        double sum = 0.0, weights = 0.0;
-        const double r2 = radius * radius;
-        for (int k = 0; k < 27; ++k) {
-          const int c = around[k];
-          if (c < 0) continue;
-          for (int i = cellBegin[c]; i < cellEnd[c]; ++i) {
-            const int f = cellEdges[i];
-            double d2 = 0.0;
-            for (int j = 0; j < 3; ++j)
-              d2 += (mid[3 * f + j] - mid[3 * e + j]) * (mid[3 * f + j] - mid[3 * e + j]);
-            if (!(d2 < r2)) continue;
-            candidate = candidate || hot[f];
-            if (damaged[f]) continue;
-            const double w = (1.0 - d2 / r2) * (1.0 - d2 / r2);
-            sum += w * local[f];
-            weights += w;
-          }
-        }
-        if (!candidate && !everyEdge) return;
-        const double mean = weights > 0.0 ? sum / weights : local[e];
-        ratio[e] = mean / threshold[e];
-        breaks[e] = breaks[e] || mean > threshold[e];
-      });
-      // Without any candidate the ratio is the local one (as the CPU reports it).
-      ex_.sum(
-          edges, [=] GALSCULPT_LAMBDA(int e) { return ratio[e] > -1.7e308 ? 1.0 : 0.0; },
-          sc + kCount);
-      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
-        if (sc[kCount] == 0.0 && !damaged[e]) ratio[e] = local[e] / threshold[e];
-      });
+      kernelMeanStress(everyEdge);
     }
+  }
+
+  // The non-local criterion: each edge's stress is the weighted mean over the undamaged edges
+  // within the kernel radius (fracture.h). Only edges with an edge over the smallest threshold
+  // within reach can average above theirs; the others are skipped unless `everyEdge`.
+  void kernelMeanStress(bool everyEdge) {
+    const FractureField& field = *fractureField_;
+    const int edges = layout_.edges;
+    const std::uint8_t* damaged = damaged_.data();
+    const double* local = localStress_.data();
+    const double* compression = compression_.data();
+    const double* threshold = threshold_.data();
+    std::uint8_t* breaks = breaks_.data();
+    double* ratio = mean_.data();
+    const double crush = field.settings.compressiveThreshold;
+    double* sc = scalars_.data();
+    // Only edges within R_d of an edge over the smallest threshold can average above theirs.
+    const double minThreshold = field.minThreshold;
+    std::uint8_t* hot = hot_.data();
+    ex_.forEach(edges,
+                [=] GALSCULPT_LAMBDA(int e) { hot[e] = !damaged[e] && local[e] > minThreshold; });
+    const double radius = field.settings.kernelRadius;
+    const double* mid = midpoint_.data();
+    const int* cellBegin = cellBegin_.data();
+    const int* cellEnd = cellEnd_.data();
+    const int* cellEdges = cellEdges_.data();
+    const int* edgeCell = edgeCell_.data();
+    const int* neighbors = cellNeighbors_.data();
+    std::uint8_t* cellHot = cellHot_.data();
+    ex_.forEach(fractureLayout_.cells(), [=] GALSCULPT_LAMBDA(int c) {
+      std::uint8_t any = 0;
+      for (int i = cellBegin[c]; i < cellEnd[c]; ++i) any |= hot[cellEdges[i]];
+      cellHot[c] = any;
+    });
+    ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
+      breaks[e] = !damaged[e] && crush > 0.0 && -compression[e] > crush;
+      ratio[e] = -kInf;
+      if (damaged[e]) return;
+      const int* around = neighbors + 27 * edgeCell[e];
+      bool near = false;
+      for (int k = 0; k < 27; ++k) near = near || (around[k] >= 0 && cellHot[around[k]]);
+      if (!near && !everyEdge) return;  // nothing near it can break it: common and cheap
+      bool candidate = false;
+      double sum = 0.0, weights = 0.0;
+      const double r2 = radius * radius;
+      for (int k = 0; k < 27; ++k) {
+        const int c = around[k];
+        if (c < 0) continue;
+        for (int i = cellBegin[c]; i < cellEnd[c]; ++i) {
+          const int f = cellEdges[i];
+          double d2 = 0.0;
+          for (int j = 0; j < 3; ++j)
+            d2 += (mid[3 * f + j] - mid[3 * e + j]) * (mid[3 * f + j] - mid[3 * e + j]);
+          if (!(d2 < r2)) continue;
+          candidate = candidate || hot[f];
+          if (damaged[f]) continue;
+          const double w = (1.0 - d2 / r2) * (1.0 - d2 / r2);
+          sum += w * local[f];
+          weights += w;
+        }
+      }
+      if (!candidate && !everyEdge) return;
+      const double mean = weights > 0.0 ? sum / weights : local[e];
+      ratio[e] = mean / threshold[e];
+      breaks[e] = breaks[e] || mean > threshold[e];
+    });
+    // Without any candidate the ratio is the local one (as the CPU reports it).
+    ex_.sum(
+        edges, [=] GALSCULPT_LAMBDA(int e) { return ratio[e] > -1.7e308 ? 1.0 : 0.0; },
+        sc + kCount);
+    ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
+      if (sc[kCount] == 0.0 && !damaged[e]) ratio[e] = local[e] / threshold[e];
+    });
   }
 
   // ---- setup ----------------------------------------------------------------------------
