@@ -12,6 +12,7 @@
 #include "app/render/render_mesh.h"
 #include "engine/session/project_file.h"
 #include "engine/surface/surface_io.h"
+#include "solver/frame/timing.h"
 
 namespace galsculpt {
 
@@ -245,7 +246,7 @@ void SculptApp::updateScene() {
   SurfaceUpdateStats stats;
   const auto start = Clock::now();
   const VisualSurface& surface = sim.surface(&stats);
-  msSurface_ = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  msSurface_ = msSince(start);
   std::vector<double> values;
   if (style_.view == SurfaceView::Damage) {
     values = sim.vertexDamage();

@@ -207,17 +207,35 @@ int checkedIndex(double value, long long nv, const std::function<void(const std:
   return static_cast<int>(value);
 }
 
-}  // namespace
+// A PLY file's header: its elements, which of them hold the vertices and faces, and how much
+// data the body must hold at least.
+struct PlyHeader {
+  std::string name;  // the file, for messages
+  bool ascii = true, bigEndian = false;
+  size_t bodyStart = 0;  // the first byte after the end_header line
+  int endHeaderLine = 0;
+  std::vector<PlyElement> elements;
+  const PlyElement* vertexElement = nullptr;
+  const PlyElement* faceElement = nullptr;
+  int xyz[3] = {-1, -1, -1};      // the vertex element's x, y, z properties
+  int indexProperty = -1;         // the face element's vertex_indices
+  unsigned long long needed = 0;  // lines (ascii) or bytes (binary) the records take at least
 
-RawSurface readPly(const fs::path& path) {
-  const std::string name = path.string();
-  const std::string text = readWholeFile(path);
+  PlyHeader() = default;
+  PlyHeader(const PlyHeader&) = delete;  // it points into its own elements
+  PlyHeader(PlyHeader&&) = default;      // a vector's move keeps them where they are
+};
+
+PlyHeader readPlyHeader(const std::string& name, const std::string& text) {
+  PlyHeader h;
+  h.name = name;
   // The header is text up to and including the end_header line.
   const size_t end = text.find("end_header");
   if (text.rfind("ply", 0) != 0 || end == std::string::npos)
     throw InputError(name, 1, "not a PLY file (it must start with 'ply' and have 'end_header')");
   size_t bodyStart = text.find('\n', end);
   bodyStart = bodyStart == std::string::npos ? text.size() : bodyStart + 1;
+  h.bodyStart = bodyStart;
   TextLines header(name, std::string_view(text).substr(0, bodyStart), 0);
   header.next("ply");
   const TextLine& format = header.next("the format line");
@@ -228,8 +246,10 @@ RawSurface readPly(const fs::path& path) {
   const bool ascii = kind == "ascii";
   if (!ascii && kind != "binary_little_endian" && kind != "binary_big_endian")
     header.fail(format.number, "unknown PLY format '" + std::string(kind) + "'");
-  std::vector<PlyElement> elements;
-  int endHeaderLine = 0;
+  h.ascii = ascii;
+  h.bigEndian = kind == "binary_big_endian";
+  std::vector<PlyElement>& elements = h.elements;
+  int& endHeaderLine = h.endHeaderLine;
   for (;;) {
     const TextLine& line = header.next("end_header");
     const std::string_view key = line.tokens[0];
@@ -264,10 +284,10 @@ RawSurface readPly(const fs::path& path) {
       header.fail(line.number, "unknown header keyword '" + std::string(key) + "'");
     }
   }
-  const PlyElement* vertexElement = nullptr;
-  const PlyElement* faceElement = nullptr;
-  int xyz[3] = {-1, -1, -1};
-  int indexProperty = -1;
+  const PlyElement*& vertexElement = h.vertexElement;
+  const PlyElement*& faceElement = h.faceElement;
+  int* xyz = h.xyz;
+  int& indexProperty = h.indexProperty;
   for (const PlyElement& e : elements) {
     if (e.name == "vertex") {
       vertexElement = &e;
@@ -292,10 +312,9 @@ RawSurface readPly(const fs::path& path) {
   }
   if (!vertexElement || !faceElement)
     throw InputError(name, 0, "a PLY surface needs a vertex and a face element");
-  const long long nv = static_cast<long long>(vertexElement->count);
   // Each record takes at least a line (ascii) or its fixed-size part (binary): counts beyond the
   // file are refused before anything is allocated.
-  unsigned long long needed = 0;
+  unsigned long long& needed = h.needed;
   for (const PlyElement& e : elements) {
     unsigned long long record = ascii ? 1 : 0;
     for (const PlyProperty& p : e.properties) {
@@ -305,109 +324,140 @@ RawSurface readPly(const fs::path& path) {
       header.fail(e.headerLine, "element count " + std::to_string(e.count) + " is too large");
     needed += e.count * record;
   }
-  RawSurface s;
+  return h;
+}
+
+void readPlyAsciiBody(const PlyHeader& h, const std::string& text, RawSurface& s) {
+  const std::string& name = h.name;
+  const int endHeaderLine = h.endHeaderLine;
+  const unsigned long long needed = h.needed;
+  const PlyElement* vertexElement = h.vertexElement;
+  const PlyElement* faceElement = h.faceElement;
+  const int* xyz = h.xyz;
+  const int indexProperty = h.indexProperty;
+  const long long nv = static_cast<long long>(vertexElement->count);
   std::vector<int> corner;
-  if (ascii) {
-    TextLines body(name, text, 0);
-    while (body.peek() && body.peek()->number <= endHeaderLine) body.next("the header");
-    if (needed > body.remaining())
-      throw InputError(name, endHeaderLine,
-                       "the header promises " + std::to_string(needed) + " records, the file has " +
-                           std::to_string(body.remaining()) + " more lines");
-    for (const PlyElement& e : elements) {
-      for (unsigned long long r = 0; r < e.count; ++r) {
-        const TextLine& line =
-            body.next(e.name + " " + std::to_string(r + 1) + " of " + std::to_string(e.count));
-        size_t token = 0;
-        Vec3 p = Vec3::Zero();
-        for (size_t q = 0; q < e.properties.size(); ++q) {
-          const PlyProperty& prop = e.properties[q];
-          if (!prop.list) {
-            if (token >= line.tokens.size())
-              body.fail(line.number, "expected " + std::to_string(e.properties.size()) +
-                                         " values, the line ends after " + std::to_string(token));
-            const double value = body.parseDouble(line, token++, "a value");
-            if (&e == vertexElement) {
-              for (int k = 0; k < 3; ++k)
-                if (xyz[k] == static_cast<int>(q)) p[k] = value;
-            }
-            continue;
+  TextLines body(name, text, 0);
+  while (body.peek() && body.peek()->number <= endHeaderLine) body.next("the header");
+  if (needed > body.remaining())
+    throw InputError(name, endHeaderLine,
+                     "the header promises " + std::to_string(needed) + " records, the file has " +
+                         std::to_string(body.remaining()) + " more lines");
+  for (const PlyElement& e : h.elements) {
+    for (unsigned long long r = 0; r < e.count; ++r) {
+      const TextLine& line =
+          body.next(e.name + " " + std::to_string(r + 1) + " of " + std::to_string(e.count));
+      size_t token = 0;
+      Vec3 p = Vec3::Zero();
+      for (size_t q = 0; q < e.properties.size(); ++q) {
+        const PlyProperty& prop = e.properties[q];
+        if (!prop.list) {
+          if (token >= line.tokens.size())
+            body.fail(line.number, "expected " + std::to_string(e.properties.size()) +
+                                       " values, the line ends after " + std::to_string(token));
+          const double value = body.parseDouble(line, token++, "a value");
+          if (&e == vertexElement) {
+            for (int k = 0; k < 3; ++k)
+              if (xyz[k] == static_cast<int>(q)) p[k] = value;
           }
-          const long long n = body.parseInt(line, token++, "a list count");
-          if (n < 0 || static_cast<unsigned long long>(n) > line.tokens.size() - token)
-            body.fail(line.number, "the list holds " + std::to_string(n) +
-                                       " items but the line has " +
-                                       std::to_string(line.tokens.size() - token) + " more values");
-          const bool indices = &e == faceElement && static_cast<int>(q) == indexProperty;
-          if (indices) corner.clear();
-          for (long long k = 0; k < n; ++k) {
-            const double value = body.parseDouble(line, token++, "a list item");
-            if (indices)
-              corner.push_back(checkedIndex(
-                  value, nv, [&](const std::string& m) { body.fail(line.number, m); }));
-          }
-          if (indices) {
-            if (n < 3)
-              body.fail(line.number, "a face needs at least 3 corners, got " + std::to_string(n));
-            addFan(corner, s.faces);
-          }
+          continue;
         }
-        if (token != line.tokens.size())
-          body.fail(line.number, "unexpected data after the " + std::to_string(token) + " values");
-        if (&e == vertexElement) s.vertices.push_back(p);
-      }
-    }
-    if (!body.atEnd()) body.fail(body.peek()->number, "unexpected data after the last element");
-  } else {
-    PlyBinary in(text, bodyStart, kind == "binary_big_endian", name);
-    if (needed > in.remaining())
-      throw InputError(name + ": the header promises at least " + std::to_string(needed) +
-                       " bytes of data, the file has " + std::to_string(in.remaining()));
-    for (const PlyElement& e : elements) {
-      for (unsigned long long r = 0; r < e.count; ++r) {
-        Vec3 p = Vec3::Zero();
-        for (size_t q = 0; q < e.properties.size(); ++q) {
-          const PlyProperty& prop = e.properties[q];
-          const size_t at = in.offset();
-          if (!prop.list) {
-            const double value = in.read(prop.type, "a value");
-            if (&e == vertexElement) {
-              for (int k = 0; k < 3; ++k)
-                if (xyz[k] == static_cast<int>(q)) p[k] = value;
-            }
-            continue;
-          }
-          const double n = in.read(prop.countType, "a list count");
-          if (n < 0 ||
-              n * static_cast<double>(plySize(prop.type)) > static_cast<double>(in.remaining()))
-            in.fail(at, "a list of " + std::to_string(static_cast<long long>(n)) +
-                            " items runs past the end of the file");
-          const bool indices = &e == faceElement && static_cast<int>(q) == indexProperty;
-          if (indices) corner.clear();
-          for (long long k = 0; k < static_cast<long long>(n); ++k) {
-            const size_t itemAt = in.offset();
-            const double value = in.read(prop.type, "a list item");
-            if (indices)
-              corner.push_back(
-                  checkedIndex(value, nv, [&](const std::string& m) { in.fail(itemAt, m); }));
-          }
-          if (indices) {
-            if (n < 3)
-              in.fail(at, "a face needs at least 3 corners, got " +
-                              std::to_string(static_cast<long long>(n)));
-            addFan(corner, s.faces);
-          }
+        const long long n = body.parseInt(line, token++, "a list count");
+        if (n < 0 || static_cast<unsigned long long>(n) > line.tokens.size() - token)
+          body.fail(line.number, "the list holds " + std::to_string(n) +
+                                     " items but the line has " +
+                                     std::to_string(line.tokens.size() - token) + " more values");
+        const bool indices = &e == faceElement && static_cast<int>(q) == indexProperty;
+        if (indices) corner.clear();
+        for (long long k = 0; k < n; ++k) {
+          const double value = body.parseDouble(line, token++, "a list item");
+          if (indices)
+            corner.push_back(
+                checkedIndex(value, nv, [&](const std::string& m) { body.fail(line.number, m); }));
         }
-        if (&e == vertexElement) {
-          if (!p.allFinite()) in.fail(in.offset(), "non-finite vertex coordinate");
-          s.vertices.push_back(p);
+        if (indices) {
+          if (n < 3)
+            body.fail(line.number, "a face needs at least 3 corners, got " + std::to_string(n));
+          addFan(corner, s.faces);
         }
       }
+      if (token != line.tokens.size())
+        body.fail(line.number, "unexpected data after the " + std::to_string(token) + " values");
+      if (&e == vertexElement) s.vertices.push_back(p);
     }
-    if (in.remaining() != 0)
-      in.fail(in.offset(), "unexpected data after the last element (" +
-                               std::to_string(in.remaining()) + " bytes)");
   }
+  if (!body.atEnd()) body.fail(body.peek()->number, "unexpected data after the last element");
+}
+
+void readPlyBinaryBody(const PlyHeader& h, const std::string& text, RawSurface& s) {
+  const unsigned long long needed = h.needed;
+  const PlyElement* vertexElement = h.vertexElement;
+  const PlyElement* faceElement = h.faceElement;
+  const int* xyz = h.xyz;
+  const int indexProperty = h.indexProperty;
+  const long long nv = static_cast<long long>(vertexElement->count);
+  std::vector<int> corner;
+  PlyBinary in(text, h.bodyStart, h.bigEndian, h.name);
+  if (needed > in.remaining())
+    throw InputError(h.name + ": the header promises at least " + std::to_string(needed) +
+                     " bytes of data, the file has " + std::to_string(in.remaining()));
+  for (const PlyElement& e : h.elements) {
+    for (unsigned long long r = 0; r < e.count; ++r) {
+      Vec3 p = Vec3::Zero();
+      for (size_t q = 0; q < e.properties.size(); ++q) {
+        const PlyProperty& prop = e.properties[q];
+        const size_t at = in.offset();
+        if (!prop.list) {
+          const double value = in.read(prop.type, "a value");
+          if (&e == vertexElement) {
+            for (int k = 0; k < 3; ++k)
+              if (xyz[k] == static_cast<int>(q)) p[k] = value;
+          }
+          continue;
+        }
+        const double n = in.read(prop.countType, "a list count");
+        if (n < 0 ||
+            n * static_cast<double>(plySize(prop.type)) > static_cast<double>(in.remaining()))
+          in.fail(at, "a list of " + std::to_string(static_cast<long long>(n)) +
+                          " items runs past the end of the file");
+        const bool indices = &e == faceElement && static_cast<int>(q) == indexProperty;
+        if (indices) corner.clear();
+        for (long long k = 0; k < static_cast<long long>(n); ++k) {
+          const size_t itemAt = in.offset();
+          const double value = in.read(prop.type, "a list item");
+          if (indices)
+            corner.push_back(
+                checkedIndex(value, nv, [&](const std::string& m) { in.fail(itemAt, m); }));
+        }
+        if (indices) {
+          if (n < 3)
+            in.fail(at, "a face needs at least 3 corners, got " +
+                            std::to_string(static_cast<long long>(n)));
+          addFan(corner, s.faces);
+        }
+      }
+      if (&e == vertexElement) {
+        if (!p.allFinite()) in.fail(in.offset(), "non-finite vertex coordinate");
+        s.vertices.push_back(p);
+      }
+    }
+  }
+  if (in.remaining() != 0)
+    in.fail(in.offset(), "unexpected data after the last element (" +
+                             std::to_string(in.remaining()) + " bytes)");
+}
+
+}  // namespace
+
+RawSurface readPly(const fs::path& path) {
+  const std::string name = path.string();
+  const std::string text = readWholeFile(path);
+  const PlyHeader header = readPlyHeader(name, text);
+  RawSurface s;
+  if (header.ascii)
+    readPlyAsciiBody(header, text, s);
+  else
+    readPlyBinaryBody(header, text, s);
   return s;
 }
 

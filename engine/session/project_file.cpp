@@ -154,11 +154,13 @@ bool looksLikeProject(const fs::path& file) {
   return in && std::memcmp(buffer, kMagic, sizeof(buffer)) == 0;
 }
 
-Project readProject(const fs::path& file) {
-  const std::string name = file.string();
-  std::string data = readWholeFile(file);
+namespace {
+
+// Line 1 of a project: the magic and a whole-number version this build reads. Returns the
+// version; `line1` is where that line ends.
+int readProjectVersion(const std::string& data, const std::string& name, std::size_t& line1) {
   // Line 1: magic and version; line 2: header length; then the header.
-  const std::size_t line1 = data.find('\n');
+  line1 = data.find('\n');
   if (data.rfind(kMagic, 0) != 0 || line1 == std::string::npos)
     throw InputError(
         name, 1,
@@ -177,84 +179,57 @@ Project readProject(const fs::path& file) {
     throw InputError(name, 1,
                      "made by a newer Galsculpt (format version " + std::to_string(version) +
                          "; this one reads up to " + std::to_string(kProjectVersion) + ")");
-  const std::size_t line2 = data.find('\n', line1 + 1);
-  std::size_t headerBytes = 0;
-  try {
-    if (line2 == std::string::npos) throw std::invalid_argument("missing");
-    headerBytes = std::stoull(data.substr(line1 + 1, line2 - line1 - 1));
-  } catch (const std::exception&) {
-    throw InputError(name, 2, "the header length is missing or not a number");
-  }
-  if (data.size() - (line2 + 1) < headerBytes)
-    throw InputError(name, 3,
-                     "truncated: the header needs " + std::to_string(headerBytes) +
-                         " bytes, the file has " + std::to_string(data.size() - line2 - 1) +
-                         " after line 2");
-  const nlohmann::json h = parseJsonText(data.substr(line2 + 1, headerBytes), name, 3);
-  JsonObject o(h, "$", name);
-  Project p;
-  if (!o.has("scene")) o.fail("scene", "is required");
-  const fs::path sceneFile = o.string("scene_file", "scene.json");
-  try {
-    p.scene = parseScene(o.raw("scene"), sceneFile);
-  } catch (const InputError& e) {
-    // The scene is the project's copy: name the project, then what the scene reader said.
-    throw InputError(name + ": $.scene (saved from " + sceneFile.string() + "): " + e.what());
-  }
-  SimulationSnapshot& s = p.state;
-  s.frame = o.integer("frame", 0, 0, 2000000000);
-  s.time = o.number("time", 0.0, 0.0, 1e12);
-  const int nv = o.integer("vertices", 0, 4, 2000000000);
-  const int nt = o.integer("tets", 0, 1, 2000000000);
-  const int ne = o.integer("edges", 0, 6, 2000000000);
-  const bool plastic = o.boolean("plastic", false);
-  s.toolDamage = o.integer("tool_damage", 0, 0, 2000000000);
-  s.nextAnchorId = o.integer("next_anchor_id", 0, 0, 2000000000);
-  const auto anchors = o.array("anchors");
-  for (size_t i = 0; i < anchors.size(); ++i) {
-    JsonObject a(anchors[i], "$.anchors[" + std::to_string(i) + "]", name);
-    s.anchorIds.push_back(a.integer("id", 0, -2000000000, 2000000000));
-    AnchorConstraint c;
-    const nlohmann::json& vertices = a.raw("vertices");
-    if (!vertices.is_array()) a.fail("vertices", "must be a list of vertex indices");
-    for (const nlohmann::json& v : vertices) {
-      if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() >= nv)
-        a.fail("vertices", "holds " + v.dump() + ", not a vertex of the mesh (it has " +
-                               std::to_string(nv) + ")");
-      c.vertices.push_back(v.get<int>());
-    }
-    const auto origin = a.array("origin");
-    for (size_t k = 0; k < origin.size(); ++k) {
-      const nlohmann::json wrapped = {{"p", origin[k]}};
-      JsonObject w(wrapped, a.childPath("origin") + "[" + std::to_string(k) + "]", name);
-      c.origin.push_back(readVec(w, "p"));
-    }
-    if (!c.origin.empty() && c.origin.size() != c.vertices.size())
-      a.fail("origin", "must hold one point per vertex");
-    const auto path = a.array("path");
-    for (size_t k = 0; k < path.size(); ++k) {
-      JsonObject key(path[k], a.childPath("path") + "[" + std::to_string(k) + "]", name);
-      AnchorKey ak;
-      ak.time = key.number("time", 0.0, -1e12, 1e12);
-      ak.offset = readVec(key, "offset");
-      key.rejectUnknownKeys();
-      c.path.push_back(ak);
-    }
-    a.rejectUnknownKeys();
-    s.anchors.push_back(std::move(c));
-  }
-  const auto events = o.array("recording");
-  for (size_t i = 0; i < events.size(); ++i)
-    p.recording.push_back(
-        parseToolEvent(events[i], "$.recording[" + std::to_string(i) + "]", name));
-  if (o.has("camera")) {
-    JsonObject c = o.object("camera");
-    p.camera = readCameraPose(c);
-    c.rejectUnknownKeys();
-  }
-  o.rejectUnknownKeys();
+  return version;
+}
 
-  BinaryReader in(std::move(data), line2 + 1 + headerBytes, name);
+// One anchor of the header's "anchors" list (its id into `id`), checked against the mesh.
+AnchorConstraint readAnchor(const nlohmann::json& json, const std::string& where, int nv,
+                            const std::string& name, int& id) {
+  JsonObject a(json, where, name);
+  id = a.integer("id", 0, -2000000000, 2000000000);
+  AnchorConstraint c;
+  const nlohmann::json& vertices = a.raw("vertices");
+  if (!vertices.is_array()) a.fail("vertices", "must be a list of vertex indices");
+  for (const nlohmann::json& v : vertices) {
+    if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() >= nv)
+      a.fail("vertices", "holds " + v.dump() + ", not a vertex of the mesh (it has " +
+                             std::to_string(nv) + ")");
+    c.vertices.push_back(v.get<int>());
+  }
+  const auto origin = a.array("origin");
+  for (size_t k = 0; k < origin.size(); ++k) {
+    const nlohmann::json wrapped = {{"p", origin[k]}};
+    JsonObject w(wrapped, a.childPath("origin") + "[" + std::to_string(k) + "]", name);
+    c.origin.push_back(readVec(w, "p"));
+  }
+  if (!c.origin.empty() && c.origin.size() != c.vertices.size())
+    a.fail("origin", "must hold one point per vertex");
+  const auto path = a.array("path");
+  for (size_t k = 0; k < path.size(); ++k) {
+    JsonObject key(path[k], a.childPath("path") + "[" + std::to_string(k) + "]", name);
+    AnchorKey ak;
+    ak.time = key.number("time", 0.0, -1e12, 1e12);
+    ak.offset = readVec(key, "offset");
+    key.rejectUnknownKeys();
+    c.path.push_back(ak);
+  }
+  a.rejectUnknownKeys();
+  return c;
+}
+
+struct ProjectCounts {
+  int vertices = 0, tets = 0, edges = 0, version = 1;
+  bool plastic = false;
+};
+
+// The binary arrays after the header: rest mesh, positions, velocities, damage (and blade
+// crossings from version 2), plastic state; each checked before use.
+void readProjectArrays(BinaryReader& in, const ProjectCounts& n, const std::string& name,
+                       Project& p) {
+  SimulationSnapshot& s = p.state;
+  const int nv = n.vertices, nt = n.tets, ne = n.edges;
+  const int version = n.version;
+  const bool plastic = n.plastic;
   std::vector<double> rest, x, v;
   std::vector<int> tets;
   in.read(rest, 3 * static_cast<std::size_t>(nv), "rest vertices");
@@ -304,6 +279,68 @@ Project readProject(const fs::path& file) {
     for (int k = 0; k < 4; ++k) p.mesh.tets[t][k] = tets[4 * t + k];
   s.x = unflat(x);
   s.v = unflat(v);
+}
+
+}  // namespace
+
+Project readProject(const fs::path& file) {
+  const std::string name = file.string();
+  std::string data = readWholeFile(file);
+  std::size_t line1 = 0;
+  const int version = readProjectVersion(data, name, line1);
+  const std::size_t line2 = data.find('\n', line1 + 1);
+  std::size_t headerBytes = 0;
+  try {
+    if (line2 == std::string::npos) throw std::invalid_argument("missing");
+    headerBytes = std::stoull(data.substr(line1 + 1, line2 - line1 - 1));
+  } catch (const std::exception&) {
+    throw InputError(name, 2, "the header length is missing or not a number");
+  }
+  if (data.size() - (line2 + 1) < headerBytes)
+    throw InputError(name, 3,
+                     "truncated: the header needs " + std::to_string(headerBytes) +
+                         " bytes, the file has " + std::to_string(data.size() - line2 - 1) +
+                         " after line 2");
+  const nlohmann::json h = parseJsonText(data.substr(line2 + 1, headerBytes), name, 3);
+  JsonObject o(h, "$", name);
+  Project p;
+  if (!o.has("scene")) o.fail("scene", "is required");
+  const fs::path sceneFile = o.string("scene_file", "scene.json");
+  try {
+    p.scene = parseScene(o.raw("scene"), sceneFile);
+  } catch (const InputError& e) {
+    // The scene is the project's copy: name the project, then what the scene reader said.
+    throw InputError(name + ": $.scene (saved from " + sceneFile.string() + "): " + e.what());
+  }
+  SimulationSnapshot& s = p.state;
+  s.frame = o.integer("frame", 0, 0, 2000000000);
+  s.time = o.number("time", 0.0, 0.0, 1e12);
+  const int nv = o.integer("vertices", 0, 4, 2000000000);
+  const int nt = o.integer("tets", 0, 1, 2000000000);
+  const int ne = o.integer("edges", 0, 6, 2000000000);
+  const bool plastic = o.boolean("plastic", false);
+  s.toolDamage = o.integer("tool_damage", 0, 0, 2000000000);
+  s.nextAnchorId = o.integer("next_anchor_id", 0, 0, 2000000000);
+  const auto anchors = o.array("anchors");
+  for (size_t i = 0; i < anchors.size(); ++i) {
+    int id = 0;
+    s.anchors.push_back(
+        readAnchor(anchors[i], "$.anchors[" + std::to_string(i) + "]", nv, name, id));
+    s.anchorIds.push_back(id);
+  }
+  const auto events = o.array("recording");
+  for (size_t i = 0; i < events.size(); ++i)
+    p.recording.push_back(
+        parseToolEvent(events[i], "$.recording[" + std::to_string(i) + "]", name));
+  if (o.has("camera")) {
+    JsonObject c = o.object("camera");
+    p.camera = readCameraPose(c);
+    c.rejectUnknownKeys();
+  }
+  o.rejectUnknownKeys();
+
+  BinaryReader in(std::move(data), line2 + 1 + headerBytes, name);
+  readProjectArrays(in, ProjectCounts{nv, nt, ne, version, plastic}, name, p);
   return p;
 }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "engine/session/backend_select.h"
+#include "solver/frame/timing.h"
 #include "solver/io/damage_io.h"
 #include "solver/io/input_error.h"
 #include "solver/io/tetgen_io.h"
@@ -464,8 +465,7 @@ FrameMetrics Simulation::advance() {
     m.maxDisplacement = std::max(m.maxDisplacement, (state_.x[v] - model_.mesh.vertices[v]).norm());
   }
   for (std::uint8_t d : state_.damaged) m.damagedEdges += d;
-  m.msTotal =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  m.msTotal = msSince(start);
   m.msOther = std::max(0.0, m.msTotal - m.msElements - m.msSolve - m.msPlastic - m.msFracture);
   return m;
 }

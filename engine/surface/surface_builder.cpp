@@ -4,17 +4,12 @@
 #include <chrono>
 #include <cstring>
 
+#include "solver/frame/timing.h"
 #include "solver/mesh/union_find.h"
 
 namespace galsculpt {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // Point keys: kind in the top bits, the edge/face/tet index, and the mask of the defining
 // corners that this copy holds (bit i: corner i of the support, in support order), plus one

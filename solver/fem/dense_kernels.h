@@ -1,4 +1,4 @@
-// Small dense linear algebra for the device backend's multigrid (12x12 handle blocks, 3x3
+// Small dense linear algebra for the multigrid cycle on either executor (12x12 handle blocks, 3x3
 // vertex blocks), __host__ __device__: one thread factors or solves one block. Column-major.
 #pragma once
 

@@ -21,13 +21,31 @@
 #define GALSCULPT_HD inline
 #endif
 
+namespace galsculpt {
+
+// The six edges of a tet as vertex pairs: the order of edge masks, edge stresses and each tet's
+// edge indices (SimModel::tetEdges) everywhere.
+inline constexpr int kTetEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+
+}  // namespace galsculpt
+
 namespace galsculpt::kernels {
 
-// The six edges of a tet as vertex pairs (the order of edge masks and edge stresses).
-GALSCULPT_HD int edgeVertex(int edge, int end) {
-  constexpr int pairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-  return pairs[edge][end];
+// kTetEdges in device code (which cannot read a host array): vertex `end` (0, 1) of `edge`.
+GALSCULPT_HD constexpr int edgeVertex(int edge, int end) {
+  return end == 0 ? (edge < 3   ? 0
+                     : edge < 5 ? 1
+                                : 2)
+                  : (edge < 3   ? edge + 1
+                     : edge < 5 ? edge - 1
+                                : 3);
 }
+static_assert(edgeVertex(0, 0) == kTetEdges[0][0] && edgeVertex(0, 1) == kTetEdges[0][1] &&
+                  edgeVertex(1, 1) == kTetEdges[1][1] && edgeVertex(2, 1) == kTetEdges[2][1] &&
+                  edgeVertex(3, 0) == kTetEdges[3][0] && edgeVertex(3, 1) == kTetEdges[3][1] &&
+                  edgeVertex(4, 0) == kTetEdges[4][0] && edgeVertex(4, 1) == kTetEdges[4][1] &&
+                  edgeVertex(5, 0) == kTetEdges[5][0] && edgeVertex(5, 1) == kTetEdges[5][1],
+              "edgeVertex is kTetEdges");
 constexpr std::uint8_t kIntact = 0x3f;
 
 enum class Hessian { None, Exact, ProjectedSpd };

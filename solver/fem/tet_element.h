@@ -28,8 +28,6 @@ using Mat12 = Eigen::Matrix<double, 12, 12>;
 using Mat9 = Eigen::Matrix<double, 9, 9>;
 using TetPoints = std::array<Eigen::Vector3d, 4>;
 
-// The six edges of a tet as vertex pairs, in the order used for edge masks and stresses.
-inline constexpr int kTetEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 inline constexpr std::uint8_t kAllEdgesIntact = 0x3f;
 
 // Rest-shape data computed once per element: the shared kernels' plain struct (inverse rest

@@ -16,7 +16,7 @@ namespace galsculpt {
 
 namespace detail {
 // Set while a captured section runs: what the CUDA executor records as a graph may not read
-// from the device, allocate or wait, and the host executor enforces that for the tests.
+// from the device, allocate or wait, and the CPU executor enforces that for the tests.
 inline thread_local bool capturing = false;
 inline void forbidInCapture(const char* what) {
   if (capturing) throw std::logic_error(std::string(what) + " inside a captured section");

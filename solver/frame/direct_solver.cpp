@@ -13,8 +13,7 @@ struct DirectSolver::Impl {
   bool analysed = false;
 };
 
-DirectSolver::DirectSolver(const BlockPattern& pattern)
-    : impl_(std::make_unique<Impl>()) {
+DirectSolver::DirectSolver(const BlockPattern& pattern) : impl_(std::make_unique<Impl>()) {
   const int n = pattern.rows;
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(9 * pattern.columns.size());

@@ -3,7 +3,7 @@
 // warning), the plastic return and the fracture pass after each accepted sub-step, and re-solves
 // of a sub-step while its fracture pass keeps breaking edges (fractureIterations).
 //
-// `Ops` is the backend (the CPU one in step.cpp, the device one in gpu/):
+// `Ops` is the frame's (frame_solver.h, on either executor):
 //   Saved save();                          the state to come back to
 //   void restore(const Saved&, bool keepDamage);
 //   SubstepOutcome substep(double h);      one backward-Euler sub-step; advances time
@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "solver/frame/step.h"
+#include "solver/frame/timing.h"
 
 namespace galsculpt {
 
@@ -34,10 +35,6 @@ struct SubstepOutcome {
 
 template <typename Ops>
 StepReport runFrame(Ops& ops, const StepSettings& settings) {
-  using Clock = std::chrono::steady_clock;
-  auto msSince = [](Clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-  };
   const auto start = Clock::now();
   StepReport report;
   const double frameEnd = ops.time() + settings.dt;

@@ -36,13 +36,14 @@
 #include "solver/frame/model_layout.h"
 #include "solver/frame/step.h"
 #include "solver/frame/step_backend.h"
+#include "solver/frame/timing.h"
 #include "solver/multigrid/multigrid_cycle.h"
 
 namespace galsculpt {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Why a frame with these settings cannot run on the device backend ("" when it can).
+// Why a frame with these settings cannot run on the CUDA executor ("" when it can).
 inline std::string cudaUnsupportedReason(const StepSettings& s) {
   if (!s.multigrid) return "the reference solver (direct sparse Cholesky) runs on the CPU only";
   if (s.colliders.size() > 16) return "more than 16 colliders run on the CPU only";
@@ -117,8 +118,7 @@ class FrameSolver {
     elemEnergy_.resize(tets_);
     elemGrad_.resize(12 * static_cast<size_t>(tets_));
     elemHess_.resize(kPackedHessian * static_cast<size_t>(tets_));
-    for (Buffer<double>* b : {&k_, &frozen_, &h_})
-      b->resize(9 * static_cast<size_t>(layout_.blocks));
+    for (Buffer<double>* b : {&k_, &h_}) b->resize(9 * static_cast<size_t>(layout_.blocks));
     scalars_.resize(kScalars);
     contactPerVertex_.resize(n_);
     const auto box = boundingBox(model.mesh.vertices);
@@ -130,7 +130,8 @@ class FrameSolver {
 
   // ---- the state shared with the host (SimState) ------------------------------------------
 
-  // Brings the device up to date with `state` (uploads only what changed since the last sync).
+  // Brings the executor's memory up to date with `state` (uploads only what changed since the
+  // last sync; on the CPU executor an upload is a copy).
   void syncIn(const SimState& state, const StepSettings& settings) {
     uploadIfChanged(state.x, hostX_, x_);
     uploadIfChanged(state.v, hostV_, v_);
@@ -155,6 +156,9 @@ class FrameSolver {
     if (settings.fracture && fractureField_ != settings.fracture.get())
       uploadFracture(*settings.fracture);
     if (settings.multigrid) ensureMultigrid(settings);
+    // The stiffness frozen at x_n for damping, kept apart only with several Newton iterations
+    // (allocated here: never inside a captured section).
+    if (settings.newtonIterations > 1 && frozen_.size() != k_.size()) frozen_.resize(k_.size());
   }
 
   // Writes positions, velocities, damage and plastic state back (positions through the
@@ -439,11 +443,6 @@ class FrameSolver {
   }
 
   // ---- one backward-Euler sub-step ----------------------------------------------------------
-
-  using Clock = std::chrono::steady_clock;
-  static double msSince(Clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-  }
 
   SubstepOutcome substep(double h) {
     SubstepOutcome result;
@@ -966,7 +965,7 @@ class FrameSolver {
       ratio[e] = mean / threshold[e];
       breaks[e] = breaks[e] || mean > threshold[e];
     });
-    // Without any candidate the ratio is the local one (as the CPU reports it).
+    // Without any candidate the ratio is the local one (the pass reports the largest ratio).
     ex_.sum(
         edges, [=] GALSCULPT_LAMBDA(int e) { return ratio[e] > -1.7e308 ? 1.0 : 0.0; },
         sc + kCount);

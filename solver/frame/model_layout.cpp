@@ -35,7 +35,7 @@ ModelLayout buildModelLayout(const SimModel& model) {
   m.rowStart = model.pattern.rowStart;
   m.columns = model.pattern.columns;
   m.diagonal = model.pattern.diagonal;
-  // Contributions in the CPU's order: colour by colour, tets in colour order.
+  // Contributions in a fixed order: colour by colour, tets in colour order.
   std::vector<std::vector<int>> perVertex(m.vertices), perBlock(m.blocks);
   for (const std::vector<int>& color : model.colors) {
     for (int t : color) {
@@ -106,7 +106,7 @@ MultigridLayout buildMultigridLayout(const Multigrid& mg, const BlockPattern& fi
       for (int k = level.rowStart[h]; k < level.rowStart[h + 1]; ++k)
         if (level.columns[k] == h) ll.diagonal[h] = k;
     }
-    // The refresh's contributions in the CPU's order: aggregate rows, then their blocks.
+    // The refresh's contributions in a fixed order: aggregate rows, then their blocks.
     const std::vector<int>& finerStart = l == 0 ? fine.rowStart : mg.level(l - 1).rowStart;
     const std::vector<int>& map = l == 0 ? level.fineToCoarseBlock : level.finerToCoarseBlock;
     std::vector<std::vector<int>> blocks(level.columns.size()), rowsOf(level.columns.size());
@@ -144,6 +144,9 @@ MultigridLayout buildMultigridLayout(const Multigrid& mg, const BlockPattern& fi
     flatten(blocks, out.pieceContribStart, out.pieceContribBlock);
     std::vector<int> unused;
     flatten(rows, unused, out.pieceContribRow);
+    std::vector<std::vector<int>> handlesOf(out.pieceCount);
+    for (int h = 0; h < c.handles; ++h) handlesOf[out.pieceOfHandle[h]].push_back(h);
+    flatten(handlesOf, out.pieceHandleStart, out.pieceHandles);
   }
   out.fragmentStart = mg.fragmentStart();
   out.fragmentVertices = mg.fragmentVertices();

@@ -1,5 +1,5 @@
 // The model, the fracture field and the multigrid hierarchy as flat arrays, in the order the
-// device backend reads them (host code, built with or without CUDA).
+// executors read them (host code, built with or without CUDA).
 //
 // Race-free assembly without atomics: every output (a vertex's force, a 3x3 block of the
 // stiffness, a 12x12 block of a coarse operator) has its own list of the element or finer
@@ -35,7 +35,7 @@ struct ModelLayout {
 ModelLayout buildModelLayout(const SimModel& model);
 
 // The fracture pass's data. The kernel's cells are numbered, each with the numbers of the 27
-// cells around it (-1 where there is none, in dz-fastest order, as the CPU visits them), so a
+// cells around it (-1 where there is none, in dz-fastest order), so a
 // thread finds an edge's neighbourhood without a search and can skip it when no cell near it
 // holds an edge over the smallest threshold.
 struct FractureLayout {
@@ -73,6 +73,7 @@ struct MultigridLayout {
   std::vector<double> pieceMap;        // (144 coarsest handles)
   std::vector<int> pieceContribStart;  // (pieces + 1) CSR: coarsest blocks inside each piece
   std::vector<int> pieceContribBlock, pieceContribRow;
+  std::vector<int> pieceHandleStart, pieceHandles;  // (pieces + 1) CSR: coarsest handles
   // Fragments: small pieces corrected in their own affine modes.
   std::vector<int> fragmentStart, fragmentVertices;
   std::vector<int> fragmentOf;        // (nVerts) -1: none

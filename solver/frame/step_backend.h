@@ -1,4 +1,4 @@
-// Where a frame is computed: the CPU (step.h, the reference) or a device backend (gpu/). Both
+// Where a frame is computed: the CPU executor (cpu_backend.h) or the CUDA one (gpu/). Both
 // run the same frame loop (frame_loop.h) and the same element kernels (element_kernels.h), take
 // the model and settings as they are, and leave the results in the caller's SimState, so the
 // engine never knows which one ran.

@@ -8,9 +8,9 @@
 // vertex and U_l (l > 1) one 12x12 block per handle. R_l = U_l^T and A_{l+1} = U_l^T A_l U_l,
 // refreshed from the current stiffness every frame (values only; the patterns are fixed).
 //
-// V-cycle: block Gauss-Seidel (multi-colour, parallel, symmetric) or damped block Jacobi on
-// every level but the coarsest, which is solved by CG or a dense Cholesky. The V-cycle is also
-// a preconditioner for CG with a residual tolerance (not in the paper).
+// This file is the precomputation: the hierarchy, rebuilt only when damage splits aggregates
+// (updateDamage). The solve on it (refresh, V-cycles with block Gauss-Seidel or Jacobi, CG or a
+// dense Cholesky on the coarsest level, PCG) is multigrid_cycle.h, run by either executor.
 //
 // Aggregates too small or too flat to carry 12 affine DOFs: U has a null space there (affine
 // modes that move no fine vertex). A relative 1e-9 shift on each coarse diagonal block makes
@@ -88,7 +88,7 @@ class Multigrid {
   // Dense U of level l (for tests): rows = finer DOFs, columns = 12 * handles.
   Eigen::MatrixXd prolongationMatrix(int l) const;
 
-  // Read access for device backends, which mirror the hierarchy (solver/frame/model_layout.h).
+  // Read access for the cycle, which mirrors the hierarchy (solver/frame/model_layout.h).
   const std::vector<std::vector<int>>& fineColors() const { return fineColors_; }
   const std::vector<Vec3>& restPositions() const { return rest_; }
   const std::vector<int>& fragmentStart() const { return fragmentStart_; }  // CSR over fragments

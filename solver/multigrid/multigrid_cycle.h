@@ -88,15 +88,8 @@ class MultigridCycle {
       pieceContribStart_.upload(m.pieceContribStart);
       pieceContribBlock_.upload(m.pieceContribBlock);
       pieceContribRow_.upload(m.pieceContribRow);
-      std::vector<std::vector<int>> handlesOf(pieceCount_);
-      for (int h = 0; h < c.handles; ++h) handlesOf[m.pieceOfHandle[h]].push_back(h);
-      std::vector<int> start{0}, list;
-      for (const auto& hs : handlesOf) {
-        list.insert(list.end(), hs.begin(), hs.end());
-        start.push_back(static_cast<int>(list.size()));
-      }
-      pieceHandleStart_.upload(start);
-      pieceHandles_.upload(list);
+      pieceHandleStart_.upload(m.pieceHandleStart);
+      pieceHandles_.upload(m.pieceHandles);
       pieceFactor_.resize(144 * static_cast<size_t>(pieceCount_));
       pieceSolution_.resize(12 * static_cast<size_t>(pieceCount_));
     }
@@ -576,7 +569,7 @@ class MultigridCycle {
         if (cgLive(sc)) {
           sc[kRr] = sc[kRrNew];
         } else {
-          sc[kDone] = 1.0;  // stopped for good, as the CPU's loop breaks
+          sc[kDone] = 1.0;  // stopped for good: the later launches do nothing
         }
       });
     }
