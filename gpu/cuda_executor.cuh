@@ -163,6 +163,11 @@ class CudaExecutor {
       GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));  // src may go away
     }
     void upload(const std::vector<T>& src) { upload(src.data(), src.size()); }
+    // Uploads and frees the host array (the CPU executor takes it over instead).
+    void adopt(std::vector<T>&& src) {
+      upload(src);
+      src = std::vector<T>();
+    }
     // Setup and rare transfers; per-frame ones go through CudaExecutor::download (pinned).
     void download(T* dst, size_t n) const {
       if (!n) return;

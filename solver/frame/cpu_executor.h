@@ -46,6 +46,12 @@ class CpuExecutor {
       v_.assign(src, src + n);
     }
     void upload(const std::vector<T>& src) { upload(src.data(), src.size()); }
+    // Takes the host array over (on this executor, without a copy); `src` is left empty.
+    void adopt(std::vector<T>&& src) {
+      detail::forbidInCapture("an upload");
+      v_ = std::move(src);
+      src = std::vector<T>();
+    }
     void download(T* dst, size_t n) const {
       detail::forbidInCapture("a download");
       std::copy(v_.begin(), v_.begin() + n, dst);

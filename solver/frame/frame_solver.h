@@ -93,21 +93,23 @@ class FrameSolver {
       : ex_(ex), model_(model), layout_(buildModelLayout(model)), mg_(ex, layout_) {
     n_ = layout_.vertices;
     tets_ = layout_.tets;
-    tetVertices_.upload(layout_.tetVertices);
-    tetEdges_.upload(layout_.tetEdges);
-    rest_.upload(layout_.rest);
-    mass_.upload(layout_.mass);
-    rowStart_.upload(layout_.rowStart);
-    columns_.upload(layout_.columns);
-    diagonal_.upload(layout_.diagonal);
     std::vector<int> blockRow(layout_.blocks);
     for (int r = 0; r < n_; ++r)
       for (int k = layout_.rowStart[r]; k < layout_.rowStart[r + 1]; ++k) blockRow[k] = r;
-    blockRow_.upload(blockRow);
-    vertexSlotStart_.upload(layout_.vertexSlotStart);
-    vertexSlots_.upload(layout_.vertexSlots);
-    blockSlotStart_.upload(layout_.blockSlotStart);
-    blockSlots_.upload(layout_.blockSlots);
+    blockRow_.adopt(std::move(blockRow));
+    // The layout's arrays move into the executor's buffers (without a copy on the CPU): the
+    // per-element arrays are most of a model's memory.
+    tetVertices_.adopt(std::move(layout_.tetVertices));
+    tetEdges_.adopt(std::move(layout_.tetEdges));
+    rest_.adopt(std::move(layout_.rest));
+    mass_.adopt(std::move(layout_.mass));
+    rowStart_.adopt(std::move(layout_.rowStart));
+    columns_.adopt(std::move(layout_.columns));
+    diagonal_.adopt(std::move(layout_.diagonal));
+    vertexSlotStart_.adopt(std::move(layout_.vertexSlotStart));
+    vertexSlots_.adopt(std::move(layout_.vertexSlots));
+    blockSlotStart_.adopt(std::move(layout_.blockSlotStart));
+    blockSlots_.adopt(std::move(layout_.blockSlots));
     // Every per-vertex buffer up front: nothing may allocate inside a captured section.
     for (Buffer<double>* b :
          {&x_, &v_, &xn_, &vn_, &xhat_, &grad_, &trialGrad_, &acceptedGrad_, &g_, &delta_, &trial_,
