@@ -505,40 +505,7 @@ class MultigridCycle {
       x[i] = 0.0;
       r[i] = b[i];
     });
-    if (pieceCount_ >= 2) {
-      const int* hStart = pieceHandleStart_.data();
-      const int* handles = pieceHandles_.data();
-      const int* pieceOf = pieceOfHandle_.data();
-      const double* map = pieceMap_.data();
-      const double* factor = pieceFactor_.data();
-      double* e = pieceSolution_.data();
-      ex_.forEach(pieceCount_, [=] GALSCULPT_LAMBDA(int q) {
-        double rhs[12] = {};
-        for (int i = hStart[q]; i < hStart[q + 1]; ++i) {
-          const int h = handles[i];
-          addMultiplyTransposed12(map + 144 * h, b + 12 * h, rhs);
-        }
-        choleskySolve(12, factor + 144 * q, rhs);
-        for (int k = 0; k < 12; ++k) e[12 * q + k] = rhs[k];
-      });
-      ex_.forEach(c.handles, [=] GALSCULPT_LAMBDA(int h) {
-        double out[12] = {};
-        addMultiply12(map + 144 * h, e + 12 * pieceOf[h], out);
-        for (int k = 0; k < 12; ++k) x[12 * h + k] = out[k];
-      });
-      multiplyCoarse(numLevels() - 1, x, ap);
-      ex_.sum(
-          n, [=] GALSCULPT_LAMBDA(int i) { return x[i] == x[i] && fabs(x[i]) < 1e300 ? 0.0 : 1.0; },
-          sc + kBad);
-      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
-        if (sc[kBad] > 0.0) {
-          x[i] = 0.0;
-          r[i] = b[i];
-        } else {
-          r[i] = b[i] - ap[i];
-        }
-      });
-    }
+    if (pieceCount_ >= 2) startFromPieces(b, x);
     ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) { p[i] = r[i]; });
     ex_.sum(
         n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * r[i]; }, sc + kRr);
@@ -573,6 +540,49 @@ class MultigridCycle {
         }
       });
     }
+  }
+
+  // The coarse CG's start with two or more pieces: each piece's exact affine solution (its
+  // 12x12 system), so that CG only corrects within pieces; r = b - A x. A start that is not
+  // finite falls back to x = 0.
+  void startFromPieces(const double* b, double* x) {
+    const Level& c = levels_.back();
+    const int n = 12 * c.handles;
+    double* r = cgR_.data();
+    double* ap = cgAp_.data();
+    double* sc = scalars_.data();
+    const int* hStart = pieceHandleStart_.data();
+    const int* handles = pieceHandles_.data();
+    const int* pieceOf = pieceOfHandle_.data();
+    const double* map = pieceMap_.data();
+    const double* factor = pieceFactor_.data();
+    double* e = pieceSolution_.data();
+    ex_.forEach(pieceCount_, [=] GALSCULPT_LAMBDA(int q) {
+      double rhs[12] = {};
+      for (int i = hStart[q]; i < hStart[q + 1]; ++i) {
+        const int h = handles[i];
+        addMultiplyTransposed12(map + 144 * h, b + 12 * h, rhs);
+      }
+      choleskySolve(12, factor + 144 * q, rhs);
+      for (int k = 0; k < 12; ++k) e[12 * q + k] = rhs[k];
+    });
+    ex_.forEach(c.handles, [=] GALSCULPT_LAMBDA(int h) {
+      double out[12] = {};
+      addMultiply12(map + 144 * h, e + 12 * pieceOf[h], out);
+      for (int k = 0; k < 12; ++k) x[12 * h + k] = out[k];
+    });
+    multiplyCoarse(numLevels() - 1, x, ap);
+    ex_.sum(
+        n, [=] GALSCULPT_LAMBDA(int i) { return x[i] == x[i] && fabs(x[i]) < 1e300 ? 0.0 : 1.0; },
+        sc + kBad);
+    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
+      if (sc[kBad] > 0.0) {
+        x[i] = 0.0;
+        r[i] = b[i];
+      } else {
+        r[i] = b[i] - ap[i];
+      }
+    });
   }
 
   // Whether this coarse CG iteration runs: not stopped, residual above the stop, p^T A p > 0.

@@ -160,8 +160,9 @@ TEST(ElementKernels, PlasticReturnLandsOnTheYieldSurface) {
   EXPECT_GT(strain, 0.0);
   EXPECT_NEAR(determinant(fp), 1.0, 1e-12);
   const Eigen::Matrix3d fe = f * toEigen(fp);
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(fe);
-  const Eigen::Vector3d logs = svd.singularValues().array().log();
+  // log of the singular values, from the eigenvalues of Fe^T Fe (log s = log(lambda) / 2).
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(fe.transpose() * fe);
+  const Eigen::Vector3d logs = 0.5 * eigen.eigenvalues().array().log();
   const double q = std::sqrt(1.5) * 2.0 * lame.mu * (logs.array() - logs.mean()).matrix().norm();
   EXPECT_NEAR(q, params.yieldStress + params.hardening * strain, 1e-6 * params.yieldStress);
   const double before = strain;
