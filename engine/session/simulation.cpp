@@ -78,8 +78,9 @@ void checkSceneAnchors(const SceneDescription& scene, const TetMesh& mesh) {
                          "$.anchors[" + std::to_string(i) + "]");
 }
 
-MaterialParams materialFromScene(const MaterialDesc& m) {
+MaterialParams materialFromScene(const MaterialDesc& m, bool compressionResists) {
   MaterialParams p;
+  p.compressionResists = compressionResists;
   p.model = m.model;
   p.lame = lameFromYoungPoisson(m.youngsModulus, m.poissonRatio);
   p.density = m.density;
@@ -88,7 +89,8 @@ MaterialParams materialFromScene(const MaterialDesc& m) {
 }
 
 Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, SolverChoice choice)
-    : model_(buildSimModel(mesh, materialFromScene(scene.material))),
+    : model_(buildSimModel(mesh,
+                           materialFromScene(scene.material, scene.fracture.compressionResists))),
       state_(initialState(model_)),
       surfaceBuilder_(model_) {
   settings_.dt = scene.timeStep;
@@ -96,7 +98,6 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   settings_.gravity = scene.gravity;
   settings_.dampingMass = scene.dampingMass;
   settings_.dampingStiffness = scene.dampingStiffness;
-  settings_.compressionResists = scene.fracture.compressionResists;
   settings_.newtonIterations = scene.solver.newtonIterations;
   for (size_t i = 0; i < scene.anchors.size(); ++i) {
     AnchorConstraint a;

@@ -9,8 +9,8 @@
 #include "engine/scene/scene.h"
 #include "engine/surface/surface_builder.h"
 #include "solver/fracture/knife.h"
-#include "solver/frame/step.h"
 #include "solver/frame/cpu_backend.h"
+#include "solver/frame/step.h"
 
 namespace galsculpt {
 
@@ -59,7 +59,7 @@ std::string metricsCsvRow(const FrameMetrics& m);
 void checkSceneAnchors(const SceneDescription& scene, const TetMesh& mesh);
 
 // Solver-side material from a scene material; throws InputError for an unknown model.
-MaterialParams materialFromScene(const MaterialDesc& m);
+MaterialParams materialFromScene(const MaterialDesc& m, bool compressionResists = true);
 
 class Simulation {
  public:
@@ -123,8 +123,8 @@ class Simulation {
   // Changes whenever the positions may have changed (a frame, a restore): views and pick
   // structures compare it to know when to refresh.
   std::uint64_t generation() const { return generation_; }
-  // The visualization surface (engine/surface/surface_builder.h) at the current damage and positions,
-  // brought up to date on each call; `stats` (optional) gets what that update cost.
+  // The visualization surface (engine/surface/surface_builder.h) at the current damage and
+  // positions, brought up to date on each call; `stats` (optional) gets what that update cost.
   const VisualSurface& surface(SurfaceUpdateStats* stats = nullptr) const;
   // Writes the tet mesh at the current positions with its damage: stem.node/.ele/.face,
   // stem.damage (solver/io/damage_io.h) and stem.vtk (cell data: damage, piece).

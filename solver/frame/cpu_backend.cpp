@@ -15,9 +15,8 @@ StepReport CpuStepBackend::step(SimState& state, const StepSettings& settings) {
 }
 
 std::vector<double> fractureEdgeStress(const SimModel& model, const FractureField& field,
-                                       const SimState& state, bool compressionResists) {
+                                       const SimState& state) {
   StepSettings settings;
-  settings.compressionResists = compressionResists;
   settings.fracture = std::shared_ptr<const FractureField>(&field, [](const FractureField*) {});
   CpuExecutor ex;
   FrameSolver<CpuExecutor> frame(ex, model);

@@ -24,6 +24,6 @@ class CpuStepBackend final : public StepBackend {
 // Each edge's stress as the fracture pass sees it at the state's positions (element maximum,
 // then the field's kernel mean), 0 on damaged edges: the pass's own kernels, for tests and views.
 std::vector<double> fractureEdgeStress(const SimModel& model, const FractureField& field,
-                                       const SimState& state, bool compressionResists);
+                                       const SimState& state);
 
 }  // namespace galsculpt

@@ -237,7 +237,7 @@ class FrameSolver {
     double* eh = elemHess_.data();
     const MaterialModel model = model_.material.model;
     const Lame lame = model_.material.lame;
-    const bool resists = settings_->compressionResists;
+    const bool resists = model_.material.compressionResists;
     const kernels::Hessian mode =
         withHessian ? kernels::Hessian::ProjectedSpd : kernels::Hessian::None;
     ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
@@ -675,7 +675,6 @@ class FrameSolver {
     mix(reinterpret_cast<std::uintptr_t>(poseBuffer_.data()));
     mix(reinterpret_cast<std::uintptr_t>(fp_.data()));
     mix(plastic_);
-    mix(s.compressionResists);
     mixDouble(s.dampingMass);
     mixDouble(s.dampingStiffness);
     for (int i = 0; i < 3; ++i) mixDouble(s.gravity[i]);
@@ -862,7 +861,7 @@ class FrameSolver {
     double* slot = slotStress_.data();
     const MaterialModel model = model_.material.model;
     const Lame lame = model_.material.lame;
-    const bool resists = settings_->compressionResists;
+    const bool resists = model_.material.compressionResists;
     ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
       double x12[12];
       std::uint8_t intact;

@@ -27,8 +27,7 @@ StepSettings referenceSettings(StepSettings base) {
 }
 
 double assembleElastic(const SimModel& model, const std::vector<Vec3>& x, const SimState& state,
-                       bool compressionResists, Eigen::VectorXd& gradient,
-                       BlockSparseMatrix* hessian) {
+                       Eigen::VectorXd& gradient, BlockSparseMatrix* hessian) {
   gradient.setZero(3 * model.numVertices());
   if (hessian) hessian->setZero();
   std::vector<double> energies(model.numTets(), 0.0);
@@ -39,7 +38,7 @@ double assembleElastic(const SimModel& model, const std::vector<Vec3>& x, const 
       const int t = color[i];
       const Tet& tet = model.mesh.tets[t];
       const TetPoints p{x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]};
-      const EdgeDamage d = tetDamage(model, state.damaged, t, compressionResists);
+      const EdgeDamage d = tetDamage(model, state.damaged, t, model.material.compressionResists);
       ElementEval ev;
       // A plastically deformed element measures strain from its new rest shape.
       const bool plastic =

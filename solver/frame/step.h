@@ -47,7 +47,6 @@ struct StepSettings {
   int newtonIterations = 1;       // 1: the paper's linearized step
   bool lineSearch = false;
   double tolerance = 1e-9;  // Newton stops when |dx|_inf < tolerance * model size
-  bool compressionResists = true;
   std::vector<AnchorConstraint> anchors;
   std::vector<Collider> colliders;
   // Linear solver of each Newton step: CHOLMOD's Cholesky, or the Galerkin multigrid.
@@ -87,7 +86,6 @@ struct StepReport {
 // finite differences, multigrid operators) and tools.
 // Uses the state's damage and plastic rest shapes, not its positions.
 double assembleElastic(const SimModel& model, const std::vector<Vec3>& x, const SimState& state,
-                       bool compressionResists, Eigen::VectorXd& gradient,
-                       BlockSparseMatrix* hessian);
+                       Eigen::VectorXd& gradient, BlockSparseMatrix* hessian);
 
 }  // namespace galsculpt

@@ -24,6 +24,9 @@ struct MaterialParams {
   Lame lame;
   double density = 1000.0;  // kg/m^3
   PlasticParams plastic;    // yieldStress 0: purely elastic
+  // Whether a damaged edge still resists compression (a closed crack bears load): part of the
+  // material, fixed for a run (scene: fracture.compression_resists).
+  bool compressionResists = true;
 };
 
 struct SimModel {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "engine/scene/scene_mesh.h"
+#include "solver/frame/step.h"
 #include "solver/io/damage_io.h"
 #include "solver/io/input_error.h"
 #include "solver/io/tetgen_io.h"
@@ -44,6 +45,29 @@ TEST(Simulation, HangingSphereSagsAndSettlesWithAnchorsHeld) {
   EXPECT_TRUE(sim.surface().mesh.numFaces() > 0);
   EXPECT_TRUE(sim.settings().multigrid) << "the scene default solver is the Galerkin multigrid";
   EXPECT_EQ(sim.settings().gridHandles, std::vector<int>{50});
+}
+
+// Whether damaged edges resist compression is the material's (SimModel), from the scene's
+// fracture section: a fully damaged sphere squeezed to 90 % stores energy only when they do.
+TEST(Simulation, CompressionResistanceOfCracksIsTheModelsFromTheScene) {
+  test::TempDir dir;
+  double energy[2] = {};
+  for (int resists = 0; resists < 2; ++resists) {
+    const SceneDescription scene =
+        sceneFrom(dir, std::string("{") + kSmallSphere + R"(, "material": {"preset": "rubber"},
+        "fracture": {"enabled": true, "compression_resists": )" +
+                           (resists ? "true" : "false") + "}}");
+    const Simulation sim(scene, loadSceneMesh(scene));
+    EXPECT_EQ(sim.model().material.compressionResists, resists == 1);
+    SimState state = sim.state();
+    std::fill(state.damaged.begin(), state.damaged.end(), 1);
+    std::vector<Vec3> squeezed = state.x;
+    for (Vec3& p : squeezed) p *= 0.9;
+    Eigen::VectorXd gradient;
+    energy[resists] = assembleElastic(sim.model(), squeezed, state, gradient, nullptr);
+  }
+  EXPECT_EQ(energy[0], 0.0) << "open cracks: a damaged body offers no resistance";
+  EXPECT_GT(energy[1], 0.0) << "closed cracks bear compression";
 }
 
 // The measure probes: the opening between a top and a bottom vertex grows as the sphere sags,

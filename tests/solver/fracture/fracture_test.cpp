@@ -42,8 +42,8 @@ TEST(Fracture, KernelAveragesStressOverTheRadius) {
   s.damaged[3] = 1;
   const FractureField local = buildFractureField(m, {1.0, 0.0, 0.0, 1});
   const FractureField smooth = buildFractureField(m, {1.0, 0.17, 0.0, 1});
-  const std::vector<double> l = fractureEdgeStress(m, local, s, true);
-  const std::vector<double> k = fractureEdgeStress(m, smooth, s, true);
+  const std::vector<double> l = fractureEdgeStress(m, local, s);
+  const std::vector<double> k = fractureEdgeStress(m, smooth, s);
   EXPECT_EQ(l[3], 0.0);
   for (int e = 0; e < m.numEdges(); e += 7) {
     if (s.damaged[e]) continue;

@@ -41,7 +41,7 @@ TEST(Step, AssembledStiffnessIsTheSumOfElementMatrices) {
     s.x[v] += 0.01 * Vec3(std::sin(v), std::cos(3 * v), std::sin(5 * v));
   Eigen::VectorXd g;
   BlockSparseMatrix k(m.pattern);
-  assembleElastic(m, s.x, s, true, g, &k);
+  assembleElastic(m, s.x, s, g, &k);
   Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(3 * m.numVertices(), 3 * m.numVertices());
   for (int t = 0; t < m.numTets(); ++t) {
     const Tet& tet = m.mesh.tets[t];
@@ -124,7 +124,7 @@ TEST(Step, HangingBarSettlesIntoStaticEquilibrium) {
   EXPECT_LT(kineticEnergy(m, s), 1e-7 * 32.0 * 9.81 * 0.8) << "at rest: a tiny fraction of m g L";
   // Static balance on the free vertices: elastic force equals weight.
   Eigen::VectorXd g;
-  assembleElastic(m, s.x, s, true, g, nullptr);
+  assembleElastic(m, s.x, s, g, nullptr);
   double weight = 0.0, imbalance = 0.0;
   std::vector<char> fixed(m.numVertices(), 0);
   for (int v : settings.anchors[0].vertices) fixed[v] = 1;

@@ -37,7 +37,7 @@ System elasticitySystem(int nx = 3, int ny = 12, int nz = 3) {
         0.01 * Vec3(std::sin(20 * p.y()), 0.3 * std::cos(13 * p.x()), std::sin(7 * p.z() + p.y()));
   }
   Eigen::VectorXd g;
-  assembleElastic(s.model, state.x, state, true, g, &s.a);
+  assembleElastic(s.model, state.x, state, g, &s.a);
   const double h = 1.0 / 60.0;
   for (int v = 0; v < s.model.numVertices(); ++v) {
     s.a.blocks[s.model.pattern.diagonal[v]] +=
