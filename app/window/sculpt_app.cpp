@@ -253,13 +253,11 @@ void SculptApp::updateScene() {
     style_.scaleMax = 1.0;
   } else if (style_.view == SurfaceView::Stress) {
     values = sim.vertexStress();
-    if (autoStressScale_) {
-      // The hottest colour at the 98th percentile: a few peaks do not wash the rest out.
-      std::vector<double> sorted = values;
-      const size_t k = sorted.size() * 98 / 100;
-      std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(k), sorted.end());
-      style_.scaleMax = std::max(sorted[k], 1e-9);
-    }
+    // The hottest colour at the 98th percentile: a few peaks do not wash the rest out.
+    std::vector<double> sorted = values;
+    const size_t k = sorted.size() * 98 / 100;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(k), sorted.end());
+    style_.scaleMax = std::max(sorted[k], 1e-9);
   }
   renderer_.setMesh(makeRenderMesh(surface, style_, values));
   anchored_ = sim.anchoredVertices();

@@ -108,8 +108,7 @@ class SculptApp {
   // View.
   SurfaceStyle style_;
   bool wireframe_ = false;
-  bool autoStressScale_ = true;  // the stress view's hottest colour follows the stress
-  SceneSettings editing_;        // the Scene panel's values, applied by restarting the simulation
+  SceneSettings editing_;  // the Scene panel's values, applied by restarting the simulation
   char grid_[64] = {};
   bool playing_ = true;
   bool stepOnce_ = false;

@@ -221,6 +221,8 @@ struct PlyHeader {
   int indexProperty = -1;         // the face element's vertex_indices
   unsigned long long needed = 0;  // lines (ascii) or bytes (binary) the records take at least
 
+  long long vertexCount() const { return static_cast<long long>(vertexElement->count); }
+
   PlyHeader() = default;
   PlyHeader(const PlyHeader&) = delete;  // it points into its own elements
   PlyHeader(PlyHeader&&) = default;      // a vector's move keeps them where they are
@@ -328,20 +330,12 @@ PlyHeader readPlyHeader(const std::string& name, const std::string& text) {
 }
 
 void readPlyAsciiBody(const PlyHeader& h, const std::string& text, RawSurface& s) {
-  const std::string& name = h.name;
-  const int endHeaderLine = h.endHeaderLine;
-  const unsigned long long needed = h.needed;
-  const PlyElement* vertexElement = h.vertexElement;
-  const PlyElement* faceElement = h.faceElement;
-  const int* xyz = h.xyz;
-  const int indexProperty = h.indexProperty;
-  const long long nv = static_cast<long long>(vertexElement->count);
   std::vector<int> corner;
-  TextLines body(name, text, 0);
-  while (body.peek() && body.peek()->number <= endHeaderLine) body.next("the header");
-  if (needed > body.remaining())
-    throw InputError(name, endHeaderLine,
-                     "the header promises " + std::to_string(needed) + " records, the file has " +
+  TextLines body(h.name, text, 0);
+  while (body.peek() && body.peek()->number <= h.endHeaderLine) body.next("the header");
+  if (h.needed > body.remaining())
+    throw InputError(h.name, h.endHeaderLine,
+                     "the header promises " + std::to_string(h.needed) + " records, the file has " +
                          std::to_string(body.remaining()) + " more lines");
   for (const PlyElement& e : h.elements) {
     for (unsigned long long r = 0; r < e.count; ++r) {
@@ -356,9 +350,9 @@ void readPlyAsciiBody(const PlyHeader& h, const std::string& text, RawSurface& s
             body.fail(line.number, "expected " + std::to_string(e.properties.size()) +
                                        " values, the line ends after " + std::to_string(token));
           const double value = body.parseDouble(line, token++, "a value");
-          if (&e == vertexElement) {
+          if (&e == h.vertexElement) {
             for (int k = 0; k < 3; ++k)
-              if (xyz[k] == static_cast<int>(q)) p[k] = value;
+              if (h.xyz[k] == static_cast<int>(q)) p[k] = value;
           }
           continue;
         }
@@ -367,13 +361,13 @@ void readPlyAsciiBody(const PlyHeader& h, const std::string& text, RawSurface& s
           body.fail(line.number, "the list holds " + std::to_string(n) +
                                      " items but the line has " +
                                      std::to_string(line.tokens.size() - token) + " more values");
-        const bool indices = &e == faceElement && static_cast<int>(q) == indexProperty;
+        const bool indices = &e == h.faceElement && static_cast<int>(q) == h.indexProperty;
         if (indices) corner.clear();
         for (long long k = 0; k < n; ++k) {
           const double value = body.parseDouble(line, token++, "a list item");
           if (indices)
-            corner.push_back(
-                checkedIndex(value, nv, [&](const std::string& m) { body.fail(line.number, m); }));
+            corner.push_back(checkedIndex(
+                value, h.vertexCount(), [&](const std::string& m) { body.fail(line.number, m); }));
         }
         if (indices) {
           if (n < 3)
@@ -383,23 +377,17 @@ void readPlyAsciiBody(const PlyHeader& h, const std::string& text, RawSurface& s
       }
       if (token != line.tokens.size())
         body.fail(line.number, "unexpected data after the " + std::to_string(token) + " values");
-      if (&e == vertexElement) s.vertices.push_back(p);
+      if (&e == h.vertexElement) s.vertices.push_back(p);
     }
   }
   if (!body.atEnd()) body.fail(body.peek()->number, "unexpected data after the last element");
 }
 
 void readPlyBinaryBody(const PlyHeader& h, const std::string& text, RawSurface& s) {
-  const unsigned long long needed = h.needed;
-  const PlyElement* vertexElement = h.vertexElement;
-  const PlyElement* faceElement = h.faceElement;
-  const int* xyz = h.xyz;
-  const int indexProperty = h.indexProperty;
-  const long long nv = static_cast<long long>(vertexElement->count);
   std::vector<int> corner;
   PlyBinary in(text, h.bodyStart, h.bigEndian, h.name);
-  if (needed > in.remaining())
-    throw InputError(h.name + ": the header promises at least " + std::to_string(needed) +
+  if (h.needed > in.remaining())
+    throw InputError(h.name + ": the header promises at least " + std::to_string(h.needed) +
                      " bytes of data, the file has " + std::to_string(in.remaining()));
   for (const PlyElement& e : h.elements) {
     for (unsigned long long r = 0; r < e.count; ++r) {
@@ -409,9 +397,9 @@ void readPlyBinaryBody(const PlyHeader& h, const std::string& text, RawSurface& 
         const size_t at = in.offset();
         if (!prop.list) {
           const double value = in.read(prop.type, "a value");
-          if (&e == vertexElement) {
+          if (&e == h.vertexElement) {
             for (int k = 0; k < 3; ++k)
-              if (xyz[k] == static_cast<int>(q)) p[k] = value;
+              if (h.xyz[k] == static_cast<int>(q)) p[k] = value;
           }
           continue;
         }
@@ -420,14 +408,14 @@ void readPlyBinaryBody(const PlyHeader& h, const std::string& text, RawSurface& 
             n * static_cast<double>(plySize(prop.type)) > static_cast<double>(in.remaining()))
           in.fail(at, "a list of " + std::to_string(static_cast<long long>(n)) +
                           " items runs past the end of the file");
-        const bool indices = &e == faceElement && static_cast<int>(q) == indexProperty;
+        const bool indices = &e == h.faceElement && static_cast<int>(q) == h.indexProperty;
         if (indices) corner.clear();
         for (long long k = 0; k < static_cast<long long>(n); ++k) {
           const size_t itemAt = in.offset();
           const double value = in.read(prop.type, "a list item");
           if (indices)
-            corner.push_back(
-                checkedIndex(value, nv, [&](const std::string& m) { in.fail(itemAt, m); }));
+            corner.push_back(checkedIndex(value, h.vertexCount(),
+                                          [&](const std::string& m) { in.fail(itemAt, m); }));
         }
         if (indices) {
           if (n < 3)
@@ -436,7 +424,7 @@ void readPlyBinaryBody(const PlyHeader& h, const std::string& text, RawSurface& 
           addFan(corner, s.faces);
         }
       }
-      if (&e == vertexElement) {
+      if (&e == h.vertexElement) {
         if (!p.allFinite()) in.fail(in.offset(), "non-finite vertex coordinate");
         s.vertices.push_back(p);
       }
