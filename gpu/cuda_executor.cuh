@@ -188,6 +188,19 @@ class CudaExecutor {
     size_t n_ = 0;
   };
 
+  // The model's arrays, uploaded once (the CPU executor reads them where they are).
+  template <typename T>
+  class Mirror {
+   public:
+    void mirror(const T* src, size_t n) { buffer_.upload(src, n); }
+    void mirror(const std::vector<T>& src) { buffer_.upload(src); }
+    const T* data() const { return buffer_.data(); }
+    size_t size() const { return buffer_.size(); }
+
+   private:
+    Buffer<T> buffer_;
+  };
+
   CudaExecutor() {
     GALSCULPT_CUDA_CHECK(cudaMalloc(&partial_, kReduceBlocks * sizeof(double)));
     GALSCULPT_CUDA_CHECK(cudaMalloc(&info_, sizeof(int)));

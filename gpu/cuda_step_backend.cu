@@ -12,7 +12,7 @@ bool cudaBackendBuilt() {
 std::unique_ptr<StepBackend> makeCudaStepBackend(const SimModel& model,
                                                  const StepSettings& settings,
                                                  std::string& reason) {
-  reason = cudaUnsupportedReason(settings);
+  reason = cudaUnsupportedReason(model, settings);
   if (!reason.empty()) return nullptr;
   const DeviceInfo info = queryDevice();
   if (!info.available) {

@@ -12,9 +12,9 @@ namespace galsculpt::gpu {
 // Whether this build contains the CUDA backend (nvcc was found at configure time).
 bool cudaBackendBuilt();
 
-// The device solver (device_solver.h) on the first CUDA device, for `model` (which must outlive
-// it). Returns null, with the reason in `reason`, when no usable device exists, the settings
-// need something only the CPU has, or the device cannot hold the model. Never throws.
+// The frame (solver/frame/frame_solver.h) on the CUDA executor of the first device, for `model`
+// (which must outlive it). Returns null, with the reason in `reason`, when no usable device exists,
+// the settings need something only the CPU has, or the device cannot hold the model. Never throws.
 std::unique_ptr<StepBackend> makeCudaStepBackend(const SimModel& model,
                                                  const StepSettings& settings, std::string& reason);
 

@@ -9,9 +9,10 @@ bool cudaBackendBuilt() {
   return false;
 }
 
-std::unique_ptr<StepBackend> makeCudaStepBackend(const SimModel&, const StepSettings& settings,
+std::unique_ptr<StepBackend> makeCudaStepBackend(const SimModel& model,
+                                                 const StepSettings& settings,
                                                  std::string& reason) {
-  reason = cudaUnsupportedReason(settings);
+  reason = cudaUnsupportedReason(model, settings);
   if (reason.empty())
     reason = "this build has no CUDA backend (nvcc was not found when it was configured)";
   return nullptr;

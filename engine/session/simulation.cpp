@@ -95,9 +95,9 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
       surfaceBuilder_(model_) {
   settings_.dt = scene.timeStep;
   settings_.substeps = scene.substeps;
-  settings_.gravity = scene.gravity;
-  settings_.dampingMass = scene.dampingMass;
-  settings_.dampingStiffness = scene.dampingStiffness;
+  model_.gravity = scene.gravity;
+  model_.material.dampingMass = scene.dampingMass;
+  model_.material.dampingStiffness = scene.dampingStiffness;
   settings_.newtonIterations = scene.solver.newtonIterations;
   for (size_t i = 0; i < scene.anchors.size(); ++i) {
     AnchorConstraint a;
@@ -105,10 +105,10 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
                                       "$.anchors[" + std::to_string(i) + "]");
     anchorIds_.push_back(-static_cast<int>(i) - 1);
     for (const PathKey& k : scene.anchors[i].path) a.path.push_back({k.time, k.offset});
-    settings_.anchors.push_back(std::move(a));
+    state_.anchors.push_back(std::move(a));
   }
   for (const ColliderDesc& c : scene.colliders) {
-    settings_.colliders.push_back(colliderFromScene(c));
+    model_.colliders.push_back(colliderFromScene(c));
     if (c.friction > 0.0 && notes_.empty())
       notes_.push_back("collider friction is not modelled yet: contacts are frictionless");
   }
@@ -134,7 +134,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     f.thresholdJitter = scene.fracture.thresholdJitter;
     f.seed = scene.fracture.seed;
     f.compressiveThreshold = scene.fracture.compressiveThreshold;
-    settings_.fracture = std::make_shared<FractureField>(buildFractureField(model_, f));
+    model_.fracture = buildFractureField(model_, f);
     settings_.fractureIterations = scene.fracture.iterations;
   }
   BackendChoice backend = chooseBackend(scene.solver.backend, model_, settings_);
@@ -307,7 +307,7 @@ SimulationSnapshot Simulation::snapshot() const {
   s.plasticStrain = state_.plasticStrain;
   s.time = state_.time;
   s.frame = frame_;
-  s.anchors = settings_.anchors;
+  s.anchors = state_.anchors;
   s.anchorIds = anchorIds_;
   s.nextAnchorId = nextAnchorId_;
   s.toolDamage = toolDamage_;
@@ -338,7 +338,7 @@ void Simulation::restore(const SimulationSnapshot& s) {
   state_.plasticStrain = s.plasticStrain;
   state_.time = s.time;
   frame_ = s.frame;
-  settings_.anchors = s.anchors;
+  state_.anchors = s.anchors;
   anchorIds_ = s.anchorIds;
   nextAnchorId_ = s.nextAnchorId;
   toolDamage_ = s.toolDamage;
@@ -359,7 +359,7 @@ int Simulation::addAnchor(const std::vector<int>& vertices, const std::vector<An
   a.vertices = vertices;
   for (int v : vertices) a.origin.push_back(state_.x[v]);
   for (const AnchorKey& k : path) a.path.push_back({state_.time + k.time, k.offset});
-  settings_.anchors.push_back(std::move(a));
+  state_.anchors.push_back(std::move(a));
   anchorIds_.push_back(nextAnchorId_);
   return nextAnchorId_++;
 }
@@ -367,7 +367,7 @@ int Simulation::addAnchor(const std::vector<int>& vertices, const std::vector<An
 void Simulation::setAnchorTargets(int id, const std::vector<Vec3>& targets) {
   for (size_t i = 0; i < anchorIds_.size(); ++i) {
     if (anchorIds_[i] != id) continue;
-    AnchorConstraint& a = settings_.anchors[i];
+    AnchorConstraint& a = state_.anchors[i];
     if (targets.size() != a.vertices.size())
       throw std::invalid_argument("anchor targets: one per anchored vertex");
     a.origin = targets;
@@ -381,7 +381,7 @@ int Simulation::unanchor(const std::vector<int>& vertices) {
   std::vector<char> drop(model_.numVertices(), 0);
   for (int v : vertices) drop[v] = 1;
   int dropped = 0;
-  for (AnchorConstraint& a : settings_.anchors) {
+  for (AnchorConstraint& a : state_.anchors) {
     size_t kept = 0;
     for (size_t i = 0; i < a.vertices.size(); ++i) {
       if (drop[a.vertices[i]]) {
@@ -399,7 +399,7 @@ int Simulation::unanchor(const std::vector<int>& vertices) {
 
 std::vector<int> Simulation::anchoredVertices() const {
   std::vector<char> held(model_.numVertices(), 0);
-  for (const AnchorConstraint& a : settings_.anchors)
+  for (const AnchorConstraint& a : state_.anchors)
     for (int v : a.vertices) held[v] = 1;
   std::vector<int> out;
   for (int v = 0; v < model_.numVertices(); ++v)
@@ -411,7 +411,7 @@ void Simulation::removeAnchor(int id) {
   for (size_t i = 0; i < anchorIds_.size(); ++i) {
     if (anchorIds_[i] != id) continue;
     anchorIds_.erase(anchorIds_.begin() + static_cast<long>(i));
-    settings_.anchors.erase(settings_.anchors.begin() + static_cast<long>(i));
+    state_.anchors.erase(state_.anchors.begin() + static_cast<long>(i));
     return;
   }
   throw std::out_of_range("no anchor with id " + std::to_string(id));

@@ -143,7 +143,7 @@ class Simulation {
   mutable SurfaceBuilder surfaceBuilder_;
   mutable int surfaceFrame_ = -1;  // the state the surface was last brought up to
   mutable std::uint64_t surfaceRevision_ = 0;
-  std::vector<int> anchorIds_;  // id of each entry of settings_.anchors (scene anchors: -i - 1)
+  std::vector<int> anchorIds_;  // id of each entry of state_.anchors (scene anchors: -i - 1)
   int nextAnchorId_ = 0;
   int toolDamage_ = 0;  // edges cut by tools since the last frame
   void updatePieces();  // pieces and counted tets, when the damage changed

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-
+#include <unordered_map>
 
 namespace galsculpt {
 
@@ -18,6 +18,43 @@ double uniformSigned(std::uint32_t seed, std::uint64_t edge) {
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
   z ^= z >> 31;
   return 2.0 * (static_cast<double>(z >> 11) * 0x1.0p-53) - 1.0;
+}
+
+// Sorts the edges by the cell of their rest midpoint and numbers the cells in key order, each
+// with its 27 neighbours.
+void buildKernelGrid(FractureField& f, double cellSize) {
+  const int nEdges = static_cast<int>(f.midpoint.size());
+  f.cellSize = cellSize;
+  std::vector<std::pair<std::int64_t, int>> keyed(nEdges);
+  for (int e = 0; e < nEdges; ++e) {
+    const auto c = fractureCell(f.midpoint[e], cellSize);
+    keyed[e] = {fractureCellKey(c[0], c[1], c[2]), e};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  f.cellEdges.resize(nEdges);
+  f.edgeCell.assign(nEdges, -1);
+  std::unordered_map<std::int64_t, int> index;
+  for (int i = 0; i < nEdges; ++i) {
+    f.cellEdges[i] = keyed[i].second;
+    if (i == 0 || keyed[i].first != keyed[i - 1].first) {
+      index.emplace(keyed[i].first, f.cells());
+      f.cellBegin.push_back(i);
+      f.cellEnd.push_back(i);
+    }
+    ++f.cellEnd.back();
+    f.edgeCell[keyed[i].second] = f.cells() - 1;
+  }
+  f.cellNeighbors.assign(27 * static_cast<size_t>(f.cells()), -1);
+  for (int c = 0; c < f.cells(); ++c) {
+    const auto at = fractureCell(f.midpoint[f.cellEdges[f.cellBegin[c]]], cellSize);
+    int k = 0;
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz, ++k) {
+          const auto it = index.find(fractureCellKey(at[0] + dx, at[1] + dy, at[2] + dz));
+          if (it != index.end()) f.cellNeighbors[27 * c + k] = it->second;
+        }
+  }
 }
 
 }  // namespace
@@ -54,21 +91,8 @@ FractureField buildFractureField(const SimModel& model, const FractureSettings& 
   for (int e = 0; e < nEdges; ++e)
     f.midpoint[e] =
         0.5 * (model.mesh.vertices[model.edges[e][0]] + model.mesh.vertices[model.edges[e][1]]);
-  if (settings.kernelRadius > 0.0) {
-    f.cellSize = settings.kernelRadius;
-    std::vector<std::pair<std::int64_t, int>> keyed(nEdges);
-    for (int e = 0; e < nEdges; ++e) {
-      const auto c = fractureCell(f.midpoint[e], f.cellSize);
-      keyed[e] = {fractureCellKey(c[0], c[1], c[2]), e};
-    }
-    std::sort(keyed.begin(), keyed.end());
-    f.cellEdges.resize(nEdges);
-    for (int i = 0; i < nEdges; ++i) {
-      f.cellEdges[i] = keyed[i].second;
-      auto [it, inserted] = f.cells.try_emplace(keyed[i].first, i, i + 1);
-      if (!inserted) it->second.second = i + 1;
-    }
-  }
+  if (settings.kernelRadius > 0.0) buildKernelGrid(f, settings.kernelRadius);
+  f.enabled = true;
   return f;
 }
 

@@ -1,5 +1,7 @@
 #include "solver/frame/cpu_backend.h"
 
+#include <stdexcept>
+
 #include "solver/frame/cpu_executor.h"
 #include "solver/frame/frame_solver.h"
 
@@ -14,10 +16,10 @@ StepReport CpuStepBackend::step(SimState& state, const StepSettings& settings) {
   return frame_->step(state, settings);
 }
 
-std::vector<double> fractureEdgeStress(const SimModel& model, const FractureField& field,
-                                       const SimState& state) {
-  StepSettings settings;
-  settings.fracture = std::shared_ptr<const FractureField>(&field, [](const FractureField*) {});
+std::vector<double> fractureEdgeStress(const SimModel& model, const SimState& state) {
+  if (!model.fracture.enabled)
+    throw std::invalid_argument("fractureEdgeStress: the model has no fracture field");
+  const StepSettings settings;
   CpuExecutor ex;
   FrameSolver<CpuExecutor> frame(ex, model);
   return frame.edgeStress(state, settings);

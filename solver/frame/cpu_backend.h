@@ -22,8 +22,8 @@ class CpuStepBackend final : public StepBackend {
 };
 
 // Each edge's stress as the fracture pass sees it at the state's positions (element maximum,
-// then the field's kernel mean), 0 on damaged edges: the pass's own kernels, for tests and views.
-std::vector<double> fractureEdgeStress(const SimModel& model, const FractureField& field,
-                                       const SimState& state);
+// then the model's fracture field's kernel mean), 0 on damaged edges: the pass's own kernels,
+// for tests and views. Throws std::invalid_argument when the model's field is not enabled.
+std::vector<double> fractureEdgeStress(const SimModel& model, const SimState& state);
 
 }  // namespace galsculpt

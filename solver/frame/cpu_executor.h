@@ -61,6 +61,26 @@ class CpuExecutor {
     std::vector<T> v_;
   };
 
+  // A read-only view of host memory the model owns (SimModel's arrays): on this executor the
+  // frame reads the model's own arrays, without a copy; the CUDA executor uploads them once.
+  // The model must outlive the mirror (a frame solver refers to its model).
+  template <typename T>
+  class Mirror {
+   public:
+    void mirror(const T* src, size_t n) {
+      detail::forbidInCapture("an upload");
+      p_ = src;
+      n_ = n;
+    }
+    void mirror(const std::vector<T>& src) { mirror(src.data(), src.size()); }
+    const T* data() const { return p_; }
+    size_t size() const { return n_; }
+
+   private:
+    const T* p_ = nullptr;
+    size_t n_ = 0;
+  };
+
   // What a frame costs in launches: counted here, so that the CUDA path's launch and
   // synchronization counts are known without a GPU (docs/benchmarks.md).
   struct Counters {

@@ -9,7 +9,8 @@
 //   SubstepOutcome substep(double h);      one backward-Euler sub-step; advances time
 //   int plasticUpdate();                   elements that flowed (called when plastic)
 //   bool plastic() const;
-//   FractureReport fracturePass();         called when settings.fracture is set
+//   bool fractures() const;                whether the model's fracture field is enabled
+//   FractureReport fracturePass();         called when it is
 //   double time() const;  void setTime(double);
 #pragma once
 
@@ -63,7 +64,7 @@ StepReport runFrame(Ops& ops, const StepSettings& settings) {
       report.plasticElements += ops.plasticUpdate();
       report.msPlastic += msSince(t0);
     }
-    if (settings.fracture) {
+    if (ops.fractures()) {
       const auto t0 = Clock::now();
       const FractureReport fr = ops.fracturePass();
       report.newlyDamaged += fr.newlyDamaged;

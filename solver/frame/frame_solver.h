@@ -33,7 +33,6 @@
 #include "solver/fem/dense_kernels.h"
 #include "solver/frame/direct_solver.h"
 #include "solver/frame/frame_loop.h"
-#include "solver/frame/model_layout.h"
 #include "solver/frame/step.h"
 #include "solver/frame/step_backend.h"
 #include "solver/frame/timing.h"
@@ -44,9 +43,9 @@ namespace galsculpt {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Why a frame with these settings cannot run on the CUDA executor ("" when it can).
-inline std::string cudaUnsupportedReason(const StepSettings& s) {
+inline std::string cudaUnsupportedReason(const SimModel& model, const StepSettings& s) {
   if (!s.multigrid) return "the reference solver (direct sparse Cholesky) runs on the CPU only";
-  if (s.colliders.size() > 16) return "more than 16 colliders run on the CPU only";
+  if (model.colliders.size() > 16) return "more than 16 colliders run on the CPU only";
   return "";
 }
 
@@ -89,38 +88,40 @@ class FrameSolver {
   template <typename T>
   using Buffer = typename Exec::template Buffer<T>;
 
-  FrameSolver(Exec& ex, const SimModel& model)
-      : ex_(ex), model_(model), layout_(buildModelLayout(model)), mg_(ex, layout_) {
-    n_ = layout_.vertices;
-    tets_ = layout_.tets;
-    std::vector<int> blockRow(layout_.blocks);
+  FrameSolver(Exec& ex, const SimModel& model) : ex_(ex), model_(model), mg_(ex, model.pattern) {
+    n_ = model.numVertices();
+    tets_ = model.numTets();
+    edges_ = model.numEdges();
+    blocks_ = model.numBlocks();
+    std::vector<int> blockRow(blocks_);
     for (int r = 0; r < n_; ++r)
-      for (int k = layout_.rowStart[r]; k < layout_.rowStart[r + 1]; ++k) blockRow[k] = r;
+      for (int k = model.pattern.rowStart[r]; k < model.pattern.rowStart[r + 1]; ++k)
+        blockRow[k] = r;
     blockRow_.adopt(std::move(blockRow));
-    // The layout's arrays move into the executor's buffers (without a copy on the CPU): the
-    // per-element arrays are most of a model's memory.
-    tetVertices_.adopt(std::move(layout_.tetVertices));
-    tetEdges_.adopt(std::move(layout_.tetEdges));
-    rest_.adopt(std::move(layout_.rest));
-    mass_.adopt(std::move(layout_.mass));
-    rowStart_.adopt(std::move(layout_.rowStart));
-    columns_.adopt(std::move(layout_.columns));
-    diagonal_.adopt(std::move(layout_.diagonal));
-    vertexSlotStart_.adopt(std::move(layout_.vertexSlotStart));
-    vertexSlots_.adopt(std::move(layout_.vertexSlots));
-    blockSlotStart_.adopt(std::move(layout_.blockSlotStart));
-    blockSlots_.adopt(std::move(layout_.blockSlots));
+    // The model's arrays as they are (read in place on the CPU, copied once to a GPU).
+    tetVertices_.mirror(model.tetVertexArray(), 4 * static_cast<size_t>(tets_));
+    tetEdges_.mirror(model.tetEdgeArray(), 6 * static_cast<size_t>(tets_));
+    rest_.mirror(model.rest);
+    mass_.mirror(model.mass);
+    rowStart_.mirror(model.pattern.rowStart);
+    columns_.mirror(model.pattern.columns);
+    diagonal_.mirror(model.pattern.diagonal);
+    vertexSlotStart_.mirror(model.vertexSlotStart);
+    vertexSlots_.mirror(model.vertexSlots);
+    blockSlotStart_.mirror(model.blockSlotStart);
+    blockSlots_.mirror(model.blockSlots);
+    if (model.fracture.enabled) mirrorFracture(model.fracture);
     // Every per-vertex buffer up front: nothing may allocate inside a captured section.
     for (Buffer<double>* b :
          {&x_, &v_, &xn_, &vn_, &xhat_, &grad_, &trialGrad_, &acceptedGrad_, &g_, &delta_, &trial_,
           &dampedK_, &tmp_, &savedX_, &savedV_, &pcgB_, &pcgAp_})
       b->resize(3 * n_);
     fixed_.resize(n_);
-    damaged_.resize(layout_.edges);
+    damaged_.resize(edges_);
     elemEnergy_.resize(tets_);
     elemGrad_.resize(12 * static_cast<size_t>(tets_));
     elemHess_.resize(kPackedHessian * static_cast<size_t>(tets_));
-    for (Buffer<double>* b : {&k_, &h_}) b->resize(9 * static_cast<size_t>(layout_.blocks));
+    for (Buffer<double>* b : {&k_, &h_}) b->resize(9 * static_cast<size_t>(blocks_));
     scalars_.resize(kScalars);
     contactPerVertex_.resize(n_);
     const auto box = boundingBox(model.mesh.vertices);
@@ -155,8 +156,7 @@ class FrameSolver {
     }
     time_ = state.time;
     settings_ = &settings;
-    if (settings.fracture && fractureField_ != settings.fracture.get())
-      uploadFracture(*settings.fracture);
+    anchors_ = &state.anchors;
     if (settings.multigrid) ensureMultigrid(settings);
     // The stiffness frozen at x_n for damping, kept apart only with several Newton iterations
     // (allocated here: never inside a captured section).
@@ -200,6 +200,7 @@ class FrameSolver {
     SubstepOutcome substep(double h) { return s.substep(h); }
     bool plastic() const { return s.plastic_; }
     int plasticUpdate() { return s.plasticUpdate(); }
+    bool fractures() const { return s.model_.fracture.enabled; }
     FractureReport fracturePass() { return s.fracturePass(); }
     double time() const { return s.time_; }
     void setTime(double t) { s.time_ = t; }
@@ -266,7 +267,7 @@ class FrameSolver {
     const int* bStart = blockSlotStart_.data();
     const int* bSlots = blockSlots_.data();
     double* kb = k_.data();
-    ex_.forEach(layout_.blocks, [=] GALSCULPT_LAMBDA(int b) {
+    ex_.forEach(blocks_, [=] GALSCULPT_LAMBDA(int b) {
       double acc[9] = {};
       for (int i = bStart[b]; i < bStart[b + 1]; ++i) {
         const int slot = bSlots[i], t = slot / 16, a = (slot % 16) / 4, c = slot % 4;
@@ -309,7 +310,7 @@ class FrameSolver {
     const double* frozen = frozenBlocks();
     const int* rowStart = rowStart_.data();
     const int* columns = columns_.data();
-    const double beta = settings_->dampingStiffness;
+    const double beta = model_.material.dampingStiffness;
     ex_.forEach(n_, [=] GALSCULPT_LAMBDA(int r) {
       double acc[3] = {0.0, 0.0, 0.0};
       for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
@@ -363,9 +364,8 @@ class FrameSolver {
     const double* xn = xn_.data();
     const double* mass = mass_.data();
     const double h = h_step_;
-    const double alpha = settings_->dampingMass;
-    const double gx = settings_->gravity.x(), gy = settings_->gravity.y(),
-                 gz = settings_->gravity.z();
+    const double alpha = model_.material.dampingMass;
+    const double gx = model_.gravity.x(), gy = model_.gravity.y(), gz = model_.gravity.z();
     double* sc = scalars_.data();
     ex_.sum(
         3 * n_,
@@ -389,9 +389,8 @@ class FrameSolver {
     const double* mass = mass_.data();
     const std::uint8_t* fixed = fixed_.data();
     const double h = h_step_;
-    const double alpha = settings_->dampingMass;
-    const double gx = settings_->gravity.x(), gy = settings_->gravity.y(),
-                 gz = settings_->gravity.z();
+    const double alpha = model_.material.dampingMass;
+    const double gx = model_.gravity.x(), gy = model_.gravity.y(), gz = model_.gravity.z();
     ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
       if (fixed[i / 3]) {
         g[i] = 0.0;
@@ -416,9 +415,9 @@ class FrameSolver {
     const kernels::ColliderPose* poses = poseBuffer_.data();
     const int colliders = static_cast<int>(poses_.size());
     const double h = h_step_;
-    const double betaOverH = settings_->dampingStiffness / h;
-    const double alpha = settings_->dampingMass;
-    ex_.forEach(layout_.blocks, [=] GALSCULPT_LAMBDA(int b) {
+    const double betaOverH = model_.material.dampingStiffness / h;
+    const double alpha = model_.material.dampingMass;
+    ex_.forEach(blocks_, [=] GALSCULPT_LAMBDA(int b) {
       const int r = blockRow[b], c = columns[b];
       double out[9];
       for (int i = 0; i < 9; ++i) out[i] = kb[9 * b + i] + betaOverH * frozen[9 * b + i];
@@ -587,7 +586,7 @@ class FrameSolver {
     ex_.read(scalars_.data(), read, kScalars);
     // |f_ext| = |g| |m| over the vertices, massNorm_ over the 3n DOFs: |m| sqrt 3.
     const double perDofMass = massNorm_ / std::sqrt(3.0);
-    const double weight = std::max(settings_->gravity.norm() * perDofMass, 9.81 * perDofMass);
+    const double weight = std::max(model_.gravity.norm() * perDofMass, 9.81 * perDofMass);
     result.residual = std::sqrt(read[kResidual]) / weight;
     result.contactForces.assign(poses_.size(), Vec3::Zero());
     for (size_t c = 0; c < poses_.size(); ++c)
@@ -675,9 +674,6 @@ class FrameSolver {
     mix(reinterpret_cast<std::uintptr_t>(poseBuffer_.data()));
     mix(reinterpret_cast<std::uintptr_t>(fp_.data()));
     mix(plastic_);
-    mixDouble(s.dampingMass);
-    mixDouble(s.dampingStiffness);
-    for (int i = 0; i < 3; ++i) mixDouble(s.gravity[i]);
     mix(static_cast<std::uint64_t>(m.preSweeps) << 32 | static_cast<std::uint32_t>(m.postSweeps));
     mix(static_cast<std::uint64_t>(m.coarseIterations) << 32 |
         static_cast<std::uint32_t>(m.cycles));
@@ -704,7 +700,7 @@ class FrameSolver {
       if (!direct_) direct_ = std::make_unique<DirectSolver>(model_.pattern);
       if (!direct_->solve(h_.data(), b, delta)) delta[0] = std::numeric_limits<double>::quiet_NaN();
     } else {
-      throw std::logic_error(cudaUnsupportedReason(*settings_));
+      throw std::logic_error(cudaUnsupportedReason(model_, *settings_));
     }
   }
 
@@ -813,19 +809,20 @@ class FrameSolver {
   // Each edge's stress as the fracture pass sees it at `state` (element maximum, then the
   // kernel mean when the field has one), 0 on damaged edges: for tests and views. The kernel
   // mean is taken on every edge, not only near hot ones; no damage changes.
+  // Needs the model's fracture field.
   std::vector<double> edgeStress(const SimState& state, const StepSettings& settings) {
     syncIn(state, settings);
     evaluateEdgeStress(true);
-    std::vector<double> ratio(layout_.edges), out(layout_.edges, 0.0);
-    if (layout_.edges > 0) ex_.download(mean_.data(), ratio.data(), ratio.size());
-    for (int e = 0; e < layout_.edges; ++e)
-      if (!hostDamaged_[e]) out[e] = ratio[e] * fractureLayout_.threshold[e];
+    std::vector<double> ratio(edges_), out(edges_, 0.0);
+    if (edges_ > 0) ex_.download(mean_.data(), ratio.data(), ratio.size());
+    for (int e = 0; e < edges_; ++e)
+      if (!hostDamaged_[e]) out[e] = ratio[e] * model_.fracture.threshold[e];
     return out;
   }
 
   FractureReport fracturePass() {
     FractureReport report;
-    const int edges = layout_.edges;
+    const int edges = edges_;
     evaluateEdgeStress(false);
     std::uint8_t* breaks = breaks_.data();
     double* ratio = mean_.data();
@@ -852,8 +849,8 @@ class FrameSolver {
   // Per edge: its stress over its threshold (`mean_`; -inf where no edge near it is close to
   // breaking, unless `everyEdge`) and whether it breaks (`breaks_`).
   void evaluateEdgeStress(bool everyEdge) {
-    const FractureField& field = *fractureField_;
-    const int edges = layout_.edges;
+    const FractureField& field = model_.fracture;
+    const int edges = edges_;
     // Element edge stresses into slots 6 t + k.
     const ElementInputs in = elementInputs();
     const std::uint8_t* damaged = damaged_.data();
@@ -906,8 +903,8 @@ class FrameSolver {
   // within the kernel radius (fracture.h). Only edges with an edge over the smallest threshold
   // within reach can average above theirs; the others are skipped unless `everyEdge`.
   void kernelMeanStress(bool everyEdge) {
-    const FractureField& field = *fractureField_;
-    const int edges = layout_.edges;
+    const FractureField& field = model_.fracture;
+    const int edges = edges_;
     const std::uint8_t* damaged = damaged_.data();
     const double* local = localStress_.data();
     const double* compression = compression_.data();
@@ -929,7 +926,7 @@ class FrameSolver {
     const int* edgeCell = edgeCell_.data();
     const int* neighbors = cellNeighbors_.data();
     std::uint8_t* cellHot = cellHot_.data();
-    ex_.forEach(fractureLayout_.cells(), [=] GALSCULPT_LAMBDA(int c) {
+    ex_.forEach(model_.fracture.cells(), [=] GALSCULPT_LAMBDA(int c) {
       std::uint8_t any = 0;
       for (int i = cellBegin[c]; i < cellEnd[c]; ++i) any |= hot[cellEdges[i]];
       cellHot[c] = any;
@@ -988,33 +985,31 @@ class FrameSolver {
     ++mgRevision_;
   }
 
-  void uploadFracture(const FractureField& field) {
-    fractureField_ = &field;
-    fractureLayout_ = buildFractureLayout(field);
-    edgeSlotStart_.upload(fractureLayout_.slotStart);
-    edgeSlots_.upload(fractureLayout_.slots);
-    threshold_.upload(fractureLayout_.threshold);
-    midpoint_.upload(fractureLayout_.midpoint);
-    cellBegin_.upload(fractureLayout_.cellBegin);
-    cellEnd_.upload(fractureLayout_.cellEnd);
-    cellEdges_.upload(fractureLayout_.cellEdges);
-    edgeCell_.upload(fractureLayout_.edgeCell);
-    cellNeighbors_.upload(fractureLayout_.cellNeighbors);
-    cellHot_.resize(fractureLayout_.cells());
+  void mirrorFracture(const FractureField& field) {
+    edgeSlotStart_.mirror(field.slotStart);
+    edgeSlots_.mirror(field.slots);
+    threshold_.mirror(field.threshold);
+    midpoint_.mirror(field.midpoint.empty() ? nullptr : field.midpoint[0].data(),
+                     3 * field.midpoint.size());
+    cellBegin_.mirror(field.cellBegin);
+    cellEnd_.mirror(field.cellEnd);
+    cellEdges_.mirror(field.cellEdges);
+    edgeCell_.mirror(field.edgeCell);
+    cellNeighbors_.mirror(field.cellNeighbors);
+    cellHot_.resize(field.cells());
     slotStress_.resize(6 * static_cast<size_t>(tets_));
-    for (Buffer<double>* b : {&localStress_, &compression_, &mean_}) b->resize(layout_.edges);
-    breaks_.resize(layout_.edges);
-    hot_.resize(layout_.edges);
+    for (Buffer<double>* b : {&localStress_, &compression_, &mean_}) b->resize(edges_);
+    breaks_.resize(edges_);
+    hot_.resize(edges_);
   }
 
   // Anchored vertices and their targets at `time`, and the colliders' poses (host-computed,
   // uploaded when they change).
   void prepareAnchorsAndColliders(double time) {
-    const StepSettings& s = *settings_;
     std::vector<std::uint8_t> fixed(n_, 0);
     std::vector<int> vertices;
     std::vector<double> targets;
-    for (const AnchorConstraint& a : s.anchors) {
+    for (const AnchorConstraint& a : *anchors_) {
       const Vec3 offset = anchorOffset(a, time);
       for (size_t i = 0; i < a.vertices.size(); ++i) {
         const int v = a.vertices[i];
@@ -1038,7 +1033,7 @@ class FrameSolver {
       anchorTargets_.upload(targets);
     }
     std::vector<kernels::ColliderPose> poses;
-    for (const Collider& c : s.colliders) poses.push_back(colliderPose(c, time));
+    for (const Collider& c : model_.colliders) poses.push_back(colliderPose(c, time));
     poses_ = poses;
     if (!poses.empty()) poseBuffer_.upload(poses);
   }
@@ -1092,21 +1087,24 @@ class FrameSolver {
  private:
   Exec& ex_;
   const SimModel& model_;
-  ModelLayout layout_;
   MultigridCycle<Exec> mg_;
   std::unique_ptr<Multigrid> multigrid_;
   std::unique_ptr<DirectSolver> direct_;  // the reference's (host memory only)
   std::vector<int> gridHandles_;
   const StepSettings* settings_ = nullptr;
-  int n_ = 0, tets_ = 0;
+  const std::vector<AnchorConstraint>* anchors_ = nullptr;  // the stepped state's
+  int n_ = 0, tets_ = 0, edges_ = 0, blocks_ = 0;
   double time_ = 0.0, h_step_ = 0.0, modelSize_ = 1.0, massNorm_ = 0.0, pcgReduction_ = 0.0;
   std::uint64_t mgRevision_ = 0;  // bumped whenever the hierarchy is uploaded again
   bool plastic_ = false, frozenIsK_ = true;
   bool plasticFlowed_ = false;  // an element flowed this frame: the plastic state goes back
-  Buffer<int> tetVertices_, tetEdges_, rowStart_, columns_, diagonal_, blockRow_;
-  Buffer<int> vertexSlotStart_, vertexSlots_, blockSlotStart_, blockSlots_;
-  Buffer<kernels::RestData> rest_;
-  Buffer<double> mass_;
+  template <typename T>
+  using Mirror = typename Exec::template Mirror<T>;
+  Mirror<int> tetVertices_, tetEdges_, rowStart_, columns_, diagonal_;
+  Mirror<int> vertexSlotStart_, vertexSlots_, blockSlotStart_, blockSlots_;
+  Mirror<kernels::RestData> rest_;
+  Mirror<double> mass_;
+  Buffer<int> blockRow_;
   Buffer<double> x_, v_, xn_, vn_, xhat_, grad_, trialGrad_, acceptedGrad_, g_, delta_, trial_,
       dampedK_, tmp_, savedX_, savedV_;
   Buffer<double> elemEnergy_, elemGrad_, elemHess_, k_, frozen_, h_, scalars_, contactPerVertex_;
@@ -1118,12 +1116,11 @@ class FrameSolver {
   size_t anchorCount_ = 0;
   std::vector<kernels::ColliderPose> poses_;
   Buffer<kernels::ColliderPose> poseBuffer_;
-  // Fracture.
-  const FractureField* fractureField_ = nullptr;
-  FractureLayout fractureLayout_;
-  Buffer<int> edgeSlotStart_, edgeSlots_, cellBegin_, cellEnd_, cellEdges_, edgeCell_,
+  // Fracture (the model's field; scratch for the pass).
+  Mirror<int> edgeSlotStart_, edgeSlots_, cellBegin_, cellEnd_, cellEdges_, edgeCell_,
       cellNeighbors_;
-  Buffer<double> threshold_, midpoint_, slotStress_, localStress_, compression_, mean_;
+  Mirror<double> threshold_, midpoint_;
+  Buffer<double> slotStress_, localStress_, compression_, mean_;
   Buffer<std::uint8_t> breaks_, hot_, cellHot_;
   // Host shadows: what the device holds, to upload only changes.
   std::vector<double> hostX_, hostV_, hostFp_, hostStrain_, hostAnchorTargets_;

@@ -6,19 +6,6 @@
 
 namespace galsculpt {
 
-Vec3 anchorOffset(const AnchorConstraint& anchor, double time) {
-  const auto& p = anchor.path;
-  if (p.empty()) return Vec3::Zero();
-  if (time <= p.front().time) return p.front().offset;
-  if (time >= p.back().time) return p.back().offset;
-  const auto it = std::upper_bound(p.begin(), p.end(), time,
-                                   [](double t, const AnchorKey& k) { return t < k.time; });
-  const AnchorKey& b = *it;
-  const AnchorKey& a = *(it - 1);
-  const double u = (time - a.time) / (b.time - a.time);
-  return (1.0 - u) * a.offset + u * b.offset;
-}
-
 StepSettings referenceSettings(StepSettings base) {
   base.newtonIterations = 50;
   base.lineSearch = true;

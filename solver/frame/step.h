@@ -5,7 +5,7 @@
 // with D = alpha M + beta K(x_n) (Rayleigh damping). One Newton step from x_n is exactly the
 // paper's linearized system (eq. 3 / eq. 8): (M + h D + h^2 K) dv = h (f_ext - f_int - (D + hK)
 // v_n). The default takes that one step; the reference solver iterates Newton with a backtracking
-// line search and a direct sparse solve (Eigen's LDLT) to a tight tolerance. Anchored vertices
+// line search and a direct sparse solve (CHOLMOD) to a tight tolerance. Anchored vertices
 // are Dirichlet conditions: they sit on their prescribed path and their rows are removed.
 // A Newton step that would raise the incremental potential is shortened (backtracking), which
 // keeps huge loads from exploding; a frame that still produces NaN or cannot descend is rolled
@@ -14,50 +14,28 @@
 
 #include <vector>
 
-#include <memory>
-
-#include "solver/fem/colliders.h"
 #include "solver/fracture/fracture.h"
 #include "solver/model/sim_model.h"
 #include "solver/multigrid/multigrid.h"
 
 namespace galsculpt {
 
-struct AnchorKey {
-  double time = 0.0;
-  Vec3 offset = Vec3::Zero();
-};
-
-struct AnchorConstraint {
-  std::vector<int> vertices;    // anchored vertices
-  std::vector<AnchorKey> path;  // empty: fixed; else offset(t), linear, held at the ends
-  // Where each vertex sits at offset zero (same order as vertices); empty: its rest position.
-  // Tools that grab a deformed body anchor it where it is.
-  std::vector<Vec3> origin;
-};
-
-Vec3 anchorOffset(const AnchorConstraint& anchor, double time);
-
+// Numerical settings only: what the body is and what acts on it is the model's (SimModel:
+// gravity, damping, colliders, fracture field) or the state's (anchors).
 struct StepSettings {
   double dt = 1.0 / 60.0;
   int substeps = 1;
-  Vec3 gravity = Vec3(0.0, -9.81, 0.0);
-  double dampingMass = 0.0;       // Rayleigh alpha (1/s)
-  double dampingStiffness = 0.0;  // Rayleigh beta (s)
-  int newtonIterations = 1;       // 1: the paper's linearized step
+  int newtonIterations = 1;  // 1: the paper's linearized step
   bool lineSearch = false;
   double tolerance = 1e-9;  // Newton stops when |dx|_inf < tolerance * model size
-  std::vector<AnchorConstraint> anchors;
-  std::vector<Collider> colliders;
   // Linear solver of each Newton step: CHOLMOD's Cholesky, or the Galerkin multigrid.
   bool multigrid = false;
   std::vector<int> gridHandles = {50};  // handle counts, finest coarse level first
   MultigridSettings multigridSettings;
   int maxRetries = 4;  // halvings of the step after NaN or explosion
-  // The fracture pass after every sub-step (fracture.h); null: no fracture (and no cost).
-  std::shared_ptr<const FractureField> fracture;
-  // Solves of a sub-step while its fracture pass keeps breaking edges (1: the paper's one pass
-  // per step; more let a crack run within a step, at the cost of re-solving).
+  // With the model's fracture field enabled, the fracture pass runs after every sub-step. Solves
+  // of a sub-step while its fracture pass keeps breaking edges (1: the paper's one pass per
+  // step; more let a crack run within a step, at the cost of re-solving).
   int fractureIterations = 1;
 };
 

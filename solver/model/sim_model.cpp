@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "solver/mesh/csr.h"
 #include "solver/mesh/union_find.h"
 
 namespace galsculpt {
@@ -34,7 +35,35 @@ std::vector<std::vector<int>> colorTets(const TetMesh& mesh) {
   return colors;
 }
 
+// Each vertex's and each block's element terms in colour order.
+void buildAssemblyLists(SimModel& m) {
+  std::vector<std::vector<int>> perVertex(m.numVertices()), perBlock(m.numBlocks());
+  for (const std::vector<int>& color : m.colors) {
+    for (int t : color) {
+      for (int a = 0; a < 4; ++a) {
+        perVertex[m.mesh.tets[t][a]].push_back(4 * t + a);
+        for (int b = 0; b < 4; ++b) perBlock[m.scatter[t][4 * a + b]].push_back(16 * t + 4 * a + b);
+      }
+    }
+  }
+  flattenGroups(perVertex, m.vertexSlotStart, m.vertexSlots);
+  flattenGroups(perBlock, m.blockSlotStart, m.blockSlots);
+}
+
 }  // namespace
+
+Vec3 anchorOffset(const AnchorConstraint& anchor, double time) {
+  const auto& p = anchor.path;
+  if (p.empty()) return Vec3::Zero();
+  if (time <= p.front().time) return p.front().offset;
+  if (time >= p.back().time) return p.back().offset;
+  const auto it = std::upper_bound(p.begin(), p.end(), time,
+                                   [](double t, const AnchorKey& k) { return t < k.time; });
+  const AnchorKey& b = *it;
+  const AnchorKey& a = *(it - 1);
+  const double u = (time - a.time) / (b.time - a.time);
+  return (1.0 - u) * a.offset + u * b.offset;
+}
 
 SimModel buildSimModel(const TetMesh& mesh, const MaterialParams& material) {
   SimModel m;
@@ -68,6 +97,7 @@ SimModel buildSimModel(const TetMesh& mesh, const MaterialParams& material) {
   m.pattern = buildBlockPattern(n, m.edges);
   m.scatter = buildTetScatter(m.pattern, mesh.tets);
   m.colors = colorTets(mesh);
+  buildAssemblyLists(m);
   return m;
 }
 

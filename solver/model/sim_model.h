@@ -1,10 +1,16 @@
-// The fixed part of a simulation (rest mesh, per-element rest data, material, edge graph,
-// sparsity pattern, scatter map, element colouring) apart from the changing state (positions,
-// velocities, damage). One pipeline of plain functions works on them:
+// A simulation in the manner of MuJoCo's mjModel / mjData. SimModel is everything fixed for a
+// run (rest mesh, per-element rest data, material, gravity, colliders and their motions, the
+// fracture field, edge graph, sparsity pattern and the assembly's fixed-order lists), as flat
+// arrays that the executors read as they are: the CPU executor reads them in place, the CUDA one
+// copies them to the device once. SimState is everything that changes (positions, velocities,
+// damage, plastic state, anchors, time) and nothing else. StepSettings (solver/frame/step.h)
+// holds only numerical settings; the solver owns its scratch memory.
 //   SimModel model = buildSimModel(mesh, material);
+//   model.gravity = ...; model.colliders = ...; model.fracture = buildFractureField(model, f);
 //   SimState state = initialState(model);
 //   CpuStepBackend cpu(model);                         // solver/frame/cpu_backend.h
 //   StepReport r = cpu.step(state, settings);
+// A backend refers to its model: change the model, then make the backend.
 #pragma once
 
 #include <array>
@@ -12,10 +18,13 @@
 #include <vector>
 
 #include "solver/fem/block_sparse.h"
+#include "solver/fem/colliders.h"
 #include "solver/fem/isotropic_material.h"
 #include "solver/fem/plasticity.h"
 #include "solver/fem/tet_element.h"
+#include "solver/fracture/fracture_field.h"
 #include "solver/mesh/tet_mesh.h"
+#include "solver/model/anchors.h"
 
 namespace galsculpt {
 
@@ -27,6 +36,9 @@ struct MaterialParams {
   // Whether a damaged edge still resists compression (a closed crack bears load): part of the
   // material, fixed for a run (scene: fracture.compression_resists).
   bool compressionResists = true;
+  // Rayleigh damping D = dampingMass M + dampingStiffness K(x_n).
+  double dampingMass = 0.0;       // alpha (1/s)
+  double dampingStiffness = 0.0;  // beta (s)
 };
 
 struct SimModel {
@@ -40,11 +52,26 @@ struct SimModel {
   BlockPattern pattern;                  // 3x3 blocks: vertex-vertex over mesh edges
   std::vector<TetScatter> scatter;       // (nTets)
   std::vector<std::vector<int>> colors;  // tets grouped so that no two in a group share a vertex
+  // The assembly's fixed-order lists (race-free without atomics, the same sums on every
+  // executor): each vertex's force and each 3x3 stiffness block is one thread's sum over its
+  // own list of element terms, in colour order (colour by colour, tets in colour order).
+  std::vector<int> vertexSlotStart, vertexSlots;  // (nVerts + 1) CSR: 4 t + a of each corner
+  std::vector<int> blockSlotStart, blockSlots;    // (nBlocks + 1) CSR: 16 t + 4 a + b
+  Vec3 gravity = Vec3(0.0, -9.81, 0.0);           // m/s^2
+  std::vector<Collider> colliders;                // with their motions
+  FractureField fracture;                         // not enabled: no fracture pass
 
   int numVertices() const { return mesh.numVertices(); }
   int numTets() const { return mesh.numTets(); }
   int numEdges() const { return static_cast<int>(edges.size()); }
+  int numBlocks() const { return static_cast<int>(pattern.columns.size()); }
+  // The mesh's tets and the tets' edges as flat int arrays (4 and 6 per tet).
+  const int* tetVertexArray() const { return mesh.tets.empty() ? nullptr : mesh.tets[0].data(); }
+  const int* tetEdgeArray() const { return tetEdges.empty() ? nullptr : tetEdges[0].data(); }
 };
+static_assert(sizeof(Tet) == 4 * sizeof(int) && sizeof(std::array<int, 6>) == 6 * sizeof(int),
+              "tets and tet edges are contiguous ints");
+static_assert(sizeof(Vec3) == 3 * sizeof(double), "positions are contiguous doubles");
 
 // Throws std::invalid_argument for a degenerate tet.
 SimModel buildSimModel(const TetMesh& mesh, const MaterialParams& material);
@@ -66,6 +93,7 @@ struct SimState {
   std::uint64_t damageRevision = 0;             // bumped whenever `damaged` or `crossing` changes
   std::vector<Eigen::Matrix3d> plasticInverse;  // (nTets) Fp^-1; empty for elastic materials
   std::vector<double> plasticStrain;            // (nTets) accumulated, for hardening
+  std::vector<AnchorConstraint> anchors;        // held vertices and their paths
   double time = 0.0;                            // s
 };
 

@@ -88,7 +88,7 @@ class Multigrid {
   // Dense U of level l (for tests): rows = finer DOFs, columns = 12 * handles.
   Eigen::MatrixXd prolongationMatrix(int l) const;
 
-  // Read access for the cycle, which mirrors the hierarchy (solver/frame/model_layout.h).
+  // Read access for the cycle, which mirrors the hierarchy (multigrid_layout.h).
   const std::vector<std::vector<int>>& fineColors() const { return fineColors_; }
   const std::vector<Vec3>& restPositions() const { return rest_; }
   const std::vector<int>& fragmentStart() const { return fragmentStart_; }  // CSR over fragments

@@ -1,6 +1,6 @@
 // The Galerkin multigrid's solve (paper section 3.2-3.3, Algorithm 2) as launches of an
 // executor (the CPU one or the CUDA one): the hierarchy of multigrid.h (built and split over
-// cracks on the host), mirrored as flat arrays (model_layout.h); refresh A_{l+1} = U^T A_l U;
+// cracks on the host), mirrored as flat arrays (multigrid_layout.h); refresh A_{l+1} = U^T A_l U;
 // V-cycles with multi-colour Gauss-Seidel or Jacobi smoothing; CG or a dense Cholesky on the
 // coarsest level; per-piece coarse start; fragment corrections; PCG with a V-cycle
 // preconditioner. Precompute (the hierarchy, once per mesh and damage change) apart from solve
@@ -18,9 +18,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "solver/fem/block_sparse.h"
 #include "solver/fem/dense_kernels.h"
-#include "solver/frame/model_layout.h"
 #include "solver/multigrid/multigrid.h"
+#include "solver/multigrid/multigrid_layout.h"
 
 namespace galsculpt {
 
@@ -30,11 +31,12 @@ class MultigridCycle {
   template <typename T>
   using Buffer = typename Exec::template Buffer<T>;
 
-  MultigridCycle(Exec& ex, const ModelLayout& model) : ex_(ex) {
-    rows_ = model.vertices;
-    fineRowStart_.upload(model.rowStart);
-    fineColumns_.upload(model.columns);
-    fineDiagonal_.upload(model.diagonal);
+  // `fine`: the model's block pattern, read in place (it must outlive the cycle).
+  MultigridCycle(Exec& ex, const BlockPattern& fine) : ex_(ex) {
+    rows_ = fine.rows;
+    fineRowStart_.mirror(fine.rowStart);
+    fineColumns_.mirror(fine.columns);
+    fineDiagonal_.mirror(fine.diagonal);
     ax_.resize(3 * rows_);
     fragmentResidual_.resize(3 * rows_);
     scalars_.resize(kScalars);
@@ -717,7 +719,7 @@ class MultigridCycle {
  private:
   Exec& ex_;
   int rows_ = 0;
-  Buffer<int> fineRowStart_, fineColumns_, fineDiagonal_;
+  typename Exec::template Mirror<int> fineRowStart_, fineColumns_, fineDiagonal_;
   std::vector<int> fineColorStart_;
   Buffer<int> fineColorRows_;
   std::vector<Level> levels_;

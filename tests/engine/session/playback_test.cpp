@@ -124,9 +124,9 @@ TEST(Playback, BrushDragsTheGrabbedVerticesThenReleasesThem) {
     EXPECT_NEAR((sim.state().x[grabbed[i]] - start[i] - Vec3(0.03, 0, 0)).norm(), 0.0, 1e-6)
         << "held at the end of the drag";
   }
-  EXPECT_EQ(sim.settings().anchors.size(), 2u) << "the scene's anchor and the brush";
+  EXPECT_EQ(sim.state().anchors.size(), 2u) << "the scene's anchor and the brush";
   playback.advance();
-  EXPECT_EQ(sim.settings().anchors.size(), 1u) << "released after its duration";
+  EXPECT_EQ(sim.state().anchors.size(), 1u) << "released after its duration";
 }
 
 TEST(Playback, AnchorsAreAddedAndRemovedByName) {
@@ -141,7 +141,7 @@ TEST(Playback, AnchorsAreAddedAndRemovedByName) {
   std::vector<size_t> counts;
   for (int f = 0; f < 6; ++f) {
     playback.advance();
-    counts.push_back(sim.settings().anchors.size());
+    counts.push_back(sim.state().anchors.size());
   }
   EXPECT_EQ(counts, (std::vector<size_t>{1, 1, 2, 2, 1, 0}));
 }

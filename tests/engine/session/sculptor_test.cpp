@@ -17,7 +17,7 @@ TEST(Sculptor, GrabMovesTheHeldVerticesTogetherAndTheBodyFollows) {
   const std::vector<Vec3> start = sim.state().x;
   const Vec3 top(0.0, 0.1, 0.0);
   const double radius = 0.03;
-  const size_t anchorsBefore = sim.settings().anchors.size();
+  const size_t anchorsBefore = sim.state().anchors.size();
   s.beginStroke(brushAt(BrushKind::Grab, top, Vec3::UnitY(), radius));
   const Vec3 offset(0.02, 0.01, 0.0);
   s.moveStroke(top + offset, Vec3::UnitY());
@@ -36,7 +36,7 @@ TEST(Sculptor, GrabMovesTheHeldVerticesTogetherAndTheBodyFollows) {
   EXPECT_GT(held, 5);
   EXPECT_GT(freeMotion, 1e-4) << "the physics moves what the brush does not hold";
   s.endStroke();
-  EXPECT_EQ(sim.settings().anchors.size(), anchorsBefore) << "the grab lets go";
+  EXPECT_EQ(sim.state().anchors.size(), anchorsBefore) << "the grab lets go";
 }
 
 // Push dents the top; clay keeps the dent after the brush lets go, rubber springs back.
@@ -202,7 +202,7 @@ TEST(Sculptor, ABrushActsOnlyOnThePieceItTouches) {
   b.seed = seed;
   s.beginStroke(b);
   s.moveStroke(center + Vec3(0.0, 0.02, 0.0), Vec3::UnitY());
-  for (const AnchorConstraint& a : s.simulation().settings().anchors) {
+  for (const AnchorConstraint& a : s.simulation().state().anchors) {
     if (a.origin.empty()) continue;  // the scene's anchor
     for (int v : a.vertices)
       EXPECT_EQ(s.simulation().pieceOf(v), s.simulation().pieceOf(seed)) << "vertex " << v;

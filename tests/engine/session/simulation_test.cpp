@@ -39,7 +39,7 @@ TEST(Simulation, HangingSphereSagsAndSettlesWithAnchorsHeld) {
   EXPECT_LT(std::abs(m.volumeChangePct), 5.0);
   EXPECT_EQ(m.pieces, 1);
   EXPECT_EQ(m.warnings, 0);
-  for (int v : sim.settings().anchors[0].vertices) {
+  for (int v : sim.state().anchors[0].vertices) {
     EXPECT_EQ(sim.state().x[v], sim.model().mesh.vertices[v]) << "anchored vertices do not move";
   }
   EXPECT_TRUE(sim.surface().mesh.numFaces() > 0);

@@ -40,16 +40,17 @@ TEST(Fracture, KernelAveragesStressOverTheRadius) {
     s.x[v] = p + Vec3(0.02 * std::sin(9 * p.y()), 0.15 * p.y() * p.y(), 0.01 * p.x());
   }
   s.damaged[3] = 1;
-  const FractureField local = buildFractureField(m, {1.0, 0.0, 0.0, 1});
-  const FractureField smooth = buildFractureField(m, {1.0, 0.17, 0.0, 1});
-  const std::vector<double> l = fractureEdgeStress(m, local, s);
-  const std::vector<double> k = fractureEdgeStress(m, smooth, s);
+  SimModel local = m, smooth = m;
+  local.fracture = buildFractureField(m, {1.0, 0.0, 0.0, 1});
+  smooth.fracture = buildFractureField(m, {1.0, 0.17, 0.0, 1});
+  const std::vector<double> l = fractureEdgeStress(local, s);
+  const std::vector<double> k = fractureEdgeStress(smooth, s);
   EXPECT_EQ(l[3], 0.0);
   for (int e = 0; e < m.numEdges(); e += 7) {
     if (s.damaged[e]) continue;
     double sum = 0.0, w = 0.0;
     for (int f = 0; f < m.numEdges(); ++f) {
-      const double d2 = (smooth.midpoint[f] - smooth.midpoint[e]).squaredNorm();
+      const double d2 = (smooth.fracture.midpoint[f] - smooth.fracture.midpoint[e]).squaredNorm();
       if (s.damaged[f] || d2 >= 0.17 * 0.17) continue;
       const double wf = (1 - d2 / (0.17 * 0.17)) * (1 - d2 / (0.17 * 0.17));
       sum += wf * l[f];
@@ -67,24 +68,32 @@ struct TensionRun {
 };
 
 // No gravity; the top held, the bottom pulled down 0.4 m per second; threshold 2e4 Pa.
-StepSettings tensionSettings(const SimModel& m, double kernel) {
-  StepSettings st;
-  st.gravity.setZero();
+struct TensionCase {
+  SimModel model;
+  SimState state;
+};
+TensionCase tensionCase(double kernel, FractureSettings fracture = {2.0e4, 0.0, 0.0, 1}) {
+  TensionCase c{barModel(), {}};
+  SimModel& m = c.model;
+  m.gravity.setZero();
+  fracture.kernelRadius = kernel;
+  m.fracture = buildFractureField(m, fracture);
+  c.state = initialState(m);
   AnchorConstraint top, bottom;
   for (int v = 0; v < m.numVertices(); ++v) {
     if (m.mesh.vertices[v].y() > 0.8 - 1e-9) top.vertices.push_back(v);
     if (m.mesh.vertices[v].y() < 1e-9) bottom.vertices.push_back(v);
   }
   bottom.path = {{0.0, Vec3::Zero()}, {1.0, Vec3(0, -0.4, 0)}};
-  st.anchors = {top, bottom};
-  st.fracture = std::make_shared<FractureField>(buildFractureField(m, {2.0e4, kernel, 0.0, 1}));
-  return st;
+  c.state.anchors = {top, bottom};
+  return c;
 }
 
 TensionRun pullApart(bool multigrid, double kernel) {
-  const SimModel m = barModel();
-  SimState s = initialState(m);
-  StepSettings st = tensionSettings(m, kernel);
+  TensionCase c = tensionCase(kernel);
+  const SimModel& m = c.model;
+  SimState& s = c.state;
+  StepSettings st;
   st.multigrid = multigrid;
   st.gridHandles = {12};
   st.multigridSettings.pcg = true;
@@ -121,9 +130,10 @@ TEST(Fracture, TensionBreaksTheBarAndMultigridAgreesOnTheFirstBreak) {
 // further within the step than with the paper's single pass (same loading, same frame).
 TEST(Fracture, IterationsLetACrackRunWithinAStep) {
   auto damageAfter = [](int iterations, int& redos) {
-    const SimModel m = barModel();
-    SimState s = initialState(m);
-    StepSettings st = referenceSettings(tensionSettings(m, 0.0));
+    TensionCase c = tensionCase(0.0);
+    const SimModel& m = c.model;
+    SimState& s = c.state;
+    StepSettings st = referenceSettings(StepSettings{});
     st.fractureIterations = iterations;
     redos = 0;
     int damaged = 0;
@@ -147,13 +157,13 @@ TEST(Fracture, IterationsLetACrackRunWithinAStep) {
 // criterion is tension only).
 TEST(Fracture, CompressiveThresholdCrushesSqueezedEdges) {
   auto crushed = [](double compressive) {
-    const SimModel m = barModel();
-    SimState s = initialState(m);
-    StepSettings st = tensionSettings(m, 0.0);
-    st.anchors[1].path = {{0.0, Vec3::Zero()}, {1.0, Vec3(0, 0.3, 0)}};  // push up instead
     FractureSettings f{1e9, 0.0, 0.0, 1};
     f.compressiveThreshold = compressive;
-    st.fracture = std::make_shared<FractureField>(buildFractureField(m, f));
+    TensionCase c = tensionCase(0.0, f);
+    const SimModel& m = c.model;
+    SimState& s = c.state;
+    const StepSettings st;
+    s.anchors[1].path = {{0.0, Vec3::Zero()}, {1.0, Vec3(0, 0.3, 0)}};  // push up instead
     int damaged = 0;
     for (int frame = 0; frame < 30; ++frame) {
       const StepReport r = step(m, s, st);

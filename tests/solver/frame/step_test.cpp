@@ -74,16 +74,17 @@ TEST(Step, FreeFallIsExactForARigidBody) {
 // Without gravity the residual is still measured against a weight (what the body would weigh
 // under 1 g); it once divided by almost nothing and read 1e12 for a well-solved frame.
 TEST(Step, ResidualStaysMeaningfulWithoutGravity) {
-  const SimModel m = buildSimModel(bar(), rubber());
-  StepSettings base;
-  base.gravity = Vec3::Zero();
+  SimModel m = buildSimModel(bar(), rubber());
+  m.gravity = Vec3::Zero();
+  const StepSettings base;
   AnchorConstraint pulled = topAnchor(m);
   pulled.path = {{0.0, Vec3::Zero()}, {1.0, Vec3(0.0, 0.05, 0.0)}};
-  base.anchors = {pulled};
   SimState ref = initialState(m);
+  ref.anchors = {pulled};
   const StepReport r = step(m, ref, referenceSettings(base));
   EXPECT_LT(r.residual, 1e-6) << "Newton converged";
   SimState one = initialState(m);
+  one.anchors = {pulled};
   const StepReport linear = step(m, one, base);
   EXPECT_GT(linear.residual, 0.0);
   EXPECT_LT(linear.residual, 10.0) << "one linearized step is close, relative to 1 g";
@@ -92,9 +93,9 @@ TEST(Step, ResidualStaysMeaningfulWithoutGravity) {
 TEST(Step, ReferenceNewtonConvergesAndAgreesWithManyLinearizedSubsteps) {
   const SimModel m = buildSimModel(bar(), rubber());
   StepSettings base;
-  base.anchors = {topAnchor(m)};
   base.dt = 1.0 / 60.0;
   SimState ref = initialState(m);
+  ref.anchors = {topAnchor(m)};
   const StepReport r = step(m, ref, referenceSettings(base));
   EXPECT_LT(r.residual, 1e-8);
   EXPECT_GT(r.newtonIterations, 1);
@@ -102,6 +103,7 @@ TEST(Step, ReferenceNewtonConvergesAndAgreesWithManyLinearizedSubsteps) {
   StepSettings fine = base;
   fine.substeps = 64;
   SimState lin = initialState(m);
+  lin.anchors = ref.anchors;
   step(m, lin, fine);
   double maxDiff = 0.0, maxMove = 0.0;
   for (int v = 0; v < m.numVertices(); ++v) {
@@ -114,12 +116,12 @@ TEST(Step, ReferenceNewtonConvergesAndAgreesWithManyLinearizedSubsteps) {
 }
 
 TEST(Step, HangingBarSettlesIntoStaticEquilibrium) {
-  const SimModel m = buildSimModel(bar(), rubber(MaterialModel::StableNeoHookean, 2e5, 0.45));
+  MaterialParams material = rubber(MaterialModel::StableNeoHookean, 2e5, 0.45);
+  material.dampingMass = 5.0;
+  const SimModel m = buildSimModel(bar(), material);
   SimState s = initialState(m);
-  StepSettings settings;
-  settings.anchors = {topAnchor(m)};
-  settings.dampingMass = 5.0;
-  settings = referenceSettings(settings);
+  s.anchors = {topAnchor(m)};
+  const StepSettings settings = referenceSettings(StepSettings{});
   for (int f = 0; f < 120; ++f) step(m, s, settings);
   EXPECT_LT(kineticEnergy(m, s), 1e-7 * 32.0 * 9.81 * 0.8) << "at rest: a tiny fraction of m g L";
   // Static balance on the free vertices: elastic force equals weight.
@@ -127,7 +129,7 @@ TEST(Step, HangingBarSettlesIntoStaticEquilibrium) {
   assembleElastic(m, s.x, s, g, nullptr);
   double weight = 0.0, imbalance = 0.0;
   std::vector<char> fixed(m.numVertices(), 0);
-  for (int v : settings.anchors[0].vertices) fixed[v] = 1;
+  for (int v : s.anchors[0].vertices) fixed[v] = 1;
   for (int v = 0; v < m.numVertices(); ++v) {
     if (fixed[v]) continue;
     weight += m.mass[v] * 9.81;
@@ -138,11 +140,11 @@ TEST(Step, HangingBarSettlesIntoStaticEquilibrium) {
 
 TEST(Step, DeterministicAcrossThreadCounts) {
   const SimModel m = buildSimModel(bar(), rubber());
-  StepSettings settings;
-  settings.anchors = {topAnchor(m)};
+  const StepSettings settings;
   auto run = [&](int threads) {
     omp_set_num_threads(threads);
     SimState s = initialState(m);
+    s.anchors = {topAnchor(m)};
     for (int f = 0; f < 5; ++f) step(m, s, settings);
     return s.x;
   };
@@ -158,7 +160,7 @@ TEST(Step, AnchorsFollowTheirPath) {
   StepSettings settings;
   AnchorConstraint a = topAnchor(m);
   a.path = {{0.0, Vec3::Zero()}, {1.0, Vec3(0.3, 0, 0)}};
-  settings.anchors = {a};
+  s.anchors = {a};
   settings.dt = 0.1;
   for (int f = 0; f < 5; ++f) step(m, s, settings);
   for (int v : a.vertices) EXPECT_NEAR(s.x[v].x() - m.mesh.vertices[v].x(), 0.15, 1e-12);
@@ -183,24 +185,24 @@ class StepHardCases : public ::testing::TestWithParam<HardCase> {};
 TEST_P(StepHardCases, StayFiniteAndBounded) {
   const HardCase& c = GetParam();
   TetMesh mesh = bar(2, 4, 2, 0.1 * c.scale);
-  const SimModel m = buildSimModel(mesh, c.material);
+  MaterialParams material = c.material;
+  material.dampingMass = 1.0;
+  SimModel m = buildSimModel(mesh, material);
+  m.gravity = Vec3(0, -9.81 * c.gravityFactor, 0);
   SimState s = initialState(m);
+  s.anchors = {topAnchor(m)};
   StepSettings settings;
   settings.dt = c.dt;
-  settings.gravity = Vec3(0, -9.81 * c.gravityFactor, 0);
-  settings.anchors = {topAnchor(m)};
-  settings.dampingMass = 1.0;
   // With fixed anchors nothing does work on the body: backward Euler may only lose energy.
   // Total energy = kinetic + elastic + gravitational potential; it must never grow.
   auto totalEnergy = [&](double elastic) {
     double e = kineticEnergy(m, s) + elastic;
-    for (int v = 0; v < m.numVertices(); ++v) e -= m.mass[v] * settings.gravity.dot(s.x[v]);
+    for (int v = 0; v < m.numVertices(); ++v) e -= m.mass[v] * m.gravity.dot(s.x[v]);
     return e;
   };
   const double start = totalEnergy(0.0);
   double scale = 0.0;
-  for (int v = 0; v < m.numVertices(); ++v)
-    scale += m.mass[v] * settings.gravity.norm() * 0.4 * c.scale;
+  for (int v = 0; v < m.numVertices(); ++v) scale += m.mass[v] * m.gravity.norm() * 0.4 * c.scale;
   for (int f = 0; f < 30; ++f) {
     const StepReport r = step(m, s, settings);
     for (const Vec3& x : s.x) ASSERT_TRUE(x.allFinite()) << c.name << " frame " << f;
@@ -228,13 +230,14 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(Step, InvertedAndSliverElementsRecover) {
   TetMesh mesh = bar(1, 2, 1);
   // Push one interior-ish vertex through its neighbours: several tets start inverted.
-  SimModel m = buildSimModel(mesh, rubber());
+  MaterialParams material = rubber();
+  material.dampingMass = 2.0;
+  const SimModel m = buildSimModel(mesh, material);
   SimState s = initialState(m);
   s.x[4] += Vec3(0.25, 0.0, 0.0);
   s.x[5] = s.x[4] + Vec3(1e-4, 1e-4, 0.0);  // and a near-sliver neighbour
-  StepSettings settings;
-  settings.anchors = {topAnchor(m)};
-  settings.dampingMass = 2.0;
+  s.anchors = {topAnchor(m)};
+  const StepSettings settings;
   for (int f = 0; f < 60; ++f) {
     const StepReport r = step(m, s, settings);
     for (const Vec3& x : s.x) ASSERT_TRUE(x.allFinite());
@@ -254,8 +257,8 @@ TEST(Step, FullyDamagedElementAndIsolatedVertexFallFreely) {
   const SimModel m = buildSimModel(mesh, rubber());
   SimState s = initialState(m);
   for (int e = 0; e < 6; ++e) s.damaged[m.tetEdges[0][e]] = 1;  // one element fully damaged
-  StepSettings settings;
-  settings.anchors = {topAnchor(m)};
+  s.anchors = {topAnchor(m)};
+  const StepSettings settings;
   for (int f = 0; f < 10; ++f) step(m, s, settings);
   const int isolated = m.numVertices() - 1;
   EXPECT_NEAR(s.v[isolated].y(), -9.81 * 10.0 / 60.0, 1e-9) << "a free particle under gravity";
@@ -272,11 +275,12 @@ namespace {
 TEST(StepContact, ABlockRestsOnTheGroundAndTheContactForceIsItsWeight) {
   TetMesh mesh = bar(2, 2, 2);
   for (Vec3& v : mesh.vertices) v.y() += 0.05;  // starts 5 cm above the ground
-  const SimModel m = buildSimModel(mesh, rubber(MaterialModel::StableNeoHookean, 1e5, 0.3));
+  MaterialParams material = rubber(MaterialModel::StableNeoHookean, 1e5, 0.3);
+  material.dampingMass = 4.0;
+  SimModel m = buildSimModel(mesh, material);
+  m.colliders.push_back(Collider{});  // ground plane y = 0
   SimState s = initialState(m);
-  StepSettings settings;
-  settings.colliders.push_back(Collider{});  // ground plane y = 0
-  settings.dampingMass = 4.0;
+  const StepSettings settings;
   StepReport r;
   for (int f = 0; f < 180; ++f) r = step(m, s, settings);
   double totalMass = 0.0, lowest = 1e9;
@@ -294,7 +298,9 @@ TEST(StepPlasticity, ClayKeepsADentAndRubberDoesNot) {
   auto dent = [](bool clay) {
     MaterialParams material = rubber(MaterialModel::StVK, 2e5, 0.3);
     if (clay) material.plastic = {5e3, 1e4};
-    const SimModel m = buildSimModel(bar(2, 2, 2), material);
+    material.dampingMass = 5.0;
+    SimModel m = buildSimModel(bar(2, 2, 2), material);
+    m.gravity = Vec3::Zero();
     SimState s = initialState(m);
     // Press the top face down by 4 cm over half a second, hold, then let go.
     AnchorConstraint bottom, press;
@@ -303,12 +309,10 @@ TEST(StepPlasticity, ClayKeepsADentAndRubberDoesNot) {
       if (m.mesh.vertices[v].y() > 0.2 - 1e-9) press.vertices.push_back(v);
     }
     press.path = {{0.0, Vec3::Zero()}, {0.5, Vec3(0, -0.04, 0)}};
-    StepSettings settings;
-    settings.gravity = Vec3::Zero();
-    settings.dampingMass = 5.0;
-    settings.anchors = {bottom, press};
+    const StepSettings settings;
+    s.anchors = {bottom, press};
     for (int f = 0; f < 45; ++f) step(m, s, settings);
-    settings.anchors = {bottom};
+    s.anchors = {bottom};
     for (int f = 0; f < 240; ++f) step(m, s, settings);
     double top = 0.0;
     for (int v : press.vertices) top += s.x[v].y();

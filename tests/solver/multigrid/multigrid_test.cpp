@@ -6,10 +6,10 @@
 #include <Eigen/SparseCholesky>
 
 #include "solver/frame/cpu_executor.h"
-#include "solver/frame/model_layout.h"
 #include "solver/frame/step.h"
 #include "solver/model/sim_model.h"
 #include "solver/multigrid/multigrid_cycle.h"
+#include "solver/multigrid/multigrid_layout.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -52,13 +52,12 @@ System elasticitySystem(int nx = 3, int ny = 12, int nz = 3) {
 // The hierarchy's solve (multigrid_cycle.h) on the CPU executor, on a System's matrix.
 struct Cycle {
   CpuExecutor ex;
-  ModelLayout layout;
   MultigridCycle<CpuExecutor> cycle;
   const System& system;
   std::vector<double> a;  // the fine blocks, 9 doubles each
 
   Cycle(const System& s, const Multigrid& mg, bool coarseCholesky = false)
-      : layout(buildModelLayout(s.model)), cycle(ex, layout), system(s) {
+      : cycle(ex, s.model.pattern), system(s) {
     cycle.upload(buildMultigridLayout(mg, s.model.pattern));
     for (const Eigen::Matrix3d& blk : s.a.blocks) a.insert(a.end(), blk.data(), blk.data() + 9);
     cycle.refresh(a.data(), coarseCholesky);

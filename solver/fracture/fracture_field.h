@@ -1,0 +1,55 @@
+// The fracture pass's per-mesh data (fracture.h builds it; SimModel::fracture holds it), as flat
+// arrays the executors read as they are.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "solver/mesh/tet_mesh.h"
+
+namespace galsculpt {
+
+struct FractureSettings {
+  double threshold = 0.0;        // Pa; edges whose normal stress passes it break
+  double kernelRadius = 0.0;     // m; 0: local
+  double thresholdJitter = 0.0;  // relative, in [0, 1)
+  std::uint32_t seed = 1;
+  // Pa; > 0: an edge also breaks when compressed beyond it (crushing, shear lips). 0: never;
+  // the paper's criterion is tension only.
+  double compressiveThreshold = 0.0;
+};
+
+// Per-edge thresholds, the element slots around each edge, and a uniform grid of rest edge
+// midpoints for the kernel. The grid's cells are numbered in key order, each with the numbers of
+// the 27 cells around it (-1 where there is none, dz fastest), so a thread finds an edge's
+// neighbourhood without a search and can skip it when no cell near it holds an edge over the
+// smallest threshold.
+struct FractureField {
+  bool enabled = false;  // false: no fracture pass (and no cost)
+  FractureSettings settings;
+  std::vector<double> threshold;        // (nEdges) Pa
+  double minThreshold = 0.0;            // Pa
+  std::vector<int> slotStart, slots;    // edge -> 6 * tet + local edge, CSR
+  std::vector<Vec3> midpoint;           // (nEdges) rest midpoints
+  double cellSize = 0.0;                // kernel grid (kernelRadius > 0 only)
+  std::vector<int> cellBegin, cellEnd;  // (cells) range of each cell in cellEdges
+  std::vector<int> cellEdges;           // edges sorted by cell
+  std::vector<int> edgeCell;            // (nEdges) the cell of each edge's midpoint
+  std::vector<int> cellNeighbors;       // (27 cells)
+  int cells() const { return static_cast<int>(cellBegin.size()); }
+};
+
+// The kernel grid: the cell of a point, and a cell's key (21 bits per axis; the mesh spans far
+// fewer cells than 2^20 in any direction).
+inline std::array<std::int64_t, 3> fractureCell(const Vec3& p, double cell) {
+  const auto c = [&](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
+  return {c(p.x()), c(p.y()), c(p.z())};
+}
+inline std::int64_t fractureCellKey(std::int64_t x, std::int64_t y, std::int64_t z) {
+  const std::int64_t mask = (1 << 21) - 1;
+  return ((x + (1 << 20)) & mask) << 42 | ((y + (1 << 20)) & mask) << 21 | ((z + (1 << 20)) & mask);
+}
+
+}  // namespace galsculpt
