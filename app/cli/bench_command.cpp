@@ -94,8 +94,8 @@ void applyRandomCuts(Simulation& sim, int cuts, AfterCut afterCut) {
   }
 }
 
-nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
-                       const Setting& setting, int frames, const fs::path& referencePositions) {
+// The scene with the setting's solver.
+SceneDescription sceneWithSetting(const SceneDescription& baseScene, const Setting& setting) {
   SceneDescription scene = baseScene;
   if (setting.reference) scene.solver.backend = BackendRequest::Cpu;  // no device path
   scene.solver.type = setting.reference ? SolverType::Reference : SolverType::Multigrid;
@@ -106,7 +106,49 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   scene.solver.pcgTolerance = setting.pcgTolerance;
   scene.solver.cycles = setting.cycles;
   scene.solver.coarseSolver = setting.coarseCholesky ? CoarseSolver::Cholesky : CoarseSolver::Cg;
-  Simulation sim(scene, mesh);
+  return scene;
+}
+
+// The row's description of its solver setting.
+void describeSetting(const Setting& setting, nlohmann::json& r) {
+  r["solver"] = setting.reference ? "reference" : "multigrid";
+  r["grid"] = setting.reference ? "" : setting.grid;
+  r["fine_sweeps"] = setting.reference ? 0 : setting.fineSweeps;
+  r["coarse_iters"] = setting.reference ? 0 : setting.coarseIters;
+  if (!setting.reference) {
+    r["newton_iters"] = setting.newtonIterations;
+    r["pcg_tolerance"] = setting.pcgTolerance;
+    r["cycles"] = setting.cycles;
+    r["coarse_solver"] = setting.coarseCholesky ? "cholesky" : "cg";
+  }
+}
+
+// The reference run writes its final positions; the others are compared with them: the largest
+// position difference relative to the reference's largest displacement (-1: no reference).
+double positionError(const std::vector<Vec3>& x, const TetMesh& mesh, bool reference,
+                     const fs::path& referencePositions) {
+  if (reference) {
+    writeFileAtomically(referencePositions, [&](std::ostream& out) {
+      out.write(reinterpret_cast<const char*>(x.data()),
+                static_cast<std::streamsize>(x.size() * sizeof(Vec3)));
+    });
+    return 0.0;
+  }
+  std::vector<Vec3> ref(x.size());
+  std::ifstream in(referencePositions, std::ios::binary);
+  in.read(reinterpret_cast<char*>(ref.data()),
+          static_cast<std::streamsize>(ref.size() * sizeof(Vec3)));
+  double err = 0.0, disp = 0.0;
+  for (size_t v = 0; v < x.size(); ++v) {
+    err = std::max(err, (x[v] - ref[v]).norm());
+    disp = std::max(disp, (ref[v] - mesh.vertices[v]).norm());
+  }
+  return in ? err / std::max(disp, 1e-300) : -1.0;
+}
+
+nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
+                       const Setting& setting, int frames, const fs::path& referencePositions) {
+  Simulation sim(sceneWithSetting(baseScene, setting), mesh);
   // The surface is built when the scene opens and brought up to date after each cut, as the app
   // does: what a cut costs the surface is measured here, what a frame costs it below.
   sim.surface();
@@ -134,16 +176,7 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   std::sort(msSurface.begin(), msSurface.end());
   nlohmann::json r;
   r["tets"] = mesh.numTets();
-  r["solver"] = setting.reference ? "reference" : "multigrid";
-  r["grid"] = setting.reference ? "" : setting.grid;
-  r["fine_sweeps"] = setting.reference ? 0 : setting.fineSweeps;
-  r["coarse_iters"] = setting.reference ? 0 : setting.coarseIters;
-  if (!setting.reference) {
-    r["newton_iters"] = setting.newtonIterations;
-    r["pcg_tolerance"] = setting.pcgTolerance;
-    r["cycles"] = setting.cycles;
-    r["coarse_solver"] = setting.coarseCholesky ? "cholesky" : "cg";
-  }
+  describeSetting(setting, r);
   r["backend"] = sim.backendName();
   for (const std::string& note : sim.notes()) {
     if (note.find("running on the CPU") != std::string::npos) r["backend_note"] = note;
@@ -162,27 +195,11 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
     r["ms_surface_cut"] = msCut.empty() ? 0.0 : msCut[msCut.size() / 2];
     r["ms_surface_cut_max"] = msCut.empty() ? 0.0 : msCut.back();
   }
-  const std::vector<Vec3>& x = sim.state().x;
   if (setting.cuts >= 0) {
     r["rel_position_error"] = nullptr;  // cost against cracks: no reference run
-  } else if (setting.reference) {
-    writeFileAtomically(referencePositions, [&](std::ostream& out) {
-      out.write(reinterpret_cast<const char*>(x.data()),
-                static_cast<std::streamsize>(x.size() * sizeof(Vec3)));
-    });
-    r["rel_position_error"] = 0.0;
   } else {
-    std::vector<Vec3> ref(x.size());
-    std::ifstream in(referencePositions, std::ios::binary);
-    in.read(reinterpret_cast<char*>(ref.data()),
-            static_cast<std::streamsize>(ref.size() * sizeof(Vec3)));
-    // Largest position difference relative to the reference's largest displacement.
-    double err = 0.0, disp = 0.0;
-    for (size_t v = 0; v < x.size(); ++v) {
-      err = std::max(err, (x[v] - ref[v]).norm());
-      disp = std::max(disp, (ref[v] - mesh.vertices[v]).norm());
-    }
-    r["rel_position_error"] = in ? err / std::max(disp, 1e-300) : -1.0;
+    r["rel_position_error"] =
+        positionError(sim.state().x, mesh, setting.reference, referencePositions);
   }
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -256,6 +273,55 @@ std::string row(const nlohmann::json& r) {
   return s.str();
 }
 
+// The scenes asked for: one by name, the quick pair, the sphere for --cracks, or all five.
+std::vector<BenchScene> benchScenes(const CliArgs& a) {
+  std::vector<BenchScene> scenes;
+  if (auto name = a.value("--scene")) {
+    for (const BenchScene& s : kScenes) {
+      if (*name == s.name) scenes.push_back(s);
+    }
+    if (scenes.empty())
+      throw UsageError("unknown scene '" + *name + "' (sphere, charpy, human, armadillo, steak)");
+  } else if (a.has("--quick") || a.has("--cracks")) {
+    scenes = a.has("--cracks") ? std::vector<BenchScene>{kScenes[0]}
+                               : std::vector<BenchScene>{kScenes[0], kScenes[1]};
+  } else {
+    scenes.assign(std::begin(kScenes), std::end(kScenes));
+  }
+  return scenes;
+}
+
+// The reference, the paper's setting (one linearized step, one V-cycle, 3 sweeps, 20 coarse CG
+// iterations on the scene's grid) and the scene's own setting when it differs; with `cracks`
+// the scene's own solver after 0, 10 and 100 random knife cuts; with `sweep` the grid of
+// paper-like settings.
+std::vector<Setting> benchSettings(const SceneDescription& scene, bool cracks, bool sweep) {
+  Setting reference;
+  reference.reference = true;
+  std::vector<Setting> settings = {reference, paperSetting(scene.solver.grid, 3, 20)};
+  const Setting own = sceneSetting(scene.solver);
+  if (!own.paperLike() || own.fineSweeps != 3 || own.coarseIters != 20) settings.push_back(own);
+  if (cracks) {
+    settings.clear();
+    for (int cuts : {0, 10, 100}) {
+      Setting cut = own;
+      cut.cuts = cuts;
+      settings.push_back(cut);
+    }
+  }
+  if (sweep) {
+    for (const char* grid : {"50/all", "200/all", "50/1000/all"}) {
+      for (int sweeps : {1, 3, 10, 30}) {
+        for (int coarse : {5, 20, 200}) {
+          if (std::string(grid) == scene.solver.grid && sweeps == 3 && coarse == 20) continue;
+          settings.push_back(paperSetting(grid, sweeps, coarse));
+        }
+      }
+    }
+  }
+  return settings;
+}
+
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -267,19 +333,7 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
   const std::optional<BackendRequest> backend = backendOption(a);
   const bool quick = a.has("--quick");
   const int frames = a.intValue("--frames", quick ? 20 : 60, 1, 100000);
-  std::vector<BenchScene> scenes;
-  if (auto name = a.value("--scene")) {
-    for (const BenchScene& s : kScenes) {
-      if (*name == s.name) scenes.push_back(s);
-    }
-    if (scenes.empty())
-      throw UsageError("unknown scene '" + *name + "' (sphere, charpy, human, armadillo, steak)");
-  } else if (quick || a.has("--cracks")) {
-    scenes = a.has("--cracks") ? std::vector<BenchScene>{kScenes[0]}
-                               : std::vector<BenchScene>{kScenes[0], kScenes[1]};
-  } else {
-    scenes.assign(std::begin(kScenes), std::end(kScenes));
-  }
+  const std::vector<BenchScene> scenes = benchScenes(a);
   std::string pattern = (fs::temp_directory_path() / "galsculpt-bench-XXXXXX").string();
   if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder");
   const fs::path scratch = pattern;
@@ -297,33 +351,8 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
       err << "skipping " << bs.name << ": " << e.what() << '\n';
       continue;
     }
-    // The reference, the paper's setting (one linearized step, one V-cycle, 3 sweeps, 20
-    // coarse CG iterations on the scene's grid) and the scene's own setting when it differs.
-    Setting reference;
-    reference.reference = true;
-    std::vector<Setting> settings = {reference, paperSetting(scene.solver.grid, 3, 20)};
-    const Setting own = sceneSetting(scene.solver);
-    if (!own.paperLike() || own.fineSweeps != 3 || own.coarseIters != 20) settings.push_back(own);
-    if (a.has("--cracks")) {
-      // The cost of a frame against the number of cracks: the scene's own solver after 0, 10
-      // and 100 random knife cuts.
-      settings.clear();
-      for (int cuts : {0, 10, 100}) {
-        Setting cut = own;
-        cut.cuts = cuts;
-        settings.push_back(cut);
-      }
-    }
-    if (a.has("--sweep") && std::string(bs.name) == "sphere") {
-      for (const char* grid : {"50/all", "200/all", "50/1000/all"}) {
-        for (int sweeps : {1, 3, 10, 30}) {
-          for (int coarse : {5, 20, 200}) {
-            if (std::string(grid) == scene.solver.grid && sweeps == 3 && coarse == 20) continue;
-            settings.push_back(paperSetting(grid, sweeps, coarse));
-          }
-        }
-      }
-    }
+    const std::vector<Setting> settings =
+        benchSettings(scene, a.has("--cracks"), a.has("--sweep") && std::string(bs.name) == "sphere");
     const fs::path refFile = scratch / (std::string(bs.name) + ".ref");
     for (const Setting& s : settings) {
       nlohmann::json r = measureInChild(scene, mesh, s, frames, refFile, scratch);

@@ -178,92 +178,100 @@ fs::path checkedOutput(const fs::path& path) {
   return path;
 }
 
+// mesh info FILE [--json]: what a tet or surface mesh holds and whether it is sound.
+int meshInfo(const std::vector<std::string>& rest, std::ostream& out) {
+  const CliArgs a(rest, {}, {"--json"});
+  a.expectPositional(1, 1, "galsculpt mesh info FILE [--json]");
+  fs::path file = a.positional()[0];
+  // A .damage file is read with the mesh it belongs to (stem.node/.ele beside it).
+  if (file.extension() == ".damage")
+    file = fs::path(tetgenStem(file.replace_extension())).concat(".node");
+  const MeshFileKind kind = meshFileKind(file);
+  if (kind == MeshFileKind::Surface) return infoSurface(file, a.has("--json"), out);
+  if (kind == MeshFileKind::Vtk)
+    throw InputError(file.string(), 0, "legacy VTK is an output format");
+  if (kind == MeshFileKind::Unknown) throw InputError(file.string(), 0, "unknown mesh format");
+  return infoTet(file, a.has("--json"), out);
+}
+
+// mesh convert IN OUT [--tets N]: between formats; a surface to tets through TetGen.
+int meshConvert(const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
+  const CliArgs a(rest, {"--tets", "--timeout", "--tolerance", "--quality"}, {});
+  a.expectPositional(2, 2, "galsculpt mesh convert IN OUT [--tets N]");
+  const fs::path in = a.positional()[0], outPath = checkedOutput(a.positional()[1]);
+  const bool outSurface = meshFileKind(outPath) == MeshFileKind::Surface;
+  if (meshFileKind(in) == MeshFileKind::Surface) {
+    const TriMesh surface = readSurface(in);
+    if (outSurface) {
+      writeSurface(outPath, surface);
+      out << "wrote " << outPath.string() << " (" << surface.numVertices() << " vertices, "
+          << surface.numFaces() << " faces)\n";
+      return kExitOk;
+    }
+    if (!a.has("--tets")) throw UsageError("converting a surface to a tet mesh needs --tets N");
+    writeAny(outPath, meshSurface(surface, in.filename().string(), a, err), out);
+    return kExitOk;
+  }
+  MeshReadReport report;
+  const TetMesh mesh = readTetMesh(in, &report);
+  for (const std::string& note : report.notes) err << "note: " << note << '\n';
+  writeAny(outPath, mesh, out);
+  return kExitOk;
+}
+
+// mesh import SURFACE OUT --tets N: a surface tetrahedralized to about N tets.
+int meshImport(const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
+  const CliArgs a(rest, {"--tets", "--timeout", "--tolerance", "--quality"}, {});
+  a.expectPositional(2, 2, "galsculpt mesh import SURFACE OUT --tets N");
+  if (!a.has("--tets")) throw UsageError("mesh import needs --tets N");
+  a.intValue("--tets", 0, 1, 50000000);  // a malformed count is a usage error before any I/O
+  const fs::path in = a.positional()[0], outPath = checkedOutput(a.positional()[1]);
+  if (meshFileKind(outPath) == MeshFileKind::Surface)
+    throw UsageError("mesh import writes a tet mesh: use .node, .msh or .vtk");
+  if (meshFileKind(in) != MeshFileKind::Surface) {
+    throw InputError(in.string(), 0,
+                     "not a surface mesh (expected .obj, .ply, .stl, .off, .gltf or .glb)");
+  }
+  const TriMesh surface = readSurface(in);
+  writeAny(outPath, meshSurface(surface, in.string(), a, err), out);
+  return kExitOk;
+}
+
+// mesh generate sphere|charpy|steak OUT: a generated shape, as a surface or tets.
+int meshGenerate(const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
+  const CliArgs a(rest, {"--tets", "--radius", "--timeout"}, {});
+  a.expectPositional(2, 2,
+                     "galsculpt mesh generate sphere|charpy|steak OUT [--tets N] [--radius R]");
+  const std::string name = a.positional()[0];
+  const std::optional<Generator> generator = generatorFromName(name);
+  if (!generator) throw UsageError("unknown shape '" + name + "' (sphere, charpy or steak)");
+  const fs::path outPath = checkedOutput(a.positional()[1]);
+  // A surface alone (no --tets) gets the resolution of the paper's scene.
+  const int tets =
+      a.intValue("--tets", *generator == Generator::Steak ? 186000 : 35000, 1, 50000000);
+  const TriMesh surface =
+      generatorSurface(*generator, a.doubleValue("--radius", 0.1, 1e-6, 1e6), tets);
+  if (meshFileKind(outPath) == MeshFileKind::Surface) {
+    writeSurface(outPath, surface);
+    out << "wrote " << outPath.string() << " (" << surface.numVertices() << " vertices, "
+        << surface.numFaces() << " faces)\n";
+    return kExitOk;
+  }
+  if (!a.has("--tets")) throw UsageError("a tet mesh output needs --tets N");
+  writeAny(outPath, meshSurface(surface, name, a, err), out);
+  return kExitOk;
+}
+
 }  // namespace
 
 int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   if (args.empty()) throw UsageError("mesh needs a subcommand: info, convert, import or generate");
   const std::string sub = args[0];
   const std::vector<std::string> rest(args.begin() + 1, args.end());
-
-  if (sub == "info") {
-    const CliArgs a(rest, {}, {"--json"});
-    a.expectPositional(1, 1, "galsculpt mesh info FILE [--json]");
-    fs::path file = a.positional()[0];
-    // A .damage file is read with the mesh it belongs to (stem.node/.ele beside it).
-    if (file.extension() == ".damage")
-      file = fs::path(tetgenStem(file.replace_extension())).concat(".node");
-    const MeshFileKind kind = meshFileKind(file);
-    if (kind == MeshFileKind::Surface) return infoSurface(file, a.has("--json"), out);
-    if (kind == MeshFileKind::Vtk)
-      throw InputError(file.string(), 0, "legacy VTK is an output format");
-    if (kind == MeshFileKind::Unknown) throw InputError(file.string(), 0, "unknown mesh format");
-    return infoTet(file, a.has("--json"), out);
-  }
-
-  if (sub == "convert") {
-    const CliArgs a(rest, {"--tets", "--timeout", "--tolerance", "--quality"}, {});
-    a.expectPositional(2, 2, "galsculpt mesh convert IN OUT [--tets N]");
-    const fs::path in = a.positional()[0], outPath = checkedOutput(a.positional()[1]);
-    const bool outSurface = meshFileKind(outPath) == MeshFileKind::Surface;
-    if (meshFileKind(in) == MeshFileKind::Surface) {
-      const TriMesh surface = readSurface(in);
-      if (outSurface) {
-        writeSurface(outPath, surface);
-        out << "wrote " << outPath.string() << " (" << surface.numVertices() << " vertices, "
-            << surface.numFaces() << " faces)\n";
-        return kExitOk;
-      }
-      if (!a.has("--tets")) throw UsageError("converting a surface to a tet mesh needs --tets N");
-      writeAny(outPath, meshSurface(surface, in.filename().string(), a, err), out);
-      return kExitOk;
-    }
-    MeshReadReport report;
-    const TetMesh mesh = readTetMesh(in, &report);
-    for (const std::string& note : report.notes) err << "note: " << note << '\n';
-    writeAny(outPath, mesh, out);
-    return kExitOk;
-  }
-
-  if (sub == "import") {
-    const CliArgs a(rest, {"--tets", "--timeout", "--tolerance", "--quality"}, {});
-    a.expectPositional(2, 2, "galsculpt mesh import SURFACE OUT --tets N");
-    if (!a.has("--tets")) throw UsageError("mesh import needs --tets N");
-    a.intValue("--tets", 0, 1, 50000000);  // a malformed count is a usage error before any I/O
-    const fs::path in = a.positional()[0], outPath = checkedOutput(a.positional()[1]);
-    if (meshFileKind(outPath) == MeshFileKind::Surface)
-      throw UsageError("mesh import writes a tet mesh: use .node, .msh or .vtk");
-    if (meshFileKind(in) != MeshFileKind::Surface) {
-      throw InputError(in.string(), 0,
-                       "not a surface mesh (expected .obj, .ply, .stl, .off, .gltf or .glb)");
-    }
-    const TriMesh surface = readSurface(in);
-    writeAny(outPath, meshSurface(surface, in.string(), a, err), out);
-    return kExitOk;
-  }
-
-  if (sub == "generate") {
-    const CliArgs a(rest, {"--tets", "--radius", "--timeout"}, {});
-    a.expectPositional(2, 2,
-                       "galsculpt mesh generate sphere|charpy|steak OUT [--tets N] [--radius R]");
-    const std::string name = a.positional()[0];
-    const std::optional<Generator> generator = generatorFromName(name);
-    if (!generator) throw UsageError("unknown shape '" + name + "' (sphere, charpy or steak)");
-    const fs::path outPath = checkedOutput(a.positional()[1]);
-    // A surface alone (no --tets) gets the resolution of the paper's scene.
-    const int tets =
-        a.intValue("--tets", *generator == Generator::Steak ? 186000 : 35000, 1, 50000000);
-    const TriMesh surface =
-        generatorSurface(*generator, a.doubleValue("--radius", 0.1, 1e-6, 1e6), tets);
-    if (meshFileKind(outPath) == MeshFileKind::Surface) {
-      writeSurface(outPath, surface);
-      out << "wrote " << outPath.string() << " (" << surface.numVertices() << " vertices, "
-          << surface.numFaces() << " faces)\n";
-      return kExitOk;
-    }
-    if (!a.has("--tets")) throw UsageError("a tet mesh output needs --tets N");
-    writeAny(outPath, meshSurface(surface, name, a, err), out);
-    return kExitOk;
-  }
+  if (sub == "info") return meshInfo(rest, out);
+  if (sub == "convert") return meshConvert(rest, out, err);
+  if (sub == "import") return meshImport(rest, out, err);
+  if (sub == "generate") return meshGenerate(rest, out, err);
   throw UsageError("unknown mesh subcommand '" + sub + "'");
 }
 

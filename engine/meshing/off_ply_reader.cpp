@@ -228,6 +228,66 @@ struct PlyHeader {
   PlyHeader(PlyHeader&&) = default;      // a vector's move keeps them where they are
 };
 
+// One 'property' line of the header, added to the last element.
+PlyProperty readPlyProperty(TextLines& header, const TextLine& line) {
+  PlyProperty p;
+  const bool list = line.tokens.size() >= 2 && line.tokens[1] == "list";
+  if ((list && line.tokens.size() != 5) || (!list && line.tokens.size() != 3))
+    header.fail(line.number, "expected 'property TYPE NAME' or 'property list COUNT TYPE NAME'");
+  p.list = list;
+  if (list && !plyType(line.tokens[2], p.countType))
+    header.fail(line.number, "unknown type '" + std::string(line.tokens[2]) + "'");
+  if (list && (p.countType == PlyType::Float32 || p.countType == PlyType::Float64))
+    header.fail(line.number, "a list's count must be an integer type");
+  if (!plyType(line.tokens[list ? 3 : 1], p.type))
+    header.fail(line.number, "unknown type '" + std::string(line.tokens[list ? 3 : 1]) + "'");
+  p.name = std::string(line.tokens.back());
+  return p;
+}
+
+// The vertex element's x, y, z and the face element's index list, which a surface needs.
+void findPlySurfaceProperties(TextLines& header, PlyHeader& h) {
+  for (const PlyElement& e : h.elements) {
+    if (e.name == "vertex") {
+      h.vertexElement = &e;
+      for (size_t p = 0; p < e.properties.size(); ++p) {
+        for (int k = 0; k < 3; ++k) {
+          if (e.properties[p].name == std::string(1, "xyz"[k]) && !e.properties[p].list)
+            h.xyz[k] = static_cast<int>(p);
+        }
+      }
+      if (h.xyz[0] < 0 || h.xyz[1] < 0 || h.xyz[2] < 0)
+        header.fail(e.headerLine, "the vertex element needs x, y and z properties");
+    } else if (e.name == "face") {
+      h.faceElement = &e;
+      for (size_t p = 0; p < e.properties.size(); ++p) {
+        const PlyProperty& q = e.properties[p];
+        if (q.list && (q.name == "vertex_indices" || q.name == "vertex_index"))
+          h.indexProperty = static_cast<int>(p);
+      }
+      if (h.indexProperty < 0)
+        header.fail(e.headerLine, "the face element needs a list property 'vertex_indices'");
+    }
+  }
+  if (!h.vertexElement || !h.faceElement)
+    throw InputError(h.name, 0, "a PLY surface needs a vertex and a face element");
+}
+
+// Each record takes at least a line (ascii) or its fixed-size part (binary): counts beyond the
+// file are refused before anything is allocated.
+void countPlyBytesNeeded(TextLines& header, PlyHeader& h) {
+  for (const PlyElement& e : h.elements) {
+    unsigned long long record = h.ascii ? 1 : 0;
+    for (const PlyProperty& p : e.properties) {
+      if (!h.ascii) record += plySize(p.list ? p.countType : p.type);
+    }
+    if (record > 0 &&
+        e.count > (std::numeric_limits<unsigned long long>::max() - h.needed) / record)
+      header.fail(e.headerLine, "element count " + std::to_string(e.count) + " is too large");
+    h.needed += e.count * record;
+  }
+}
+
 PlyHeader readPlyHeader(const std::string& name, const std::string& text) {
   PlyHeader h;
   h.name = name;
@@ -245,18 +305,15 @@ PlyHeader readPlyHeader(const std::string& name, const std::string& text) {
     header.fail(format.number,
                 "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
   const std::string_view kind = format.tokens[1];
-  const bool ascii = kind == "ascii";
-  if (!ascii && kind != "binary_little_endian" && kind != "binary_big_endian")
+  h.ascii = kind == "ascii";
+  if (!h.ascii && kind != "binary_little_endian" && kind != "binary_big_endian")
     header.fail(format.number, "unknown PLY format '" + std::string(kind) + "'");
-  h.ascii = ascii;
   h.bigEndian = kind == "binary_big_endian";
-  std::vector<PlyElement>& elements = h.elements;
-  int& endHeaderLine = h.endHeaderLine;
   for (;;) {
     const TextLine& line = header.next("end_header");
     const std::string_view key = line.tokens[0];
     if (key == "end_header") {
-      endHeaderLine = line.number;
+      h.endHeaderLine = line.number;
       break;
     }
     if (key == "comment" || key == "obj_info") continue;
@@ -264,68 +321,17 @@ PlyHeader readPlyHeader(const std::string& name, const std::string& text) {
       if (line.tokens.size() != 3) header.fail(line.number, "expected 'element NAME COUNT'");
       const long long count = header.parseInt(line, 2, "the element count");
       if (count < 0) header.fail(line.number, "negative element count");
-      elements.push_back(
+      h.elements.push_back(
           {std::string(line.tokens[1]), static_cast<unsigned long long>(count), {}, line.number});
     } else if (key == "property") {
-      if (elements.empty()) header.fail(line.number, "a property before any element");
-      PlyProperty p;
-      const bool list = line.tokens.size() >= 2 && line.tokens[1] == "list";
-      if ((list && line.tokens.size() != 5) || (!list && line.tokens.size() != 3))
-        header.fail(line.number,
-                    "expected 'property TYPE NAME' or 'property list COUNT TYPE NAME'");
-      p.list = list;
-      if (list && !plyType(line.tokens[2], p.countType))
-        header.fail(line.number, "unknown type '" + std::string(line.tokens[2]) + "'");
-      if (list && (p.countType == PlyType::Float32 || p.countType == PlyType::Float64))
-        header.fail(line.number, "a list's count must be an integer type");
-      if (!plyType(line.tokens[list ? 3 : 1], p.type))
-        header.fail(line.number, "unknown type '" + std::string(line.tokens[list ? 3 : 1]) + "'");
-      p.name = std::string(line.tokens.back());
-      elements.back().properties.push_back(p);
+      if (h.elements.empty()) header.fail(line.number, "a property before any element");
+      h.elements.back().properties.push_back(readPlyProperty(header, line));
     } else {
       header.fail(line.number, "unknown header keyword '" + std::string(key) + "'");
     }
   }
-  const PlyElement*& vertexElement = h.vertexElement;
-  const PlyElement*& faceElement = h.faceElement;
-  int* xyz = h.xyz;
-  int& indexProperty = h.indexProperty;
-  for (const PlyElement& e : elements) {
-    if (e.name == "vertex") {
-      vertexElement = &e;
-      for (size_t p = 0; p < e.properties.size(); ++p) {
-        for (int k = 0; k < 3; ++k) {
-          if (e.properties[p].name == std::string(1, "xyz"[k]) && !e.properties[p].list)
-            xyz[k] = static_cast<int>(p);
-        }
-      }
-      if (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)
-        header.fail(e.headerLine, "the vertex element needs x, y and z properties");
-    } else if (e.name == "face") {
-      faceElement = &e;
-      for (size_t p = 0; p < e.properties.size(); ++p) {
-        const PlyProperty& q = e.properties[p];
-        if (q.list && (q.name == "vertex_indices" || q.name == "vertex_index"))
-          indexProperty = static_cast<int>(p);
-      }
-      if (indexProperty < 0)
-        header.fail(e.headerLine, "the face element needs a list property 'vertex_indices'");
-    }
-  }
-  if (!vertexElement || !faceElement)
-    throw InputError(name, 0, "a PLY surface needs a vertex and a face element");
-  // Each record takes at least a line (ascii) or its fixed-size part (binary): counts beyond the
-  // file are refused before anything is allocated.
-  unsigned long long& needed = h.needed;
-  for (const PlyElement& e : elements) {
-    unsigned long long record = ascii ? 1 : 0;
-    for (const PlyProperty& p : e.properties) {
-      if (!ascii) record += plySize(p.list ? p.countType : p.type);
-    }
-    if (record > 0 && e.count > (std::numeric_limits<unsigned long long>::max() - needed) / record)
-      header.fail(e.headerLine, "element count " + std::to_string(e.count) + " is too large");
-    needed += e.count * record;
-  }
+  findPlySurfaceProperties(header, h);
+  countPlyBytesNeeded(header, h);
   return h;
 }
 

@@ -98,6 +98,128 @@ std::optional<TriMesh> simplifyForMeshing(const TriMesh& surface, int faces,
   return std::nullopt;
 }
 
+// TetGen runs on one surface in a temporary folder: each run's tet count, the closest so far,
+// and the mesh of the last run when it is accepted.
+class TetgenRuns {
+ public:
+  TetgenRuns(const TriMesh& surface, const TetrahedralizeOptions& options)
+      : options_(options), smesh_(dir_.path() / "input.smesh") {
+    writeSmesh(smesh_, surface);
+  }
+  // Replaces the surface (a simplified copy); later runs mesh it.
+  void setSurface(const TriMesh& surface) {
+    smesh_ = dir_.path() / "simplified.smesh";
+    writeSmesh(smesh_, surface);
+  }
+  int attempts() const { return attempts_; }
+
+  // One TetGen run; returns its tet count. `bound` <= 0 means no volume bound.
+  long long run(const TetQuality& q, double bound) {
+    const std::string sw = tetgenSwitches(q, bound);
+    const fs::path log = dir_.path() / "tetgen.log";
+    const SubprocessResult r =
+        runSubprocess({options_.program, sw, smesh_.string()}, options_.timeoutSeconds, log);
+    if (!r.started) {
+      throw std::runtime_error("cannot run '" + options_.program +
+                               "': is TetGen installed? (scripts/install-deps.sh installs it)");
+    }
+    if (!r.succeeded()) {
+      throw std::runtime_error("tetgen " + r.describe() + " on " + options_.surfaceName +
+                               " (switches " + sw + ")" +
+                               (r.logTail.empty() ? "" : ":\n" + r.logTail));
+    }
+    const long long count = countTets(fs::path(resultStem()).concat(".ele"));
+    if (count <= 0) throw std::runtime_error("tetgen wrote no tets for " + options_.surfaceName);
+    ++attempts_;
+    if (options_.progress) {
+      std::ostringstream line;
+      line << "tetgen attempt " << attempts_ << " (" << sw << "): " << count << " tets (target "
+           << options_.targetTets << ")";
+      options_.progress(line.str());
+    }
+    const double target = options_.targetTets;
+    if (bestCount_ < 0 || std::abs(count / target - 1.0) < std::abs(bestCount_ / target - 1.0)) {
+      bestCount_ = count;
+      bestSwitches_ = sw;
+    }
+    return count;
+  }
+
+  // The last run's mesh, as the result.
+  TetrahedralizeResult accept(const TetQuality& q, double bound) const {
+    TetrahedralizeResult result;
+    result.mesh = readTetGen(resultStem());
+    result.mesh.faces.clear();
+    result.mesh.faceMarkers.clear();
+    result.mesh.vertexMarkers.clear();
+    result.volumeBound = bound;
+    result.quality = q;
+    result.attempts = attempts_;
+    return result;
+  }
+
+  [[noreturn]] void fail() const {
+    std::ostringstream msg;
+    msg << "could not reach " << options_.targetTets << " tets within "
+        << static_cast<int>(options_.tolerance * 100) << " % for " << options_.surfaceName
+        << " in " << attempts_ << " TetGen runs: closest was " << bestCount_ << " tets ("
+        << bestSwitches_ << ")";
+    if (bestCount_ > options_.targetTets)
+      msg << "; the surface is finer than " << options_.targetTets << " tets allow";
+    throw std::runtime_error(msg.str());
+  }
+
+ private:
+  // TetGen writes its result beside its input: input.smesh -> input.1.node / .ele.
+  fs::path resultStem() const { return fs::path(smesh_).replace_extension(".1"); }
+
+  const TetrahedralizeOptions& options_;
+  TempDir dir_;
+  fs::path smesh_;
+  int attempts_ = 0;
+  long long bestCount_ = -1;
+  std::string bestSwitches_;
+};
+
+// Searches the volume bound that gives the target tet count at one quality level, from the
+// count with no bound (`fewest`); none when the attempts run out first.
+std::optional<TetrahedralizeResult> searchVolumeBound(TetgenRuns& runs, const TetQuality& level,
+                                                      double volume,
+                                                      const TetrahedralizeOptions& options) {
+  const double target = options.targetTets;
+  TetQuality q = level;
+  int nudges = 0;
+  double bound = 1.5 * volume / target;     // a quality mesh has ~1.5x volume / bound tets
+  double lowBound = 0.0, lowCount = 0.0;    // gave too many tets
+  double highBound = 0.0, highCount = 0.0;  // gave too few tets
+  while (runs.attempts() < options.maxAttempts) {
+    const long long count = runs.run(q, bound);
+    if (std::abs(count / target - 1.0) <= options.tolerance) return runs.accept(q, bound);
+    if (count > target) {
+      lowBound = bound;
+      lowCount = static_cast<double>(count);
+    } else {
+      highBound = bound;
+      highCount = static_cast<double>(count);
+    }
+    if (lowBound > 0.0 && highBound > 0.0 && highBound < 1.01 * lowBound) {
+      // The count jumps across the target within a 1 % change of the bound (TetGen's
+      // refinement is discontinuous): nudge the quality bound and search again.
+      if (q.radiusEdgeRatio > 0.0) q.radiusEdgeRatio *= (nudges++ % 2 == 0) ? 1.04 : 1.0 / 1.08;
+      lowBound = highBound = 0.0;
+    }
+    if (lowBound > 0.0 && highBound > 0.0) {
+      // Interpolate log(count) linearly in log(bound) between the bracket ends.
+      const double t =
+          std::clamp(std::log(lowCount / target) / std::log(lowCount / highCount), 0.2, 0.8);
+      bound = std::exp(std::log(lowBound) + t * (std::log(highBound) - std::log(lowBound)));
+    } else {
+      bound *= std::clamp(count / target, 1.0 / 64.0, 64.0);
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 void checkMeshableSurface(const TriMesh& surface, const std::string& name) {
@@ -126,78 +248,24 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
     for (Tri& f : surface.faces) std::swap(f[1], f[2]);
     volume = -volume;
   }
-
-  TempDir dir;
-  fs::path smesh = dir.path() / "input.smesh";
-  writeSmesh(smesh, surface);
-  // TetGen writes its result beside its input: input.smesh -> input.1.node / .ele.
-  auto resultStem = [&]() { return fs::path(smesh).replace_extension(".1"); };
-
+  TetgenRuns runs(surface, options);
   const double target = options.targetTets;
-  const double tolerance = options.tolerance;
   bool simplified = false;
-  int attempts = 0;
-  long long bestCount = -1;
-  std::string bestSwitches;
-
-  // One TetGen run; returns its tet count. `bound` <= 0 means no volume bound.
-  auto run = [&](const TetQuality& q, double bound) {
-    const std::string sw = tetgenSwitches(q, bound);
-    const fs::path log = dir.path() / "tetgen.log";
-    const SubprocessResult r =
-        runSubprocess({options.program, sw, smesh.string()}, options.timeoutSeconds, log);
-    if (!r.started) {
-      throw std::runtime_error("cannot run '" + options.program +
-                               "': is TetGen installed? (scripts/install-deps.sh installs it)");
-    }
-    if (!r.succeeded()) {
-      throw std::runtime_error("tetgen " + r.describe() + " on " + options.surfaceName +
-                               " (switches " + sw + ")" +
-                               (r.logTail.empty() ? "" : ":\n" + r.logTail));
-    }
-    const long long count = countTets(fs::path(resultStem()).concat(".ele"));
-    if (count <= 0) throw std::runtime_error("tetgen wrote no tets for " + options.surfaceName);
-    ++attempts;
-    if (options.progress) {
-      std::ostringstream line;
-      line << "tetgen attempt " << attempts << " (" << sw << "): " << count << " tets (target "
-           << options.targetTets << ")";
-      options.progress(line.str());
-    }
-    if (bestCount < 0 || std::abs(count / target - 1.0) < std::abs(bestCount / target - 1.0)) {
-      bestCount = count;
-      bestSwitches = sw;
-    }
-    return count;
-  };
-  auto accept = [&](const TetQuality& q, double bound) {
-    TetrahedralizeResult result;
-    result.mesh = readTetGen(resultStem());
-    result.mesh.faces.clear();
-    result.mesh.faceMarkers.clear();
-    result.mesh.vertexMarkers.clear();
-    result.volumeBound = bound;
-    result.quality = q;
-    result.attempts = attempts;
-    return result;
-  };
-
   const std::vector<TetQuality> levels = qualityLevels(options.radiusEdgeRatio);
   for (size_t li = 0; li < levels.size(); ++li) {
     const TetQuality& level = levels[li];
     // With the surface kept as given TetGen still needs about 3 tets per surface face: a surface
     // with more faces than that allows is simplified before any run.
-    const bool hopeless = surface.numFaces() * 3.0 > target * (1.0 + tolerance);
+    const bool hopeless = surface.numFaces() * 3.0 > target * (1.0 + options.tolerance);
     if ((li == 2 || (li == 0 && hopeless)) && !simplified) {
       // The surface as given forces too many tets even when kept as is: simplify it to about
-      // one face per kFacesPerTet tets and start over with the strict levels.
+      // one face per kTetsPerSurfaceFace tets and start over with the strict levels.
       simplified = true;
       const int faces = static_cast<int>(target / kTetsPerSurfaceFace);
       if (surface.numFaces() > faces) {
         if (auto coarse = simplifyForMeshing(surface, faces, options)) {
           surface = std::move(*coarse);
-          smesh = dir.path() / "simplified.smesh";
-          writeSmesh(smesh, surface);
+          runs.setSurface(surface);
           li = static_cast<size_t>(-1);  // restart at the strictest level
           continue;
         }
@@ -205,49 +273,13 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
     }
     // The fewest tets this quality allows: with no volume bound, only the surface and the
     // quality bound place points. A surface finer than the target needs relaxes the quality.
-    const long long fewest = run(level, 0.0);
-    if (fewest > target * (1.0 + tolerance)) continue;
-    if (fewest >= target * (1.0 - tolerance)) return accept(level, 0.0);
-
-    TetQuality q = level;
-    int nudges = 0;
-    double bound = 1.5 * volume / target;     // a quality mesh has ~1.5x volume / bound tets
-    double lowBound = 0.0, lowCount = 0.0;    // gave too many tets
-    double highBound = 0.0, highCount = 0.0;  // gave too few tets
-    while (attempts < options.maxAttempts) {
-      const long long count = run(q, bound);
-      if (std::abs(count / target - 1.0) <= tolerance) return accept(q, bound);
-      if (count > target) {
-        lowBound = bound;
-        lowCount = static_cast<double>(count);
-      } else {
-        highBound = bound;
-        highCount = static_cast<double>(count);
-      }
-      if (lowBound > 0.0 && highBound > 0.0 && highBound < 1.01 * lowBound) {
-        // The count jumps across the target within a 1 % change of the bound (TetGen's
-        // refinement is discontinuous): nudge the quality bound and search again.
-        if (q.radiusEdgeRatio > 0.0) q.radiusEdgeRatio *= (nudges++ % 2 == 0) ? 1.04 : 1.0 / 1.08;
-        lowBound = highBound = 0.0;
-      }
-      if (lowBound > 0.0 && highBound > 0.0) {
-        // Interpolate log(count) linearly in log(bound) between the bracket ends.
-        const double t =
-            std::clamp(std::log(lowCount / target) / std::log(lowCount / highCount), 0.2, 0.8);
-        bound = std::exp(std::log(lowBound) + t * (std::log(highBound) - std::log(lowBound)));
-      } else {
-        bound *= std::clamp(count / target, 1.0 / 64.0, 64.0);
-      }
-    }
+    const long long fewest = runs.run(level, 0.0);
+    if (fewest > target * (1.0 + options.tolerance)) continue;
+    if (fewest >= target * (1.0 - options.tolerance)) return runs.accept(level, 0.0);
+    if (auto result = searchVolumeBound(runs, level, volume, options)) return *result;
     break;
   }
-  std::ostringstream msg;
-  msg << "could not reach " << options.targetTets << " tets within "
-      << static_cast<int>(tolerance * 100) << " % for " << options.surfaceName << " in " << attempts
-      << " TetGen runs: closest was " << bestCount << " tets (" << bestSwitches << ")";
-  if (bestCount > target)
-    msg << "; the surface is finer than " << options.targetTets << " tets allow";
-  throw std::runtime_error(msg.str());
+  runs.fail();
 }
 
 }  // namespace galsculpt

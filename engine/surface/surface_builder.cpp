@@ -131,10 +131,9 @@ std::vector<Vec3> outerShadingNormals(const VisualSurface& surface) {
   return vertexNormals(surface.mesh.vertices, outer);
 }
 
-SurfaceBuilder::SurfaceBuilder(const SimModel& model) {
+std::vector<std::pair<int, int>> SurfaceBuilder::numberFaces(const SimModel& model) {
   const TetMesh& mesh = model.mesh;
   const int nT = mesh.numTets();
-
   // Global face numbering: the sorted corner triple of every tet face.
   struct FaceRef {
     std::array<int, 3> key;
@@ -194,7 +193,12 @@ SurfaceBuilder::SurfaceBuilder(const SimModel& model) {
     }
     i = j;
   }
+  return edgeBoundaryPairs;
+}
 
+SurfaceBuilder::SurfaceBuilder(const SimModel& model) {
+  const int nT = model.numTets();
+  const std::vector<std::pair<int, int>> edgeBoundaryPairs = numberFaces(model);
   std::vector<std::pair<int, int>> edgeTetPairs;
   edgeTetPairs.reserve(static_cast<size_t>(nT) * 6);
   for (int t = 0; t < nT; ++t) {

@@ -78,6 +78,9 @@ class SurfaceBuilder {
   const VisualSurface& surface() const { return surface_; }
 
  private:
+  // Numbers every tet face (faceCorners_, faceEdges_, faceOfTet_) and lists the boundary faces
+  // (boundary_); returns (edge, boundary face) for each boundary face's edges.
+  std::vector<std::pair<int, int>> numberFaces(const SimModel& model);
   struct BoundaryFace {
     Tri corners;               // outward order
     std::array<int, 3> edges;  // global edge of (c0,c1), (c1,c2), (c2,c0)

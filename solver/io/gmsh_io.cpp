@@ -53,6 +53,119 @@ void expectSectionEnd(TextLines& lines, const std::string& name) {
   }
 }
 
+// The sections' readers share the file's lines, the mesh being built and the tags seen.
+struct GmshReader {
+  TextLines& lines;
+  TetMesh& mesh;
+  MeshReadReport& report;
+  std::unordered_map<long long, int> nodeIndex;  // node tag -> vertex
+  std::vector<int> tetLines;                     // line of each tet, for validation messages
+  long long maxCount = 0;                        // no count may exceed the file's line count
+
+  void readFormat() {
+    const TextLine& f = lines.next("the format line '4.1 0 8'");
+    if (f.tokens.size() != 3) lines.fail(f.number, "expected the format line '4.1 0 8'");
+    if (f.tokens[0] != "4.1") {
+      lines.fail(f.number, "unsupported MSH version " + std::string(f.tokens[0]) + " (need 4.1)");
+    }
+    if (lines.parseInt(f, 1, "file type") != 0)
+      lines.fail(f.number, "binary MSH is not supported; save as ASCII");
+    expectSectionEnd(lines, "MeshFormat");
+  }
+
+  void readNodes() {
+    const TextLine& h = lines.next("the $Nodes header");
+    if (h.tokens.size() != 4) lines.fail(h.number, "expected '<blocks> <nodes> <minTag> <maxTag>'");
+    const long long blocks = lines.parseInt(h, 0, "block count");
+    const long long total = lines.parseInt(h, 1, "node count");
+    if (blocks < 0 || blocks > maxCount || total < 0 || total > maxCount) {
+      lines.fail(h.number, "node counts exceed the size of the file");
+    }
+    mesh.vertices.reserve(total);
+    for (long long b = 0; b < blocks; ++b) readNodeBlock();
+    if (static_cast<long long>(mesh.vertices.size()) != total) {
+      lines.fail(h.number, "header announces " + std::to_string(total) + " nodes, blocks hold " +
+                               std::to_string(mesh.vertices.size()));
+    }
+    expectSectionEnd(lines, "Nodes");
+  }
+
+  void readNodeBlock() {
+    const TextLine& bh = lines.next("a node block header");
+    if (bh.tokens.size() != 4) lines.fail(bh.number, "expected '<dim> <tag> <parametric> <count>'");
+    const long long parametric = lines.parseInt(bh, 2, "parametric flag");
+    const long long n = lines.parseInt(bh, 3, "node count");
+    if (parametric != 0) lines.fail(bh.number, "parametric nodes are not supported");
+    if (n < 0 || n > maxCount) lines.fail(bh.number, "node count exceeds the size of the file");
+    std::vector<long long> tags(n);
+    for (long long i = 0; i < n; ++i) {
+      const TextLine& t = lines.next("a node tag");
+      if (t.tokens.size() != 1) lines.fail(t.number, "expected one node tag");
+      tags[i] = lines.parseInt(t, 0, "node tag");
+    }
+    for (long long i = 0; i < n; ++i) {
+      const TextLine& c = lines.next("node coordinates");
+      if (c.tokens.size() != 3) lines.fail(c.number, "expected 3 coordinates");
+      Vec3 p;
+      for (int k = 0; k < 3; ++k) p[k] = lines.parseDouble(c, k, "coordinate");
+      if (!nodeIndex.emplace(tags[i], mesh.numVertices()).second) {
+        lines.fail(c.number, "duplicate node tag " + std::to_string(tags[i]));
+      }
+      mesh.vertices.push_back(p);
+    }
+  }
+
+  void readElements(const fs::path& path) {
+    const TextLine& h = lines.next("the $Elements header");
+    if (h.tokens.size() != 4)
+      lines.fail(h.number, "expected '<blocks> <elements> <minTag> <maxTag>'");
+    const long long blocks = lines.parseInt(h, 0, "block count");
+    if (blocks < 0 || blocks > maxCount)
+      lines.fail(h.number, "block count exceeds the size of the file");
+    for (long long b = 0; b < blocks; ++b) readElementBlock(path);
+    expectSectionEnd(lines, "Elements");
+  }
+
+  // Tets (4 and 10 nodes, corners kept) are read; other element types are checked and skipped.
+  void readElementBlock(const fs::path& path) {
+    const TextLine& bh = lines.next("an element block header");
+    if (bh.tokens.size() != 4) lines.fail(bh.number, "expected '<dim> <tag> <type> <count>'");
+    const int type = static_cast<int>(lines.parseInt(bh, 2, "element type"));
+    const long long n = lines.parseInt(bh, 3, "element count");
+    if (n < 0 || n > maxCount) lines.fail(bh.number, "element count exceeds the size of the file");
+    const int perElement = nodesOfElementType(type);
+    if (perElement < 0) lines.fail(bh.number, "unsupported element type " + std::to_string(type));
+    if (type == kTet10) report.notes.push_back(path.string() + ": 10-node tets, corners kept");
+    for (long long i = 0; i < n; ++i) {
+      const TextLine& e = lines.next("an element");
+      if (e.tokens.size() != static_cast<size_t>(1 + perElement)) {
+        lines.fail(e.number, "expected " + std::to_string(1 + perElement) +
+                                 " values for an element of type " + std::to_string(type) +
+                                 ", got " + std::to_string(e.tokens.size()));
+      }
+      if (type != kTet4 && type != kTet10) continue;
+      Tet t;
+      for (int k = 0; k < 4; ++k) {
+        const long long nodeTag = lines.parseInt(e, 1 + k, "node tag");
+        const auto it = nodeIndex.find(nodeTag);
+        if (it == nodeIndex.end()) lines.fail(e.number, "unknown node tag " + std::to_string(nodeTag));
+        t[k] = it->second;
+      }
+      mesh.tets.push_back(t);
+      tetLines.push_back(e.number);
+    }
+  }
+
+  // Skips an unknown section ($Entities, $PhysicalNames, ...).
+  void skipSection(std::string_view tag) {
+    const std::string endTag = "$End" + std::string(tag.substr(1));
+    while (true) {
+      const TextLine& s = lines.next(endTag);
+      if (s.tokens.size() == 1 && s.tokens[0] == endTag) break;
+    }
+  }
+};
+
 }  // namespace
 
 TetMesh readGmsh(const fs::path& path, MeshReadReport* reportOut) {
@@ -60,114 +173,24 @@ TetMesh readGmsh(const fs::path& path, MeshReadReport* reportOut) {
   TextLines lines(path.string(), text, 0);
   MeshReadReport report;
   TetMesh mesh;
-  std::unordered_map<long long, int> nodeIndex;
-  std::vector<int> tetLines;
+  GmshReader reader{lines, mesh, report, {}, {}, lines.lastLineNumber()};
   bool sawFormat = false, sawNodes = false, sawElements = false;
-  const long long maxCount = lines.lastLineNumber();
-
   while (!lines.atEnd()) {
     const TextLine& line = lines.next("a section");
     const std::string_view tag = line.tokens[0];
     if (tag == "$MeshFormat") {
-      const TextLine& f = lines.next("the format line '4.1 0 8'");
-      if (f.tokens.size() != 3) lines.fail(f.number, "expected the format line '4.1 0 8'");
-      if (f.tokens[0] != "4.1") {
-        lines.fail(f.number, "unsupported MSH version " + std::string(f.tokens[0]) + " (need 4.1)");
-      }
-      if (lines.parseInt(f, 1, "file type") != 0)
-        lines.fail(f.number, "binary MSH is not supported; save as ASCII");
-      expectSectionEnd(lines, "MeshFormat");
+      reader.readFormat();
       sawFormat = true;
     } else if (tag == "$Nodes") {
       if (!sawFormat) lines.fail(line.number, "$Nodes before $MeshFormat");
-      const TextLine& h = lines.next("the $Nodes header");
-      if (h.tokens.size() != 4)
-        lines.fail(h.number, "expected '<blocks> <nodes> <minTag> <maxTag>'");
-      const long long blocks = lines.parseInt(h, 0, "block count");
-      const long long total = lines.parseInt(h, 1, "node count");
-      if (blocks < 0 || blocks > maxCount || total < 0 || total > maxCount) {
-        lines.fail(h.number, "node counts exceed the size of the file");
-      }
-      mesh.vertices.reserve(total);
-      for (long long b = 0; b < blocks; ++b) {
-        const TextLine& bh = lines.next("a node block header");
-        if (bh.tokens.size() != 4)
-          lines.fail(bh.number, "expected '<dim> <tag> <parametric> <count>'");
-        const long long parametric = lines.parseInt(bh, 2, "parametric flag");
-        const long long n = lines.parseInt(bh, 3, "node count");
-        if (parametric != 0) lines.fail(bh.number, "parametric nodes are not supported");
-        if (n < 0 || n > maxCount) lines.fail(bh.number, "node count exceeds the size of the file");
-        std::vector<long long> tags(n);
-        for (long long i = 0; i < n; ++i) {
-          const TextLine& t = lines.next("a node tag");
-          if (t.tokens.size() != 1) lines.fail(t.number, "expected one node tag");
-          tags[i] = lines.parseInt(t, 0, "node tag");
-        }
-        for (long long i = 0; i < n; ++i) {
-          const TextLine& c = lines.next("node coordinates");
-          if (c.tokens.size() != 3) lines.fail(c.number, "expected 3 coordinates");
-          Vec3 p;
-          for (int k = 0; k < 3; ++k) p[k] = lines.parseDouble(c, k, "coordinate");
-          if (!nodeIndex.emplace(tags[i], mesh.numVertices()).second) {
-            lines.fail(c.number, "duplicate node tag " + std::to_string(tags[i]));
-          }
-          mesh.vertices.push_back(p);
-        }
-      }
-      if (static_cast<long long>(mesh.vertices.size()) != total) {
-        lines.fail(h.number, "header announces " + std::to_string(total) + " nodes, blocks hold " +
-                                 std::to_string(mesh.vertices.size()));
-      }
-      expectSectionEnd(lines, "Nodes");
+      reader.readNodes();
       sawNodes = true;
     } else if (tag == "$Elements") {
       if (!sawNodes) lines.fail(line.number, "$Elements before $Nodes");
-      const TextLine& h = lines.next("the $Elements header");
-      if (h.tokens.size() != 4)
-        lines.fail(h.number, "expected '<blocks> <elements> <minTag> <maxTag>'");
-      const long long blocks = lines.parseInt(h, 0, "block count");
-      if (blocks < 0 || blocks > maxCount)
-        lines.fail(h.number, "block count exceeds the size of the file");
-      for (long long b = 0; b < blocks; ++b) {
-        const TextLine& bh = lines.next("an element block header");
-        if (bh.tokens.size() != 4) lines.fail(bh.number, "expected '<dim> <tag> <type> <count>'");
-        const int type = static_cast<int>(lines.parseInt(bh, 2, "element type"));
-        const long long n = lines.parseInt(bh, 3, "element count");
-        if (n < 0 || n > maxCount)
-          lines.fail(bh.number, "element count exceeds the size of the file");
-        const int perElement = nodesOfElementType(type);
-        if (perElement < 0)
-          lines.fail(bh.number, "unsupported element type " + std::to_string(type));
-        if (type == kTet10) report.notes.push_back(path.string() + ": 10-node tets, corners kept");
-        for (long long i = 0; i < n; ++i) {
-          const TextLine& e = lines.next("an element");
-          if (e.tokens.size() != static_cast<size_t>(1 + perElement)) {
-            lines.fail(e.number, "expected " + std::to_string(1 + perElement) +
-                                     " values for an element of type " + std::to_string(type) +
-                                     ", got " + std::to_string(e.tokens.size()));
-          }
-          if (type != kTet4 && type != kTet10) continue;
-          Tet t;
-          for (int k = 0; k < 4; ++k) {
-            const long long nodeTag = lines.parseInt(e, 1 + k, "node tag");
-            const auto it = nodeIndex.find(nodeTag);
-            if (it == nodeIndex.end())
-              lines.fail(e.number, "unknown node tag " + std::to_string(nodeTag));
-            t[k] = it->second;
-          }
-          mesh.tets.push_back(t);
-          tetLines.push_back(e.number);
-        }
-      }
-      expectSectionEnd(lines, "Elements");
+      reader.readElements(path);
       sawElements = true;
     } else if (tag.size() > 1 && tag[0] == '$' && tag.substr(0, 4) != "$End") {
-      // Skip an unknown section ($Entities, $PhysicalNames, ...).
-      const std::string endTag = "$End" + std::string(tag.substr(1));
-      while (true) {
-        const TextLine& s = lines.next(endTag);
-        if (s.tokens.size() == 1 && s.tokens[0] == endTag) break;
-      }
+      reader.skipSection(tag);
     } else {
       lines.fail(line.number, "expected a section such as $MeshFormat, got '" +
                                   std::string(tag.substr(0, 40)) + "'");
@@ -176,7 +199,7 @@ TetMesh readGmsh(const fs::path& path, MeshReadReport* reportOut) {
   if (!sawFormat) throw InputError(path.string(), 0, "not a Gmsh file: no $MeshFormat section");
   if (!sawElements || mesh.tets.empty())
     throw InputError(path.string(), 0, "no tetrahedra in the file");
-  validateTets(mesh, path.string(), tetLines, report);
+  validateTets(mesh, path.string(), reader.tetLines, report);
   if (reportOut) *reportOut = std::move(report);
   return mesh;
 }

@@ -113,6 +113,68 @@ TriMesh makeCharpyBar() {
   return m;
 }
 
+namespace {
+
+// A superellipse meridian from the top pole (rho 0, h 1) over the rim (rho 1) to the bottom pole,
+// sampled evenly by arc length in the scale (radius, thickness) of the slab: about one sample
+// per `edgeLength`.
+std::vector<Eigen::Vector2d> sampleMeridian(double exponent, double radius, double thickness,
+                                            double edgeLength) {
+  auto meridianPoint = [&](double u) {  // u in [0, pi]: angle of the superellipse parameter
+    const double c = std::cos(u), s = std::sin(u);
+    const double rho = std::pow(std::abs(s), 2.0 / exponent);
+    const double h = std::copysign(std::pow(std::abs(c), 2.0 / exponent), c);
+    return Eigen::Vector2d(rho, h);
+  };
+  const int fine = 20000;
+  std::vector<Eigen::Vector2d> dense(fine + 1);
+  std::vector<double> length(fine + 1, 0.0);
+  for (int i = 0; i <= fine; ++i) dense[i] = meridianPoint(M_PI * i / fine);
+  for (int i = 1; i <= fine; ++i) {
+    const Eigen::Vector2d d = dense[i] - dense[i - 1];
+    length[i] = length[i - 1] + std::hypot(d.x() * radius, d.y() * thickness);
+  }
+  const int segments = std::max(4, static_cast<int>(std::round(length[fine] / edgeLength)));
+  std::vector<Eigen::Vector2d> meridian;
+  int k = 0;
+  for (int m = 0; m <= segments; ++m) {
+    const double target = length[fine] * m / segments;
+    while (k < fine && length[k + 1] < target) ++k;
+    const double t = (k < fine && length[k + 1] > length[k])
+                         ? (target - length[k]) / (length[k + 1] - length[k])
+                         : 0.0;
+    meridian.push_back(dense[k] + t * (dense[std::min(k + 1, fine)] - dense[k]));
+  }
+  meridian.front() = Eigen::Vector2d(0.0, 1.0);
+  meridian.back() = Eigen::Vector2d(0.0, -1.0);
+  return meridian;
+}
+
+// Triangles between consecutive rings of vertices (a ring of one vertex is a pole): always
+// advance along the ring whose next vertex comes first in angle.
+void zipRings(const std::vector<int>& ringStart, const std::vector<int>& ringSize, TriMesh& m) {
+  for (size_t i = 0; i + 1 < ringStart.size(); ++i) {
+    const int a0 = ringStart[i], na = ringSize[i], b0 = ringStart[i + 1], nb = ringSize[i + 1];
+    int ia = 0, ib = 0;
+    while (ia < na || ib < nb) {
+      const double nextA = (ia + 1.0) / na, nextB = (ib + 1.0) / nb;
+      const bool advanceA = (ib >= nb) || (ia < na && nextA <= nextB);
+      const int va = a0 + ia % na, vb = b0 + ib % nb;
+      if (advanceA) {
+        const int va2 = a0 + (ia + 1) % na;
+        if (va2 != va) m.faces.push_back({va, va2, vb});
+        ++ia;
+      } else {
+        const int vb2 = b0 + (ib + 1) % nb;
+        if (vb2 != vb) m.faces.push_back({va, vb2, vb});
+        ++ib;
+      }
+    }
+  }
+}
+
+}  // namespace
+
 TriMesh makeSteakSlab(double edgeLength, std::uint32_t seed) {
   std::mt19937 gen(seed);
   struct Wave {
@@ -136,39 +198,10 @@ TriMesh makeSteakSlab(double edgeLength, std::uint32_t seed) {
   };
   const double halfLength = 0.100, halfWidth = 0.060, halfThickness = 0.015;
   const double exponent = 4.0;  // superellipse meridian: flat faces, rounded rim
-
-  // Meridian from the top pole (rho 0, up) over the rim (rho 1) to the bottom pole, sampled by
-  // arc length in a typical 3D scale (mean of the two in-plane radii).
+  // Meridian samples in a typical 3D scale (mean of the two in-plane radii).
   const double meanRadius = 0.5 * (halfLength + halfWidth);
-  auto meridianPoint = [&](double u) {  // u in [0, pi]: angle of the superellipse parameter
-    const double c = std::cos(u), s = std::sin(u);
-    const double rho = std::pow(std::abs(s), 2.0 / exponent);
-    const double h = std::copysign(std::pow(std::abs(c), 2.0 / exponent), c);
-    return Eigen::Vector2d(rho, h);
-  };
-  std::vector<Eigen::Vector2d> meridian;  // (rho, h) with h in [-1, 1]
-  {
-    const int fine = 20000;
-    std::vector<Eigen::Vector2d> dense(fine + 1);
-    std::vector<double> length(fine + 1, 0.0);
-    for (int i = 0; i <= fine; ++i) dense[i] = meridianPoint(M_PI * i / fine);
-    for (int i = 1; i <= fine; ++i) {
-      const Eigen::Vector2d d = dense[i] - dense[i - 1];
-      length[i] = length[i - 1] + std::hypot(d.x() * meanRadius, d.y() * halfThickness);
-    }
-    const int segments = std::max(4, static_cast<int>(std::round(length[fine] / edgeLength)));
-    int k = 0;
-    for (int m = 0; m <= segments; ++m) {
-      const double target = length[fine] * m / segments;
-      while (k < fine && length[k + 1] < target) ++k;
-      const double t = (k < fine && length[k + 1] > length[k])
-                           ? (target - length[k]) / (length[k + 1] - length[k])
-                           : 0.0;
-      meridian.push_back(dense[k] + t * (dense[std::min(k + 1, fine)] - dense[k]));
-    }
-    meridian.front() = Eigen::Vector2d(0.0, 1.0);
-    meridian.back() = Eigen::Vector2d(0.0, -1.0);
-  }
+  const std::vector<Eigen::Vector2d> meridian =
+      sampleMeridian(exponent, meanRadius, halfThickness, edgeLength);
 
   auto position = [&](double rho, double h, double theta) {
     const double r = rho * sum(outline, theta);
@@ -192,25 +225,7 @@ TriMesh makeSteakSlab(double edgeLength, std::uint32_t seed) {
     ringSize.push_back(n);
     for (int j = 0; j < n; ++j) m.vertices.push_back(position(rho, h, 2.0 * M_PI * j / n));
   }
-  // Zip consecutive rings: always advance along the ring whose next vertex comes first in angle.
-  for (size_t i = 0; i + 1 < meridian.size(); ++i) {
-    const int a0 = ringStart[i], na = ringSize[i], b0 = ringStart[i + 1], nb = ringSize[i + 1];
-    int ia = 0, ib = 0;
-    while (ia < na || ib < nb) {
-      const double nextA = (ia + 1.0) / na, nextB = (ib + 1.0) / nb;
-      const bool advanceA = (ib >= nb) || (ia < na && nextA <= nextB);
-      const int va = a0 + ia % na, vb = b0 + ib % nb;
-      if (advanceA) {
-        const int va2 = a0 + (ia + 1) % na;
-        if (va2 != va) m.faces.push_back({va, va2, vb});
-        ++ia;
-      } else {
-        const int vb2 = b0 + (ib + 1) % nb;
-        if (vb2 != vb) m.faces.push_back({va, vb2, vb});
-        ++ib;
-      }
-    }
-  }
+  zipRings(ringStart, ringSize, m);
   double volume = 0.0;
   for (const Tri& f : m.faces)
     volume += m.vertices[f[0]].dot(m.vertices[f[1]].cross(m.vertices[f[2]]));

@@ -31,6 +31,49 @@ TEST(Fracture, RandomThresholdsAreReproducibleAndBounded) {
   EXPECT_THROW(buildFractureField(m, {1.0, 0.0, 1.0, 1}), std::invalid_argument);
 }
 
+// The kernel grid: every edge lies in the cell its midpoint falls in, cells are numbered in key
+// order, and each cell's 27 neighbours are exactly the cells at most one step away.
+TEST(Fracture, KernelGridCellsAndNeighboursMatchTheMidpoints) {
+  const SimModel m = barModel();
+  const FractureField f = buildFractureField(m, {1.0, 0.07, 0.0, 1});
+  ASSERT_TRUE(f.enabled);
+  ASSERT_GT(f.cells(), 8);
+  std::vector<std::array<std::int64_t, 3>> at(f.cells());
+  std::vector<int> count(m.numEdges(), 0);
+  for (int c = 0; c < f.cells(); ++c) {
+    ASSERT_LT(f.cellBegin[c], f.cellEnd[c]) << "no empty cell";
+    at[c] = fractureCell(f.midpoint[f.cellEdges[f.cellBegin[c]]], f.cellSize);
+    for (int i = f.cellBegin[c]; i < f.cellEnd[c]; ++i) {
+      const int e = f.cellEdges[i];
+      EXPECT_EQ(fractureCell(f.midpoint[e], f.cellSize), at[c]);
+      EXPECT_EQ(f.edgeCell[e], c);
+      ++count[e];
+    }
+    if (c > 0) {
+      EXPECT_LT(fractureCellKey(at[c - 1][0], at[c - 1][1], at[c - 1][2]),
+                fractureCellKey(at[c][0], at[c][1], at[c][2]));
+    }
+  }
+  for (int n : count) EXPECT_EQ(n, 1) << "every edge in one cell";
+  for (int c = 0; c < f.cells(); ++c) {
+    int expected = 0, listed = 0;
+    for (int d = 0; d < f.cells(); ++d) {
+      bool near = true;
+      for (int k = 0; k < 3; ++k) near = near && std::abs(at[c][k] - at[d][k]) <= 1;
+      expected += near;
+    }
+    for (int k = 0; k < 27; ++k) {
+      const int d = f.cellNeighbors[27 * c + k];
+      if (d < 0) continue;
+      ++listed;
+      const std::array<std::int64_t, 3> step = {k / 9 - 1, k / 3 % 3 - 1, k % 3 - 1};
+      for (int j = 0; j < 3; ++j) EXPECT_EQ(at[d][j], at[c][j] + step[j]);
+    }
+    EXPECT_EQ(listed, expected) << "cell " << c;
+  }
+  EXPECT_FALSE(buildFractureField(m, {1.0, 0.0, 0.0, 1}).cells()) << "local: no grid";
+}
+
 // The kernel mean, checked edge by edge against a brute-force average over all edges.
 TEST(Fracture, KernelAveragesStressOverTheRadius) {
   const SimModel m = barModel();
