@@ -351,8 +351,8 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
       err << "skipping " << bs.name << ": " << e.what() << '\n';
       continue;
     }
-    const std::vector<Setting> settings =
-        benchSettings(scene, a.has("--cracks"), a.has("--sweep") && std::string(bs.name) == "sphere");
+    const std::vector<Setting> settings = benchSettings(
+        scene, a.has("--cracks"), a.has("--sweep") && std::string(bs.name) == "sphere");
     const fs::path refFile = scratch / (std::string(bs.name) + ".ref");
     for (const Setting& s : settings) {
       nlohmann::json r = measureInChild(scene, mesh, s, frames, refFile, scratch);

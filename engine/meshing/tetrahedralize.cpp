@@ -161,9 +161,9 @@ class TetgenRuns {
   [[noreturn]] void fail() const {
     std::ostringstream msg;
     msg << "could not reach " << options_.targetTets << " tets within "
-        << static_cast<int>(options_.tolerance * 100) << " % for " << options_.surfaceName
-        << " in " << attempts_ << " TetGen runs: closest was " << bestCount_ << " tets ("
-        << bestSwitches_ << ")";
+        << static_cast<int>(options_.tolerance * 100) << " % for " << options_.surfaceName << " in "
+        << attempts_ << " TetGen runs: closest was " << bestCount_ << " tets (" << bestSwitches_
+        << ")";
     if (bestCount_ > options_.targetTets)
       msg << "; the surface is finer than " << options_.targetTets << " tets allow";
     throw std::runtime_error(msg.str());

@@ -148,7 +148,8 @@ struct GmshReader {
       for (int k = 0; k < 4; ++k) {
         const long long nodeTag = lines.parseInt(e, 1 + k, "node tag");
         const auto it = nodeIndex.find(nodeTag);
-        if (it == nodeIndex.end()) lines.fail(e.number, "unknown node tag " + std::to_string(nodeTag));
+        if (it == nodeIndex.end())
+          lines.fail(e.number, "unknown node tag " + std::to_string(nodeTag));
         t[k] = it->second;
       }
       mesh.tets.push_back(t);
