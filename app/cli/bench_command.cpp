@@ -41,36 +41,19 @@ const BenchScene kScenes[] = {{"sphere", "hanging_sphere.json"},
                               {"armadillo", "armadillo.json"},
                               {"steak", "steak.json"}};
 
+// One row: the reference, or the multigrid with a solver description (a preset and overrides).
 struct Setting {
   bool reference = false;
-  std::string grid;
-  int fineSweeps = 3, coarseIters = 20;
+  SolverDesc solver;
   int cuts = -1;  // >= 0: that many random knife cuts before the frames (the --cracks series)
-  // Beyond the paper's one linearized step with one V-cycle (the defaults):
-  int newtonIterations = 1;
-  double pcgTolerance = 0.0;
-  int cycles = 1;
-  bool coarseCholesky = false;
-
-  bool paperLike() const {
-    return newtonIterations == 1 && pcgTolerance == 0.0 && cycles == 1 && !coarseCholesky;
-  }
 };
 
 Setting paperSetting(const std::string& grid, int sweeps, int coarse) {
   Setting s;
-  s.grid = grid;
-  s.fineSweeps = sweeps;
-  s.coarseIters = coarse;
-  return s;
-}
-
-Setting sceneSetting(const SolverDesc& d) {
-  Setting s = paperSetting(d.grid, d.fineSweeps, d.coarseIterations);
-  s.newtonIterations = d.newtonIterations;
-  s.pcgTolerance = d.pcgTolerance;
-  s.cycles = d.cycles;
-  s.coarseCholesky = d.coarseSolver == CoarseSolver::Cholesky;
+  s.solver = solverPreset(SolverPreset::Paper);
+  s.solver.grid = grid;
+  s.solver.fineSweeps = sweeps;
+  s.solver.coarseIterations = coarse;
   return s;
 }
 
@@ -94,36 +77,34 @@ void applyRandomCuts(Simulation& sim, int cuts, AfterCut afterCut) {
   }
 }
 
-// The scene with the setting's solver.
+// The scene with the setting's solver (the backend stays the scene's or --backend's).
 SceneDescription sceneWithSetting(const SceneDescription& baseScene, const Setting& setting) {
   SceneDescription scene = baseScene;
-  if (setting.reference) scene.solver.backend = BackendRequest::Cpu;  // no device path
+  const BackendRequest backend = scene.solver.backend;
+  if (!setting.reference) scene.solver = setting.solver;
+  scene.solver.backend = setting.reference ? BackendRequest::Cpu : backend;  // no device path
   scene.solver.type = setting.reference ? SolverType::Reference : SolverType::Multigrid;
-  scene.solver.grid = setting.grid;
-  scene.solver.fineSweeps = setting.fineSweeps;
-  scene.solver.coarseIterations = setting.coarseIters;
-  scene.solver.newtonIterations = setting.newtonIterations;
-  scene.solver.pcgTolerance = setting.pcgTolerance;
-  scene.solver.cycles = setting.cycles;
-  scene.solver.coarseSolver = setting.coarseCholesky ? CoarseSolver::Cholesky : CoarseSolver::Cg;
   return scene;
 }
 
 // The row's description of its solver setting.
 void describeSetting(const Setting& setting, nlohmann::json& r) {
+  const SolverDesc& d = setting.solver;
   r["solver"] = setting.reference ? "reference" : "multigrid";
-  r["grid"] = setting.reference ? "" : setting.grid;
-  r["fine_sweeps"] = setting.reference ? 0 : setting.fineSweeps;
-  r["coarse_iters"] = setting.reference ? 0 : setting.coarseIters;
+  r["grid"] = setting.reference ? "" : d.grid;
+  r["fine_sweeps"] = setting.reference ? 0 : d.fineSweeps;
+  r["coarse_iters"] = setting.reference ? 0 : d.coarseIterations;
   if (!setting.reference) {
-    r["newton_iters"] = setting.newtonIterations;
-    r["pcg_tolerance"] = setting.pcgTolerance;
-    r["cycles"] = setting.cycles;
-    r["coarse_solver"] = setting.coarseCholesky ? "cholesky" : "cg";
+    r["preset"] = solverPresetName(d.preset);
+    r["newton_iters"] = d.newtonIterations;
+    r["pcg_tolerance"] = d.pcgTolerance;
+    r["cycles"] = d.cycles;
+    r["coarse_solver"] = coarseSolverName(d.coarseSolver);
+    r["residual_tolerance"] = d.residualTolerance;
   }
 }
 
-// The reference run writes its final positions; the others are compared with them: the largest
+// The reference run writes its positions; the others are compared with them: the largest
 // position difference relative to the reference's largest displacement (-1: no reference).
 double positionError(const std::vector<Vec3>& x, const TetMesh& mesh, bool reference,
                      const fs::path& referencePositions) {
@@ -146,6 +127,11 @@ double positionError(const std::vector<Vec3>& x, const TetMesh& mesh, bool refer
   return in ? err / std::max(disp, 1e-300) : -1.0;
 }
 
+// The frame at which the error in motion is measured: the scene's in-motion frame, within the run.
+int motionFrame(int frames) {
+  return std::min(frames, 20);
+}
+
 nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
                        const Setting& setting, int frames, const fs::path& referencePositions) {
   Simulation sim(sceneWithSetting(baseScene, setting), mesh);
@@ -163,9 +149,19 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   std::sort(msCut.begin(), msCut.end());
   std::vector<double> ms, msSurface;
   FrameMetrics last;
+  double newton = 0.0, cg = 0.0, residualMax = 0.0, motionError = -1.0;
+  int unconverged = 0;
+  const int atMotion = motionFrame(frames);
+  const fs::path motionPositions = fs::path(referencePositions).concat(".motion");
   for (int f = 0; f < frames; ++f) {
     last = sim.advance();
     ms.push_back(last.msTotal);
+    newton += last.newtonIterations;
+    cg += last.cgIterations;
+    residualMax = std::max(residualMax, last.residual);
+    unconverged += last.converged ? 0 : 1;
+    if (f + 1 == atMotion && setting.cuts < 0)
+      motionError = positionError(sim.state().x, mesh, setting.reference, motionPositions);
     // What the app adds to a frame: bringing the visualization surface up to date.
     SurfaceUpdateStats st;
     sim.surface(&st);
@@ -173,6 +169,7 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   }
   std::sort(ms.begin(), ms.end());
   const double median = ms[ms.size() / 2];
+  const double p95 = ms[std::min(ms.size() - 1, static_cast<size_t>(0.95 * ms.size()))];
   std::sort(msSurface.begin(), msSurface.end());
   nlohmann::json r;
   r["tets"] = mesh.numTets();
@@ -184,6 +181,12 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   r["frames"] = frames;
   r["ms_per_frame"] = median;
   r["fps"] = 1000.0 / median;
+  r["ms_p95"] = p95;
+  r["newton_iters_mean"] = newton / frames;
+  r["cg_iters_mean"] = cg / frames;
+  r["residual_max"] = residualMax;
+  r["unconverged_frames"] = unconverged;
+  r["motion_frame"] = atMotion;
   r["ms_surface"] = msSurface[msSurface.size() / 2];
   r["ms_surface_max"] = msSurface.back();
   r["volume_change_pct"] = last.volumeChangePct;
@@ -197,7 +200,9 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   }
   if (setting.cuts >= 0) {
     r["rel_position_error"] = nullptr;  // cost against cracks: no reference run
+    r["rel_position_error_motion"] = nullptr;
   } else {
+    r["rel_position_error_motion"] = motionError;
     r["rel_position_error"] =
         positionError(sim.state().x, mesh, setting.reference, referencePositions);
   }
@@ -255,21 +260,38 @@ std::string row(const nlohmann::json& r) {
       << " ms surface" << std::setw(8) << r.value("ms_surface_cut", 0.0) << " ms surface per cut";
     return s.str();
   }
+  // The solver: its grid and preset, and what differs from the preset's defaults.
   std::string grid = r["grid"].get<std::string>();
-  if (r.value("newton_iters", 1) != 1) grid += " n" + std::to_string(r.value("newton_iters", 1));
-  if (r.value("pcg_tolerance", 0.0) > 0.0) grid += " pcg";
-  if (r.value("cycles", 1) != 1) grid += " c" + std::to_string(r.value("cycles", 1));
-  if (r.value("coarse_solver", std::string("cg")) == "cholesky") grid += " chol";
+  if (r.contains("preset")) {
+    const std::string preset = r["preset"].get<std::string>();
+    const SolverDesc d =
+        solverPreset(preset == "paper" ? SolverPreset::Paper : SolverPreset::Converged);
+    grid += " " + preset;
+    if (r.value("newton_iters", 1) != d.newtonIterations)
+      grid += " n" + std::to_string(r.value("newton_iters", 1));
+    if (r.value("cycles", 1) != 1) grid += " c" + std::to_string(r.value("cycles", 1));
+    if (r.value("coarse_solver", std::string("cg")) != coarseSolverName(d.coarseSolver))
+      grid += " " + r.value("coarse_solver", std::string("cg"));
+  }
+  auto percent = [](const nlohmann::json& v) {
+    return v.is_number() ? 100.0 * v.get<double>() : -1.0;
+  };
   s << std::left << std::setw(10) << r.value("scene", "") << std::setw(8) << r["tets"].get<int>()
-    << std::setw(10) << r["solver"].get<std::string>() << std::setw(20) << grid << std::right
+    << std::setw(10) << r["solver"].get<std::string>() << std::setw(24) << grid << std::right
     << std::setw(4) << r["fine_sweeps"].get<int>() << std::setw(6) << r["coarse_iters"].get<int>()
     << std::fixed << std::setprecision(2) << std::setw(10) << r["ms_per_frame"].get<double>()
     << std::setw(9) << std::setprecision(1) << r["fps"].get<double>() << std::setw(9)
     << std::setprecision(0) << r["peak_rss_mb"].get<double>() << std::setw(11)
-    << std::setprecision(3) << 100.0 * r["rel_position_error"].get<double>() << std::setw(10)
+    << std::setprecision(3) << percent(r["rel_position_error"]) << std::setw(10)
     << std::setprecision(3) << r["volume_change_pct"].get<double>() << std::setw(8)
     << std::setprecision(2) << r["ms_surface"].get<double>() << std::setw(8)
-    << r["ms_surface_max"].get<double>() << "  " << r.value("backend", std::string("cpu"));
+    << r["ms_surface_max"].get<double>() << "  " << std::left << std::setw(6)
+    << r.value("backend", std::string("cpu")) << std::right << std::setw(12) << std::setprecision(3)
+    << percent(r["rel_position_error_motion"]) << std::setw(9) << std::setprecision(1)
+    << r["ms_p95"].get<double>() << std::setw(8) << std::setprecision(1)
+    << r["newton_iters_mean"].get<double>() << std::setw(8) << r["cg_iters_mean"].get<double>()
+    << std::setw(11) << std::scientific << std::setprecision(1) << r["residual_max"].get<double>()
+    << std::fixed << std::setw(8) << r["unconverged_frames"].get<int>();
   return s.str();
 }
 
@@ -298,9 +320,13 @@ std::vector<BenchScene> benchScenes(const CliArgs& a) {
 std::vector<Setting> benchSettings(const SceneDescription& scene, bool cracks, bool sweep) {
   Setting reference;
   reference.reference = true;
-  std::vector<Setting> settings = {reference, paperSetting(scene.solver.grid, 3, 20)};
-  const Setting own = sceneSetting(scene.solver);
-  if (!own.paperLike() || own.fineSweeps != 3 || own.coarseIters != 20) settings.push_back(own);
+  Setting paper;
+  paper.solver = solverPreset(SolverPreset::Paper);
+  paper.solver.grid = scene.solver.grid;
+  Setting own;
+  own.solver = scene.solver;
+  std::vector<Setting> settings = {reference, paper};
+  if (own.solver.preset != SolverPreset::Paper) settings.push_back(own);
   if (cracks) {
     settings.clear();
     for (int cuts : {0, 10, 100}) {
@@ -339,8 +365,9 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
   const fs::path scratch = pattern;
 
   nlohmann::json results = nlohmann::json::array();
-  out << "scene     tets    solver    grid                 fine coarse  ms/frame      fps  peak MB "
-         " pos err %  vol chg %  surf ms    max  backend\n";
+  out << "scene     tets    solver    grid                     fine coarse  ms/frame      fps  "
+         "peak MB  pos err %  vol chg %  surf ms    max  backend  motion err %   p95 ms  newton"
+         "      cg  max resid  unconv\n";
   for (const BenchScene& bs : scenes) {
     SceneDescription scene = loadScene(fs::path(assetDirectory()) / "scenes" / bs.file);
     if (backend) scene.solver.backend = *backend;

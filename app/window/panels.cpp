@@ -155,8 +155,8 @@ void SculptApp::drawOverlay() {
                 sim.model().numTets());
     ImGui::Text("material: %s (%s)", scene.material.preset.c_str(),
                 materialModelName(scene.material.model));
-    ImGui::Text("solver: %s %s on the %s backend", solverTypeName(scene.solver.type),
-                scene.solver.grid.c_str(),
+    ImGui::Text("solver: %s (%s) %s on the %s backend", solverTypeName(scene.solver.type),
+                solverPresetName(scene.solver.preset), scene.solver.grid.c_str(),
                 (stepInFlight() ? backendName_ : sim.backendName()).c_str());
     ImGui::Separator();
     ImGui::Text("frame %d  (%s)", metrics_.frame, playing_ ? "playing" : "paused");
@@ -164,12 +164,17 @@ void SculptApp::drawOverlay() {
                 metrics_.msSolve);
     ImGui::Text("    fracture %.1f  plastic %.1f  surface %.1f", metrics_.msFracture,
                 metrics_.msPlastic, msSurface_);
-    ImGui::Text("residual %.2e   volume change %+.3f %%", metrics_.residual,
-                metrics_.volumeChangePct);
+    ImGui::Text("residual %.2e   Newton %d   CG %d", metrics_.residual, metrics_.newtonIterations,
+                metrics_.cgIterations);
+    if (!metrics_.converged)
+      ImGui::TextColored(ImVec4(1, 0.35f, 0.2f, 1),
+                         "NOT CONVERGED: residual above %.0e of the loads",
+                         scene.solver.residualTolerance);
+    ImGui::Text("volume change %+.3f %%", metrics_.volumeChangePct);
     ImGui::Text("pieces %d   damaged edges %d   anchored %zu", metrics_.pieces,
                 metrics_.damagedEdges, anchored_.size());
     if (metrics_.warnings > 0)
-      ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "step retries: %d", metrics_.warnings);
+      ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "warnings this frame: %d", metrics_.warnings);
     ImGui::Text("history %.1f MB, %zu recorded events", session_->historyBytes() / 1048576.0,
                 session_->recording().size());
     for (const std::string& note : stepInFlight() ? notes_ : sim.notes())

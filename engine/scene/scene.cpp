@@ -28,6 +28,8 @@ constexpr Named<MaterialModel> kModelNames[] = {
     {MaterialModel::StableNeoHookean, "stable_neo_hookean"}};
 constexpr Named<SolverType> kSolverTypeNames[] = {{SolverType::Multigrid, "multigrid"},
                                                   {SolverType::Reference, "reference"}};
+constexpr Named<SolverPreset> kSolverPresetNames[] = {{SolverPreset::Converged, "converged"},
+                                                      {SolverPreset::Paper, "paper"}};
 constexpr Named<Smoother> kSmootherNames[] = {{Smoother::GaussSeidel, "gauss_seidel"},
                                               {Smoother::Jacobi, "jacobi"}};
 constexpr Named<CoarseSolver> kCoarseSolverNames[] = {{CoarseSolver::Cg, "cg"},
@@ -230,7 +232,7 @@ FractureDesc readFracture(JsonObject o) {
 }
 
 SolverDesc readSolver(JsonObject o) {
-  SolverDesc s;
+  SolverDesc s = solverPreset(readEnum(o, "preset", SolverPreset::Converged, kSolverPresetNames));
   s.type = readEnum(o, "type", s.type, kSolverTypeNames);
   s.grid = o.string("grid", s.grid);
   checkGrid(o, "grid", s.grid);
@@ -241,6 +243,9 @@ SolverDesc readSolver(JsonObject o) {
   s.newtonIterations = o.integer("newton_iters", s.newtonIterations, 1, 100);
   s.cycles = o.integer("cycles", s.cycles, 1, 1000);
   s.pcgTolerance = o.number("pcg_tolerance", s.pcgTolerance, 0.0, 0.5);
+  s.residualTolerance = o.number("residual_tolerance", s.residualTolerance, 1e-12, 10.0);
+  s.frameBudgetMs = o.number("frame_budget_ms", s.frameBudgetMs, 0.0, 1e6);
+  s.reuseStiffness = o.boolean("reuse_stiffness", s.reuseStiffness);
   s.backend = readEnum(o, "backend", s.backend, kBackendNames);
   s.splitAggregates = o.boolean("split_aggregates", s.splitAggregates);
   o.rejectUnknownKeys();
@@ -251,6 +256,20 @@ SolverDesc readSolver(JsonObject o) {
 
 const char* solverTypeName(SolverType t) {
   return nameOf(kSolverTypeNames, t);
+}
+const char* solverPresetName(SolverPreset p) {
+  return nameOf(kSolverPresetNames, p);
+}
+
+SolverDesc solverPreset(SolverPreset preset) {
+  SolverDesc s;  // the converged preset
+  s.preset = preset;
+  if (preset == SolverPreset::Paper) {
+    s.coarseSolver = CoarseSolver::Cg;
+    s.newtonIterations = 1;
+    s.pcgTolerance = 0.0;
+  }
+  return s;
 }
 const char* smootherName(Smoother s) {
   return nameOf(kSmootherNames, s);

@@ -98,12 +98,16 @@ struct FractureDesc {
 // The solver's choices, parsed once from their names (scene files, the command line, the Scene
 // settings panel); nothing compares their names after loading.
 enum class SolverType { Multigrid, Reference };
+// The multigrid's defaults: `converged` (Newton with multigrid-preconditioned CG until the
+// residual is within tolerance) or `paper` (the paper's one linearized step, one V-cycle).
+enum class SolverPreset { Converged, Paper };
 enum class Smoother { GaussSeidel, Jacobi };
 enum class CoarseSolver { Cg, Cholesky };
 enum class BackendRequest { Auto, Cpu, Cuda };
 
 // Names as written in scene files: "multigrid", "gauss_seidel", "cholesky", "cuda", ...
 const char* solverTypeName(SolverType t);
+const char* solverPresetName(SolverPreset p);
 const char* smootherName(Smoother s);
 const char* coarseSolverName(CoarseSolver c);
 const char* backendRequestName(BackendRequest b);
@@ -112,19 +116,27 @@ const char* materialModelName(MaterialModel m);
 // The request named `name`, or none for an unknown name.
 std::optional<BackendRequest> backendRequestFromName(const std::string& name);
 
+// Defaults are the converged preset's (solverPreset below).
 struct SolverDesc {
   SolverType type = SolverType::Multigrid;
+  SolverPreset preset = SolverPreset::Converged;
   std::string grid = "50/all";
   int fineSweeps = 3;
   int coarseIterations = 20;
   Smoother smoother = Smoother::GaussSeidel;
-  CoarseSolver coarseSolver = CoarseSolver::Cg;
-  int newtonIterations = 1;
-  int cycles = 1;             // V-cycles per linear solve (without PCG)
-  double pcgTolerance = 0.0;  // > 0: CG preconditioned by V-cycles, to this relative residual
+  CoarseSolver coarseSolver = CoarseSolver::Cholesky;
+  int newtonIterations = 40;        // the most per sub-step
+  int cycles = 1;                   // V-cycles per linear solve (without PCG)
+  double pcgTolerance = 1e-2;       // > 0: CG preconditioned by V-cycles, to this relative residual
+  double residualTolerance = 1e-2;  // converged: residual / weight of the body
+  double frameBudgetMs = 0.0;       // > 0: Newton stops when a frame has taken this long
+  bool reuseStiffness = true;       // chord steps after a sub-step's first Newton iteration
   BackendRequest backend = BackendRequest::Auto;
   bool splitAggregates = true;  // crack-aware coarse levels
 };
+
+// The solver settings a preset stands for (keys a scene gives override them).
+SolverDesc solverPreset(SolverPreset preset);
 
 // Optional measurements written as metrics columns.
 struct MeasureDesc {

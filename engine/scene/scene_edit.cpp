@@ -41,11 +41,15 @@ SceneDescription editScene(const SceneDescription& base, const SceneSettings& s)
   const SolverDesc& v = s.solver;
   nlohmann::json solver = j.contains("solver") ? j["solver"] : nlohmann::json::object();
   solver["type"] = solverTypeName(v.type);
+  solver["preset"] = solverPresetName(v.preset);
   solver["grid"] = v.grid;
   solver["fine_sweeps"] = v.fineSweeps;
   solver["coarse_iters"] = v.coarseIterations;
   solver["smoother"] = smootherName(v.smoother);
   solver["coarse_solver"] = coarseSolverName(v.coarseSolver);
+  solver["newton_iters"] = v.newtonIterations;
+  solver["pcg_tolerance"] = v.pcgTolerance;
+  solver["residual_tolerance"] = v.residualTolerance;
   solver["backend"] = backendRequestName(v.backend);
   j["solver"] = solver;
   return parseScene(j, base.file.parent_path() / (base.file.stem().string() + ".edited.json"));

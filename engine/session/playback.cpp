@@ -329,13 +329,14 @@ int ToolApplier::apply(const ToolEvent& e, int frame) {
   switch (e.tool) {
     case ToolEvent::Tool::Knife: {
       if (step < 0 || step >= e.duration) break;
-      // The blade moves linearly over the stroke; each frame cuts what it swept.
-      const double u0 = static_cast<double>(step) / e.duration;
+      // The blade moves linearly over the stroke; each frame cuts everything across the slit
+      // it has swept so far, at the current positions: material that moved across the slit
+      // behind the blade (a cut body relaxes as the blade goes on) is cut too, not skipped.
       const double u1 = static_cast<double>(step + 1) / e.duration;
       auto at = [](const Vec3& a, const Vec3& b, double u) { return Vec3((1.0 - u) * a + u * b); };
-      return sculptor_.cut(sweptBladeSurface(at(e.from0, e.to0, u0), at(e.from1, e.to1, u0),
-                                             at(e.from0, e.to0, u1), at(e.from1, e.to1, u1)),
-                           e.symmetry);
+      return sculptor_.cut(
+          sweptBladeSurface(e.from0, e.from1, at(e.from0, e.to0, u1), at(e.from1, e.to1, u1)),
+          e.symmetry);
     }
     case ToolEvent::Tool::Brush: {
       if (step != 0) break;

@@ -99,6 +99,9 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   model_.material.dampingMass = scene.dampingMass;
   model_.material.dampingStiffness = scene.dampingStiffness;
   settings_.newtonIterations = scene.solver.newtonIterations;
+  settings_.residualTolerance = scene.solver.residualTolerance;
+  settings_.frameBudgetMs = scene.solver.frameBudgetMs;
+  settings_.reuseStiffness = scene.solver.reuseStiffness;
   for (size_t i = 0; i < scene.anchors.size(); ++i) {
     AnchorConstraint a;
     a.vertices = selectAnchorVertices(scene.anchors[i], mesh, scene.file.string(),
@@ -441,8 +444,11 @@ FrameMetrics Simulation::advance() {
   m.msPlastic = r.msPlastic;
   m.residual = r.residual;
   m.elasticEnergy = r.elasticEnergy;
-  m.warnings = r.retries;
+  m.converged = r.converged;
+  m.retries = r.retries;
+  m.warnings = r.retries + (r.converged ? 0 : 1);
   m.newtonIterations = r.newtonIterations;
+  m.cgIterations = r.cgIterations;
   m.backtracks = r.backtracks;
   Vec3 contact = Vec3::Zero();
   for (const Vec3& f : r.contactForces) contact += f;
@@ -474,7 +480,8 @@ FrameMetrics Simulation::advance() {
 std::string metricsCsvHeader() {
   return "frame,time_s,ms_total,ms_elements,ms_solve,ms_plastic,ms_other,volume,volume_change_pct,"
          "kinetic_energy,elastic_energy,residual,max_displacement,damaged_edges,pieces,warnings,"
-         "newton_iterations,contact_force_n,ms_fracture,opening_m,load_n,backtracks";
+         "newton_iterations,contact_force_n,ms_fracture,opening_m,load_n,backtracks,cg_iterations,"
+         "converged";
 }
 
 std::string metricsCsvRow(const FrameMetrics& m) {
@@ -484,7 +491,8 @@ std::string metricsCsvRow(const FrameMetrics& m) {
     << m.volumeChangePct << ',' << m.kineticEnergy << ',' << m.elasticEnergy << ',' << m.residual
     << ',' << m.maxDisplacement << ',' << m.damagedEdges << ',' << m.pieces << ',' << m.warnings
     << ',' << m.newtonIterations << ',' << m.contactForceN << ',' << m.msFracture << ','
-    << m.openingM << ',' << m.loadN << ',' << m.backtracks;
+    << m.openingM << ',' << m.loadN << ',' << m.backtracks << ',' << m.cgIterations << ','
+    << (m.converged ? 1 : 0);
   return s.str();
 }
 

@@ -48,6 +48,11 @@ struct FrameMetrics {
   double openingM = 0.0;       // scene measure.opening: distance change of its two vertices, m
   double loadN = 0.0;          // scene measure.load_collider: that collider's force magnitude, N
   int backtracks = 0;          // Newton steps shortened by the energy guard / line search
+  int cgIterations = 0;        // PCG iterations of the frame's linear solves
+  int retries = 0;             // rolled-back and halved sub-steps (part of warnings)
+  // Whether the frame solved its equations: every sub-step's residual within the solver's
+  // tolerance (solver.residual_tolerance). A frame that did not is one warning.
+  bool converged = true;
 };
 
 // CSV header and row, in the column order documented in docs/cli.md.

@@ -554,11 +554,20 @@ GALSCULPT_HD M3 directStress(MaterialModel model, const Lame& lame, const M3& f,
 
 // --- damaged elements: St. Venant-Kirchhoff in the masked edge strains -------------------------
 
-// Raw edge Green strains and their mask: slope 1 for an intact edge, and for a damaged one that
-// is compressed while damaged edges resist compression; 0 otherwise.
+// The strain band over which a damaged edge's resistance to compression sets in. The masked
+// strain of a closed crack, min(eps, 0), has a kink at eps = 0 that no Newton iteration can
+// resolve (the residual stalls at the body's weight while faces touch); blending over the band
+// makes the energy C1: phi(eps) = 0 for eps >= 0, -eps^2 / (2 band) on (-band, 0), and
+// eps + band / 2 below. Opening a crack stays free; a closed one sits band / 2 deeper.
+inline constexpr double kCrackContactBand = 1e-4;
+
+// Edge Green strains through their mask phi: phi(eps) = eps for an intact edge; for a damaged
+// one the C1 compression blend above while damaged edges resist compression, 0 otherwise.
+// `slope` is phi', `curvature` phi''.
 GALSCULPT_HD void maskedEdgeStrains(const RestData& rest, const double x[12], std::uint8_t intact,
                                     bool compressionResists, double d[6][3], double strain[6],
-                                    double slope[6]) {
+                                    double slope[6], double curvature[6]) {
+  constexpr double band = kCrackContactBand;
   for (int e = 0; e < 6; ++e) {
     const int a = edgeVertex(e, 0), b = edgeVertex(e, 1);
     double len2 = 0.0;
@@ -567,9 +576,21 @@ GALSCULPT_HD void maskedEdgeStrains(const RestData& rest, const double x[12], st
       len2 += d[e][k] * d[e][k];
     }
     const double raw = (len2 - rest.restLengthSq[e]) / (2.0 * rest.restLengthSq[e]);
-    const bool isIntact = (intact >> e) & 1;
-    slope[e] = (isIntact || (compressionResists && raw < 0.0)) ? 1.0 : 0.0;
-    strain[e] = slope[e] * raw;
+    curvature[e] = 0.0;
+    if ((intact >> e) & 1) {
+      slope[e] = 1.0;
+      strain[e] = raw;
+    } else if (!compressionResists || raw >= 0.0) {
+      slope[e] = 0.0;
+      strain[e] = 0.0;
+    } else if (raw > -band) {
+      slope[e] = -raw / band;
+      strain[e] = -raw * raw / (2.0 * band);
+      curvature[e] = -1.0 / band;
+    } else {
+      slope[e] = 1.0;
+      strain[e] = raw + 0.5 * band;
+    }
   }
 }
 
@@ -618,8 +639,8 @@ GALSCULPT_HD void evaluateEdgeStrainElement(const Lame& lame, const RestData& re
                                             double gradient[12], double* hessian) {
   double k[6][6];
   edgeStrainStiffness(lame, rest, intact, k);
-  double d[6][3], strain[6], slope[6];
-  maskedEdgeStrains(rest, x, intact, compressionResists, d, strain, slope);
+  double d[6][3], strain[6], slope[6], curvature[6];
+  maskedEdgeStrains(rest, x, intact, compressionResists, d, strain, slope, curvature);
   double tension[6];  // dPsi / d(masked strain)
   energy = 0.0;
   for (int r = 0; r < 6; ++r) {
@@ -672,6 +693,25 @@ GALSCULPT_HD void evaluateEdgeStrainElement(const Lame& lame, const RestData& re
       hessian[(b + c) + 12 * (b + c)] += block;
       hessian[(a + c) + 12 * (b + c)] -= block;
       hessian[(b + c) + 12 * (a + c)] -= block;
+    }
+  }
+  // Within the compression band the mask bends: tension phi'' (d eps)(d eps)^T, PSD while the
+  // edge force is compressive (phi'' < 0); projection drops it otherwise.
+  for (int e = 0; e < 6; ++e) {
+    if (curvature[e] == 0.0) continue;
+    double t = tension[e] * curvature[e];
+    if (mode == Hessian::ProjectedSpd) t = fmax(t, 0.0);
+    if (t == 0.0) continue;
+    const double scale = rest.volume * t / (rest.restLengthSq[e] * rest.restLengthSq[e]);
+    const int a = 3 * edgeVertex(e, 0), b = 3 * edgeVertex(e, 1);
+    for (int c = 0; c < 3; ++c) {
+      for (int r = 0; r < 3; ++r) {
+        const double w = scale * d[e][r] * d[e][c];
+        hessian[(a + r) + 12 * (a + c)] += w;
+        hessian[(b + r) + 12 * (b + c)] += w;
+        hessian[(a + r) + 12 * (b + c)] -= w;
+        hessian[(b + r) + 12 * (a + c)] -= w;
+      }
     }
   }
 }
@@ -740,8 +780,8 @@ GALSCULPT_HD void edgeNormalStress(MaterialModel model, const Lame& lame, const 
   if (intact == kIntact) {
     p = firstPiolaStress(model, lame, f);
   } else {
-    double d[6][3], strain[6], slope[6];
-    maskedEdgeStrains(rest, x, intact, compressionResists, d, strain, slope);
+    double d[6][3], strain[6], slope[6], curvature[6];
+    maskedEdgeStrains(rest, x, intact, compressionResists, d, strain, slope, curvature);
     double v[6];  // (E11,E22,E33,E12,E13,E23)
     for (int r = 0; r < 6; ++r) {
       v[r] = 0.0;

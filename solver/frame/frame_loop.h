@@ -25,7 +25,9 @@ namespace galsculpt {
 
 struct SubstepOutcome {
   bool ok = true;
+  bool converged = false;
   int iterations = 0;
+  int cgIterations = 0;
   int backtracks = 0;
   double residual = 0.0;
   double energy = 0.0;
@@ -53,6 +55,7 @@ StepReport runFrame(Ops& ops, const StepSettings& settings) {
         // on so that the caller is never stuck.
         ops.setTime(frameEnd);
         ++report.retries;
+        report.converged = false;
         break;
       }
       ++report.retries;
@@ -85,6 +88,8 @@ StepReport runFrame(Ops& ops, const StepSettings& settings) {
     report.contactForces = r.contactForces;
     report.linearResidualReduction = r.linearResidualReduction;
     report.newtonIterations += r.iterations;
+    report.cgIterations += r.cgIterations;
+    report.converged = report.converged && r.converged;
     report.backtracks += r.backtracks;
     report.residual = r.residual;
     report.elasticEnergy = r.energy;

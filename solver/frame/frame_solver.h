@@ -119,6 +119,7 @@ class FrameSolver {
     fixed_.resize(n_);
     damaged_.resize(edges_);
     elemEnergy_.resize(tets_);
+    elemInverted_.resize(tets_);
     elemGrad_.resize(12 * static_cast<size_t>(tets_));
     elemHess_.resize(kPackedHessian * static_cast<size_t>(tets_));
     for (Buffer<double>* b : {&k_, &h_}) b->resize(9 * static_cast<size_t>(blocks_));
@@ -183,6 +184,7 @@ class FrameSolver {
   StepReport step(SimState& state, const StepSettings& settings) {
     syncIn(state, settings);
     Ops ops{*this};
+    frameStart_ = Clock::now();
     StepReport report = runFrame(ops, settings);
     syncOut(state);
     return report;
@@ -231,9 +233,13 @@ class FrameSolver {
 
   // Energies, forces and (withHessian) stiffnesses of every element at positions y, gathered
   // into `gradient` (3n) and, with the Hessian, into k_. The total energy goes to scalar slot.
-  void elementPass(const double* y, bool withHessian, double* gradient, int energySlot) {
+  // The number of intact elements turned inside out (det F <= 0) goes to `invertedSlot`: the
+  // line search refuses a step that turns more of them than there were.
+  void elementPass(const double* y, bool withHessian, double* gradient, int energySlot,
+                   int invertedSlot) {
     const ElementInputs in = elementInputs();
     double* energy = elemEnergy_.data();
+    double* inverted = elemInverted_.data();
     double* eg = elemGrad_.data();
     double* eh = elemHess_.data();
     const MaterialModel model = model_.material.model;
@@ -250,9 +256,15 @@ class FrameSolver {
       kernels::evaluateElement(model, lame, r, x12, intact, resists, mode, energy[t], eg + 12 * t,
                                hess);
       if (withHessian) packHessian(hess, eh + kPackedHessian * static_cast<size_t>(t));
+      inverted[t] = intact == kernels::kIntact &&
+                            kernels::determinant(kernels::deformationGradient(r, x12)) <= 0.0
+                        ? 1.0
+                        : 0.0;
     });
     ex_.sum(
         tets_, [=] GALSCULPT_LAMBDA(int t) { return energy[t]; }, scalars_.data() + energySlot);
+    ex_.sum(
+        tets_, [=] GALSCULPT_LAMBDA(int t) { return inverted[t]; }, scalars_.data() + invertedSlot);
     const int* vStart = vertexSlotStart_.data();
     const int* vSlots = vertexSlots_.data();
     ex_.forEach(n_, [=] GALSCULPT_LAMBDA(int v) {
@@ -445,25 +457,87 @@ class FrameSolver {
 
   // ---- one backward-Euler sub-step ----------------------------------------------------------
 
+  // Newton iterations until the residual is within the tolerance (converged), Newton's step
+  // test is met, the iterations are spent or the frame's time budget is (not converged).
   SubstepOutcome substep(double h) {
+    const StepSettings& s = *settings_;
     SubstepOutcome result;
     beginSubstep(h);
-    for (int it = 0; it < settings_->newtonIterations; ++it) {
-      const NewtonOutcome n = newtonIteration(h, it, result);
+    bool stationary = false;
+    bool reuse = false;  // solve with the last iteration's stiffness (a chord step)
+    double lastResidual = 0.0;
+    for (int it = 0; it < s.newtonIterations; ++it) {
+      const NewtonOutcome n = newtonIteration(h, it, reuse, result);
       if (n == NewtonOutcome::Failed) {
         result.ok = false;
         return result;
       }
-      if (n == NewtonOutcome::Converged) break;
+      if (n == NewtonOutcome::Converged) {
+        stationary = true;
+        break;
+      }
+      if (n == NewtonOutcome::Stalled) break;
+      if (it + 1 == s.newtonIterations) break;  // endSubstep measures the last one
+      if (s.frameBudgetMs > 0.0 && msSince(frameStart_) > s.frameBudgetMs) break;
+      if (s.residualTolerance <= 0.0 && !s.reuseStiffness) continue;  // nothing reads it
+      const double residual = residualAt();
+      if (residual <= s.residualTolerance) break;
+      // Keep the stiffness while it still cuts the residual at least in half.
+      reuse = s.reuseStiffness && (!reuse || residual < 0.5 * lastResidual);
+      lastResidual = residual;
     }
     endSubstep(h, result);
+    result.converged = stationary || result.residual <= s.residualTolerance;
+    result.cgIterations = pcgIterations_;
     if (result.ok) time_ += h;
     return result;
+  }
+
+  // The backward-Euler residual at the accepted positions over the force scale (one read).
+  double residualAt() {
+    const double* x = x_.data();
+    dampedProduct(x, dampedK_.data());
+    ex_.copy(tmp_.data(), acceptedGrad_.data(), 3 * n_);
+    contact(x, tmp_.data(), kContact);
+    backwardEulerGradient(x, tmp_.data(), dampedK_.data(), g_.data());
+    residualSums();
+    double read[kScalars];
+    ex_.read(scalars_.data(), read, kScalars);
+    return relativeResidual(read);
+  }
+
+  // |g|^2 (kResidual) and the squared elastic and contact forces on the free vertices
+  // (kForceScale), from g_ and tmp_.
+  void residualSums() {
+    const double* g = g_.data();
+    const double* f = tmp_.data();
+    const std::uint8_t* fixed = fixed_.data();
+    double* sc = scalars_.data();
+    ex_.sum(
+        3 * n_, [=] GALSCULPT_LAMBDA(int i) { return g[i] * g[i]; }, sc + kResidual);
+    ex_.sum(
+        3 * n_, [=] GALSCULPT_LAMBDA(int i) { return fixed[i / 3] ? 0.0 : f[i] * f[i]; },
+        sc + kForceScale);
+  }
+
+  // The residual over the force scale: the larger of the body's weight and the elastic and
+  // contact forces acting on it, so that a frame is solved to the same fraction of its loads
+  // whether it hangs under gravity or takes a striker's meganewtons.
+  double relativeResidual(const double* read) {
+    forceScale_ = std::max(weight(), std::sqrt(read[kForceScale]));
+    return std::sqrt(read[kResidual]) / forceScale_;
+  }
+
+  // |f_ext| = |g| |m| over the vertices (massNorm_ is over the 3n DOFs: |m| sqrt 3), at least 1 g.
+  double weight() const {
+    const double perDofMass = massNorm_ / std::sqrt(3.0);
+    return std::max(model_.gravity.norm() * perDofMass, 9.81 * perDofMass);
   }
 
   // x_n, v_n and the inertial target from the state; anchored vertices on their paths.
   void beginSubstep(double h) {
     h_step_ = h;
+    pcgIterations_ = 0;
     prepareAnchorsAndColliders(time_ + h);
     double* x = x_.data();
     double* v = v_.data();
@@ -483,11 +557,14 @@ class FrameSolver {
     frozenIsK_ = true;
   }
 
-  enum class NewtonOutcome { Continue, Converged, Failed };
+  // Converged: the step was below Newton's step test; Stalled: no step length descends (a
+  // failure before any progress, else the end of the iterations, converged only if the
+  // residual says so).
+  enum class NewtonOutcome { Continue, Converged, Stalled, Failed };
 
   // One Newton iteration: the step (assembled, solved, measured, its full length tried),
   // shortened while it raises the incremental potential, then accepted.
-  NewtonOutcome newtonIteration(double h, int it, SubstepOutcome& result) {
+  NewtonOutcome newtonIteration(double h, int it, bool reuse, SubstepOutcome& result) {
     const StepSettings& s = *settings_;
     const auto t0 = Clock::now();
     const double elementsBefore = result.msElements;
@@ -502,9 +579,10 @@ class FrameSolver {
     const bool capturable =
         s.multigrid && !s.multigridSettings.coarseCholesky && !s.multigridSettings.pcg;
     if (capturable) {
-      ex_.captured(0, graphKey(h, it), [&] { newtonStep(it, result); });
+      ex_.captured(0, graphKey(h, it) ^ (reuse ? 0x9e3779b97f4a7c15ull : 0),
+                   [&] { newtonStep(it, reuse, result); });
     } else {
-      newtonStep(it, result);
+      newtonStep(it, reuse, result);
     }
     ++result.iterations;
     double read[kScalars];
@@ -513,7 +591,7 @@ class FrameSolver {
     if constexpr (Exec::kHostMemory) result.msSolve -= result.msElements - elementsBefore;
     if (stepLength < 0.0) return NewtonOutcome::Failed;
     if (stepLength < kShortestStep)  // no descent: a failure only before any progress
-      return result.iterations == 1 ? NewtonOutcome::Failed : NewtonOutcome::Converged;
+      return result.iterations == 1 ? NewtonOutcome::Failed : NewtonOutcome::Stalled;
     // Accept: the trial just evaluated is the new iterate (its energy and gradient too).
     double* x = x_.data();
     const double* delta = delta_.data();
@@ -525,12 +603,33 @@ class FrameSolver {
   }
 
   // Assembles and solves the Newton system at x, measures the step and tries its full length.
-  void newtonStep(int it, SubstepOutcome& result) {
+  // With `reuse`, the system (stiffness, contact, the multigrid's operators) stays the last
+  // iteration's and only the gradient is new: the accepted trial's, already evaluated.
+  void newtonStep(int it, bool reuse, SubstepOutcome& result) {
     const StepSettings& s = *settings_;
     const double* x = x_.data();
+    if (reuse) {
+      ex_.copy(grad_.data(), acceptedGrad_.data(), 3 * n_);
+      double* sc = scalars_.data();
+      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
+        sc[kElastic] = sc[kTrialElastic];
+        sc[kInverted] = sc[kTrialInverted];
+      });
+      contact(x, grad_.data(), kContact);
+      dampedProduct(x, dampedK_.data());
+      backwardEulerGradient(x, grad_.data(), dampedK_.data(), g_.data());
+      if (s.multigrid) {
+        solveLinear();
+      } else {
+        solveDirect();
+      }
+      stepMeasures();
+      evaluateTrial(1.0);
+      return;
+    }
     const bool frozenCopy = it == 0 && s.newtonIterations > 1;
     const auto tElements = Clock::now();
-    elementPass(x, true, grad_.data(), kElastic);
+    elementPass(x, true, grad_.data(), kElastic, kInverted);
     // Phases are timed where launches run as they are issued (the CPU); on the GPU they run as
     // one graph and all of it counts as solve.
     if constexpr (Exec::kHostMemory) result.msElements += msSince(tElements);
@@ -541,6 +640,7 @@ class FrameSolver {
     backwardEulerGradient(x, grad_.data(), dampedK_.data(), g_.data());
     buildSystem(x);
     if (s.multigrid) {
+      mg_.setFixed(fixed_.data());
       mg_.refresh(h_.data(), s.multigridSettings.coarseCholesky);
       solveLinear();
     } else {
@@ -568,7 +668,10 @@ class FrameSolver {
                                     : (read[kR0] > 0.0 ? std::sqrt(read[kR1] / read[kR0]) : 0.0);
       if (read[kBad] > 0.0 || !std::isfinite(read[kElastic])) return -1.0;
       const double e0 = read[kE0], e1 = read[kE1];
-      if (std::isfinite(e1) &&
+      // Never a step that turns elements inside out (under extreme loads the energy alone may
+      // descend through an inversion): it is shortened, and a sub-step that cannot move
+      // without one fails and is halved (a warning).
+      if (std::isfinite(e1) && read[kTrialInverted] <= read[kInverted] &&
           e1 <= e0 + sufficient * stepLength * read[kSlope] + 1e-12 * std::abs(e0))
         return stepLength;
       stepLength *= 0.5;
@@ -584,10 +687,7 @@ class FrameSolver {
     ex_.captured(1, graphKey(h, -1), [&] { finishSubstep(h); });
     double read[kScalars];
     ex_.read(scalars_.data(), read, kScalars);
-    // |f_ext| = |g| |m| over the vertices, massNorm_ over the 3n DOFs: |m| sqrt 3.
-    const double perDofMass = massNorm_ / std::sqrt(3.0);
-    const double weight = std::max(model_.gravity.norm() * perDofMass, 9.81 * perDofMass);
-    result.residual = std::sqrt(read[kResidual]) / weight;
+    result.residual = relativeResidual(read);
     result.contactForces.assign(poses_.size(), Vec3::Zero());
     for (size_t c = 0; c < poses_.size(); ++c)
       result.contactForces[c] =
@@ -605,9 +705,7 @@ class FrameSolver {
     ex_.copy(tmp_.data(), acceptedGrad_.data(), 3 * n_);
     contact(x, tmp_.data(), kContact);
     backwardEulerGradient(x, tmp_.data(), dampedK_.data(), g_.data());
-    const double* g = g_.data();
-    ex_.sum(
-        3 * n_, [=] GALSCULPT_LAMBDA(int i) { return g[i] * g[i]; }, sc + kResidual);
+    residualSums();
     ex_.sum(
         3 * n_,
         [=] GALSCULPT_LAMBDA(int i) { return x[i] == x[i] && fabs(x[i]) <= 1.7e308 ? 0.0 : 1.0; },
@@ -646,7 +744,7 @@ class FrameSolver {
     const double* x = x_.data();
     const double* delta = delta_.data();
     ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { trial[i] = x[i] + length * delta[i]; });
-    elementPass(trial, false, trialGrad_.data(), kTrialElastic);
+    elementPass(trial, false, trialGrad_.data(), kTrialElastic, kTrialInverted);
     dampedProduct(trial, tmp_.data());
     contact(trial, nullptr, kTrialContact);
     objective(trial, kTrialElastic, kTrialContact, tmp_.data(), kE1);
@@ -735,7 +833,11 @@ class FrameSolver {
           3 * n_, [=] GALSCULPT_LAMBDA(int i) { return (b[i] - ap[i]) * (b[i] - ap[i]); },
           sc + kR1);
     } else {
-      pcgReduction_ = mg_.pcg(a, b, delta, mgs, ms.pcgTolerance, ms.pcgMaxIterations);
+      // Never further than half the residual the sub-step must reach: an inexact Newton step.
+      const double target = 0.5 * s.residualTolerance * std::max(weight(), forceScale_);
+      const auto r = mg_.pcg(a, b, delta, mgs, ms.pcgTolerance, ms.pcgMaxIterations, target);
+      pcgReduction_ = r.reduction;
+      pcgIterations_ += r.iterations;
     }
     ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
       if (fixed[i / 3]) delta[i] = 0.0;
@@ -1080,6 +1182,9 @@ class FrameSolver {
     kPap,
     kCount,
     kRatio,
+    kInverted,
+    kTrialInverted,
+    kForceScale,
     kForce,
     kScalars = kForce + 3 * 16
   };
@@ -1095,6 +1200,9 @@ class FrameSolver {
   const std::vector<AnchorConstraint>* anchors_ = nullptr;  // the stepped state's
   int n_ = 0, tets_ = 0, edges_ = 0, blocks_ = 0;
   double time_ = 0.0, h_step_ = 0.0, modelSize_ = 1.0, massNorm_ = 0.0, pcgReduction_ = 0.0;
+  int pcgIterations_ = 0;    // the current sub-step's
+  double forceScale_ = 0.0;  // the last residual's scale (N): the next solves' target
+  Clock::time_point frameStart_ = Clock::now();
   std::uint64_t mgRevision_ = 0;  // bumped whenever the hierarchy is uploaded again
   bool plastic_ = false, frozenIsK_ = true;
   bool plasticFlowed_ = false;  // an element flowed this frame: the plastic state goes back
@@ -1107,7 +1215,8 @@ class FrameSolver {
   Buffer<int> blockRow_;
   Buffer<double> x_, v_, xn_, vn_, xhat_, grad_, trialGrad_, acceptedGrad_, g_, delta_, trial_,
       dampedK_, tmp_, savedX_, savedV_;
-  Buffer<double> elemEnergy_, elemGrad_, elemHess_, k_, frozen_, h_, scalars_, contactPerVertex_;
+  Buffer<double> elemEnergy_, elemInverted_, elemGrad_, elemHess_, k_, frozen_, h_, scalars_,
+      contactPerVertex_;
   Buffer<double> pcgB_, pcgAp_;  // the linear system's right-hand side and A delta
   Buffer<double> fp_, strain_, savedFp_, savedStrain_;
   Buffer<std::uint8_t> fixed_, damaged_;

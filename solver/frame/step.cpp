@@ -10,6 +10,9 @@ StepSettings referenceSettings(StepSettings base) {
   base.newtonIterations = 50;
   base.lineSearch = true;
   base.tolerance = 1e-10;
+  base.residualTolerance = 0.0;  // Newton runs to its step test, not to the default's residual
+  base.frameBudgetMs = 0.0;
+  base.reuseStiffness = false;
   return base;
 }
 

@@ -25,9 +25,21 @@ namespace galsculpt {
 struct StepSettings {
   double dt = 1.0 / 60.0;
   int substeps = 1;
-  int newtonIterations = 1;  // 1: the paper's linearized step
+  int newtonIterations = 1;  // the most Newton iterations a sub-step takes (1: the paper's step)
   bool lineSearch = false;
   double tolerance = 1e-9;  // Newton stops when |dx|_inf < tolerance * model size
+  // A sub-step has converged when its backward-Euler residual (free DOFs) is at most this times
+  // the force scale: the larger of the body's weight |M g| (at least 1 g) and the elastic and
+  // contact forces on its free vertices. Newton stops there. A frame that ends above it is
+  // reported (StepReport::converged), whatever the settings.
+  double residualTolerance = 1e-2;
+  // After a sub-step's first Newton iteration, solve with the stiffness (and multigrid
+  // operators) already built while that still halves the residual each iteration: a chord step
+  // costs a gradient and a solve, not an assembly, a projection and a Galerkin refresh.
+  bool reuseStiffness = false;
+  // Milliseconds a frame may spend before its sub-steps stop iterating Newton (0: no limit; the
+  // app's interactive budget). A frame stopped by it is reported as not converged.
+  double frameBudgetMs = 0.0;
   // Linear solver of each Newton step: CHOLMOD's Cholesky, or the Galerkin multigrid.
   bool multigrid = false;
   std::vector<int> gridHandles = {50};  // handle counts, finest coarse level first
@@ -44,7 +56,7 @@ StepSettings referenceSettings(StepSettings base);
 
 struct StepReport {
   int newtonIterations = 0;
-  double residual = 0.0;       // |grad E| at the new positions, free DOFs, relative to |M g|
+  double residual = 0.0;       // |grad E| at the new positions, free DOFs, over the force scale
   double elasticEnergy = 0.0;  // J
   int retries = 0;             // step halvings (warnings)
   int backtracks = 0;          // Newton steps shortened because the full step raised the energy
@@ -56,6 +68,10 @@ struct StepReport {
   double maxStressRatio = 0.0;           // largest edge stress over its threshold (last pass)
   double msFracture = 0.0;
   int fractureRedos = 0;  // sub-steps solved again after new damage
+  // Whether every sub-step ended converged: residual within residualTolerance, or Newton's
+  // step-length test met (nothing left to gain).
+  bool converged = true;
+  int cgIterations = 0;  // PCG iterations of the frame's linear solves
 };
 
 // Elastic energy of positions `x`; the gradient (3 nVerts) and, when `hessian` is given, the

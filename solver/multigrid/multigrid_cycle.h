@@ -111,6 +111,13 @@ class MultigridCycle {
     factored_ = false;
   }
 
+  // The anchored fine vertices (one flag per vertex, executor memory; null: none), which the
+  // coarse levels leave out: U's rows of an anchored vertex are zero, so that no coarse mode
+  // moves what the anchors hold (with them in, a coarse correction moved anchored vertices at
+  // the cost of their identity rows and CG needed 30-40 iterations per solve under a brush).
+  // Set before refresh().
+  void setFixed(const std::uint8_t* fixed) { fixed_ = fixed; }
+
   // A_{l+1} = U^T A_l U on every level from the fine matrix (9 doubles per block), the
   // smoothers' diagonal factors, the fragments' and pieces' operators, and (when asked) the
   // coarsest level's dense Cholesky. Returns nothing the host must wait for unless the dense
@@ -127,6 +134,7 @@ class MultigridCycle {
       const int* row = d.contribRow.data();
       double* out = d.blocks.data();
       const bool first = l == 0;
+      const std::uint8_t* fixed = fixed_;
       ex_.forEach(
           d.nnz,
           [=] GALSCULPT_LAMBDA(int b) {
@@ -135,6 +143,7 @@ class MultigridCycle {
             for (int i = start[b]; i < start[b + 1]; ++i) {
               const int k = block[i], r = row[i], c = finerColumns[k];
               if (first) {
+                if (fixed && (fixed[r] || fixed[c])) continue;
                 addKron4x3(y + 4 * r, y + 4 * c, finer + 9 * k, acc);
               } else {
                 addTripleProduct12(toParent + 144 * r, finer + 144 * k, toParent + 144 * c, acc);
@@ -153,7 +162,8 @@ class MultigridCycle {
             double* blk = out + 144 * diagonal[h];
             double trace = 0.0;
             for (int i = 0; i < 12; ++i) trace += blk[13 * i];
-            const double shift = empty[h] ? 1.0 : 1e-9 * fmax(trace / 12.0, 1e-300);
+            // A handle whose rows are all anchored sees nothing either.
+            const double shift = empty[h] || !(trace > 0.0) ? 1.0 : 1e-9 * trace / 12.0;
             for (int i = 0; i < 12; ++i) blk[13 * i] += shift;
             double* f = factor + 144 * h;
             for (int i = 0; i < 144; ++i) f[i] = blk[i];
@@ -199,11 +209,15 @@ class MultigridCycle {
   void cycles(const double* a, const double* b, double* x, const Settings& s) {
     for (int c = 0; c < s.cycles; ++c) vcycle(a, 0, b, x, s);
   }
+  struct PcgResult {
+    double reduction = 0.0;  // |r| / |b| (0 for b = 0)
+    int iterations = 0;
+  };
   // CG on A x = b from x = 0, preconditioned by one V-cycle per iteration, until
-  // |r| <= tolerance |b| or maxIterations. Reads two scalars per iteration (not capturable).
-  // Returns |r| / |b| (0 for b = 0).
-  double pcg(const double* a, const double* b, double* x, const Settings& s, double tolerance,
-             int maxIterations) {
+  // |r| <= max(tolerance |b|, absoluteTarget) or maxIterations. Reads two scalars per iteration
+  // (not capturable).
+  PcgResult pcg(const double* a, const double* b, double* x, const Settings& s, double tolerance,
+                int maxIterations, double absoluteTarget = 0.0) {
     const int n = 3 * rows_;
     if (pcgR_.size() != static_cast<size_t>(n)) {
       for (Buffer<double>* v : {&pcgR_, &pcgZ_, &pcgP_, &pcgAp_}) v->resize(n);
@@ -228,9 +242,10 @@ class MultigridCycle {
         n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, sc + kPcgRz);
     ex_.read(sc, read, kPcgScalars);
     const double bnorm = std::sqrt(read[kPcgBb]);
-    const double target = tolerance * std::max(bnorm, 1e-300);
+    const double target = std::max(tolerance * std::max(bnorm, 1e-300), absoluteTarget);
     double rz = read[kPcgRz], rnorm = bnorm;
-    for (int it = 0; it < maxIterations && rnorm > target; ++it) {
+    int it = 0;
+    for (; it < maxIterations && rnorm > target; ++it) {
       multiplyFine(a, p, ap);
       ex_.sum(
           n, [=] GALSCULPT_LAMBDA(int i) { return p[i] * ap[i]; }, sc + kPcgPap);
@@ -245,7 +260,10 @@ class MultigridCycle {
           n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * r[i]; }, sc + kPcgRr);
       ex_.read(sc, read, kPcgScalars);
       rnorm = std::sqrt(read[kPcgRr]);
-      if (rnorm <= target) break;
+      if (rnorm <= target) {
+        ++it;
+        break;
+      }
       ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) { z[i] = 0.0; });
       vcycle(a, 0, r, z, s);
       ex_.sum(
@@ -255,7 +273,7 @@ class MultigridCycle {
       rz = read[kPcgRz];
       ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) { p[i] = z[i] + beta * p[i]; });
     }
-    return bnorm > 0.0 ? rnorm / bnorm : 0.0;
+    return {bnorm > 0.0 ? rnorm / bnorm : 0.0, it};
   }
 
   // The operator of coarse level l (1: the first coarse level) as a dense matrix, read back
@@ -449,6 +467,7 @@ class MultigridCycle {
     const double* y = d.y.data();
     const double* toParent = d.toParent.data();
     const bool first = l == 0;
+    const std::uint8_t* fixed = fixed_;
     ex_.forEach(
         d.handles,
         [=] GALSCULPT_LAMBDA(int h) {
@@ -456,6 +475,7 @@ class MultigridCycle {
           for (int i = start[h]; i < start[h + 1]; ++i) {
             const int r = members[i];
             if (first) {
+              if (fixed && fixed[r]) continue;
               for (int m = 0; m < 4; ++m)
                 for (int k = 0; k < 3; ++k)
                   acc[3 * m + k] += y[4 * r + m] * (b[3 * r + k] - ax[3 * r + k]);
@@ -476,9 +496,10 @@ class MultigridCycle {
     const double* y = d.y.data();
     const double* toParent = d.toParent.data();
     if (l == 0) {
+      const std::uint8_t* fixed = fixed_;
       ex_.forEach(d.rows, [=] GALSCULPT_LAMBDA(int v) {
         const int p = parent[v];
-        if (p < 0) return;
+        if (p < 0 || (fixed && fixed[v])) return;
         for (int m = 0; m < 4; ++m)
           for (int k = 0; k < 3; ++k) x[3 * v + k] += y[4 * v + m] * coarse[12 * p + 3 * m + k];
       });
@@ -720,6 +741,7 @@ class MultigridCycle {
   Exec& ex_;
   int rows_ = 0;
   typename Exec::template Mirror<int> fineRowStart_, fineColumns_, fineDiagonal_;
+  const std::uint8_t* fixed_ = nullptr;  // anchored fine vertices (setFixed)
   std::vector<int> fineColorStart_;
   Buffer<int> fineColorRows_;
   std::vector<Level> levels_;

@@ -188,14 +188,42 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   EXPECT_NE(cracks.out.find("ms surface per cut"), std::string::npos) << cracks.out;
   ASSERT_EQ(r.code, kExitOk) << r.err;
   const auto j = nlohmann::json::parse(test::readText(dir / "b.json"));
-  ASSERT_EQ(j["results"].size(), 2u);
-  for (const char* key :
-       {"scene", "tets", "solver", "grid", "fine_sweeps", "coarse_iters", "frames", "ms_per_frame",
-        "fps", "peak_rss_mb", "rel_position_error", "volume_change_pct"}) {
+  // The reference, the paper's setting and the scene's own (the converged default).
+  ASSERT_EQ(j["results"].size(), 3u);
+  for (const char* key : {"scene",
+                          "tets",
+                          "solver",
+                          "grid",
+                          "fine_sweeps",
+                          "coarse_iters",
+                          "frames",
+                          "ms_per_frame",
+                          "fps",
+                          "peak_rss_mb",
+                          "rel_position_error",
+                          "volume_change_pct",
+                          "preset",
+                          "rel_position_error_motion",
+                          "motion_frame",
+                          "ms_p95",
+                          "newton_iters_mean",
+                          "cg_iters_mean",
+                          "residual_max",
+                          "unconverged_frames"}) {
     EXPECT_TRUE(j["results"][1].contains(key)) << key;
+    EXPECT_TRUE(j["results"][2].contains(key)) << key;
   }
   EXPECT_EQ(j["results"][0]["solver"], "reference");
   EXPECT_EQ(j["results"][1]["solver"], "multigrid");
+  EXPECT_EQ(j["results"][1]["preset"], "paper");
+  EXPECT_EQ(j["results"][2]["preset"], "converged");
+  EXPECT_EQ(j["results"][1]["motion_frame"], 3) << "within the run";
+  EXPECT_EQ(j["results"][1]["cg_iters_mean"], 0.0) << "the paper's setting has no CG";
+  EXPECT_GT(j["results"][2]["cg_iters_mean"].get<double>(), 0.0);
+  EXPECT_EQ(j["results"][2]["unconverged_frames"], 0);
+  EXPECT_GT(j["results"][1]["rel_position_error"].get<double>(),
+            j["results"][2]["rel_position_error"].get<double>())
+      << "the converged frames are closer to the reference";
   EXPECT_EQ(j["results"][0]["backend"], "cpu") << "the reference always runs on the CPU";
   EXPECT_TRUE(j["results"][1]["backend"] == "cpu" || j["results"][1]["backend"] == "cuda");
   if (j["results"][1]["backend"] == "cpu") {

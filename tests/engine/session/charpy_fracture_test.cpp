@@ -45,7 +45,9 @@ CharpyRun runCharpy(bool pendulum, int frames) {
   CharpyRun run;
   for (int f = 0; f < frames; ++f) {
     const FrameMetrics m = sim.advance();
-    EXPECT_EQ(m.warnings, 0) << "frame " << m.frame;
+    // The scene runs the paper's solver (docs/scenes.md): its frames are flagged as not
+    // converged; none may fail and be halved.
+    EXPECT_EQ(m.retries, 0) << "frame " << m.frame;
     run.peakLoad = std::max(run.peakLoad, m.loadN);
     run.opening = m.openingM;
     if (run.damaged == 0 && m.damagedEdges > 0) {

@@ -208,6 +208,50 @@ TEST(TetElement, DamagedEdgesStillResistCompressionUnlessToldNot) {
   EXPECT_DOUBLE_EQ(a.energy, b.energy) << "in tension a damaged edge carries nothing either way";
 }
 
+// A closed crack's resistance sets in over a small strain band (kCrackContactBand), so that the
+// energy is C1 and Newton can converge on touching crack faces: inside the band the derivatives
+// match finite differences, and across its ends and across zero strain the force is continuous.
+TEST(TetElement, ClosedCrackResistanceIsSmoothAcrossItsBand) {
+  const TetPoints rest = restTet();
+  const TetRest r = computeTetRest(rest);
+  const EdgeDamage damage{0x3e, true};  // edge 0 (vertices 0-1) damaged, resisting compression
+  const double band = kernels::kCrackContactBand;
+  auto withStrain = [&](double strain, unsigned seed) {
+    TetPoints x = deformed(rest, 0.05, seed);
+    const Eigen::Vector3d d = x[1] - x[0];
+    const double restLength = (rest[1] - rest[0]).norm();
+    x[1] = x[0] + d.normalized() * restLength * std::sqrt(1.0 + 2.0 * strain);
+    return x;
+  };
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const TetPoints x = withStrain(-0.5 * band, seed);
+    const ElementEval e = eval(MaterialModel::StVK, r, x, damage, HessianMode::Exact);
+    const double h = 1e-8;
+    Mat12 fdHessian;
+    Vec12 fdGradient;
+    for (int i = 0; i < 12; ++i) {
+      Vec12 plus = flat(x), minus = flat(x);
+      plus[i] += h;
+      minus[i] -= h;
+      const ElementEval ep = eval(MaterialModel::StVK, r, unflat(plus), damage, HessianMode::None);
+      const ElementEval em = eval(MaterialModel::StVK, r, unflat(minus), damage, HessianMode::None);
+      fdGradient[i] = (ep.energy - em.energy) / (2 * h);
+      fdHessian.col(i) = (ep.gradient - em.gradient) / (2 * h);
+    }
+    EXPECT_LT((fdGradient - e.gradient).norm(), 1e-5 * std::max(1.0, e.gradient.norm()));
+    EXPECT_LT((fdHessian - e.hessian).norm(), 1e-5 * std::max(1.0, e.hessian.norm()));
+    for (double at : {0.0, -band}) {
+      const double gap = 1e-10;
+      const ElementEval below =
+          eval(MaterialModel::StVK, r, withStrain(at - gap, seed), damage, HessianMode::None);
+      const ElementEval above =
+          eval(MaterialModel::StVK, r, withStrain(at + gap, seed), damage, HessianMode::None);
+      EXPECT_LT((below.gradient - above.gradient).norm(), 1e-6 * below.gradient.norm())
+          << "force continuous at strain " << at;
+    }
+  }
+}
+
 TEST(TetElement, InvertedStableNeoHookeanStaysFiniteAndPushesBack) {
   const TetPoints rest = restTet();
   const TetRest r = computeTetRest(rest);
