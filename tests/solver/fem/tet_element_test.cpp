@@ -43,6 +43,20 @@ ElementEval eval(MaterialModel m, const TetRest& r, const TetPoints& x, EdgeDama
   return out;
 }
 
+// Central differences of the energy (gradient) and of the gradient (Hessian) at x, step h.
+void finiteDifferences(MaterialModel m, const TetRest& r, const TetPoints& x, EdgeDamage d,
+                       double h, Vec12& gradient, Mat12& hessian) {
+  for (int i = 0; i < 12; ++i) {
+    Vec12 plus = flat(x), minus = flat(x);
+    plus[i] += h;
+    minus[i] -= h;
+    const ElementEval ep = eval(m, r, unflat(plus), d, HessianMode::None);
+    const ElementEval em = eval(m, r, unflat(minus), d, HessianMode::None);
+    gradient[i] = (ep.energy - em.energy) / (2 * h);
+    hessian.col(i) = (ep.gradient - em.gradient) / (2 * h);
+  }
+}
+
 struct Case {
   MaterialModel model;
   EdgeDamage damage;
@@ -68,18 +82,9 @@ TEST(TetElement, GradientAndHessianMatchFiniteDifferences) {
                                         << static_cast<int>(c.damage.intact) << " seed " << seed);
       const TetPoints x = deformed(rest, 0.3, seed);
       const ElementEval e = eval(c.model, r, x, c.damage, HessianMode::Exact);
-      const double h = 1e-6;
       Vec12 fdGradient;
       Mat12 fdHessian;
-      for (int i = 0; i < 12; ++i) {
-        Vec12 plus = flat(x), minus = flat(x);
-        plus[i] += h;
-        minus[i] -= h;
-        const ElementEval ep = eval(c.model, r, unflat(plus), c.damage, HessianMode::None);
-        const ElementEval em = eval(c.model, r, unflat(minus), c.damage, HessianMode::None);
-        fdGradient[i] = (ep.energy - em.energy) / (2 * h);
-        fdHessian.col(i) = (ep.gradient - em.gradient) / (2 * h);
-      }
+      finiteDifferences(c.model, r, x, c.damage, 1e-6, fdGradient, fdHessian);
       const double gScale = std::max(1.0, e.gradient.norm());
       EXPECT_LT((fdGradient - e.gradient).norm(), 1e-6 * gScale);
       const double hScale = std::max(1.0, e.hessian.norm());
@@ -226,18 +231,9 @@ TEST(TetElement, ClosedCrackResistanceIsSmoothAcrossItsBand) {
   for (unsigned seed = 1; seed <= 3; ++seed) {
     const TetPoints x = withStrain(-0.5 * band, seed);
     const ElementEval e = eval(MaterialModel::StVK, r, x, damage, HessianMode::Exact);
-    const double h = 1e-8;
     Mat12 fdHessian;
     Vec12 fdGradient;
-    for (int i = 0; i < 12; ++i) {
-      Vec12 plus = flat(x), minus = flat(x);
-      plus[i] += h;
-      minus[i] -= h;
-      const ElementEval ep = eval(MaterialModel::StVK, r, unflat(plus), damage, HessianMode::None);
-      const ElementEval em = eval(MaterialModel::StVK, r, unflat(minus), damage, HessianMode::None);
-      fdGradient[i] = (ep.energy - em.energy) / (2 * h);
-      fdHessian.col(i) = (ep.gradient - em.gradient) / (2 * h);
-    }
+    finiteDifferences(MaterialModel::StVK, r, x, damage, 1e-8, fdGradient, fdHessian);
     EXPECT_LT((fdGradient - e.gradient).norm(), 1e-5 * std::max(1.0, e.gradient.norm()));
     EXPECT_LT((fdHessian - e.hessian).norm(), 1e-5 * std::max(1.0, e.hessian.norm()));
     for (double at : {0.0, -band}) {
