@@ -495,15 +495,21 @@ class FrameSolver {
 
   // The backward-Euler residual at the accepted positions over the force scale (one read).
   double residualAt() {
+    acceptedResidual();
+    double read[kScalars];
+    ex_.read(scalars_.data(), read, kScalars);
+    return relativeResidual(read);
+  }
+
+  // The backward-Euler gradient at the accepted positions (g_; the elastic and contact forces in
+  // tmp_) and its sums (residualSums).
+  void acceptedResidual() {
     const double* x = x_.data();
     dampedProduct(x, dampedK_.data());
     ex_.copy(tmp_.data(), acceptedGrad_.data(), 3 * n_);
     contact(x, tmp_.data(), kContact);
     backwardEulerGradient(x, tmp_.data(), dampedK_.data(), g_.data());
     residualSums();
-    double read[kScalars];
-    ex_.read(scalars_.data(), read, kScalars);
-    return relativeResidual(read);
   }
 
   // |g|^2 (kResidual) and the squared elastic and contact forces on the free vertices
@@ -615,33 +621,25 @@ class FrameSolver {
         sc[kElastic] = sc[kTrialElastic];
         sc[kInverted] = sc[kTrialInverted];
       });
-      contact(x, grad_.data(), kContact);
-      dampedProduct(x, dampedK_.data());
-      backwardEulerGradient(x, grad_.data(), dampedK_.data(), g_.data());
-      if (s.multigrid) {
-        solveLinear();
-      } else {
-        solveDirect();
-      }
-      stepMeasures();
-      evaluateTrial(1.0);
-      return;
+    } else {
+      const bool frozenCopy = it == 0 && s.newtonIterations > 1;
+      const auto tElements = Clock::now();
+      elementPass(x, true, grad_.data(), kElastic, kInverted);
+      // Phases are timed where launches run as they are issued (the CPU); on the GPU they run
+      // as one graph and all of it counts as solve.
+      if constexpr (Exec::kHostMemory) result.msElements += msSince(tElements);
+      if (frozenCopy) ex_.copy(frozen_.data(), k_.data(), k_.size());
+      frozenIsK_ = !(frozenCopy || (it > 0 && s.newtonIterations > 1));
     }
-    const bool frozenCopy = it == 0 && s.newtonIterations > 1;
-    const auto tElements = Clock::now();
-    elementPass(x, true, grad_.data(), kElastic, kInverted);
-    // Phases are timed where launches run as they are issued (the CPU); on the GPU they run as
-    // one graph and all of it counts as solve.
-    if constexpr (Exec::kHostMemory) result.msElements += msSince(tElements);
-    if (frozenCopy) ex_.copy(frozen_.data(), k_.data(), k_.size());
-    frozenIsK_ = !(frozenCopy || (it > 0 && s.newtonIterations > 1));
     contact(x, grad_.data(), kContact);
     dampedProduct(x, dampedK_.data());
     backwardEulerGradient(x, grad_.data(), dampedK_.data(), g_.data());
-    buildSystem(x);
+    if (!reuse) buildSystem(x);
     if (s.multigrid) {
-      mg_.setFixed(fixed_.data());
-      mg_.refresh(h_.data(), s.multigridSettings.coarseCholesky);
+      if (!reuse) {
+        mg_.setFixed(fixed_.data());
+        mg_.refresh(h_.data(), s.multigridSettings.coarseCholesky);
+      }
       solveLinear();
     } else {
       solveDirect();
@@ -701,11 +699,7 @@ class FrameSolver {
     const double* x = x_.data();
     const double* xn = xn_.data();
     double* v = v_.data();
-    dampedProduct(x, dampedK_.data());
-    ex_.copy(tmp_.data(), acceptedGrad_.data(), 3 * n_);
-    contact(x, tmp_.data(), kContact);
-    backwardEulerGradient(x, tmp_.data(), dampedK_.data(), g_.data());
-    residualSums();
+    acceptedResidual();
     ex_.sum(
         3 * n_,
         [=] GALSCULPT_LAMBDA(int i) { return x[i] == x[i] && fabs(x[i]) <= 1.7e308 ? 0.0 : 1.0; },

@@ -4,9 +4,11 @@
 //   E(x) = 1/(2h^2) |x - x_n - h v_n|_M^2 + Psi(x) - f_ext . x + 1/(2h) |x - x_n|_D^2,
 // with D = alpha M + beta K(x_n) (Rayleigh damping). One Newton step from x_n is exactly the
 // paper's linearized system (eq. 3 / eq. 8): (M + h D + h^2 K) dv = h (f_ext - f_int - (D + hK)
-// v_n). The default takes that one step; the reference solver iterates Newton with a backtracking
-// line search and a direct sparse solve (CHOLMOD) to a tight tolerance. Anchored vertices
-// are Dirichlet conditions: they sit on their prescribed path and their rows are removed.
+// v_n). StepSettings{} takes that one step; the scenes' converged preset iterates Newton until the
+// residual is within residualTolerance of the force scale; the reference solver iterates Newton
+// with a backtracking line search and a direct sparse solve (CHOLMOD) to a tight tolerance.
+// Anchored vertices are Dirichlet conditions: they sit on their prescribed path and their rows
+// are removed.
 // A Newton step that would raise the incremental potential is shortened (backtracking), which
 // keeps huge loads from exploding; a frame that still produces NaN or cannot descend is rolled
 // back and retried with halved sub-steps, each retry counted as a warning.
