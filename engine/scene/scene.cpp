@@ -246,6 +246,7 @@ SolverDesc readSolver(JsonObject o) {
   s.residualTolerance = o.number("residual_tolerance", s.residualTolerance, 1e-12, 10.0);
   s.frameBudgetMs = o.number("frame_budget_ms", s.frameBudgetMs, 0.0, 1e6);
   s.reuseStiffness = o.boolean("reuse_stiffness", s.reuseStiffness);
+  s.predictedStart = o.boolean("predicted_start", s.predictedStart);
   s.backend = readEnum(o, "backend", s.backend, kBackendNames);
   s.splitAggregates = o.boolean("split_aggregates", s.splitAggregates);
   o.rejectUnknownKeys();
@@ -268,6 +269,8 @@ SolverDesc solverPreset(SolverPreset preset) {
     s.coarseSolver = CoarseSolver::Cg;
     s.newtonIterations = 1;
     s.pcgTolerance = 0.0;
+    s.reuseStiffness = false;
+    s.predictedStart = false;
   }
   return s;
 }

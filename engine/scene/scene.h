@@ -131,6 +131,7 @@ struct SolverDesc {
   double residualTolerance = 1e-2;  // converged: residual / weight of the body
   double frameBudgetMs = 0.0;       // > 0: Newton stops when a frame has taken this long
   bool reuseStiffness = true;       // chord steps after a sub-step's first Newton iteration
+  bool predictedStart = true;       // Newton starts from x_n + h v_n (StepSettings)
   BackendRequest backend = BackendRequest::Auto;
   bool splitAggregates = true;  // crack-aware coarse levels
 };

@@ -102,6 +102,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   settings_.residualTolerance = scene.solver.residualTolerance;
   settings_.frameBudgetMs = scene.solver.frameBudgetMs;
   settings_.reuseStiffness = scene.solver.reuseStiffness;
+  settings_.predictedStart = scene.solver.predictedStart;
   for (size_t i = 0; i < scene.anchors.size(); ++i) {
     AnchorConstraint a;
     a.vertices = selectAnchorVertices(scene.anchors[i], mesh, scene.file.string(),

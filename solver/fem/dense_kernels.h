@@ -24,6 +24,11 @@ GALSCULPT_HD void subtractMultiply3(const double* a, const double* x, double* y)
   for (int r = 0; r < 3; ++r) y[r] -= a[r] * x[0] + a[r + 3] * x[1] + a[r + 6] * x[2];
 }
 
+// y -= A x for a 3x3 block stored in single precision (the fine smoother's copy).
+GALSCULPT_HD void subtractMultiply3(const float* a, const double* x, double* y) {
+  for (int r = 0; r < 3; ++r) y[r] -= a[r] * x[0] + a[r + 3] * x[1] + a[r + 6] * x[2];
+}
+
 // x = A^-1 b through the cofactors (the CPU smoother's Matrix3d::inverse()).
 GALSCULPT_HD void solve3(const double* a, const double* b, double* x) {
   kernels::M3 m;

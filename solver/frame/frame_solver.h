@@ -59,20 +59,23 @@ struct ElementInputs {
   const kernels::RestData* rest;  // (nTets)
   const double* plasticInverse;   // (9 nTets) or null: elastic
 
-  GALSCULPT_HD void load(int t, const double* y, double x12[12], std::uint8_t& intact,
-                         kernels::RestData& r) const {
+  // The rest data is returned by reference, not copied: an intact element reads 80 of its 416
+  // bytes (copying them all was a seventh of the element pass). `plastic` holds a flowed
+  // element's plastic rest shape.
+  GALSCULPT_HD const kernels::RestData& load(int t, const double* y, double x12[12],
+                                             std::uint8_t& intact,
+                                             kernels::RestData& plastic) const {
     for (int a = 0; a < 4; ++a)
       for (int k = 0; k < 3; ++k) x12[3 * a + k] = y[3 * tetVertices[4 * t + a] + k];
     intact = 0;
     for (int e = 0; e < 6; ++e)
       if (!damaged[tetEdges[6 * t + e]]) intact |= static_cast<std::uint8_t>(1u << e);
-    r = rest[t];
     if (plasticInverse && !isIdentity(plasticInverse + 9 * t)) {
       kernels::M3 f;
       for (int i = 0; i < 9; ++i) f.a[i] = plasticInverse[9 * t + i];
-      kernels::RestData plasticShape;
-      if (kernels::plasticRest(rest[t], f, plasticShape)) r = plasticShape;
+      if (kernels::plasticRest(rest[t], f, plastic)) return plastic;
     }
+    return rest[t];
   }
   GALSCULPT_HD static bool isIdentity(const double* m) {
     for (int c = 0; c < 3; ++c)
@@ -250,8 +253,8 @@ class FrameSolver {
     ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
       double x12[12];
       std::uint8_t intact;
-      kernels::RestData r;
-      in.load(t, y, x12, intact, r);
+      kernels::RestData plasticShape;
+      const kernels::RestData& r = in.load(t, y, x12, intact, plasticShape);
       double hess[144];
       kernels::evaluateElement(model, lame, r, x12, intact, resists, mode, energy[t], eg + 12 * t,
                                hess);
@@ -299,7 +302,8 @@ class FrameSolver {
 
   // An element's 12x12 stiffness is kept as its ten upper 3x3 blocks (a <= c, each column-major):
   // the gathers read 72 contiguous bytes per block and the buffer is 90 doubles per element,
-  // not 144, which is most of what a frame moves through memory.
+  // not 144, which is most of what a frame moves through memory. (Floats were measured: no
+  // faster on the sphere, and they break the exact translation invariance of K.)
   static constexpr int kPackedHessian = 90;
   GALSCULPT_HD static int packedBlock(int a, int c) { return 4 * a - a * (a - 1) / 2 + (c - a); }
   GALSCULPT_HD static void packHessian(const double* h, double* packed) {
@@ -468,6 +472,10 @@ class FrameSolver {
     double lastResidual = 0.0;
     for (int it = 0; it < s.newtonIterations; ++it) {
       const NewtonOutcome n = newtonIteration(h, it, reuse, result);
+      if (n == NewtonOutcome::Restart) {
+        --it;
+        continue;
+      }
       if (n == NewtonOutcome::Failed) {
         result.ok = false;
         return result;
@@ -550,23 +558,45 @@ class FrameSolver {
     double* xn = xn_.data();
     double* vn = vn_.data();
     double* xhat = xhat_.data();
-    const int* anchorVertex = anchorVertices_.data();
-    const double* anchorTarget = anchorTargets_.data();
     ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
       xn[i] = x[i];
       vn[i] = v[i];
       xhat[i] = x[i] + h * v[i];
     });
+    predicted_ = settings_->predictedStart;
+    if (predicted_) ex_.copy(x, xhat, 3 * n_);
+    placeAnchors();
+    frozenIsK_ = true;
+  }
+
+  // Anchored vertices on their paths at the sub-step's end.
+  void placeAnchors() {
+    double* x = x_.data();
+    const int* anchorVertex = anchorVertices_.data();
+    const double* anchorTarget = anchorTargets_.data();
     ex_.forEach(static_cast<int>(anchorCount_), [=] GALSCULPT_LAMBDA(int i) {
       for (int k = 0; k < 3; ++k) x[3 * anchorVertex[i] + k] = anchorTarget[3 * i + k];
     });
-    frozenIsK_ = true;
+  }
+
+  // Newton starts from x_n when the prediction x_n + h v_n turned an intact element inside out
+  // (the line search only refuses steps that invert more: it would keep those).
+  bool dropInvertingPrediction() {
+    if (!predicted_) return false;
+    predicted_ = false;
+    double read[kScalars];
+    ex_.read(scalars_.data(), read, kScalars);
+    if (!(read[kInverted] > 0.0)) return false;
+    ex_.copy(x_.data(), xn_.data(), 3 * n_);
+    placeAnchors();
+    return true;
   }
 
   // Converged: the step was below Newton's step test; Stalled: no step length descends (a
   // failure before any progress, else the end of the iterations, converged only if the
   // residual says so).
-  enum class NewtonOutcome { Continue, Converged, Stalled, Failed };
+  // Restart: the predicted start was dropped, the iteration runs again from x_n.
+  enum class NewtonOutcome { Continue, Converged, Stalled, Failed, Restart };
 
   // One Newton iteration: the step (assembled, solved, measured, its full length tried),
   // shortened while it raises the incremental potential, then accepted.
@@ -589,6 +619,11 @@ class FrameSolver {
                    [&] { newtonStep(it, reuse, result); });
     } else {
       newtonStep(it, reuse, result);
+    }
+    if (it == 0 && dropInvertingPrediction()) {
+      result.msSolve += msSince(t0);
+      if constexpr (Exec::kHostMemory) result.msSolve -= result.msElements - elementsBefore;
+      return NewtonOutcome::Restart;
     }
     ++result.iterations;
     double read[kScalars];
@@ -638,7 +673,8 @@ class FrameSolver {
     if (s.multigrid) {
       if (!reuse) {
         mg_.setFixed(fixed_.data());
-        mg_.refresh(h_.data(), s.multigridSettings.coarseCholesky);
+        // Under PCG the V-cycle only preconditions: its smoother may read floats.
+        mg_.refresh(h_.data(), s.multigridSettings.coarseCholesky, s.multigridSettings.pcg);
       }
       solveLinear();
     } else {
@@ -958,8 +994,8 @@ class FrameSolver {
     ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
       double x12[12];
       std::uint8_t intact;
-      kernels::RestData r;
-      in.load(t, x, x12, intact, r);
+      kernels::RestData plasticShape;
+      const kernels::RestData& r = in.load(t, x, x12, intact, plasticShape);
       kernels::edgeNormalStress(model, lame, r, x12, intact, resists, slot + 6 * t);
     });
     const int* slotStart = edgeSlotStart_.data();
@@ -1199,6 +1235,7 @@ class FrameSolver {
   Clock::time_point frameStart_ = Clock::now();
   std::uint64_t mgRevision_ = 0;  // bumped whenever the hierarchy is uploaded again
   bool plastic_ = false, frozenIsK_ = true;
+  bool predicted_ = false;      // this sub-step's Newton started from x_n + h v_n, not yet checked
   bool plasticFlowed_ = false;  // an element flowed this frame: the plastic state goes back
   template <typename T>
   using Mirror = typename Exec::template Mirror<T>;

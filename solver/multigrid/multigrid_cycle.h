@@ -32,7 +32,7 @@ class MultigridCycle {
   using Buffer = typename Exec::template Buffer<T>;
 
   // `fine`: the model's block pattern, read in place (it must outlive the cycle).
-  MultigridCycle(Exec& ex, const BlockPattern& fine) : ex_(ex) {
+  MultigridCycle(Exec& ex, const BlockPattern& fine) : ex_(ex), finePattern_(fine) {
     rows_ = fine.rows;
     fineRowStart_.mirror(fine.rowStart);
     fineColumns_.mirror(fine.columns);
@@ -46,6 +46,7 @@ class MultigridCycle {
   void upload(const MultigridLayout& m) {
     fineColorStart_ = m.fineColorStart;
     fineColorRows_.upload(m.fineColorRows);
+    uploadSmootherPattern(m.fineColorRows);
     levels_.clear();
     levels_.resize(m.levels.size());
     for (size_t l = 0; l < m.levels.size(); ++l) {
@@ -121,8 +122,10 @@ class MultigridCycle {
   // A_{l+1} = U^T A_l U on every level from the fine matrix (9 doubles per block), the
   // smoothers' diagonal factors, the fragments' and pieces' operators, and (when asked) the
   // coarsest level's dense Cholesky. Returns nothing the host must wait for unless the dense
-  // Cholesky is asked for.
-  void refresh(const double* fine, bool coarseCholesky) {
+  // Cholesky is asked for. `singleSmoother`: the fine smoother reads a float copy of the fine
+  // blocks (smoothFine), for a V-cycle that preconditions CG.
+  void refresh(const double* fine, bool coarseCholesky, bool singleSmoother = false) {
+    refreshSmoother(fine, singleSmoother);
     for (size_t l = 0; l < levels_.size(); ++l) {
       Level& d = levels_[l];
       const double* finer = l == 0 ? fine : levels_[l - 1].blocks.data();
@@ -303,7 +306,7 @@ class MultigridCycle {
     double* ax = l == 0 ? ax_.data() : levels_[l - 1].ax.data();
     if (l == 0) {
       smoothFine(a, b, x, s.preSweeps, false, s);
-      multiplyFine(a, x, ax);
+      multiplySmoother(a, x, ax);
     } else {
       smoothCoarse(l, b, x, s.preSweeps, false, s);
       multiplyCoarse(l - 1, x, ax);
@@ -373,31 +376,141 @@ class MultigridCycle {
     }
   }
 
+  // The fine level's smoother walks the rows in colour order (a colour's sweep streams through
+  // its own rows' blocks). With a single-precision refresh (PCG's preconditioner) it reads a copy
+  // of the off-diagonal blocks rounded to float, which halves what every sweep reads (CG's
+  // products and residuals stay in double); otherwise the fine blocks themselves, in the same
+  // arithmetic as a plain Gauss-Seidel sweep (the paper's V-cycle, which is the whole solve).
+  // `a` is the operator of the last refresh().
   void smoothFine(const double* a, const double* b, double* x, int sweeps, bool reverse,
                   const Settings& s) {
-    const int* rowStart = fineRowStart_.data();
-    const int* columns = fineColumns_.data();
-    const int* diagonal = fineDiagonal_.data();
+    const int* rowStart = smoothRowStart_.data();
+    const int* columns = smoothColumns_.data();
+    const int* source = smoothSource_.data();
+    const float* single = smoothBlocks_.data();
+    const bool inFloat = singleSmoother_;
+    const double* inverse = smoothDiagonalInverse_.data();
+    const int* rowOf = fineColorRows_.data();
+    const int colors = static_cast<int>(fineColorStart_.size()) - 1;
     for (int sweep = 0; sweep < sweeps; ++sweep) {
       if (s.jacobi) {
         double* ax = ax_.data();
-        multiplyFine(a, x, ax);
+        multiplySmoother(a, x, ax);
         const double w = s.jacobiWeight;
-        ex_.forEach(rows_, [=] GALSCULPT_LAMBDA(int r) {
-          double res[3], dx[3];
-          for (int i = 0; i < 3; ++i) res[i] = b[3 * r + i] - ax[3 * r + i];
-          solve3(a + 9 * diagonal[r], res, dx);
-          for (int i = 0; i < 3; ++i) x[3 * r + i] += w * dx[i];
-        });
+        ex_.forEach(
+            rows_,
+            [=] GALSCULPT_LAMBDA(int i) {
+              const int r = rowOf[i];
+              double res[3], dx[3];
+              for (int k = 0; k < 3; ++k) res[k] = b[3 * r + k] - ax[3 * r + k];
+              multiply3(inverse + 9 * i, res, dx);
+              for (int k = 0; k < 3; ++k) x[3 * r + k] += w * dx[k];
+            },
+            16);
         continue;
       }
-      forEachColour(fineColorStart_, fineColorRows_.data(), reverse, [=] GALSCULPT_LAMBDA(int r) {
-        double rhs[3] = {b[3 * r], b[3 * r + 1], b[3 * r + 2]};
-        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
-          if (columns[k] != r) subtractMultiply3(a + 9 * k, x + 3 * columns[k], rhs);
-        solve3(a + 9 * diagonal[r], rhs, x + 3 * r);
+      for (int ci = 0; ci < colors; ++ci) {
+        const int color = reverse ? colors - 1 - ci : ci;
+        const int begin = fineColorStart_[color];
+        ex_.forEach(
+            fineColorStart_[color + 1] - begin,
+            [=] GALSCULPT_LAMBDA(int j) {
+              const int i = begin + j, r = rowOf[i];
+              double rhs[3] = {b[3 * r], b[3 * r + 1], b[3 * r + 2]};
+              for (int k = rowStart[i]; k < rowStart[i + 1]; ++k) {
+                if (inFloat)
+                  subtractMultiply3(single + 9 * static_cast<size_t>(k), x + 3 * columns[k], rhs);
+                else
+                  subtractMultiply3(a + 9 * static_cast<size_t>(source[k]), x + 3 * columns[k],
+                                    rhs);
+              }
+              multiply3(inverse + 9 * i, rhs, x + 3 * r);
+            },
+            kSmootherRowCost);
+      }
+    }
+  }
+
+  // y = A x with the smoother's operator (the V-cycle's residual): the float copy after a
+  // single-precision refresh, the fine blocks otherwise.
+  void multiplySmoother(const double* a, const double* x, double* y) {
+    if (!singleSmoother_) {
+      multiplyFine(a, x, y);
+      return;
+    }
+    const int* rowStart = smoothRowStart_.data();
+    const int* columns = smoothColumns_.data();
+    const float* blocks = smoothBlocks_.data();
+    const double* diagonal = smoothDiagonal_.data();
+    const int* rowOf = fineColorRows_.data();
+    ex_.forEach(
+        rows_,
+        [=] GALSCULPT_LAMBDA(int i) {
+          const int r = rowOf[i];
+          double acc[3];
+          multiply3(diagonal + 9 * i, x + 3 * r, acc);
+          for (int k = 0; k < 3; ++k) acc[k] = -acc[k];
+          for (int k = rowStart[i]; k < rowStart[i + 1]; ++k)
+            subtractMultiply3(blocks + 9 * static_cast<size_t>(k), x + 3 * columns[k], acc);
+          for (int k = 0; k < 3; ++k) y[3 * r + k] = -acc[k];
+        },
+        kSmootherRowCost);
+  }
+
+  // Work of one smoother row (about 14 blocks) for the CPU executor's threading.
+  static constexpr long kSmootherRowCost = 16;
+
+  // The smoother's pattern: row i of the colour order is fine row colorRows[i]; its
+  // off-diagonal blocks with their columns and the fine blocks they copy.
+  void uploadSmootherPattern(const std::vector<int>& colorRows) {
+    const BlockPattern& f = finePattern_;
+    std::vector<int> rowStart(1, 0), columns, source;
+    columns.reserve(f.columns.size());
+    source.reserve(f.columns.size());
+    for (const int r : colorRows) {
+      for (int k = f.rowStart[r]; k < f.rowStart[r + 1]; ++k) {
+        if (f.columns[k] == r) continue;
+        columns.push_back(f.columns[k]);
+        source.push_back(k);
+      }
+      rowStart.push_back(static_cast<int>(columns.size()));
+    }
+    smoothNnz_ = static_cast<int>(columns.size());
+    smoothRowStart_.upload(rowStart);
+    smoothColumns_.upload(columns);
+    smoothSource_.upload(source);
+    smoothBlocks_.resize(9 * static_cast<size_t>(smoothNnz_));
+    smoothDiagonal_.resize(9 * static_cast<size_t>(rows_));
+    smoothDiagonalInverse_.resize(9 * static_cast<size_t>(rows_));
+  }
+
+  // The smoother's diagonal blocks of `a` in colour order with their inverses (the arithmetic of
+  // solve3), and with `single` the off-diagonal blocks rounded to float.
+  void refreshSmoother(const double* a, bool single) {
+    singleSmoother_ = single;
+    if (single) {
+      const int* source = smoothSource_.data();
+      float* blocks = smoothBlocks_.data();
+      ex_.forEach(smoothNnz_, [=] GALSCULPT_LAMBDA(int k) {
+        const double* from = a + 9 * static_cast<size_t>(source[k]);
+        for (int i = 0; i < 9; ++i)
+          blocks[9 * static_cast<size_t>(k) + i] = static_cast<float>(from[i]);
       });
     }
+    const int* rowOf = fineColorRows_.data();
+    const int* diagonalBlock = fineDiagonal_.data();
+    double* diagonal = smoothDiagonal_.data();
+    double* inverse = smoothDiagonalInverse_.data();
+    ex_.forEach(
+        rows_,
+        [=] GALSCULPT_LAMBDA(int i) {
+          kernels::M3 m;
+          const double* from = a + 9 * static_cast<size_t>(diagonalBlock[rowOf[i]]);
+          for (int k = 0; k < 9; ++k) m.a[k] = diagonal[9 * i + k] = from[k];
+          const kernels::M3 inv = kernels::inverse(m);
+          for (int k = 0; k < 9; ++k) inverse[9 * i + k] = inv.a[k];
+        },
+        16);
   }
 
   // Smoothing of the operator of levels_[l - 1] (the rows of vcycle level l).
@@ -739,7 +852,14 @@ class MultigridCycle {
 
  private:
   Exec& ex_;
+  const BlockPattern& finePattern_;
   int rows_ = 0;
+  // The fine smoother's operator in colour order (uploadSmootherPattern, refreshSmoother).
+  int smoothNnz_ = 0;
+  bool singleSmoother_ = false;
+  Buffer<int> smoothRowStart_, smoothColumns_, smoothSource_;
+  Buffer<float> smoothBlocks_;
+  Buffer<double> smoothDiagonal_, smoothDiagonalInverse_;
   typename Exec::template Mirror<int> fineRowStart_, fineColumns_, fineDiagonal_;
   const std::uint8_t* fixed_ = nullptr;  // anchored fine vertices (setFixed)
   std::vector<int> fineColorStart_;

@@ -23,6 +23,7 @@ StepSettings converged() {
   s.newtonIterations = 40;
   s.residualTolerance = 1e-2;
   s.reuseStiffness = true;
+  s.predictedStart = true;
   s.multigridSettings.pcg = true;
   s.multigridSettings.pcgTolerance = 1e-2;
   s.multigridSettings.coarseCholesky = true;
@@ -45,6 +46,8 @@ struct Trajectory {
   SimState state;
   int unconverged = 0;
   double worstResidual = 0.0;
+  int newtonIterations = 0;
+  int cgIterations = 0;
 };
 
 Trajectory simulate(const SimModel& m, SimState s, const StepSettings& settings, int frames) {
@@ -54,6 +57,8 @@ Trajectory simulate(const SimModel& m, SimState s, const StepSettings& settings,
     const StepReport r = cpu.step(s, settings);
     run.unconverged += r.converged ? 0 : 1;
     run.worstResidual = std::max(run.worstResidual, r.residual);
+    run.newtonIterations += r.newtonIterations;
+    run.cgIterations += r.cgIterations;
   }
   run.state = std::move(s);
   return run;
@@ -137,13 +142,65 @@ TEST(ConvergedFrame, AFreeSpinningBodyKeepsItsAngularMomentum) {
   const Trajectory reference = simulate(m, start, referenceSettings(StepSettings{}), 30);
   const Trajectory mg = simulate(m, start, converged(), 30);
   const Vec3 lRef = angularMomentum(reference.state), lMg = angularMomentum(mg.state);
-  std::printf("angular momentum after 30 frames: reference %.4f, converged %.4f of the start\n",
-              lRef.y() / l0.y(), lMg.y() / l0.y());
+  std::printf(
+      "angular momentum after 30 frames: reference %.4f, converged %.4f of the start, "
+      "difference %.2e of it\n",
+      lRef.y() / l0.y(), lMg.y() / l0.y(), (lMg - lRef).norm() / l0.norm());
   EXPECT_EQ(mg.unconverged, 0);
   // Backward Euler's own loss at omega h = 1/30: a few per cent over half a second (at omega h
   // = 0.1 the reference itself kept 79 %).
   EXPECT_GT(lMg.y(), 0.95 * l0.y()) << "keeps 95 % over half a second";
-  EXPECT_LT((lMg - lRef).norm(), 0.01 * l0.norm()) << "as the reference does, within 1 %";
+  EXPECT_NEAR(lMg.y(), lRef.y(), 1e-3 * l0.y()) << "the spin as the reference keeps it";
+  // Backward Euler also tilts the axis (x and z about 4 % of |L| here: y and z are tied
+  // principal axes, so the tilt is neutrally stable); a frame solved to 1 % of its forces
+  // tilts it 1-1.3 % of |L| differently (chord steps from the predicted start: 1.2 %).
+  EXPECT_LT((lMg - lRef).norm(), 0.02 * l0.norm()) << "as the reference does, within 2 %";
+}
+
+// Newton from the inertial prediction x_n + h v_n: a body thrown and spinning through the air
+// starts each frame near its solution, so it needs fewer iterations for the same answer.
+TEST(ConvergedFrame, APredictedStartSavesIterationsForTheSameAnswer) {
+  const SimModel m = buildSimModel(gridBar(4, 2, 2, 0.025), rubber(2e5));
+  SimState start = initialState(m);
+  const Vec3 omega(0.0, 0.0, 6.0), throwVelocity(2.0, 3.0, 0.0);
+  for (int v = 0; v < m.numVertices(); ++v)
+    start.v[v] = throwVelocity + omega.cross(m.mesh.vertices[v] - Vec3(0.05, 0.025, 0.025));
+  const Trajectory reference = simulate(m, start, referenceSettings(StepSettings{}), 20);
+  StepSettings fromRest = converged();
+  fromRest.predictedStart = false;
+  const Trajectory predicted = simulate(m, start, converged(), 20);
+  const Trajectory previous = simulate(m, start, fromRest, 20);
+  std::printf("Newton / CG iterations over 20 frames: from x_n %d / %d, predicted %d / %d\n",
+              previous.newtonIterations, previous.cgIterations, predicted.newtonIterations,
+              predicted.cgIterations);
+  EXPECT_EQ(predicted.unconverged, 0);
+  // Both within 1 % of the reference's motion (0.54 % and 0.2 % at the 1 % force tolerance).
+  EXPECT_LT(relativeError(m, predicted.state, reference.state), 1e-2);
+  EXPECT_LT(relativeError(m, previous.state, reference.state), 1e-2);
+  EXPECT_LT(predicted.newtonIterations, previous.newtonIterations);
+  EXPECT_LE(predicted.cgIterations, previous.cgIterations);
+}
+
+// A prediction that would turn elements inside out (here every one: the velocities reflect the
+// body through its centre within a step) is dropped: the sub-step starts from x_n and gives
+// exactly what it gives without the prediction, right side out.
+TEST(ConvergedFrame, AnInvertingPredictionIsDropped) {
+  const SimModel m = buildSimModel(gridBar(2, 2, 2, 0.05), rubber());
+  SimState start = initialState(m);
+  const Vec3 center(0.05, 0.05, 0.05);
+  const double h = StepSettings{}.dt;
+  for (int v = 0; v < m.numVertices(); ++v)
+    start.v[v] = -(2.0 / h) * (m.mesh.vertices[v] - center);  // x + h v: the point reflection
+  StepSettings fromRest = converged();
+  fromRest.predictedStart = false;
+  const Trajectory predicted = simulate(m, start, converged(), 1);
+  const Trajectory previous = simulate(m, start, fromRest, 1);
+  for (int v = 0; v < m.numVertices(); ++v)
+    EXPECT_EQ(predicted.state.x[v], previous.state.x[v]) << "vertex " << v;
+  for (const Tet& t : m.mesh.tets) {
+    const SimState& s = predicted.state;
+    EXPECT_GT(tetSixVolume(s.x[t[0]], s.x[t[1]], s.x[t[2]], s.x[t[3]]), 0.0);
+  }
 }
 
 // Gravity a million times the earth's on a block resting on the ground: the frames either keep
