@@ -314,7 +314,9 @@ std::vector<BenchScene> benchScenes(const CliArgs& a) {
 }
 
 // The reference, the paper's setting (one linearized step, one V-cycle, 3 sweeps, 20 coarse CG
-// iterations on the scene's grid) and the scene's own setting when it differs; with `cracks`
+// iterations on the scene's grid), the converged default on the scene's grid (so that every
+// scene shows the old setting beside the new default, also one whose own preset is the paper's)
+// and the scene's own setting when it differs from both; with `cracks`
 // the scene's own solver after 0, 10 and 100 random knife cuts; with `sweep` the grid of
 // paper-like settings.
 std::vector<Setting> benchSettings(const SceneDescription& scene, bool cracks, bool sweep) {
@@ -323,10 +325,18 @@ std::vector<Setting> benchSettings(const SceneDescription& scene, bool cracks, b
   Setting paper;
   paper.solver = solverPreset(SolverPreset::Paper);
   paper.solver.grid = scene.solver.grid;
+  Setting converged;
+  converged.solver = solverPreset(SolverPreset::Converged);
+  converged.solver.grid = scene.solver.grid;
   Setting own;
   own.solver = scene.solver;
-  std::vector<Setting> settings = {reference, paper};
-  if (own.solver.preset != SolverPreset::Paper) settings.push_back(own);
+  std::vector<Setting> settings = {reference, paper, converged};
+  auto same = [&](const Setting& s) {
+    SolverDesc a = s.solver, b = own.solver;
+    a.backend = b.backend;  // the backend is --backend's, not part of the setting
+    return a == b;
+  };
+  if (!same(paper) && !same(converged)) settings.push_back(own);
   if (cracks) {
     settings.clear();
     for (int cuts : {0, 10, 100}) {

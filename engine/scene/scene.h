@@ -134,6 +134,8 @@ struct SolverDesc {
   bool predictedStart = true;       // Newton starts from x_n + h v_n (StepSettings)
   BackendRequest backend = BackendRequest::Auto;
   bool splitAggregates = true;  // crack-aware coarse levels
+
+  bool operator==(const SolverDesc&) const = default;
 };
 
 // The solver settings a preset stands for (keys a scene gives override them).

@@ -29,6 +29,7 @@ struct SubstepOutcome {
   int iterations = 0;
   int cgIterations = 0;
   int backtracks = 0;
+  int invertedElements = 0;  // intact elements inside out at the accepted positions
   double residual = 0.0;
   double energy = 0.0;
   double msElements = 0.0, msSolve = 0.0;
@@ -91,6 +92,7 @@ StepReport runFrame(Ops& ops, const StepSettings& settings) {
     report.cgIterations += r.cgIterations;
     report.converged = report.converged && r.converged;
     report.backtracks += r.backtracks;
+    report.invertedElements = r.invertedElements;
     report.residual = r.residual;
     report.elasticEnergy = r.energy;
     report.msElements += r.msElements;

@@ -81,6 +81,10 @@ struct StepReport {
   // step-length test met (nothing left to gain).
   bool converged = true;
   int cgIterations = 0;  // PCG iterations of the frame's linear solves
+  // Intact elements inside out at the frame's end (a warning): Newton's line search refuses
+  // steps that invert more of them, unless no step that descends avoids it (then the body keeps
+  // moving rather than freezing).
+  int invertedElements = 0;
 };
 
 // Elastic energy of positions `x`; the gradient (3 nVerts) and, when `hessian` is given, the

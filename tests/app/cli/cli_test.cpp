@@ -169,7 +169,18 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
       run({"bench", "--scene", "sphere", "--frames", "3", "--json", (dir / "b.json").string()});
   const CliRun cracks =
       run({"bench", "--cracks", "--frames", "2", "--json", (dir / "c.json").string()});
+  // A scene whose own preset is the paper's still gets the converged default beside it.
+  test::writeText(dir / "scenes" / "charpy.json",
+                  std::string(R"({"mesh": {"file": ")") + GALSCULPT_SOURCE_DIR +
+                      R"(/assets/meshes/sphere_small.node"}, "solver": {"preset": "paper"}})");
+  const CliRun paperScene =
+      run({"bench", "--scene", "charpy", "--frames", "2", "--json", (dir / "p.json").string()});
   unsetenv("GALSCULPT_ASSETS");
+  ASSERT_EQ(paperScene.code, kExitOk) << paperScene.err;
+  const auto p = nlohmann::json::parse(test::readText(dir / "p.json"));
+  ASSERT_EQ(p["results"].size(), 3u);
+  EXPECT_EQ(p["results"][1]["preset"], "paper");
+  EXPECT_EQ(p["results"][2]["preset"], "converged");
   ASSERT_EQ(cracks.code, kExitOk) << cracks.err;
   const auto c = nlohmann::json::parse(test::readText(dir / "c.json"));
   ASSERT_EQ(c["results"].size(), 3u);
