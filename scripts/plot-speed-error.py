@@ -29,12 +29,19 @@ def table(rows):
     print("| scene | tets | setting | ms/frame | p95 ms | fps | error in motion % (frame) | "
           "error at end % | Newton / CG per frame | frames not converged |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    seen = set()
     for r in rows:
         ref = r["solver"] == "reference"
+        preset = r.get("preset", "")
+        if not ref and (r["scene"], preset) in seen:
+            setting = f"own ({r.get('newton_iters')} Newton, PCG {r.get('pcg_tolerance')})"
+        else:
+            setting = "reference" if ref else f"{preset} {r['grid']}"
+            seen.add((r["scene"], preset))
         motion = "—" if ref else f"{100 * r['rel_position_error_motion']:.3g} ({r['motion_frame']})"
         end = "—" if ref else f"{100 * r['rel_position_error']:.3g}"
         iters = f"{r['newton_iters_mean']:.2f} / {r['cg_iters_mean']:.1f}"
-        print(f"| {r['scene']} | {r['tets']} | {r['grid'] if not ref else 'reference'} | "
+        print(f"| {r['scene']} | {r['tets']} | {setting} | "
               f"{r['ms_per_frame']:.1f} | {r['ms_p95']:.1f} | {r['fps']:.2f} | {motion} | {end} | "
               f"{iters} | {r['unconverged_frames']} of {r['frames']} |")
 
