@@ -170,6 +170,9 @@ void SculptApp::drawOverlay() {
       ImGui::TextColored(ImVec4(1, 0.35f, 0.2f, 1),
                          "NOT CONVERGED: residual above %.0e of the loads",
                          scene.solver.residualTolerance);
+    if (metrics_.invertedElements > 0)
+      ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "%d elements inside out",
+                         metrics_.invertedElements);
     ImGui::Text("volume change %+.3f %%", metrics_.volumeChangePct);
     ImGui::Text("pieces %d   damaged edges %d   anchored %zu", metrics_.pieces,
                 metrics_.damagedEdges, anchored_.size());

@@ -447,6 +447,7 @@ FrameMetrics Simulation::advance() {
   m.elasticEnergy = r.elasticEnergy;
   m.converged = r.converged;
   m.retries = r.retries;
+  m.invertedElements = r.invertedElements;
   m.warnings = r.retries + (r.converged ? 0 : 1) + (r.invertedElements > 0 ? 1 : 0);
   m.newtonIterations = r.newtonIterations;
   m.cgIterations = r.cgIterations;

@@ -50,6 +50,7 @@ struct FrameMetrics {
   int backtracks = 0;          // Newton steps shortened by the energy guard / line search
   int cgIterations = 0;        // PCG iterations of the frame's linear solves
   int retries = 0;             // rolled-back and halved sub-steps (part of warnings)
+  int invertedElements = 0;    // intact elements inside out at the frame's end (a warning)
   // Whether the frame solved its equations: every sub-step's residual within the solver's
   // tolerance (solver.residual_tolerance). A frame that did not is one warning.
   bool converged = true;
