@@ -580,12 +580,11 @@ class FrameSolver {
   }
 
   // Newton starts from x_n when the prediction x_n + h v_n turned an intact element inside out
-  // (the line search only refuses steps that invert more: it would keep those).
-  bool dropInvertingPrediction() {
+  // (the line search only refuses steps that invert more: it would keep those). `read`: the
+  // scalars after the first Newton step.
+  bool dropInvertingPrediction(const double* read) {
     if (!predicted_) return false;
     predicted_ = false;
-    double read[kScalars];
-    ex_.read(scalars_.data(), read, kScalars);
     if (!(read[kInverted] > 0.0)) return false;
     ex_.copy(x_.data(), xn_.data(), 3 * n_);
     placeAnchors();
@@ -620,13 +619,14 @@ class FrameSolver {
     } else {
       newtonStep(it, reuse, result);
     }
-    if (it == 0 && dropInvertingPrediction()) {
+    double read[kScalars];
+    ex_.read(scalars_.data(), read, kScalars);
+    if (it == 0 && dropInvertingPrediction(read)) {
       result.msSolve += msSince(t0);
       if constexpr (Exec::kHostMemory) result.msSolve -= result.msElements - elementsBefore;
       return NewtonOutcome::Restart;
     }
     ++result.iterations;
-    double read[kScalars];
     const double stepLength = lineSearch(result, read);
     result.msSolve += msSince(t0);
     if constexpr (Exec::kHostMemory) result.msSolve -= result.msElements - elementsBefore;
@@ -692,26 +692,25 @@ class FrameSolver {
   // cost twice the Newton iterations for the same frames).
   static constexpr double kInversionGiveUp = 1e-2;
 
-  // Backtracking on the step evaluated at full length: halves it until the potential drops
-  // (Armijo with the line search, plain decrease without). Returns the accepted length,
-  // something under kShortestStep when none descends, or -1 for NaN; `read` holds the scalars
-  // of the last trial.
+  // Backtracking on the step evaluated at full length (`read`: its scalars, already read):
+  // shortens it (shorterStep) until the potential drops (Armijo with the line search, plain
+  // decrease without) without turning more intact elements inside out. Returns the accepted
+  // length, something under kShortestStep when none descends, or -1 for NaN; `read` holds the
+  // scalars of the last trial.
   double lineSearch(SubstepOutcome& result, double* read) {
     const StepSettings& s = *settings_;
     const double sufficient = s.lineSearch ? 1e-4 : 0.0;
     double stepLength = 1.0;
     double inverting = 0.0;  // the longest length refused only because it inverted elements
-    while (true) {
-      ex_.read(scalars_.data(), read, kScalars);
+    for (;; ex_.read(scalars_.data(), read, kScalars)) {
       if (stepLength == 1.0)
         result.linearResidualReduction =
             s.multigridSettings.pcg ? pcgReduction_
                                     : (read[kR0] > 0.0 ? std::sqrt(read[kR1] / read[kR0]) : 0.0);
       if (read[kBad] > 0.0 || !std::isfinite(read[kElastic])) return -1.0;
       const double e0 = read[kE0], e1 = read[kE1];
-      // Never a step that turns elements inside out (under extreme loads the energy alone may
-      // descend through an inversion): it is shortened, and a sub-step that cannot move
-      // without one fails and is halved (a warning).
+      // A step that turns more elements inside out is shortened (under extreme loads the energy
+      // alone may descend through an inversion), down to kInversionGiveUp (below).
       const bool descends = std::isfinite(e1) && e1 <= e0 + sufficient * stepLength * read[kSlope] +
                                                            1e-12 * std::abs(e0);
       if (descends && read[kTrialInverted] <= read[kInverted]) return stepLength;

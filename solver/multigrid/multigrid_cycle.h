@@ -362,17 +362,17 @@ class MultigridCycle {
   enum PcgScalar { kPcgBb, kPcgRz, kPcgPap, kPcgRr, kPcgScalars };
 
   // Gauss-Seidel order: colour by colour (backwards when reversed, for the symmetric cycle), the
-  // rows of one colour at once (no two share a block).
+  // rows of one colour at once (no two share a block). `update` gets each row's position in the
+  // colour order (colorRows[position] is the row).
   template <typename RowUpdate>
-  void forEachColour(const std::vector<int>& colorStart, const int* colorRows, bool reverse,
-                     const RowUpdate& update, long cost = 1) {
+  void forEachColour(const std::vector<int>& colorStart, bool reverse, const RowUpdate& update,
+                     long cost = 1) {
     const int colors = static_cast<int>(colorStart.size()) - 1;
     for (int ci = 0; ci < colors; ++ci) {
       const int color = reverse ? colors - 1 - ci : ci;
-      const int* rowsOf = colorRows + colorStart[color];
+      const int begin = colorStart[color];
       ex_.forEach(
-          colorStart[color + 1] - colorStart[color],
-          [=] GALSCULPT_LAMBDA(int i) { update(rowsOf[i]); }, cost);
+          colorStart[color + 1] - begin, [=] GALSCULPT_LAMBDA(int j) { update(begin + j); }, cost);
     }
   }
 
@@ -391,7 +391,6 @@ class MultigridCycle {
     const bool inFloat = singleSmoother_;
     const double* inverse = smoothDiagonalInverse_.data();
     const int* rowOf = fineColorRows_.data();
-    const int colors = static_cast<int>(fineColorStart_.size()) - 1;
     for (int sweep = 0; sweep < sweeps; ++sweep) {
       if (s.jacobi) {
         double* ax = ax_.data();
@@ -409,25 +408,20 @@ class MultigridCycle {
             16);
         continue;
       }
-      for (int ci = 0; ci < colors; ++ci) {
-        const int color = reverse ? colors - 1 - ci : ci;
-        const int begin = fineColorStart_[color];
-        ex_.forEach(
-            fineColorStart_[color + 1] - begin,
-            [=] GALSCULPT_LAMBDA(int j) {
-              const int i = begin + j, r = rowOf[i];
-              double rhs[3] = {b[3 * r], b[3 * r + 1], b[3 * r + 2]};
-              for (int k = rowStart[i]; k < rowStart[i + 1]; ++k) {
-                if (inFloat)
-                  subtractMultiply3(single + 9 * static_cast<size_t>(k), x + 3 * columns[k], rhs);
-                else
-                  subtractMultiply3(a + 9 * static_cast<size_t>(source[k]), x + 3 * columns[k],
-                                    rhs);
-              }
-              multiply3(inverse + 9 * i, rhs, x + 3 * r);
-            },
-            kSmootherRowCost);
-      }
+      forEachColour(
+          fineColorStart_, reverse,
+          [=] GALSCULPT_LAMBDA(int i) {
+            const int r = rowOf[i];
+            double rhs[3] = {b[3 * r], b[3 * r + 1], b[3 * r + 2]};
+            for (int k = rowStart[i]; k < rowStart[i + 1]; ++k) {
+              if (inFloat)
+                subtractMultiply3(single + 9 * static_cast<size_t>(k), x + 3 * columns[k], rhs);
+              else
+                subtractMultiply3(a + 9 * static_cast<size_t>(source[k]), x + 3 * columns[k], rhs);
+            }
+            multiply3(inverse + 9 * i, rhs, x + 3 * r);
+          },
+          kSmootherRowCost);
     }
   }
 
@@ -441,14 +435,14 @@ class MultigridCycle {
     const int* rowStart = smoothRowStart_.data();
     const int* columns = smoothColumns_.data();
     const float* blocks = smoothBlocks_.data();
-    const double* diagonal = smoothDiagonal_.data();
+    const int* diagonal = fineDiagonal_.data();
     const int* rowOf = fineColorRows_.data();
     ex_.forEach(
         rows_,
         [=] GALSCULPT_LAMBDA(int i) {
           const int r = rowOf[i];
           double acc[3];
-          multiply3(diagonal + 9 * i, x + 3 * r, acc);
+          multiply3(a + 9 * static_cast<size_t>(diagonal[r]), x + 3 * r, acc);
           for (int k = 0; k < 3; ++k) acc[k] = -acc[k];
           for (int k = rowStart[i]; k < rowStart[i + 1]; ++k)
             subtractMultiply3(blocks + 9 * static_cast<size_t>(k), x + 3 * columns[k], acc);
@@ -480,12 +474,11 @@ class MultigridCycle {
     smoothColumns_.upload(columns);
     smoothSource_.upload(source);
     smoothBlocks_.resize(9 * static_cast<size_t>(smoothNnz_));
-    smoothDiagonal_.resize(9 * static_cast<size_t>(rows_));
     smoothDiagonalInverse_.resize(9 * static_cast<size_t>(rows_));
   }
 
-  // The smoother's diagonal blocks of `a` in colour order with their inverses (the arithmetic of
-  // solve3), and with `single` the off-diagonal blocks rounded to float.
+  // The inverses of the diagonal blocks of `a` in colour order (the arithmetic of solve3), and
+  // with `single` the off-diagonal blocks rounded to float.
   void refreshSmoother(const double* a, bool single) {
     singleSmoother_ = single;
     if (single) {
@@ -499,14 +492,13 @@ class MultigridCycle {
     }
     const int* rowOf = fineColorRows_.data();
     const int* diagonalBlock = fineDiagonal_.data();
-    double* diagonal = smoothDiagonal_.data();
     double* inverse = smoothDiagonalInverse_.data();
     ex_.forEach(
         rows_,
         [=] GALSCULPT_LAMBDA(int i) {
           kernels::M3 m;
           const double* from = a + 9 * static_cast<size_t>(diagonalBlock[rowOf[i]]);
-          for (int k = 0; k < 9; ++k) m.a[k] = diagonal[9 * i + k] = from[k];
+          for (int k = 0; k < 9; ++k) m.a[k] = from[k];
           const kernels::M3 inv = kernels::inverse(m);
           for (int k = 0; k < 9; ++k) inverse[9 * i + k] = inv.a[k];
         },
@@ -537,9 +529,11 @@ class MultigridCycle {
             300);
         continue;
       }
+      const int* colorRows = d.colorRows.data();
       forEachColour(
-          d.colorStart, d.colorRows.data(), reverse,
-          [=] GALSCULPT_LAMBDA(int r) {
+          d.colorStart, reverse,
+          [=] GALSCULPT_LAMBDA(int i) {
+            const int r = colorRows[i];
             double rhs[12];
             for (int j = 0; j < 12; ++j) rhs[j] = b[12 * r + j];
             for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
@@ -859,7 +853,7 @@ class MultigridCycle {
   bool singleSmoother_ = false;
   Buffer<int> smoothRowStart_, smoothColumns_, smoothSource_;
   Buffer<float> smoothBlocks_;
-  Buffer<double> smoothDiagonal_, smoothDiagonalInverse_;
+  Buffer<double> smoothDiagonalInverse_;
   typename Exec::template Mirror<int> fineRowStart_, fineColumns_, fineDiagonal_;
   const std::uint8_t* fixed_ = nullptr;  // anchored fine vertices (setFixed)
   std::vector<int> fineColorStart_;
