@@ -101,6 +101,7 @@ void describeSetting(const Setting& setting, nlohmann::json& r) {
     r["cycles"] = d.cycles;
     r["coarse_solver"] = coarseSolverName(d.coarseSolver);
     r["residual_tolerance"] = d.residualTolerance;
+    r["energy_guard"] = energyGuardName(d.energyGuard);
   }
 }
 
@@ -272,6 +273,8 @@ std::string row(const nlohmann::json& r) {
     if (r.value("cycles", 1) != 1) grid += " c" + std::to_string(r.value("cycles", 1));
     if (r.value("coarse_solver", std::string("cg")) != coarseSolverName(d.coarseSolver))
       grid += " " + r.value("coarse_solver", std::string("cg"));
+    if (r.value("energy_guard", std::string("body")) != energyGuardName(d.energyGuard))
+      grid += " guard:" + r.value("energy_guard", std::string("body"));
   }
   auto percent = [](const nlohmann::json& v) {
     return v.is_number() ? 100.0 * v.get<double>() : -1.0;

@@ -220,6 +220,8 @@ void SculptApp::drawScenePanel() {
   pickEnum("smoother", v.smoother, {Smoother::GaussSeidel, Smoother::Jacobi}, smootherName);
   pickEnum("coarse solver", v.coarseSolver, {CoarseSolver::Cg, CoarseSolver::Cholesky},
            coarseSolverName);
+  pickEnum("energy guard", v.energyGuard, {EnergyGuard::Vertex, EnergyGuard::Body},
+           energyGuardName);
   pickEnum("backend", v.backend, {BackendRequest::Auto, BackendRequest::Cpu, BackendRequest::Cuda},
            backendRequestName);
   if (ImGui::Button("Apply (restarts the simulation)")) applySceneSettings();

@@ -34,6 +34,8 @@ constexpr Named<Smoother> kSmootherNames[] = {{Smoother::GaussSeidel, "gauss_sei
                                               {Smoother::Jacobi, "jacobi"}};
 constexpr Named<CoarseSolver> kCoarseSolverNames[] = {{CoarseSolver::Cg, "cg"},
                                                       {CoarseSolver::Cholesky, "cholesky"}};
+constexpr Named<EnergyGuard> kEnergyGuardNames[] = {{EnergyGuard::Vertex, "vertex"},
+                                                    {EnergyGuard::Body, "body"}};
 constexpr Named<Generator> kGeneratorNames[] = {
     {Generator::Sphere, "sphere"}, {Generator::Charpy, "charpy"}, {Generator::Steak, "steak"}};
 constexpr Named<BackendRequest> kBackendNames[] = {
@@ -247,6 +249,7 @@ SolverDesc readSolver(JsonObject o) {
   s.frameBudgetMs = o.number("frame_budget_ms", s.frameBudgetMs, 0.0, 1e6);
   s.reuseStiffness = o.boolean("reuse_stiffness", s.reuseStiffness);
   s.predictedStart = o.boolean("predicted_start", s.predictedStart);
+  s.energyGuard = readEnum(o, "energy_guard", s.energyGuard, kEnergyGuardNames);
   s.backend = readEnum(o, "backend", s.backend, kBackendNames);
   s.splitAggregates = o.boolean("split_aggregates", s.splitAggregates);
   o.rejectUnknownKeys();
@@ -279,6 +282,9 @@ const char* smootherName(Smoother s) {
 }
 const char* coarseSolverName(CoarseSolver c) {
   return nameOf(kCoarseSolverNames, c);
+}
+const char* energyGuardName(EnergyGuard g) {
+  return nameOf(kEnergyGuardNames, g);
 }
 const char* backendRequestName(BackendRequest b) {
   return nameOf(kBackendNames, b);

@@ -103,6 +103,8 @@ enum class SolverType { Multigrid, Reference };
 enum class SolverPreset { Converged, Paper };
 enum class Smoother { GaussSeidel, Jacobi };
 enum class CoarseSolver { Cg, Cholesky };
+// What a Newton step that raised the potential shortens first (StepSettings::vertexGuard).
+enum class EnergyGuard { Vertex, Body };
 enum class BackendRequest { Auto, Cpu, Cuda };
 
 // Names as written in scene files: "multigrid", "gauss_seidel", "cholesky", "cuda", ...
@@ -110,6 +112,7 @@ const char* solverTypeName(SolverType t);
 const char* solverPresetName(SolverPreset p);
 const char* smootherName(Smoother s);
 const char* coarseSolverName(CoarseSolver c);
+const char* energyGuardName(EnergyGuard g);
 const char* backendRequestName(BackendRequest b);
 // "corotational", "stvk", "stable_neo_hookean".
 const char* materialModelName(MaterialModel m);
@@ -132,6 +135,7 @@ struct SolverDesc {
   double frameBudgetMs = 0.0;       // > 0: Newton stops when a frame has taken this long
   bool reuseStiffness = true;       // chord steps after a sub-step's first Newton iteration
   bool predictedStart = true;       // Newton starts from x_n + h v_n (StepSettings)
+  EnergyGuard energyGuard = EnergyGuard::Body;  // StepSettings::vertexGuard
   BackendRequest backend = BackendRequest::Auto;
   bool splitAggregates = true;  // crack-aware coarse levels
 

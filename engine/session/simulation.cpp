@@ -103,6 +103,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   settings_.frameBudgetMs = scene.solver.frameBudgetMs;
   settings_.reuseStiffness = scene.solver.reuseStiffness;
   settings_.predictedStart = scene.solver.predictedStart;
+  settings_.vertexGuard = scene.solver.energyGuard == EnergyGuard::Vertex;
   for (size_t i = 0; i < scene.anchors.size(); ++i) {
     AnchorConstraint a;
     a.vertices = selectAnchorVertices(scene.anchors[i], mesh, scene.file.string(),
@@ -452,6 +453,7 @@ FrameMetrics Simulation::advance() {
   m.newtonIterations = r.newtonIterations;
   m.cgIterations = r.cgIterations;
   m.backtracks = r.backtracks;
+  m.energyPasses = r.energyPasses;
   Vec3 contact = Vec3::Zero();
   for (const Vec3& f : r.contactForces) contact += f;
   m.contactForceN = contact.norm();
@@ -483,7 +485,7 @@ std::string metricsCsvHeader() {
   return "frame,time_s,ms_total,ms_elements,ms_solve,ms_plastic,ms_other,volume,volume_change_pct,"
          "kinetic_energy,elastic_energy,residual,max_displacement,damaged_edges,pieces,warnings,"
          "newton_iterations,contact_force_n,ms_fracture,opening_m,load_n,backtracks,cg_iterations,"
-         "converged";
+         "converged,energy_passes";
 }
 
 std::string metricsCsvRow(const FrameMetrics& m) {
@@ -494,7 +496,7 @@ std::string metricsCsvRow(const FrameMetrics& m) {
     << ',' << m.maxDisplacement << ',' << m.damagedEdges << ',' << m.pieces << ',' << m.warnings
     << ',' << m.newtonIterations << ',' << m.contactForceN << ',' << m.msFracture << ','
     << m.openingM << ',' << m.loadN << ',' << m.backtracks << ',' << m.cgIterations << ','
-    << (m.converged ? 1 : 0);
+    << (m.converged ? 1 : 0) << ',' << m.energyPasses;
   return s.str();
 }
 

@@ -48,6 +48,7 @@ struct FrameMetrics {
   double openingM = 0.0;       // scene measure.opening: distance change of its two vertices, m
   double loadN = 0.0;          // scene measure.load_collider: that collider's force magnitude, N
   int backtracks = 0;          // Newton steps shortened by the energy guard / line search
+  double energyPasses = 0.0;   // their energy evaluations in whole-body passes (StepReport)
   int cgIterations = 0;        // PCG iterations of the frame's linear solves
   int retries = 0;             // rolled-back and halved sub-steps (part of warnings)
   int invertedElements = 0;    // intact elements inside out at the frame's end (a warning)

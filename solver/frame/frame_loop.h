@@ -29,7 +29,8 @@ struct SubstepOutcome {
   int iterations = 0;
   int cgIterations = 0;
   int backtracks = 0;
-  int invertedElements = 0;  // intact elements inside out at the accepted positions
+  double energyPasses = 0.0;  // StepReport::energyPasses
+  int invertedElements = 0;   // intact elements inside out at the accepted positions
   double residual = 0.0;
   double energy = 0.0;
   double msElements = 0.0, msSolve = 0.0;
@@ -92,6 +93,7 @@ StepReport runFrame(Ops& ops, const StepSettings& settings) {
     report.cgIterations += r.cgIterations;
     report.converged = report.converged && r.converged;
     report.backtracks += r.backtracks;
+    report.energyPasses += r.energyPasses;
     report.invertedElements = r.invertedElements;
     report.residual = r.residual;
     report.elasticEnergy = r.energy;

@@ -123,6 +123,11 @@ class FrameSolver {
     damaged_.resize(edges_);
     elemEnergy_.resize(tets_);
     elemInverted_.resize(tets_);
+    trialEnergy_.resize(tets_);
+    trialInverted_.resize(tets_);
+    guardDirty_.resize(tets_);
+    for (Buffer<double>* b : {&guardLength_, &potentialAtX_, &potentialAtTrial_}) b->resize(n_);
+    guardChanged_.resize(n_);
     elemGrad_.resize(12 * static_cast<size_t>(tets_));
     elemHess_.resize(kPackedHessian * static_cast<size_t>(tets_));
     for (Buffer<double>* b : {&k_, &h_}) b->resize(9 * static_cast<size_t>(blocks_));
@@ -238,11 +243,14 @@ class FrameSolver {
   // into `gradient` (3n) and, with the Hessian, into k_. The total energy goes to scalar slot.
   // The number of intact elements turned inside out (det F <= 0) goes to `invertedSlot`: the
   // line search refuses a step that turns more of them than there were.
+  // At a trial (not withHessian) the per-element energies and inversions go to trialEnergy_ and
+  // trialInverted_, otherwise to elemEnergy_ and elemInverted_. With `only`, just the elements
+  // flagged there are evaluated (the vertex guard's rounds); the others keep their last values.
   void elementPass(const double* y, bool withHessian, double* gradient, int energySlot,
-                   int invertedSlot) {
+                   int invertedSlot, const std::uint8_t* only = nullptr) {
     const ElementInputs in = elementInputs();
-    double* energy = elemEnergy_.data();
-    double* inverted = elemInverted_.data();
+    double* energy = withHessian ? elemEnergy_.data() : trialEnergy_.data();
+    double* inverted = withHessian ? elemInverted_.data() : trialInverted_.data();
     double* eg = elemGrad_.data();
     double* eh = elemHess_.data();
     const MaterialModel model = model_.material.model;
@@ -251,6 +259,7 @@ class FrameSolver {
     const kernels::Hessian mode =
         withHessian ? kernels::Hessian::ProjectedSpd : kernels::Hessian::None;
     ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
+      if (only && !only[t]) return;
       double x12[12];
       std::uint8_t intact;
       kernels::RestData plasticShape;
@@ -373,27 +382,52 @@ class FrameSolver {
         n_, [=] GALSCULPT_LAMBDA(int v) { return perVertex[v]; }, scalars_.data() + energySlot);
   }
 
+  // The terms of the incremental potential that belong to one coordinate: inertia, gravity and
+  // damping (dampedK: beta K0 (y - x_n)).
+  struct DofPotential {
+    const double *xhat, *xn, *mass;
+    double h, alpha, gravity[3];
+    GALSCULPT_HD double operator()(int i, const double* y, const double* dampedK) const {
+      const double m = mass[i / 3];
+      const double g = gravity[i % 3];
+      const double inertia = y[i] - xhat[i], dx = y[i] - xn[i];
+      return 0.5 / (h * h) * inertia * (m * inertia) - m * g * y[i] +
+             0.5 / h * (alpha * dx * (m * dx) + dx * dampedK[i]);
+    }
+  };
+  DofPotential dofPotential() const {
+    return {xhat_.data(),
+            xn_.data(),
+            mass_.data(),
+            h_step_,
+            model_.material.dampingMass,
+            {model_.gravity.x(), model_.gravity.y(), model_.gravity.z()}};
+  }
+
   // The incremental potential at y (elastic and contact energies in slots) into a slot.
   void objective(const double* y, int elasticSlot, int contactSlot, const double* dampedK,
                  int outSlot) {
-    const double* xhat = xhat_.data();
-    const double* xn = xn_.data();
-    const double* mass = mass_.data();
-    const double h = h_step_;
-    const double alpha = model_.material.dampingMass;
-    const double gx = model_.gravity.x(), gy = model_.gravity.y(), gz = model_.gravity.z();
+    const DofPotential dof = dofPotential();
     double* sc = scalars_.data();
     ex_.sum(
-        3 * n_,
-        [=] GALSCULPT_LAMBDA(int i) {
-          const double m = mass[i / 3];
-          const double g = i % 3 == 0 ? gx : (i % 3 == 1 ? gy : gz);
-          const double inertia = y[i] - xhat[i], dx = y[i] - xn[i];
-          return 0.5 / (h * h) * inertia * (m * inertia) - m * g * y[i] +
-                 0.5 / h * (alpha * dx * (m * dx) + dx * dampedK[i]);
-        },
-        sc + outSlot);
+        3 * n_, [=] GALSCULPT_LAMBDA(int i) { return dof(i, y, dampedK); }, sc + outSlot);
     ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { sc[outSlot] += sc[elasticSlot] + sc[contactSlot]; });
+  }
+
+  // Each vertex's share of the incremental potential at y: a quarter of each element energy
+  // around it, its own inertia, gravity, damping and contact terms (they sum to the potential).
+  // `energy`: the elements' energies at y; contactPerVertex_ must be y's.
+  void vertexPotential(const double* y, const double* energy, const double* dampedK, double* out) {
+    const DofPotential dof = dofPotential();
+    const int* vStart = vertexSlotStart_.data();
+    const int* vSlots = vertexSlots_.data();
+    const double* contactEnergy = poses_.empty() ? nullptr : contactPerVertex_.data();
+    ex_.forEach(n_, [=] GALSCULPT_LAMBDA(int v) {
+      double sum = contactEnergy ? contactEnergy[v] : 0.0;
+      for (int i = vStart[v]; i < vStart[v + 1]; ++i) sum += 0.25 * energy[vSlots[i] / 4];
+      for (int k = 0; k < 3; ++k) sum += dof(3 * v + k, y, dampedK);
+      out[v] = sum;
+    });
   }
 
   // g = M (y - xhat)/h^2 + grad - f_ext + (alpha M dx + dampedK)/h (+ contact, already in
@@ -634,10 +668,10 @@ class FrameSolver {
     if (stepLength < kShortestStep)  // no descent: a failure only before any progress
       return result.iterations == 1 ? NewtonOutcome::Failed : NewtonOutcome::Stalled;
     // Accept: the trial just evaluated is the new iterate (its energy and gradient too).
-    double* x = x_.data();
-    const double* delta = delta_.data();
-    ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { x[i] += stepLength * delta[i]; });
+    ex_.copy(x_.data(), trial_.data(), 3 * n_);
     ex_.copy(acceptedGrad_.data(), trialGrad_.data(), 3 * n_);
+    ex_.copy(elemEnergy_.data(), trialEnergy_.data(), tets_);
+    ex_.copy(elemInverted_.data(), trialInverted_.data(), tets_);
     result.energy = read[kTrialElastic];
     // Newton's step test on the full step: a step shortened to nothing says nothing about
     // stationarity (it once flagged the human figure's frozen frames as converged).
@@ -702,6 +736,7 @@ class FrameSolver {
     const double sufficient = s.lineSearch ? 1e-4 : 0.0;
     double stepLength = 1.0;
     double inverting = 0.0;  // the longest length refused only because it inverted elements
+    bool guarded = !s.vertexGuard;
     for (;; ex_.read(scalars_.data(), read, kScalars)) {
       if (stepLength == 1.0)
         result.linearResidualReduction =
@@ -715,6 +750,19 @@ class FrameSolver {
                                                            1e-12 * std::abs(e0);
       if (descends && read[kTrialInverted] <= read[kInverted]) return stepLength;
       if (descends && inverting == 0.0) inverting = stepLength;
+      if (!guarded) {  // the full step failed: shorten it only where the potential rose
+        guarded = true;
+        double full[kScalars];
+        std::copy(read, read + kScalars, full);
+        if (vertexGuard(result, read)) return 1.0;
+        if (read[kGuardSlope] < 0.0 && std::isfinite(read[kE1])) {
+          // Back off the guarded step as a whole: it is the step from here on.
+          foldGuardIntoStep();
+          inverting = 0.0;
+          continue;
+        }
+        std::copy(full, full + kScalars, read);  // back to shortening the whole full step
+      }
       stepLength = shorterStep(stepLength, e0, e1, read);
       ++result.backtracks;
       // An element on the edge of inversion that the solution turns over (a sliver, a plastic
@@ -723,12 +771,140 @@ class FrameSolver {
       // leaves inside out (a warning).
       if (stepLength < kInversionGiveUp && inverting > 0.0) {
         evaluateTrial(inverting);
+        result.energyPasses += 1.0;
         ex_.read(scalars_.data(), read, kScalars);
         return inverting;
       }
       if (stepLength < kShortestStep) return stepLength;
       evaluateTrial(stepLength);
+      result.energyPasses += 1.0;
     }
+  }
+
+  static constexpr int kGuardRounds = 6;
+  static constexpr int kGuardLevels = 24;  // thresholds tried: the excess times 2^-k
+
+  // The vertex guard (StepSettings::vertexGuard), after the full step raised the potential or
+  // turned elements inside out. Each round, the vertices whose share of the potential rose the
+  // most (the fewest whose rises add up to twice the excess over the accepted decrease, found
+  // among thresholds excess 2^-k, or nine tenths of all rises where they add up to less) and those
+  // of elements the trial turned over shorten their own steps: to the minimum of the quadratic
+  // through their share at x, their slope and their share at the trial, kept within a tenth and a
+  // half of their length. Only the elements around them are evaluated again. (A vertex's share may
+  // rise in a good step, its neighbours' falling more: shortening every vertex whose share rose
+  // held back half the clay head.) True when a trial descends (Armijo on the shortened step's
+  // slope) without turning more elements over: trial_ and its scalars (`read`) are then the
+  // accepted step. False leaves the caller to back off the whole step.
+  bool vertexGuard(SubstepOutcome& result, double* read) {
+    const double sufficient = settings_->lineSearch ? 1e-4 : 0.0;
+    double* length = guardLength_.data();
+    double* rise = potentialAtTrial_.data();  // the trial's shares, then their rises
+    const double* atX = potentialAtX_.data();
+    std::uint8_t* changed = guardChanged_.data();
+    std::uint8_t* dirty = guardDirty_.data();
+    const std::uint8_t* fixed = fixed_.data();
+    const double* g = g_.data();
+    const double* delta = delta_.data();
+    const double* x = x_.data();
+    double* trial = trial_.data();
+    const double* invertedAtX = elemInverted_.data();
+    const double* invertedAtTrial = trialInverted_.data();
+    const int* vStart = vertexSlotStart_.data();
+    const int* vSlots = vertexSlots_.data();
+    const int* tv = tetVertices_.data();
+    double* sc = scalars_.data();
+    ex_.forEach(n_, [=] GALSCULPT_LAMBDA(int v) { length[v] = 1.0; });
+    read[kGuardSlope] = read[kSlope];  // the full step's
+    for (int round = 0; round < kGuardRounds; ++round) {
+      // The rises (0 where the vertex cannot move) and, in `changed`, who the trial turned over.
+      vertexPotential(trial, trialEnergy_.data(), tmp_.data(), rise);
+      ex_.forEach(n_, [=] GALSCULPT_LAMBDA(int v) {
+        bool turned = false;
+        for (int i = vStart[v]; i < vStart[v + 1] && !turned; ++i)
+          turned = invertedAtTrial[vSlots[i] / 4] > invertedAtX[vSlots[i] / 4];
+        const bool moves = !fixed[v] && length[v] > 0.0;
+        changed[v] = moves && turned;
+        rise[v] = moves ? fmax(rise[v] - atX[v], 0.0) : 0.0;
+      });
+      const double excess =
+          read[kE1] - read[kE0] - sufficient * read[kGuardSlope] - 1e-12 * std::abs(read[kE0]);
+      double threshold = std::numeric_limits<double>::infinity();  // only the turned over
+      if (excess > 0.0) {
+        for (int k = 0; k < kGuardLevels; ++k) {
+          const double level = std::ldexp(excess, -k);
+          ex_.sum(
+              n_, [=] GALSCULPT_LAMBDA(int v) { return rise[v] > level ? rise[v] : 0.0; },
+              sc + kGuardLevel + k);
+        }
+        ex_.sum(
+            n_, [=] GALSCULPT_LAMBDA(int v) { return rise[v]; }, sc + kGuardLevel + kGuardLevels);
+        double levels[kGuardLevels + 1];
+        ex_.read(sc + kGuardLevel, levels, kGuardLevels + 1);
+        // Twice the excess, or nine tenths of all the rises where they add up to less (a rise
+        // concentrated on one element's four vertices is about the excess itself).
+        const double wanted = std::min(2.0 * excess, 0.9 * levels[kGuardLevels]);
+        threshold = 0.0;  // every rise, if no level gathers enough
+        for (int k = 0; k < kGuardLevels; ++k) {
+          if (levels[k] >= wanted) {
+            threshold = std::ldexp(excess, -k);
+            break;
+          }
+        }
+      }
+      ex_.forEach(n_, [=] GALSCULPT_LAMBDA(int v) {
+        const bool turned = changed[v];
+        changed[v] = 0;
+        if (!turned && !(rise[v] > threshold)) return;
+        double slope = 0.0;  // along this vertex's shortened step
+        for (int k = 0; k < 3; ++k) slope += length[v] * g[3 * v + k] * delta[3 * v + k];
+        const double curvature = rise[v] - slope;
+        // Never to nothing: a vertex held still every iteration would never get there (the
+        // body's backtracking once froze the human figure the same way).
+        double factor = 0.5;
+        if (slope < 0.0 && curvature > 0.0)
+          factor = fmax(0.1, fmin(0.5, -slope / (2.0 * curvature)));
+        else if (!(slope < 0.0))
+          factor = 0.1;  // no descent here
+        length[v] *= factor;
+        changed[v] = 1;
+      });
+      ex_.sum(
+          n_, [=] GALSCULPT_LAMBDA(int v) { return static_cast<double>(changed[v]); }, sc + kCount);
+      ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
+        dirty[t] = changed[tv[4 * t]] | changed[tv[4 * t + 1]] | changed[tv[4 * t + 2]] |
+                   changed[tv[4 * t + 3]];
+      });
+      ex_.forEach(3 * n_,
+                  [=] GALSCULPT_LAMBDA(int i) { trial[i] = x[i] + length[i / 3] * delta[i]; });
+      ex_.sum(
+          tets_, [=] GALSCULPT_LAMBDA(int t) { return static_cast<double>(dirty[t]); },
+          sc + kGuardElements);
+      elementPass(trial, false, trialGrad_.data(), kTrialElastic, kTrialInverted, dirty);
+      dampedProduct(trial, tmp_.data());
+      contact(trial, nullptr, kTrialContact);
+      objective(trial, kTrialElastic, kTrialContact, tmp_.data(), kE1);
+      ex_.sum(
+          3 * n_, [=] GALSCULPT_LAMBDA(int i) { return length[i / 3] * g[i] * delta[i]; },
+          sc + kGuardSlope);
+      ex_.read(scalars_.data(), read, kScalars);
+      ++result.backtracks;
+      result.energyPasses += read[kGuardElements] / std::max(tets_, 1);
+      if (!(read[kCount] > 0.0) || !std::isfinite(read[kE1])) return false;
+      if (read[kE1] <= read[kE0] + sufficient * read[kGuardSlope] + 1e-12 * std::abs(read[kE0]) &&
+          read[kTrialInverted] <= read[kInverted])
+        return true;
+    }
+    return false;
+  }
+
+  // The guarded step (each vertex's length times its Newton step) becomes the step: delta_ and
+  // its slope (kSlope); the trial already evaluated is its full length.
+  void foldGuardIntoStep() {
+    double* delta = delta_.data();
+    const double* length = guardLength_.data();
+    double* sc = scalars_.data();
+    ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { delta[i] *= length[i / 3]; });
+    ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { sc[kSlope] = sc[kGuardSlope]; });
   }
 
   // The next trial length after `length` failed: the minimum of the quadratic through e0, the
@@ -795,6 +971,9 @@ class FrameSolver {
         sc + kBad);
     ex_.maximum(
         3 * n_, [=] GALSCULPT_LAMBDA(int i) { return fabs(delta[i]); }, sc + kDeltaMax);
+    // What the vertex guard compares its trials with (contactPerVertex_ holds x's here).
+    if (settings_->vertexGuard)
+      vertexPotential(x, elemEnergy_.data(), dampedK_.data(), potentialAtX_.data());
   }
 
   // Elastic and contact energies and the potential at x + length delta (slots kTrialElastic,
@@ -1244,7 +1423,10 @@ class FrameSolver {
     kRatio,
     kInverted,
     kTrialInverted,
-    kForceScale,
+    kGuardSlope,
+    kGuardElements,
+    kGuardLevel,
+    kForceScale = kGuardLevel + kGuardLevels + 1,
     kForce,
     kScalars = kForce + 3 * 16
   };
@@ -1278,6 +1460,10 @@ class FrameSolver {
       dampedK_, tmp_, savedX_, savedV_;
   Buffer<double> elemEnergy_, elemInverted_, elemGrad_, elemHess_, k_, frozen_, h_, scalars_,
       contactPerVertex_;
+  // The trial's element energies and inversions (elemEnergy_, elemInverted_: at x), and the
+  // vertex guard's per-vertex step lengths and potentials at x and at the trial.
+  Buffer<double> trialEnergy_, trialInverted_, guardLength_, potentialAtX_, potentialAtTrial_;
+  Buffer<std::uint8_t> guardChanged_, guardDirty_;
   Buffer<double> pcgB_, pcgAp_;  // the linear system's right-hand side and A delta
   Buffer<double> fp_, strain_, savedFp_, savedStrain_;
   Buffer<std::uint8_t> fixed_, damaged_;

@@ -154,6 +154,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "$.solver.smoother: unknown value 'sor' (expected one of: gauss_seidel, jacobi)"},
         BadScene{std::string("{") + kMesh + R"(, "solver": {"backend": "gpu"}})",
                  "$.solver.backend: unknown value 'gpu' (expected one of: auto, cpu, cuda)"},
+        BadScene{std::string("{") + kMesh + R"(, "solver": {"energy_guard": "local"}})",
+                 "$.solver.energy_guard: unknown value 'local' (expected one of: vertex, body)"},
         BadScene{"{\n\"mesh\": {\n\"file\": \"x.node\",\n}\n}", "s.json:4: JSON syntax error"}));
 
 // Settings are parsed once into enums; their names come back as written.
@@ -161,13 +163,17 @@ TEST(Scene, SolverChoicesAreTypedAndKeepTheirNames) {
   test::TempDir dir;
   test::writeText(dir / "s.json", std::string("{") + kMesh + R"(, "material": {"model": "stvk"},
       "solver": {"type": "reference", "smoother": "jacobi", "coarse_solver": "cholesky",
-                 "backend": "cpu"}})");
+                 "backend": "cpu", "energy_guard": "vertex"}})");
   const SceneDescription s = loadScene(dir / "s.json");
   EXPECT_EQ(s.material.model, MaterialModel::StVK);
   EXPECT_EQ(s.solver.type, SolverType::Reference);
   EXPECT_EQ(s.solver.smoother, Smoother::Jacobi);
   EXPECT_EQ(s.solver.coarseSolver, CoarseSolver::Cholesky);
   EXPECT_EQ(s.solver.backend, BackendRequest::Cpu);
+  EXPECT_EQ(s.solver.energyGuard, EnergyGuard::Vertex);
+  EXPECT_STREQ(energyGuardName(EnergyGuard::Body), "body");
+  EXPECT_EQ(solverPreset(SolverPreset::Converged).energyGuard, EnergyGuard::Body);
+  EXPECT_EQ(solverPreset(SolverPreset::Paper).energyGuard, EnergyGuard::Body);
   EXPECT_STREQ(materialModelName(s.material.model), "stvk");
   EXPECT_STREQ(solverTypeName(s.solver.type), "reference");
   EXPECT_STREQ(smootherName(s.solver.smoother), "jacobi");
