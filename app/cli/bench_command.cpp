@@ -102,6 +102,7 @@ void describeSetting(const Setting& setting, nlohmann::json& r) {
     r["coarse_solver"] = coarseSolverName(d.coarseSolver);
     r["residual_tolerance"] = d.residualTolerance;
     r["energy_guard"] = energyGuardName(d.energyGuard);
+    r["stiffness_tolerance"] = d.stiffnessTolerance;
   }
 }
 
@@ -275,6 +276,8 @@ std::string row(const nlohmann::json& r) {
       grid += " " + r.value("coarse_solver", std::string("cg"));
     if (r.value("energy_guard", std::string("body")) != energyGuardName(d.energyGuard))
       grid += " guard:" + r.value("energy_guard", std::string("body"));
+    if (r.value("stiffness_tolerance", 0.0) != d.stiffnessTolerance)
+      grid += " keep:" + nlohmann::json(r.value("stiffness_tolerance", 0.0)).dump();
   }
   auto percent = [](const nlohmann::json& v) {
     return v.is_number() ? 100.0 * v.get<double>() : -1.0;

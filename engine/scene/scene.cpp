@@ -250,6 +250,7 @@ SolverDesc readSolver(JsonObject o) {
   s.reuseStiffness = o.boolean("reuse_stiffness", s.reuseStiffness);
   s.predictedStart = o.boolean("predicted_start", s.predictedStart);
   s.energyGuard = readEnum(o, "energy_guard", s.energyGuard, kEnergyGuardNames);
+  s.stiffnessTolerance = o.number("stiffness_tolerance", s.stiffnessTolerance, 0.0, 0.1);
   s.backend = readEnum(o, "backend", s.backend, kBackendNames);
   s.splitAggregates = o.boolean("split_aggregates", s.splitAggregates);
   o.rejectUnknownKeys();

@@ -51,6 +51,7 @@ SceneDescription editScene(const SceneDescription& base, const SceneSettings& s)
   solver["pcg_tolerance"] = v.pcgTolerance;
   solver["residual_tolerance"] = v.residualTolerance;
   solver["energy_guard"] = energyGuardName(v.energyGuard);
+  solver["stiffness_tolerance"] = v.stiffnessTolerance;
   solver["backend"] = backendRequestName(v.backend);
   j["solver"] = solver;
   return parseScene(j, base.file.parent_path() / (base.file.stem().string() + ".edited.json"));

@@ -29,8 +29,9 @@ struct SubstepOutcome {
   int iterations = 0;
   int cgIterations = 0;
   int backtracks = 0;
-  double energyPasses = 0.0;  // StepReport::energyPasses
-  int invertedElements = 0;   // intact elements inside out at the accepted positions
+  double energyPasses = 0.0;     // StepReport::energyPasses
+  double keptStiffnesses = 0.0;  // StepReport::keptStiffnesses
+  int invertedElements = 0;      // intact elements inside out at the accepted positions
   double residual = 0.0;
   double energy = 0.0;
   double msElements = 0.0, msSolve = 0.0;
@@ -94,6 +95,7 @@ StepReport runFrame(Ops& ops, const StepSettings& settings) {
     report.converged = report.converged && r.converged;
     report.backtracks += r.backtracks;
     report.energyPasses += r.energyPasses;
+    report.keptStiffnesses += r.keptStiffnesses;
     report.invertedElements = r.invertedElements;
     report.residual = r.residual;
     report.elasticEnergy = r.energy;

@@ -53,28 +53,25 @@ inline std::string cudaUnsupportedReason(const SimModel& model, const StepSettin
 // and its rest data (the plastic rest shape where it has flowed). Plain pointers: captured by
 // value into the element, plasticity and fracture launches.
 struct ElementInputs {
-  const int* tetVertices;         // (4 nTets)
-  const int* tetEdges;            // (6 nTets)
-  const std::uint8_t* damaged;    // (nEdges)
-  const kernels::RestData* rest;  // (nTets)
-  const double* plasticInverse;   // (9 nTets) or null: elastic
+  const int* tetVertices;                 // (4 nTets)
+  const int* tetEdges;                    // (6 nTets)
+  const std::uint8_t* damaged;            // (nEdges)
+  const kernels::RestData* rest;          // (nTets)
+  const kernels::RestData* plasticShape;  // (nTets) or null: elastic
+  const std::uint8_t* plasticShaped;      // (nTets): 1 where plasticShape is the rest shape
 
   // The rest data is returned by reference, not copied: an intact element reads 80 of its 416
-  // bytes (copying them all was a seventh of the element pass). `plastic` holds a flowed
-  // element's plastic rest shape.
+  // bytes (copying them all was a seventh of the element pass). A flowed element's plastic rest
+  // shape is computed when it flows (FrameSolver::refreshPlasticShapes), not at every read
+  // (that was a sixth of the clay head's frame).
   GALSCULPT_HD const kernels::RestData& load(int t, const double* y, double x12[12],
-                                             std::uint8_t& intact,
-                                             kernels::RestData& plastic) const {
+                                             std::uint8_t& intact) const {
     for (int a = 0; a < 4; ++a)
       for (int k = 0; k < 3; ++k) x12[3 * a + k] = y[3 * tetVertices[4 * t + a] + k];
     intact = 0;
     for (int e = 0; e < 6; ++e)
       if (!damaged[tetEdges[6 * t + e]]) intact |= static_cast<std::uint8_t>(1u << e);
-    if (plasticInverse && !isIdentity(plasticInverse + 9 * t)) {
-      kernels::M3 f;
-      for (int i = 0; i < 9; ++i) f.a[i] = plasticInverse[9 * t + i];
-      if (kernels::plasticRest(rest[t], f, plastic)) return plastic;
-    }
+    if (plasticShaped && plasticShaped[t]) return plasticShape[t];
     return rest[t];
   }
   GALSCULPT_HD static bool isIdentity(const double* m) {
@@ -128,6 +125,8 @@ class FrameSolver {
     guardDirty_.resize(tets_);
     for (Buffer<double>* b : {&guardLength_, &potentialAtX_, &potentialAtTrial_}) b->resize(n_);
     guardChanged_.resize(n_);
+    stiffnessF_.resize(9 * static_cast<size_t>(tets_));
+    stiffnessFresh_.resize(tets_);
     elemGrad_.resize(12 * static_cast<size_t>(tets_));
     elemHess_.resize(kPackedHessian * static_cast<size_t>(tets_));
     for (Buffer<double>* b : {&k_, &h_}) b->resize(9 * static_cast<size_t>(blocks_));
@@ -155,7 +154,15 @@ class FrameSolver {
     }
     plastic_ = !state.plasticInverse.empty();
     if (plastic_) {
-      uploadIfChanged(state.plasticInverse, hostFp_, fp_);
+      if (plasticShape_.size() != static_cast<size_t>(tets_)) {
+        plasticShape_.resize(tets_);
+        plasticShaped_.resize(tets_);
+        hostFp_.clear();  // the shapes are computed below
+      }
+      if (uploadIfChanged(state.plasticInverse, hostFp_, fp_)) {
+        stiffnessValid_ = false;
+        refreshPlasticShapes(nullptr);
+      }
       uploadIfChanged(state.plasticStrain, hostStrain_, strain_);
       if (savedFp_.size() != fp_.size()) {
         savedFp_.resize(fp_.size());
@@ -231,7 +238,9 @@ class FrameSolver {
     ex_.copy(x_.data(), savedX_.data(), 3 * n_);
     ex_.copy(v_.data(), savedV_.data(), 3 * n_);
     if (plastic_) {
+      stiffnessValid_ = false;  // the kept stiffnesses may be of plastic shapes rolled back
       ex_.copy(fp_.data(), savedFp_.data(), 9 * static_cast<size_t>(tets_));
+      refreshPlasticShapes(nullptr);
       ex_.copy(strain_.data(), savedStrain_.data(), tets_);
     }
     time_ = saved.time;
@@ -258,21 +267,42 @@ class FrameSolver {
     const bool resists = model_.material.compressionResists;
     const kernels::Hessian mode =
         withHessian ? kernels::Hessian::ProjectedSpd : kernels::Hessian::None;
+    // Kept stiffnesses: an element whose deformation gradient moved less than the tolerance
+    // (every entry) since its stiffness was evaluated keeps it (its energy and force are new).
+    // (invalidateKeptStiffness runs first, outside any captured section.)
+    const double keep = withHessian ? settings_->stiffnessTolerance : 0.0;
+    double* keptF = stiffnessF_.data();
+    std::uint8_t* fresh = stiffnessFresh_.data();
     ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
       if (only && !only[t]) return;
       double x12[12];
       std::uint8_t intact;
-      kernels::RestData plasticShape;
-      const kernels::RestData& r = in.load(t, y, x12, intact, plasticShape);
+      const kernels::RestData& r = in.load(t, y, x12, intact);
+      const kernels::M3 f = kernels::deformationGradient(r, x12);
+      kernels::Hessian elementMode = mode;
+      if (keep > 0.0) {
+        // A damaged element's stiffness switches within the crack-contact band (1e-4 of
+        // strain): it is evaluated every time.
+        double moved = intact == kernels::kIntact ? 0.0 : keep + 1.0;
+        for (int i = 0; i < 9; ++i) moved = fmax(moved, fabs(f.a[i] - keptF[9 * t + i]));
+        const bool kept = moved <= keep;  // false for NaN: never evaluated
+        if (kept)
+          elementMode = kernels::Hessian::None;
+        else
+          for (int i = 0; i < 9; ++i) keptF[9 * t + i] = f.a[i];
+        fresh[t] = kept ? 0 : 1;
+      }
       double hess[144];
-      kernels::evaluateElement(model, lame, r, x12, intact, resists, mode, energy[t], eg + 12 * t,
-                               hess);
-      if (withHessian) packHessian(hess, eh + kPackedHessian * static_cast<size_t>(t));
-      inverted[t] = intact == kernels::kIntact &&
-                            kernels::determinant(kernels::deformationGradient(r, x12)) <= 0.0
-                        ? 1.0
-                        : 0.0;
+      kernels::evaluateElement(model, lame, r, x12, intact, resists, elementMode, energy[t],
+                               eg + 12 * t, hess);
+      if (elementMode != kernels::Hessian::None)
+        packHessian(hess, eh + kPackedHessian * static_cast<size_t>(t));
+      inverted[t] = intact == kernels::kIntact && kernels::determinant(f) <= 0.0 ? 1.0 : 0.0;
     });
+    if (keep > 0.0)
+      ex_.sum(
+          tets_, [=] GALSCULPT_LAMBDA(int t) { return fresh[t] ? 0.0 : 1.0; },
+          scalars_.data() + kKept);
     ex_.sum(
         tets_, [=] GALSCULPT_LAMBDA(int t) { return energy[t]; }, scalars_.data() + energySlot);
     ex_.sum(
@@ -291,7 +321,13 @@ class FrameSolver {
     const int* bStart = blockSlotStart_.data();
     const int* bSlots = blockSlots_.data();
     double* kb = k_.data();
+    const std::uint8_t* freshOnly = keep > 0.0 ? fresh : nullptr;
     ex_.forEach(blocks_, [=] GALSCULPT_LAMBDA(int b) {
+      if (freshOnly) {  // a block of kept stiffnesses only is what it was
+        bool any = false;
+        for (int i = bStart[b]; i < bStart[b + 1] && !any; ++i) any = freshOnly[bSlots[i] / 16];
+        if (!any) return;
+      }
       double acc[9] = {};
       for (int i = bStart[b]; i < bStart[b + 1]; ++i) {
         const int slot = bSlots[i], t = slot / 16, a = (slot % 16) / 4, c = slot % 4;
@@ -307,6 +343,32 @@ class FrameSolver {
       }
       for (int i = 0; i < 9; ++i) kb[9 * b + i] = acc[i];
     });
+  }
+
+  // The plastic rest shapes of the elements (all, or those with flowed[t] > 0) from fp_.
+  void refreshPlasticShapes(const double* flowed) {
+    const kernels::RestData* rest = rest_.data();
+    const double* fp = fp_.data();
+    kernels::RestData* shape = plasticShape_.data();
+    std::uint8_t* shaped = plasticShaped_.data();
+    ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
+      if (flowed && !(flowed[t] > 0.0)) return;
+      shaped[t] = 0;
+      if (ElementInputs::isIdentity(fp + 9 * t)) return;
+      kernels::M3 f;
+      for (int i = 0; i < 9; ++i) f.a[i] = fp[9 * t + i];
+      shaped[t] = kernels::plasticRest(rest[t], f, shape[t]) ? 1 : 0;
+    });
+  }
+
+  // Forgets the kept element stiffnesses when they no longer hold (host logic: called before a
+  // Newton step is captured, so a replayed graph never skips or repeats it).
+  void invalidateKeptStiffness() {
+    if (!(settings_->stiffnessTolerance > 0.0) || stiffnessValid_) return;
+    double* keptF = stiffnessF_.data();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) { keptF[9 * t] = nan; });
+    stiffnessValid_ = true;
   }
 
   // An element's 12x12 stiffness is kept as its ten upper 3x3 blocks (a <= c, each column-major):
@@ -325,8 +387,12 @@ class FrameSolver {
   }
 
   ElementInputs elementInputs() const {
-    return {tetVertices_.data(), tetEdges_.data(), damaged_.data(), rest_.data(),
-            plastic_ ? fp_.data() : nullptr};
+    return {tetVertices_.data(),
+            tetEdges_.data(),
+            damaged_.data(),
+            rest_.data(),
+            plastic_ ? plasticShape_.data() : nullptr,
+            plastic_ ? plasticShaped_.data() : nullptr};
   }
 
   // out = beta K0 (y - x_n).
@@ -643,6 +709,7 @@ class FrameSolver {
       mg_.upload(buildMultigridLayout(*multigrid_, model_.pattern));
       ++mgRevision_;
     }
+    invalidateKeptStiffness();
     // The Newton step and its full-length trial: launches only, captured as one graph and
     // replayed, unless a dense Cholesky, PCG or the direct solve needs host reads in between.
     const bool capturable =
@@ -661,6 +728,7 @@ class FrameSolver {
       return NewtonOutcome::Restart;
     }
     ++result.iterations;
+    if (!reuse && s.stiffnessTolerance > 0.0) result.keptStiffnesses += read[kKept];
     const double stepLength = lineSearch(result, read);
     result.msSolve += msSince(t0);
     if constexpr (Exec::kHostMemory) result.msSolve -= result.msElements - elementsBefore;
@@ -1016,6 +1084,7 @@ class FrameSolver {
         static_cast<std::uint32_t>(m.cycles));
     mix(m.jacobi);
     mixDouble(m.jacobiWeight);
+    mixDouble(s.stiffnessTolerance);
     return key;
   }
 
@@ -1118,6 +1187,8 @@ class FrameSolver {
     double* fp = fp_.data();
     double* strain = strain_.data();
     double* flowed = elemEnergy_.data();  // scratch: 1 where the element flowed
+    double* keptF = stiffnessF_.data();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
     const Lame lame = model_.material.lame;
     const kernels::PlasticParamsData params{model_.material.plastic.yieldStress,
                                             model_.material.plastic.hardening};
@@ -1133,10 +1204,13 @@ class FrameSolver {
       kernels::M3 inv;
       for (int i = 0; i < 9; ++i) inv.a[i] = fp[9 * t + i];
       const bool flow = kernels::plasticReturn(lame, params, f, inv, strain[t]);
-      if (flow)
+      if (flow) {
         for (int i = 0; i < 9; ++i) fp[9 * t + i] = inv.a[i];
+        keptF[9 * t] = nan;  // its kept stiffness is of the old rest shape
+      }
       flowed[t] = flow ? 1.0 : 0.0;
     });
+    refreshPlasticShapes(flowed);
     double* sc = scalars_.data();
     ex_.sum(
         tets_, [=] GALSCULPT_LAMBDA(int t) { return flowed[t]; }, sc + kCount);
@@ -1203,8 +1277,7 @@ class FrameSolver {
     ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
       double x12[12];
       std::uint8_t intact;
-      kernels::RestData plasticShape;
-      const kernels::RestData& r = in.load(t, x, x12, intact, plasticShape);
+      const kernels::RestData& r = in.load(t, x, x12, intact);
       kernels::edgeNormalStress(model, lame, r, x12, intact, resists, slot + 6 * t);
     });
     const int* slotStart = edgeSlotStart_.data();
@@ -1425,6 +1498,7 @@ class FrameSolver {
     kTrialInverted,
     kGuardSlope,
     kGuardElements,
+    kKept,
     kGuardLevel,
     kForceScale = kGuardLevel + kGuardLevels + 1,
     kForce,
@@ -1464,8 +1538,18 @@ class FrameSolver {
   // vertex guard's per-vertex step lengths and potentials at x and at the trial.
   Buffer<double> trialEnergy_, trialInverted_, guardLength_, potentialAtX_, potentialAtTrial_;
   Buffer<std::uint8_t> guardChanged_, guardDirty_;
+  // Kept element stiffnesses (StepSettings::stiffnessTolerance): the deformation gradient each
+  // element's stiffness in elemHess_ was evaluated at (NaN: evaluate again), whether this pass
+  // evaluated it, and whether the kept ones are valid at all (not across rolled back plastic
+  // shapes or a plastic state from the host). Damage needs no check: a damaged element is
+  // evaluated every time, and an intact one's stiffness does not depend on its neighbours'.
+  Buffer<double> stiffnessF_;
+  Buffer<std::uint8_t> stiffnessFresh_;
+  bool stiffnessValid_ = false;
   Buffer<double> pcgB_, pcgAp_;  // the linear system's right-hand side and A delta
   Buffer<double> fp_, strain_, savedFp_, savedStrain_;
+  Buffer<kernels::RestData> plasticShape_;  // refreshPlasticShapes
+  Buffer<std::uint8_t> plasticShaped_;
   Buffer<std::uint8_t> fixed_, damaged_;
   Buffer<int> anchorVertices_;
   Buffer<double> anchorTargets_;

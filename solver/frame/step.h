@@ -40,6 +40,13 @@ struct StepSettings {
   // operators) already built while that still halves the residual each iteration: a chord step
   // costs a gradient and a solve, not an assembly, a projection and a Galerkin refresh.
   bool reuseStiffness = false;
+  // > 0: an element keeps the stiffness it was last evaluated with while no entry of its
+  // deformation gradient has moved more than this since (its energy and force are always
+  // evaluated), and the 3x3 blocks made of kept stiffnesses only are not gathered again. Where a
+  // brush deforms a small part of a body the rest costs an energy-and-force evaluation. The
+  // Newton system is then approximate where strains moved less than this; the gradient and the
+  // residual stay exact. 0: every element every time.
+  double stiffnessTolerance = 0.0;
   // Newton starts from the inertial prediction x_n + h v_n instead of x_n: for a body in motion
   // it is much nearer the solution (a free fall is off by h^2 g only), which saves Newton and CG
   // iterations. A prediction that turns any intact element inside out is dropped for x_n. The
@@ -78,6 +85,9 @@ struct StepReport {
   // Energy evaluations of shortened steps, in whole-body passes (a vertex-guard round that
   // evaluates a tenth of the elements counts 0.1).
   double energyPasses = 0.0;
+  // Element stiffnesses kept rather than evaluated (StepSettings::stiffnessTolerance), summed
+  // over the frame's stiffness passes.
+  double keptStiffnesses = 0.0;
   double msElements = 0.0, msSolve = 0.0, msPlastic = 0.0, msTotal = 0.0;
   std::vector<Vec3> contactForces;       // (nColliders) force of each collider on the body, N
   int plasticElements = 0;               // elements that flowed this frame
