@@ -284,8 +284,12 @@ class FrameSolver {
         // A damaged element's stiffness switches within the crack-contact band (1e-4 of
         // strain): it is evaluated every time.
         double moved = intact == kernels::kIntact ? 0.0 : keep + 1.0;
-        for (int i = 0; i < 9; ++i) moved = fmax(moved, fabs(f.a[i] - keptF[9 * t + i]));
-        const bool kept = moved <= keep;  // false for NaN: never evaluated
+        for (int i = 0; i < 9; ++i) {
+          // Not fmax, which drops a NaN: a NaN (never evaluated, flowed) must not be kept.
+          const double d = fabs(f.a[i] - keptF[9 * t + i]);
+          if (!(d <= moved)) moved = d;
+        }
+        const bool kept = moved <= keep;
         if (kept)
           elementMode = kernels::Hessian::None;
         else
