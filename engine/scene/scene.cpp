@@ -275,6 +275,7 @@ SolverDesc solverPreset(SolverPreset preset) {
     s.pcgTolerance = 0.0;
     s.reuseStiffness = false;
     s.predictedStart = false;
+    s.stiffnessTolerance = 0.0;  // every element's stiffness, every step
   }
   return s;
 }

@@ -136,7 +136,7 @@ struct SolverDesc {
   bool reuseStiffness = true;       // chord steps after a sub-step's first Newton iteration
   bool predictedStart = true;       // Newton starts from x_n + h v_n (StepSettings)
   EnergyGuard energyGuard = EnergyGuard::Body;  // StepSettings::vertexGuard
-  double stiffnessTolerance = 0.0;              // StepSettings::stiffnessTolerance
+  double stiffnessTolerance = 1e-3;             // StepSettings::stiffnessTolerance
   BackendRequest backend = BackendRequest::Auto;
   bool splitAggregates = true;  // crack-aware coarse levels
 

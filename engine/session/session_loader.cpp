@@ -10,14 +10,11 @@ namespace fs = std::filesystem;
 
 SceneDescription sceneForMesh(const fs::path& mesh, int importTets) {
   const fs::path absolute = fs::absolute(mesh).lexically_normal();
-  nlohmann::json source = {
-      {"name", mesh.stem().string()},
-      {"material", {{"preset", "clay"}}},
-      {"gravity", {0.0, 0.0, 0.0}},
-      {"damping", {{"mass", 2.0}, {"stiffness", 0.01}}},
-      // Brushes deform a part of the body at a time: the rest keeps its
-      // element stiffnesses (docs/scenes.md, stiffness_tolerance).
-      {"solver", {{"type", "multigrid"}, {"grid", "50/all"}, {"stiffness_tolerance", 1e-3}}}};
+  nlohmann::json source = {{"name", mesh.stem().string()},
+                           {"material", {{"preset", "clay"}}},
+                           {"gravity", {0.0, 0.0, 0.0}},
+                           {"damping", {{"mass", 2.0}, {"stiffness", 0.01}}},
+                           {"solver", {{"type", "multigrid"}, {"grid", "50/all"}}}};
   if (isTetMeshFile(absolute))
     source["mesh"] = {{"file", absolute.string()}};
   else

@@ -40,12 +40,12 @@ struct StepSettings {
   // operators) already built while that still halves the residual each iteration: a chord step
   // costs a gradient and a solve, not an assembly, a projection and a Galerkin refresh.
   bool reuseStiffness = false;
-  // > 0: an element keeps the stiffness it was last evaluated with while no entry of its
-  // deformation gradient has moved more than this since (its energy and force are always
-  // evaluated), and the 3x3 blocks made of kept stiffnesses only are not gathered again. Where a
-  // brush deforms a small part of a body the rest costs an energy-and-force evaluation. The
-  // Newton system is then approximate where strains moved less than this; the gradient and the
-  // residual stay exact. 0: every element every time.
+  // > 0: within a sub-step, an intact element keeps the stiffness of an earlier Newton iteration
+  // while no entry of its deformation gradient has moved more than this since (its energy and
+  // force are always evaluated), and the 3x3 blocks made of kept stiffnesses only are not
+  // gathered again. The Newton system is then approximate where strains moved less than this;
+  // the gradient and the residual stay exact. Nothing is kept across sub-steps: a frame's result
+  // follows from the state alone. 0: every element every time.
   double stiffnessTolerance = 0.0;
   // Newton starts from the inertial prediction x_n + h v_n instead of x_n: for a body in motion
   // it is much nearer the solution (a free fall is off by h^2 g only), which saves Newton and CG

@@ -174,6 +174,8 @@ TEST(Scene, SolverChoicesAreTypedAndKeepTheirNames) {
   EXPECT_STREQ(energyGuardName(EnergyGuard::Body), "body");
   EXPECT_EQ(solverPreset(SolverPreset::Converged).energyGuard, EnergyGuard::Body);
   EXPECT_EQ(solverPreset(SolverPreset::Paper).energyGuard, EnergyGuard::Body);
+  EXPECT_EQ(solverPreset(SolverPreset::Converged).stiffnessTolerance, 1e-3);
+  EXPECT_EQ(solverPreset(SolverPreset::Paper).stiffnessTolerance, 0.0);
   EXPECT_STREQ(materialModelName(s.material.model), "stvk");
   EXPECT_STREQ(solverTypeName(s.solver.type), "reference");
   EXPECT_STREQ(smootherName(s.solver.smoother), "jacobi");
