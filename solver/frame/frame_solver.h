@@ -159,10 +159,7 @@ class FrameSolver {
         plasticShaped_.resize(tets_);
         hostFp_.clear();  // the shapes are computed below
       }
-      if (uploadIfChanged(state.plasticInverse, hostFp_, fp_)) {
-        stiffnessValid_ = false;
-        refreshPlasticShapes(nullptr);
-      }
+      if (uploadIfChanged(state.plasticInverse, hostFp_, fp_)) refreshPlasticShapes(nullptr);
       uploadIfChanged(state.plasticStrain, hostStrain_, strain_);
       if (savedFp_.size() != fp_.size()) {
         savedFp_.resize(fp_.size());
@@ -238,7 +235,6 @@ class FrameSolver {
     ex_.copy(x_.data(), savedX_.data(), 3 * n_);
     ex_.copy(v_.data(), savedV_.data(), 3 * n_);
     if (plastic_) {
-      stiffnessValid_ = false;  // the kept stiffnesses may be of plastic shapes rolled back
       ex_.copy(fp_.data(), savedFp_.data(), 9 * static_cast<size_t>(tets_));
       refreshPlasticShapes(nullptr);
       ex_.copy(strain_.data(), savedStrain_.data(), tets_);
@@ -269,7 +265,7 @@ class FrameSolver {
         withHessian ? kernels::Hessian::ProjectedSpd : kernels::Hessian::None;
     // Kept stiffnesses: an element whose deformation gradient moved less than the tolerance
     // (every entry) since its stiffness was evaluated keeps it (its energy and force are new).
-    // (invalidateKeptStiffness runs first, outside any captured section.)
+    // (beginSubstep marks every record stale: nothing is kept across sub-steps.)
     const double keep = withHessian ? settings_->stiffnessTolerance : 0.0;
     double* keptF = stiffnessF_.data();
     std::uint8_t* fresh = stiffnessFresh_.data();
@@ -360,16 +356,6 @@ class FrameSolver {
       for (int i = 0; i < 9; ++i) f.a[i] = fp[9 * t + i];
       shaped[t] = kernels::plasticRest(rest[t], f, shape[t]) ? 1 : 0;
     });
-  }
-
-  // Forgets the kept element stiffnesses when they no longer hold (host logic: called before a
-  // Newton step is captured, so a replayed graph never skips or repeats it).
-  void invalidateKeptStiffness() {
-    if (!(settings_->stiffnessTolerance > 0.0) || stiffnessValid_) return;
-    double* keptF = stiffnessF_.data();
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) { keptF[9 * t] = nan; });
-    stiffnessValid_ = true;
   }
 
   // An element's 12x12 stiffness is kept as its ten upper 3x3 blocks (a <= c, each column-major):
@@ -668,8 +654,14 @@ class FrameSolver {
     if (predicted_) ex_.copy(x, xhat, 3 * n_);
     // Stiffnesses are kept within a sub-step only: a frame's result must follow from the state
     // alone (a project reopened at any frame runs on identically; kept across frames, the
-    // clay head's frames were 20 % cheaper but a reopened session took another path).
-    stiffnessValid_ = false;
+    // clay head's frames were 20 % cheaper but a reopened session took another path). This also
+    // covers everything that changes a rest shape (plastic flow, a rolled-back or uploaded
+    // plastic state): it happens between sub-steps.
+    if (settings_->stiffnessTolerance > 0.0) {
+      double* keptF = stiffnessF_.data();
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) { keptF[9 * t] = nan; });
+    }
     placeAnchors();
     frozenIsK_ = true;
   }
@@ -714,7 +706,6 @@ class FrameSolver {
       mg_.upload(buildMultigridLayout(*multigrid_, model_.pattern));
       ++mgRevision_;
     }
-    invalidateKeptStiffness();
     // The Newton step and its full-length trial: launches only, captured as one graph and
     // replayed, unless a dense Cholesky, PCG or the direct solve needs host reads in between.
     const bool capturable =
@@ -952,10 +943,7 @@ class FrameSolver {
       ex_.sum(
           tets_, [=] GALSCULPT_LAMBDA(int t) { return static_cast<double>(dirty[t]); },
           sc + kGuardElements);
-      elementPass(trial, false, trialGrad_.data(), kTrialElastic, kTrialInverted, dirty);
-      dampedProduct(trial, tmp_.data());
-      contact(trial, nullptr, kTrialContact);
-      objective(trial, kTrialElastic, kTrialContact, tmp_.data(), kE1);
+      evaluateTrialPositions(dirty);
       ex_.sum(
           3 * n_, [=] GALSCULPT_LAMBDA(int i) { return length[i / 3] * g[i] * delta[i]; },
           sc + kGuardSlope);
@@ -1056,7 +1044,14 @@ class FrameSolver {
     const double* x = x_.data();
     const double* delta = delta_.data();
     ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { trial[i] = x[i] + length * delta[i]; });
-    elementPass(trial, false, trialGrad_.data(), kTrialElastic, kTrialInverted);
+    evaluateTrialPositions(nullptr);
+  }
+
+  // The same at the positions in trial_; with `only`, just the flagged elements evaluated again
+  // (the others unchanged since the last trial: the vertex guard's rounds).
+  void evaluateTrialPositions(const std::uint8_t* only) {
+    const double* trial = trial_.data();
+    elementPass(trial, false, trialGrad_.data(), kTrialElastic, kTrialInverted, only);
     dampedProduct(trial, tmp_.data());
     contact(trial, nullptr, kTrialContact);
     objective(trial, kTrialElastic, kTrialContact, tmp_.data(), kE1);
@@ -1192,8 +1187,6 @@ class FrameSolver {
     double* fp = fp_.data();
     double* strain = strain_.data();
     double* flowed = elemEnergy_.data();  // scratch: 1 where the element flowed
-    double* keptF = stiffnessF_.data();
-    const double nan = std::numeric_limits<double>::quiet_NaN();
     const Lame lame = model_.material.lame;
     const kernels::PlasticParamsData params{model_.material.plastic.yieldStress,
                                             model_.material.plastic.hardening};
@@ -1209,10 +1202,8 @@ class FrameSolver {
       kernels::M3 inv;
       for (int i = 0; i < 9; ++i) inv.a[i] = fp[9 * t + i];
       const bool flow = kernels::plasticReturn(lame, params, f, inv, strain[t]);
-      if (flow) {
+      if (flow)
         for (int i = 0; i < 9; ++i) fp[9 * t + i] = inv.a[i];
-        keptF[9 * t] = nan;  // its kept stiffness is of the old rest shape
-      }
       flowed[t] = flow ? 1.0 : 0.0;
     });
     refreshPlasticShapes(flowed);
@@ -1544,13 +1535,11 @@ class FrameSolver {
   Buffer<double> trialEnergy_, trialInverted_, guardLength_, potentialAtX_, potentialAtTrial_;
   Buffer<std::uint8_t> guardChanged_, guardDirty_;
   // Kept element stiffnesses (StepSettings::stiffnessTolerance): the deformation gradient each
-  // element's stiffness in elemHess_ was evaluated at (NaN: evaluate again), whether this pass
-  // evaluated it, and whether the kept ones are valid at all (only within a sub-step, and not
-  // across rolled back plastic shapes or a plastic state from the host). Damage needs no check: a damaged element is
-  // evaluated every time, and an intact one's stiffness does not depend on its neighbours'.
+  // element's stiffness in elemHess_ was evaluated at in this sub-step (NaN: evaluate again)
+  // and whether this pass evaluated it. Damage needs no check: a damaged element is evaluated
+  // every time, and an intact one's stiffness does not depend on its neighbours'.
   Buffer<double> stiffnessF_;
   Buffer<std::uint8_t> stiffnessFresh_;
-  bool stiffnessValid_ = false;
   Buffer<double> pcgB_, pcgAp_;  // the linear system's right-hand side and A delta
   Buffer<double> fp_, strain_, savedFp_, savedStrain_;
   Buffer<kernels::RestData> plasticShape_;  // refreshPlasticShapes
