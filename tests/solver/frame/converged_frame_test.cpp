@@ -24,6 +24,7 @@ StepSettings converged() {
   s.residualTolerance = 1e-2;
   s.reuseStiffness = true;
   s.predictedStart = true;
+  s.stiffnessTolerance = 1e-3;
   s.multigridSettings.pcg = true;
   s.multigridSettings.pcgTolerance = 1e-2;
   s.multigridSettings.coarseCholesky = true;
@@ -305,6 +306,7 @@ StepSettings tightNewton() {
   StepSettings s = converged();
   s.residualTolerance = 1e-7;
   s.reuseStiffness = false;
+  s.stiffnessTolerance = 0.0;  // the tests below turn it on
   return s;
 }
 
