@@ -31,6 +31,7 @@
 
 #include "solver/fem/collider_kernels.h"
 #include "solver/fem/dense_kernels.h"
+#include "solver/fem/element_lanes.h"
 #include "solver/frame/direct_solver.h"
 #include "solver/frame/frame_loop.h"
 #include "solver/frame/step.h"
@@ -79,6 +80,74 @@ struct ElementInputs {
       for (int r = 0; r < 3; ++r)
         if (m[r + 3 * c] != (r == c ? 1.0 : 0.0)) return false;
     return true;
+  }
+};
+
+// One element pass's inputs and outputs (FrameSolver::elementPass), copied into its kernels.
+struct ElementPass {
+  ElementInputs in;
+  const double* y;
+  double* energy;    // (nTets)
+  double* inverted;  // (nTets) 1 where an intact element is turned inside out
+  double* gradient;  // (12 nTets)
+  double* packedHessian;
+  MaterialModel model;
+  Lame lame;
+  bool resists;
+  kernels::Hessian mode;
+  double keep;               // kept-stiffness tolerance; 0: every stiffness evaluated
+  double* keptF;             // (9 nTets) F where each kept stiffness was evaluated
+  std::uint8_t* fresh;       // (nTets) 1 where the stiffness was evaluated this pass
+  const std::uint8_t* only;  // (nTets) or null: the elements to evaluate
+  static constexpr int kPackedHessian = 90;
+
+  // Loads element t and records whether it is inverted; false when `only` leaves it out.
+  // `elementMode`: the stiffness it needs (none when its kept one will do).
+  GALSCULPT_HD bool prepare(int t, double x12[12], std::uint8_t& intact,
+                            const kernels::RestData*& r, kernels::Hessian& elementMode) const {
+    if (only && !only[t]) return false;
+    r = &in.load(t, y, x12, intact);
+    const kernels::M3 f = kernels::deformationGradient(*r, x12);
+    elementMode = mode;
+    if (keep > 0.0) {
+      // A damaged element's stiffness switches within the crack-contact band (1e-4 of
+      // strain): it is evaluated every time.
+      // Every entry within the tolerance; a NaN record (never evaluated, flowed) fails the
+      // comparison and is evaluated (a running maximum through fmax dropped the NaN).
+      bool kept = intact == kernels::kIntact;
+      for (int i = 0; i < 9; ++i) kept = kept && fabs(f.a[i] - keptF[9 * t + i]) <= keep;
+      if (kept)
+        elementMode = kernels::Hessian::None;
+      else
+        for (int i = 0; i < 9; ++i) keptF[9 * t + i] = f.a[i];
+      fresh[t] = kept ? 0 : 1;
+    }
+    inverted[t] = intact == kernels::kIntact && kernels::determinant(f) <= 0.0 ? 1.0 : 0.0;
+    return true;
+  }
+
+  // Element t by the scalar kernel.
+  GALSCULPT_HD void evaluate(int t, const double x12[12], std::uint8_t intact,
+                             const kernels::RestData& r, kernels::Hessian elementMode) const {
+    double hess[144];
+    kernels::evaluateElement(model, lame, r, x12, intact, resists, elementMode, energy[t],
+                             gradient + 12 * t, hess);
+    if (elementMode != kernels::Hessian::None)
+      pack(hess, packedHessian + kPackedHessian * static_cast<size_t>(t));
+  }
+
+  // An element's 12x12 stiffness is kept as its ten upper 3x3 blocks (a <= c, each
+  // column-major): the gathers read 72 contiguous bytes per block and the buffer is 90 doubles
+  // per element, not 144, which is most of what a frame moves through memory. (Floats were
+  // measured: no faster on the sphere, and they break the exact translation invariance of K.)
+  GALSCULPT_HD static int packedBlock(int a, int c) { return 4 * a - a * (a - 1) / 2 + (c - a); }
+  GALSCULPT_HD static void pack(const double* h, double* packed) {
+    for (int a = 0; a < 4; ++a)
+      for (int c = a; c < 4; ++c) {
+        double* blk = packed + 9 * packedBlock(a, c);
+        for (int j = 0; j < 3; ++j)
+          for (int r = 0; r < 3; ++r) blk[r + 3 * j] = h[(3 * a + r) + 12 * (3 * c + j)];
+      }
   }
 };
 
@@ -267,35 +336,75 @@ class FrameSolver {
     // (every entry) since its stiffness was evaluated keeps it (its energy and force are new).
     // (beginSubstep marks every record stale: nothing is kept across sub-steps.)
     const double keep = withHessian ? settings_->stiffnessTolerance : 0.0;
-    double* keptF = stiffnessF_.data();
-    std::uint8_t* fresh = stiffnessFresh_.data();
-    ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
-      if (only && !only[t]) return;
-      double x12[12];
-      std::uint8_t intact;
-      const kernels::RestData& r = in.load(t, y, x12, intact);
-      const kernels::M3 f = kernels::deformationGradient(r, x12);
-      kernels::Hessian elementMode = mode;
-      if (keep > 0.0) {
-        // A damaged element's stiffness switches within the crack-contact band (1e-4 of
-        // strain): it is evaluated every time.
-        // Every entry within the tolerance; a NaN record (never evaluated, flowed) fails the
-        // comparison and is evaluated (a running maximum through fmax dropped the NaN).
-        bool kept = intact == kernels::kIntact;
-        for (int i = 0; i < 9; ++i) kept = kept && fabs(f.a[i] - keptF[9 * t + i]) <= keep;
-        if (kept)
-          elementMode = kernels::Hessian::None;
-        else
-          for (int i = 0; i < 9; ++i) keptF[9 * t + i] = f.a[i];
-        fresh[t] = kept ? 0 : 1;
+    const ElementPass pass{in,
+                           y,
+                           energy,
+                           inverted,
+                           eg,
+                           eh,
+                           model,
+                           lame,
+                           resists,
+                           mode,
+                           keep,
+                           stiffnessF_.data(),
+                           stiffnessFresh_.data(),
+                           only};
+    bool laned = false;
+    if constexpr (Exec::kHostMemory) {
+      const kernels::LaneKernel lanes =
+          withHessian ? kernels::laneKernel(kernels::chosenLaneBuild()) : nullptr;
+      laned = lanes != nullptr;
+      if (laned) {
+        // Four consecutive elements per item: the intact ones whose stiffness is wanted go
+        // through the SIMD lanes together (element_lanes.h), the rest and those the lanes hand
+        // back through the scalar kernel.
+        const int groups = (tets_ + kernels::kLanes - 1) / kernels::kLanes;
+        const int tets = tets_;
+        ex_.forEach(
+            groups,
+            [=](int g) {
+              kernels::LaneInputs laneIn;
+              kernels::LaneOutputs laneOut;
+              int laneTet[kernels::kLanes];
+              const int end = std::min(tets, kernels::kLanes * (g + 1));
+              for (int t = kernels::kLanes * g; t < end; ++t) {
+                double* x12 = laneIn.x[laneIn.count];
+                std::uint8_t intact;
+                const kernels::RestData* r;
+                kernels::Hessian elementMode;
+                if (!pass.prepare(t, x12, intact, r, elementMode)) continue;
+                if (elementMode != kernels::Hessian::ProjectedSpd || intact != kernels::kIntact) {
+                  pass.evaluate(t, x12, intact, *r, elementMode);
+                  continue;
+                }
+                const int l = laneIn.count++;
+                laneTet[l] = t;
+                laneIn.rest[l] = r;
+                laneOut.energy[l] = energy + t;
+                laneOut.gradient[l] = eg + 12 * t;
+                laneOut.packedHessian[l] = eh + kPackedHessian * static_cast<size_t>(t);
+              }
+              if (laneIn.count == 0) return;
+              const unsigned handedBack = lanes(model, lame, laneIn, laneOut);
+              for (int l = 0; l < laneIn.count; ++l)
+                if (handedBack >> l & 1u)
+                  pass.evaluate(laneTet[l], laneIn.x[l], kernels::kIntact, *laneIn.rest[l],
+                                kernels::Hessian::ProjectedSpd);
+            },
+            kernels::kLanes);
       }
-      double hess[144];
-      kernels::evaluateElement(model, lame, r, x12, intact, resists, elementMode, energy[t],
-                               eg + 12 * t, hess);
-      if (elementMode != kernels::Hessian::None)
-        packHessian(hess, eh + kPackedHessian * static_cast<size_t>(t));
-      inverted[t] = intact == kernels::kIntact && kernels::determinant(f) <= 0.0 ? 1.0 : 0.0;
-    });
+    }
+    if (!laned)
+      ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
+        double x12[12];
+        std::uint8_t intact;
+        const kernels::RestData* r;
+        kernels::Hessian elementMode;
+        if (pass.prepare(t, x12, intact, r, elementMode))
+          pass.evaluate(t, x12, intact, *r, elementMode);
+      });
+    const std::uint8_t* fresh = stiffnessFresh_.data();
     if (keep > 0.0)
       ex_.sum(
           tets_, [=] GALSCULPT_LAMBDA(int t) { return fresh[t] ? 0.0 : 1.0; },
@@ -358,20 +467,8 @@ class FrameSolver {
     });
   }
 
-  // An element's 12x12 stiffness is kept as its ten upper 3x3 blocks (a <= c, each column-major):
-  // the gathers read 72 contiguous bytes per block and the buffer is 90 doubles per element,
-  // not 144, which is most of what a frame moves through memory. (Floats were measured: no
-  // faster on the sphere, and they break the exact translation invariance of K.)
-  static constexpr int kPackedHessian = 90;
-  GALSCULPT_HD static int packedBlock(int a, int c) { return 4 * a - a * (a - 1) / 2 + (c - a); }
-  GALSCULPT_HD static void packHessian(const double* h, double* packed) {
-    for (int a = 0; a < 4; ++a)
-      for (int c = a; c < 4; ++c) {
-        double* blk = packed + 9 * packedBlock(a, c);
-        for (int j = 0; j < 3; ++j)
-          for (int r = 0; r < 3; ++r) blk[r + 3 * j] = h[(3 * a + r) + 12 * (3 * c + j)];
-      }
-  }
+  static constexpr int kPackedHessian = ElementPass::kPackedHessian;
+  GALSCULPT_HD static int packedBlock(int a, int c) { return ElementPass::packedBlock(a, c); }
 
   ElementInputs elementInputs() const {
     return {tetVertices_.data(),

@@ -1,0 +1,80 @@
+#include "solver/fem/element_lanes.h"
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+namespace galsculpt::kernels {
+
+namespace {
+
+bool cpuHasAvx2() {
+#if defined(__x86_64__) || defined(__i386__)
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
+
+LaneBuild fromEnvironment() {
+  const char* wanted = std::getenv("GALSCULPT_ELEMENT_LANES");
+  const LaneBuild best = cpuHasAvx2() ? LaneBuild::Avx2 : LaneBuild::Portable;
+  if (!wanted || !*wanted) return best;
+  if (std::strcmp(wanted, "off") == 0) return LaneBuild::Off;
+  if (std::strcmp(wanted, "portable") == 0) return LaneBuild::Portable;
+  if (std::strcmp(wanted, "avx2") == 0) {
+    if (cpuHasAvx2()) return LaneBuild::Avx2;
+    std::fprintf(stderr,
+                 "galsculpt: GALSCULPT_ELEMENT_LANES=avx2 but this CPU has no AVX2; "
+                 "using the portable lanes\n");
+    return LaneBuild::Portable;
+  }
+  std::fprintf(stderr,
+               "galsculpt: GALSCULPT_ELEMENT_LANES=%s is not one of avx2, portable, off; "
+               "using %s\n",
+               wanted, laneBuildName(best));
+  return best;
+}
+
+// -1 until set: the environment decides.
+std::atomic<int> setBuild{-1};
+
+}  // namespace
+
+LaneBuild chosenLaneBuild() {
+  const int set = setBuild.load(std::memory_order_relaxed);
+  if (set >= 0) return static_cast<LaneBuild>(set);
+  static const LaneBuild fromEnv = fromEnvironment();
+  return fromEnv;
+}
+
+void setLaneBuild(LaneBuild build) {
+  setBuild.store(static_cast<int>(build), std::memory_order_relaxed);
+}
+
+LaneKernel laneKernel(LaneBuild build) {
+  switch (build) {
+    case LaneBuild::Off:
+      return nullptr;
+    case LaneBuild::Portable:
+      return &portable::evaluateIntactLanes;
+    case LaneBuild::Avx2:
+      return cpuHasAvx2() ? &avx2::evaluateIntactLanes : nullptr;
+  }
+  return nullptr;
+}
+
+const char* laneBuildName(LaneBuild build) {
+  switch (build) {
+    case LaneBuild::Off:
+      return "off";
+    case LaneBuild::Portable:
+      return "portable";
+    case LaneBuild::Avx2:
+      return "avx2";
+  }
+  return "?";
+}
+
+}  // namespace galsculpt::kernels

@@ -1,0 +1,61 @@
+// Intact elements evaluated four at a time, one element per SIMD lane: the CPU's fast path for
+// what dominates an element pass, the energy, force and projected stiffness of intact elements.
+//
+// The lanes compute exactly the bits of the scalar kernel (element_kernels.h's evaluateElement
+// with Hessian::ProjectedSpd, then packed): the same algorithm (closed-form eigen-solves, the
+// rotation-variant SVD, the analytic eigensystem of dP/dF), the same operations in the same
+// order, no fused multiply-add. Where the scalar kernel would leave its closed forms (a repeated
+// or zero singular value, a rank-deficient F, an inaccurate reconstruction, the exact rest state)
+// the lane is handed back and the caller evaluates that element with the scalar kernel. So the
+// scalar kernel stays the one definition of the physics (and the one the GPU runs), pinned
+// determinism hashes do not move, and a test compares the two bit for bit.
+//
+// Two builds of the same source: one for AVX2 (four doubles per instruction), chosen at startup
+// where the CPU has it, and a portable one (SSE2 pairs) for every x86-64. The environment
+// variable GALSCULPT_ELEMENT_LANES (avx2, portable, off) overrides the choice, for benchmarks.
+#pragma once
+
+#include "solver/fem/element_kernels.h"
+#include "solver/fem/material_types.h"
+
+namespace galsculpt::kernels {
+
+inline constexpr int kLanes = 4;
+
+struct LaneInputs {
+  int count = 0;                      // lanes in use, 1..kLanes
+  const RestData* rest[kLanes] = {};  // each lane's rest data
+  double x[kLanes][12] = {};          // each lane's corner positions
+};
+
+// Where each lane writes: its energy (J), its force gradient (12) and its stiffness as the ten
+// upper 3x3 blocks (a <= c) of the 12x12, block (a, c) at 9 (4a - a(a-1)/2 + c - a), each
+// column-major: FrameSolver's packed layout.
+struct LaneOutputs {
+  double* energy[kLanes] = {};
+  double* gradient[kLanes] = {};
+  double* packedHessian[kLanes] = {};
+};
+
+// Evaluates the lanes in use; returns the bit mask of those it handed back (not written).
+using LaneKernel = unsigned (*)(MaterialModel, const Lame&, const LaneInputs&, const LaneOutputs&);
+
+enum class LaneBuild { Off, Portable, Avx2 };
+
+// The build for this process: the last setLaneBuild, else the environment's choice, else AVX2
+// where the CPU has it (the portable build otherwise).
+LaneBuild chosenLaneBuild();
+// Process-wide, as the environment variable is (tests compare builds in one process).
+void setLaneBuild(LaneBuild build);
+// The kernel of a build; null for Off, and for Avx2 on a CPU without AVX2.
+LaneKernel laneKernel(LaneBuild build);
+const char* laneBuildName(LaneBuild build);
+
+namespace avx2 {
+unsigned evaluateIntactLanes(MaterialModel, const Lame&, const LaneInputs&, const LaneOutputs&);
+}
+namespace portable {
+unsigned evaluateIntactLanes(MaterialModel, const Lame&, const LaneInputs&, const LaneOutputs&);
+}
+
+}  // namespace galsculpt::kernels

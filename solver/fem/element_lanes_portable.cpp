@@ -1,0 +1,6 @@
+// element_lanes_body.h for any x86-64 (SSE2: the compiler splits each four-double operation in
+// two).
+#include "solver/fem/element_lanes.h"
+
+#define GALSCULPT_LANES_NAMESPACE portable
+#include "solver/fem/element_lanes_body.h"
