@@ -11,8 +11,9 @@
 // determinism hashes do not move, and a test compares the two bit for bit.
 //
 // Two builds of the same source: one for AVX2 (four doubles per instruction), chosen at startup
-// where the CPU has it, and a portable one (SSE2 pairs) for every x86-64. The environment
-// variable GALSCULPT_ELEMENT_LANES (avx2, portable, off) overrides the choice, for benchmarks.
+// where the CPU has it, and a portable one (SSE2 pairs) for every x86-64, slower than the scalar
+// kernel and so never chosen by default (it keeps the lane logic tested on any x86-64). The
+// environment variable GALSCULPT_ELEMENT_LANES (avx2, portable, off) overrides the choice.
 #pragma once
 
 #include "solver/fem/element_kernels.h"
@@ -43,7 +44,7 @@ using LaneKernel = unsigned (*)(MaterialModel, const Lame&, const LaneInputs&, c
 enum class LaneBuild { Off, Portable, Avx2 };
 
 // The build for this process: the last setLaneBuild, else the environment's choice, else AVX2
-// where the CPU has it (the portable build otherwise).
+// where the CPU has it (Off otherwise: the scalar kernel).
 LaneBuild chosenLaneBuild();
 // Process-wide, as the environment variable is (tests compare builds in one process).
 void setLaneBuild(LaneBuild build);

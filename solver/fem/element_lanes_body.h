@@ -69,14 +69,20 @@ void cross(const D x[3], const D y[3], D out[3]) {
   out[2] = x[0] * y[1] - x[1] * y[0];
 }
 
-// closedFormSymmetricEigen; the lanes where it returns false, or takes its exact-multiple-of-
-// identity exit, are cleared from `ok`.
-void closedFormEigen(const Mat& a, D w[3], Mat& q, Mask& ok) {
+bool any(Mask m) {
+  for (int l = 0; l < kLanes; ++l)
+    if (m[l]) return true;
+  return false;
+}
+
+// closedFormSymmetricEigen: returns the lanes where it returns true.
+Mask closedFormEigen(const Mat& a, D w[3], Mat& q) {
   const D shift = (a(0, 0) + a(1, 1) + a(2, 2)) / 3.0;
   Mat b = a;
   for (int i = 0; i < 3; ++i) b(i, i) -= shift;
   const D scale = maxAbs(b);
-  ok &= scale > 0.0;
+  const Mask multipleOfIdentity = scale == 0.0;
+  Mask ok = scale > 0.0;
   const D divisor = select(ok, scale, all(1.0));
   for (D& x : b.a) x /= divisor;
   const D off = b(0, 1) * b(0, 1) + b(0, 2) * b(0, 2) + b(1, 2) * b(1, 2);
@@ -150,9 +156,69 @@ void closedFormEigen(const Mat& a, D w[3], Mat& q, Mask& ok) {
           q(r, 0) * w[0] * q(c, 0) + q(r, 1) * w[1] * q(c, 1) + q(r, 2) * w[2] * q(c, 2);
       ok &= absolute(value - a(r, c)) <= tolerance;
     }
+  // The scalar code's early exit for a multiple of the identity.
+  for (int i = 0; i < 3; ++i) w[i] = select(multipleOfIdentity, shift, w[i]);
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r)
+      q(r, c) = select(multipleOfIdentity, all(r == c ? 1.0 : 0.0), q(r, c));
+  return ok | multipleOfIdentity;
 }
 
-// rotationVariantSvd where its first, closed-form attempt is accurate.
+// symmetricEigen (cyclic Jacobi) in the lanes of `active`: each lane rotates exactly as the
+// scalar loop would and stops where it breaks.
+void jacobiEigen(const Mat& input, D w[3], Mat& q, Mask active) {
+  D a[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) a[r][c] = 0.5 * (input(r, c) + input(c, r));
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) q(r, c) = all(r == c ? 1.0 : 0.0);
+  Mask running = active;
+  for (int sweep = 0; sweep < 32; ++sweep) {
+    const D off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+    const D diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
+    running &= (off > 1e-34 * diag) & (off > 1e-300);
+    if (!any(running)) break;
+    for (int pair = 0; pair < 3; ++pair) {
+      const int p = pair == 2 ? 1 : 0, k = pair == 0 ? 1 : 2;
+      const D apk = a[p][k];
+      const Mask rotate = running & (apk != 0.0);
+      const D theta = (a[k][k] - a[p][p]) / (2.0 * select(rotate, apk, all(1.0)));
+      const D tNear =
+          select(theta >= 0.0, all(1.0), all(-1.0)) / (absolute(theta) + root(theta * theta + 1.0));
+      const D t = select(absolute(theta) > 1e150, 0.5 / theta, tNear);
+      const D c = 1.0 / root(t * t + 1.0), s = t * c;
+      for (int i = 0; i < 3; ++i) {  // A <- A J
+        const D aip = a[i][p], aik = a[i][k];
+        a[i][p] = select(rotate, c * aip - s * aik, aip);
+        a[i][k] = select(rotate, s * aip + c * aik, aik);
+      }
+      for (int i = 0; i < 3; ++i) {  // A <- J^T A
+        const D api = a[p][i], aki = a[k][i];
+        a[p][i] = select(rotate, c * api - s * aki, api);
+        a[k][i] = select(rotate, s * api + c * aki, aki);
+      }
+      for (int i = 0; i < 3; ++i) {  // Q <- Q J
+        const D qip = q(i, p), qik = q(i, k);
+        q(i, p) = select(rotate, c * qip - s * qik, qip);
+        q(i, k) = select(rotate, s * qip + c * qik, qik);
+      }
+    }
+  }
+  for (int i = 0; i < 3; ++i) w[i] = a[i][i];
+}
+
+// fastSymmetricEigen: the closed form where accurate, Jacobi in the other lanes of `inUse`.
+void fastEigen(const Mat& a, D w[3], Mat& q, Mask inUse) {
+  const Mask jacobi = ~closedFormEigen(a, w, q) & inUse;
+  if (!any(jacobi)) return;
+  D wj[3];
+  Mat qj;
+  jacobiEigen(a, wj, qj, jacobi);
+  for (int i = 0; i < 3; ++i) w[i] = select(jacobi, wj[i], w[i]);
+  for (int i = 0; i < 9; ++i) q.a[i] = select(jacobi, qj.a[i], q.a[i]);
+}
+
+// rotationVariantSvd where its first attempt (fastSymmetricEigen of F^T F) reproduces F.
 void svd(const Mat& f, Mat& u, D s[3], Mat& v, Mask& ok) {
   Mat normal;
   for (int c = 0; c < 3; ++c)
@@ -160,7 +226,7 @@ void svd(const Mat& f, Mat& u, D s[3], Mat& v, Mask& ok) {
       normal(r, c) = f(0, r) * f(0, c) + f(1, r) * f(1, c) + f(2, r) * f(2, c);
   D w[3];
   Mat q;
-  closedFormEigen(normal, w, q, ok);
+  fastEigen(normal, w, q, ok);
   // Descending eigenvalues: the scalar code's selection sort as compare-exchanges.
   const int pairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
   for (const auto& pair : pairs) {
@@ -393,7 +459,7 @@ unsigned evaluateIntactLanes(MaterialModel model, const Lame& lame, const LaneIn
   {
     D w[3];
     Mat q;
-    closedFormEigen(e.hessian, w, q, ok);
+    fastEigen(e.hessian, w, q, ok);
     for (int m = 0; m < 3; ++m) {
       const D d[3] = {q(0, m), q(1, m), q(2, m)};
       visit(w[m], scaledProduct(u, d, v));

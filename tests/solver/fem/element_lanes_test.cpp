@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -47,7 +49,7 @@ std::vector<LaneBuild> builds() {
 }
 
 // A random element: a random rest tet (positive volume) and a deformation of it, mild to
-// severe, some turned inside out.
+// severe, some turned inside out, or a rigid motion, or none.
 struct Element {
   RestData rest;
   double x[12];
@@ -62,8 +64,22 @@ std::vector<Element> randomElements(int count, unsigned seed) {
     for (double& v : p) v = 0.01 * n(gen);
     Element e;
     if (!computeRest(p, e.rest) || e.rest.volume < 1e-9) continue;
-    const double amount = std::array<double, 4>{0.01, 0.1, 0.4, 1.0}[out.size() % 4];
-    for (int i = 0; i < 12; ++i) e.x[i] = 3.0 * p[i] + 0.01 * amount * n(gen) + 0.5;
+    const int kind = static_cast<int>(out.size()) % 6;
+    if (kind < 4) {  // deformed, mildly to severely (some inside out)
+      const double amount = std::array<double, 4>{0.01, 0.1, 0.4, 1.0}[kind];
+      for (int i = 0; i < 12; ++i) e.x[i] = 3.0 * p[i] + 0.01 * amount * n(gen) + 0.5;
+    } else {  // moved rigidly (F a rotation to round-off), or at rest (F = I)
+      const Eigen::Matrix3d r =
+          kind == 4
+              ? Eigen::Quaterniond(n(gen), n(gen), n(gen), n(gen)).normalized().toRotationMatrix()
+              : Eigen::Matrix3d::Identity();
+      const Eigen::Vector3d shift =
+          kind == 4 ? Eigen::Vector3d(n(gen), n(gen), n(gen)) : Eigen::Vector3d::Zero();
+      for (int a = 0; a < 4; ++a) {
+        const Eigen::Vector3d y = r * Eigen::Vector3d(p[3 * a], p[3 * a + 1], p[3 * a + 2]) + shift;
+        for (int k = 0; k < 3; ++k) e.x[3 * a + k] = y[k];
+      }
+    }
     out.push_back(e);
   }
   return out;
@@ -122,25 +138,23 @@ TEST(ElementLanes, ComputeTheScalarKernelsBitsForTheElementsTheyTake) {
     for (MaterialModel model : {MaterialModel::StableNeoHookean, MaterialModel::StVK}) {
       int back = 0;
       compareWithScalar(build, model, elements, back);
-      // The closed forms fail only near repeated singular values: rare in random elements.
+      // Only what the scalar kernel's accurate SVD must redo goes back: rare.
       EXPECT_LT(back, 40) << laneBuildName(build) << " hands back too much";
     }
-    // The corotational singular-value Hessian (lambda 11^T + 2 mu I) has a repeated eigenvalue:
-    // its closed form is never accurate, every lane goes back (and is evaluated as before).
+    // The corotational singular-value Hessian (lambda 11^T + 2 mu I) has a repeated
+    // eigenvalue: the lanes take it through their Jacobi sweeps, as the scalar kernel does.
     int back = 0;
     compareWithScalar(build, MaterialModel::Corotational, elements, back);
-    EXPECT_EQ(back, 4000);
+    EXPECT_LT(back, 40) << laneBuildName(build);
   }
 }
 
 TEST(ElementLanes, HandBackTheElementsTheClosedFormsCannotTake) {
   std::vector<Element> elements = randomElements(4, 5);
-  // The rest state (F = I exactly: F^T F a multiple of the identity), a NaN corner and a tet
-  // collapsed onto a line (rank-one F) go back; a tet flattened into a plane (rank two, a zero
-  // singular value the closed forms resolve) is taken, with the scalar kernel's bits.
-  double p[12] = {0, 0, 0, 0.01, 0, 0, 0, 0.01, 0, 0, 0, 0.01};
-  ASSERT_TRUE(computeRest(p, elements[0].rest));
-  std::memcpy(elements[0].x, p, sizeof p);
+  // All corners at one point (F = 0), a NaN corner and a tet collapsed onto a line (rank-one F)
+  // go back; a tet flattened into a plane (rank two, a zero singular value the closed forms
+  // resolve) is taken, with the scalar kernel's bits.
+  for (int i = 0; i < 12; ++i) elements[0].x[i] = 0.5;
   elements[1].x[4] = std::numeric_limits<double>::quiet_NaN();
   for (int a = 0; a < 4; ++a) elements[2].x[3 * a] = elements[2].x[3 * a + 2] = 0.25;
   for (int a = 0; a < 4; ++a) elements[3].x[3 * a + 2] = 0.25;
