@@ -93,6 +93,8 @@ struct FractureDesc {
   bool compressionResists = true;     // damaged edges still resist compression
   int iterations = 1;                 // solves per step while edges keep breaking
   double compressiveThreshold = 0.0;  // Pa, edges crushed beyond it break too (0: never)
+  // A piece holding less than this fraction of the body's rest volume is debris (metrics).
+  double debrisFraction = 0.01;
 };
 
 // The solver's choices, parsed once from their names (scene files, the command line, the Scene

@@ -51,7 +51,14 @@ struct FrameMetrics {
   double energyPasses = 0.0;   // their energy evaluations in whole-body passes (StepReport)
   int cgIterations = 0;        // PCG iterations of the frame's linear solves
   int retries = 0;             // rolled-back and halved sub-steps (part of warnings)
-  int invertedElements = 0;    // intact elements inside out at the frame's end (a warning)
+  // Pieces under fracture.debris_fraction of the body's rest volume (a piece's rest volume is
+  // its vertices' corner cells', what its surface encloses at rest: docs/surface.md), the rest
+  // volume they hold (% of the body's), and pieces whose surface encloses no positive volume
+  // now (inside out as a whole).
+  int debrisPieces = 0;
+  double debrisVolumePct = 0.0;
+  int invertedPieces = 0;
+  int invertedElements = 0;  // intact elements inside out at the frame's end (a warning)
   // Whether the frame solved its equations: every sub-step's residual within the solver's
   // tolerance (solver.residual_tolerance). A frame that did not is one warning.
   bool converged = true;
@@ -105,6 +112,13 @@ class Simulation {
   std::vector<int> verticesNear(const Vec3& center, double radius) const;
   // The vertex nearest to `point` at the current positions.
   int nearestVertex(const Vec3& point) const;
+  // The pieces now: how many, the debris among them and the rest volume it holds (% of the
+  // body's), and how many enclose no positive volume (FrameMetrics' columns).
+  struct PieceStats {
+    int pieces = 1, debrisPieces = 0, invertedPieces = 0;
+    double debrisVolumePct = 0.0, volume = 0.0;
+  };
+  PieceStats pieceStats();
   // A representative vertex of the piece (part joined by undamaged edges) `vertex` lies in.
   int pieceOf(int vertex) const { return pieceOfVertex_[vertex]; }
   // Per vertex, for the views: the fraction of its edges that are damaged, and the largest
@@ -158,6 +172,15 @@ class Simulation {
   std::vector<char> countedTets_;
   std::vector<int> pieceOfVertex_;  // a representative vertex of each vertex's piece
   int pieces_ = 1;
+  std::vector<int> pieceNumber_;  // each vertex's piece, numbered 0 .. pieces_ - 1
+  int debrisPieces_ = 0;
+  double debrisRestVolume_ = 0.0;
+  double bodyRestVolume_ = 0.0;  // every tet's, damaged or not
+  double debrisFraction_ = 0.01;
+  // Pieces whose closed surface (the visualization surface, brought up to date) encloses no
+  // positive volume; 0 while the body is one piece (no surface is built for it).
+  int invertedPieces() const;
+  double debrisVolumePercent() const;
   std::vector<int> openingVertices_;  // measure.opening: the two probed vertices
   int loadCollider_ = -1;
   double restVolume_ = 0.0;

@@ -67,6 +67,7 @@ TEST(Scene, FractureThresholdDefaultsToTheMaterialPreset) {
   EXPECT_GT(materialPreset("flesh").yieldStress, 0.0) << "ductile: plastic before it breaks";
   EXPECT_LT(materialPreset("flesh").yieldStress, materialPreset("flesh").fractureThreshold);
   EXPECT_DOUBLE_EQ(flesh.fracture.threshold, 1234.0);
+  EXPECT_DOUBLE_EQ(steel.fracture.debrisFraction, 0.01) << "debris: under 1 % of the body";
   EXPECT_TRUE(steel.solver.splitAggregates);
   EXPECT_FALSE(flesh.solver.splitAggregates);
 }
@@ -141,6 +142,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{std::string("{") + kMesh +
                      R"(, "material": {"fracture_threshold": 0}, "fracture": {"enabled": true}})",
                  "$.fracture.threshold: must be positive when fracture is enabled"},
+        BadScene{std::string("{") + kMesh + R"(, "fracture": {"debris_fraction": 1.5}})",
+                 "$.fracture.debris_fraction: must be at most 1"},
         BadScene{std::string("{") + kMesh + R"(, "time_step": "fast"})",
                  "$.time_step: expected a number, got string"},
         BadScene{std::string("{") + kMesh + R"(, "gravty": [0, -9.81, 0]})",

@@ -268,5 +268,61 @@ TEST(Simulation, ACutClayHalfPulledAwayLeavesTheOtherHalfAsItIs) {
   EXPECT_LT(moved, 1e-6) << "the near half, free but for its anchored end, stays as it is";
 }
 
+// The metrics' piece columns: a cap cut free and a loose vertex are debris (their corner cells'
+// rest volume counted, the body's not), and the cap mirrored through its cut encloses negative
+// volume: an inverted piece.
+TEST(Simulation, PieceStatsCountDebrisAndInvertedPieces) {
+  test::TempDir dir;
+  const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + R"(,
+    "material": {"preset": "rubber"},
+    "fracture": {"enabled": false, "debris_fraction": 0.2}})");
+  Simulation sim(scene, loadSceneMesh(scene));
+  Simulation::PieceStats stats = sim.pieceStats();
+  EXPECT_EQ(stats.pieces, 1);
+  EXPECT_EQ(stats.debrisPieces, 0);
+  EXPECT_EQ(stats.invertedPieces, 0);
+  EXPECT_EQ(stats.debrisVolumePct, 0.0);
+
+  const SimModel& m = sim.model();
+  const auto& rest = m.mesh.vertices;
+  double top = -1e9, bottom = 1e9;
+  int lowest = 0;
+  for (int v = 0; v < m.numVertices(); ++v) {
+    top = std::max(top, rest[v].y());
+    if (rest[v].y() < bottom) bottom = rest[v].y(), lowest = v;
+  }
+  const double cut = top - 0.25 * (top - bottom);
+  auto inCap = [&](int v) { return rest[v].y() > cut; };
+  SimulationSnapshot snap = sim.snapshot();
+  for (int e = 0; e < m.numEdges(); ++e) {
+    const int a = m.edges[e][0], b = m.edges[e][1];
+    if (inCap(a) != inCap(b) || a == lowest || b == lowest) snap.damaged[e] = 1;
+  }
+  // A piece's volume is its vertices' corner cells': a quarter of each tet per corner.
+  double debrisVolume = 0.0, body = 0.0;
+  for (int t = 0; t < m.numTets(); ++t) {
+    body += m.rest[t].volume;
+    for (int v : m.mesh.tets[t])
+      if (inCap(v) || v == lowest) debrisVolume += 0.25 * m.rest[t].volume;
+  }
+  for (int v = 0; v < m.numVertices(); ++v)
+    if (inCap(v)) snap.x[v].y() = 2.0 * cut - rest[v].y();  // mirrored: every cap tet inside out
+  sim.restore(snap);
+  stats = sim.pieceStats();
+  ASSERT_EQ(stats.pieces, countDamagePieces(m, sim.state()));
+  EXPECT_EQ(stats.pieces, 3) << "the body, the cap and the loose vertex";
+  EXPECT_EQ(stats.debrisPieces, 2);
+  EXPECT_GT(debrisVolume, 0.0);
+  EXPECT_NEAR(stats.debrisVolumePct, 100.0 * debrisVolume / body, 1e-9);
+  EXPECT_LT(stats.debrisVolumePct, 20.0);
+  EXPECT_EQ(stats.invertedPieces, 1);
+  // The frame's metrics carry the same piece columns.
+  const FrameMetrics frame = sim.advance();
+  EXPECT_EQ(frame.pieces, 3);
+  EXPECT_EQ(frame.debrisPieces, 2);
+  EXPECT_NEAR(frame.debrisVolumePct, stats.debrisVolumePct, 1e-12);
+  EXPECT_EQ(frame.invertedPieces, sim.pieceStats().invertedPieces);
+}
+
 }  // namespace
 }  // namespace galsculpt
