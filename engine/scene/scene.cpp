@@ -229,6 +229,7 @@ FractureDesc readFracture(JsonObject o) {
   f.compressionResists = o.boolean("compression_resists", true);
   f.iterations = o.integer("iterations", 1, 1, 100);
   f.compressiveThreshold = o.number("compressive_threshold", 0.0, 0.0, 1e13);
+  f.criticalFraction = o.number("critical_fraction", 0.0, 0.0, 1.0);
   f.debrisFraction = o.number("debris_fraction", f.debrisFraction, 0.0, 1.0);
   o.rejectUnknownKeys();
   return f;

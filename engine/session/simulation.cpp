@@ -141,6 +141,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     f.thresholdJitter = scene.fracture.thresholdJitter;
     f.seed = scene.fracture.seed;
     f.compressiveThreshold = scene.fracture.compressiveThreshold;
+    f.criticalFraction = scene.fracture.criticalFraction;
     model_.fracture = buildFractureField(model_, f);
     settings_.fractureIterations = scene.fracture.iterations;
   }

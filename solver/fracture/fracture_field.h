@@ -19,6 +19,13 @@ struct FractureSettings {
   // Pa; > 0: an edge also breaks when compressed beyond it (crushing, shear lips). 0: never;
   // the paper's criterion is tension only.
   double compressiveThreshold = 0.0;
+  // In (0, 1]: of the edges past their threshold in one pass, only those whose criticality (the
+  // larger of stress / threshold and compression / compressive threshold) is within this
+  // fraction of the largest break; the others wait for the re-solve with the new damage
+  // (StepSettings::fractureIterations) or the next sub-step, so a crack advances from its most
+  // critical edges and unloads the rest instead of everything past the threshold breaking at
+  // once. 0: every edge past its threshold breaks (the paper's pass).
+  double criticalFraction = 0.0;
 };
 
 // Per-edge thresholds, the element slots around each edge, and a uniform grid of rest edge

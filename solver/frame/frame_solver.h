@@ -1335,6 +1335,23 @@ class FrameSolver {
     std::uint8_t* breaks = breaks_.data();
     double* ratio = mean_.data();
     double* sc = scalars_.data();
+    const FractureSettings& settings = model_.fracture.settings;
+    if (settings.criticalFraction > 0.0) {
+      // The most critical breaks first (fracture_field.h).
+      const double* compression = compression_.data();
+      const double crush = settings.compressiveThreshold;
+      auto criticality = [=] GALSCULPT_LAMBDA(int e) {
+        const double crushed = crush > 0.0 ? -compression[e] / crush : 0.0;
+        return breaks[e] ? fmax(ratio[e], crushed) : -kInf;
+      };
+      ex_.maximum(edges, criticality, sc + kCritical);
+      double most = 0.0;
+      ex_.read(sc + kCritical, &most, 1);
+      const double below = settings.criticalFraction * most;
+      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
+        if (breaks[e] && !(criticality(e) >= below)) breaks[e] = 0;
+      });
+    }
     ex_.maximum(
         edges, [=] GALSCULPT_LAMBDA(int e) { return ratio[e]; }, sc + kRatio);
     ex_.sum(
@@ -1587,6 +1604,7 @@ class FrameSolver {
     kPap,
     kCount,
     kRatio,
+    kCritical,
     kInverted,
     kTrialInverted,
     kGuardSlope,

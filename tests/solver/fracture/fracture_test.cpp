@@ -196,6 +196,38 @@ TEST(Fracture, IterationsLetACrackRunWithinAStep) {
   EXPECT_GT(many, one) << "damage in the first breaking frame";
 }
 
+// The most critical breaks first: in the first breaking frame only the edges within the
+// fraction of the largest stress ratio break (fraction 1: the one most critical edge); the
+// others carry on, and the bar still parts in the end. Settings outside [0, 1] are refused.
+TEST(Fracture, CriticalFractionBreaksTheMostCriticalEdgesFirst) {
+  auto run = [](double fraction, int iterations, int& firstDamage, int& pieces) {
+    FractureSettings f{2.0e4, 0.0, 0.2, 1};  // jittered thresholds: the grid bar has no ties
+    f.criticalFraction = fraction;
+    TensionCase c = tensionCase(0.0, f);
+    StepSettings st = referenceSettings(StepSettings{});
+    st.fractureIterations = iterations;
+    firstDamage = 0;
+    for (int frame = 1; frame <= 75; ++frame) {
+      const StepReport r = step(c.model, c.state, st);
+      if (firstDamage == 0) firstDamage = r.newlyDamaged;
+    }
+    pieces = countDamagePieces(c.model, c.state);
+  };
+  int allFirst = 0, allPieces = 0, oneFirst = 0, onePieces = 0, runFirst = 0, runPieces = 0;
+  run(0.0, 1, allFirst, allPieces);
+  run(1.0, 1, oneFirst, onePieces);
+  // One edge per solve: the crack runs through re-solves with each new damage.
+  run(1.0, 30, runFirst, runPieces);
+  EXPECT_GT(allFirst, 1) << "all past the threshold at once";
+  EXPECT_GE(allPieces, 2);
+  EXPECT_EQ(oneFirst, 1) << "only the most critical edge";
+  EXPECT_GE(runFirst, 1);
+  EXPECT_GE(runPieces, 2) << "the bar still parts";
+  FractureSettings bad{2.0e4, 0.0, 0.0, 1};
+  bad.criticalFraction = 1.5;
+  EXPECT_THROW(buildFractureField(barModel(), bad), std::invalid_argument);
+}
+
 // Crushing: squeezed edges break only when a compressive threshold is set (the paper's
 // criterion is tension only).
 TEST(Fracture, CompressiveThresholdCrushesSqueezedEdges) {
