@@ -93,7 +93,7 @@ struct FractureDesc {
   bool compressionResists = true;     // damaged edges still resist compression
   int iterations = 1;                 // solves per step while edges keep breaking
   double compressiveThreshold = 0.0;  // Pa, edges crushed beyond it break too (0: never)
-  double criticalFraction = 0.0;  // (0, 1]: the most critical breaks first (0: all at once)
+  double criticalFraction = 0.0;      // (0, 1]: the most critical breaks first (0: all at once)
   // A piece holding less than this fraction of the body's rest volume is debris (metrics).
   double debrisFraction = 0.01;
 };
