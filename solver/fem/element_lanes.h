@@ -2,11 +2,12 @@
 // what dominates an element pass, the energy, force and projected stiffness of intact elements.
 //
 // The lanes compute exactly the bits of the scalar kernel (element_kernels.h's evaluateElement
-// with Hessian::ProjectedSpd, then packed): the same algorithm (closed-form eigen-solves, the
-// rotation-variant SVD, the analytic eigensystem of dP/dF), the same operations in the same
-// order, no fused multiply-add. Where the scalar kernel would leave its closed forms (a repeated
-// or zero singular value, a rank-deficient F, an inaccurate reconstruction, the exact rest state)
-// the lane is handed back and the caller evaluates that element with the scalar kernel. So the
+// with Hessian::ProjectedSpd, then packed): the same algorithm (closed-form eigen-solves and,
+// where those are not accurate, the same cyclic Jacobi sweeps; the rotation-variant SVD; the
+// analytic eigensystem of dP/dF), the same operations in the same order, no fused multiply-add;
+// transcendental calls go to libm lane by lane. Where the scalar kernel would turn to its
+// accurate SVD (a rank-deficient F, factors that do not reproduce F) or F is not finite, the
+// lane is handed back and the caller evaluates that element with the scalar kernel. So the
 // scalar kernel stays the one definition of the physics (and the one the GPU runs), pinned
 // determinism hashes do not move, and a test compares the two bit for bit.
 //

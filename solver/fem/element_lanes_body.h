@@ -3,8 +3,9 @@
 //
 // Every expression mirrors element_kernels.h's scalar code operation by operation (same
 // operands, same order), so each lane rounds exactly as the scalar kernel does; branches become
-// per-lane selections, and the scalar code's exits from its closed forms become lanes handed
-// back. Nothing here may call an inline function of another header: this file is compiled with
+// per-lane selections, loops that stop early run until every lane has stopped (each lane
+// keeping its values from where it stopped), and the scalar code's turn to its accurate SVD
+// becomes a lane handed back. Nothing here may call an inline function of another header: this file is compiled with
 // instruction sets the rest of the program does not assume, and the linker could keep such a
 // copy for everyone.
 #include <cmath>
@@ -419,7 +420,7 @@ unsigned evaluateIntactLanes(MaterialModel model, const Lame& lame, const LaneIn
       f(r, c) =
           ds(r, 0) * dmInverse(0, c) + ds(r, 1) * dmInverse(1, c) + ds(r, 2) * dmInverse(2, c);
   // Lanes with a NaN, an infinity or a huge entry go to the scalar kernel (the selections
-  // above assume ordered, finite numbers).
+  // below assume ordered, finite numbers).
   for (const D& v : f.a) ok &= absolute(v) < 1e100;
   // shapeGradients.
   D c[4][3];
