@@ -175,9 +175,9 @@ void Simulation::updatePieces() {
   countedTets_.assign(model_.numTets(), 1);
   restVolume_ = 0.0;
   bodyRestVolume_ = 0.0;
-  // Each piece's volume is that of its vertices' corner cells (docs/surface.md): a quarter of
-  // every tet around each of its vertices, spanning tets included, which is what its closed
-  // surface encloses (a corner cell is an affine image of its tet). Pieces numbered compactly.
+  // Each piece's rest volume is that of its vertices' corner cells (docs/surface.md): a quarter
+  // of every tet around each of its vertices, spanning tets included, which is what its closed
+  // surface encloses at rest. Pieces numbered compactly, 0 .. pieces_ - 1.
   pieceNumber_.assign(model_.numVertices(), -1);
   int count = 0;
   for (int v = 0; v < model_.numVertices(); ++v) {
