@@ -240,7 +240,6 @@ Simulation::PieceStats Simulation::pieceStats() {
   p.pieces = pieces_;
   p.debrisPieces = debrisPieces_;
   p.debrisVolumePct = debrisVolumePercent();
-  p.volume = currentVolume();
   p.invertedPieces = invertedPieces();
   return p;
 }

@@ -116,7 +116,7 @@ class Simulation {
   // body's), and how many enclose no positive volume (FrameMetrics' columns).
   struct PieceStats {
     int pieces = 1, debrisPieces = 0, invertedPieces = 0;
-    double debrisVolumePct = 0.0, volume = 0.0;
+    double debrisVolumePct = 0.0;
   };
   PieceStats pieceStats();
   // A representative vertex of the piece (part joined by undamaged edges) `vertex` lies in.

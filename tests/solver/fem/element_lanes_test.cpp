@@ -12,20 +12,12 @@
 #include <random>
 #include <vector>
 
+#include "solver/frame/frame_solver.h"
 #include "solver/frame/step.h"
 #include "tests/test_util.h"
 
 namespace galsculpt::kernels {
 namespace {
-
-void pack(const double* h, double* packed) {
-  for (int a = 0; a < 4; ++a)
-    for (int c = a; c < 4; ++c) {
-      double* blk = packed + 9 * (4 * a - a * (a - 1) / 2 + (c - a));
-      for (int j = 0; j < 3; ++j)
-        for (int r = 0; r < 3; ++r) blk[r + 3 * j] = h[(3 * a + r) + 12 * (3 * c + j)];
-    }
-}
 
 struct Scalar {
   double energy, gradient[12], packed[90];
@@ -37,7 +29,7 @@ Scalar scalarElement(MaterialModel model, const Lame& lame, const RestData& rest
   double h[144];
   evaluateElement(model, lame, rest, x, kIntact, true, Hessian::ProjectedSpd, out.energy,
                   out.gradient, h);
-  pack(h, out.packed);
+  ElementPass::pack(h, out.packed);  // the frame's packing, which the lanes write directly
   return out;
 }
 
