@@ -187,6 +187,7 @@ MotionDesc readMotion(JsonObject o) {
     if (m.axis.norm() < 1e-12) o.fail("axis", "must not be zero");
     m.axis.normalize();
     m.angularVelocity = o.requiredNumber("angular_velocity", -1e6, 1e6);
+    m.mass = o.number("mass", 0.0, 0.0, 1e9);
   }
   o.rejectUnknownKeys();
   return m;
@@ -215,6 +216,12 @@ ColliderDesc readCollider(JsonObject o) {
   }
   c.friction = o.number("friction", 0.0, 0.0, 10.0);
   if (o.has("motion")) c.motion = readMotion(o.object("motion"));
+  if (c.motion.mass > 0.0) {
+    if (c.type == ColliderDesc::Type::Plane) o.fail("motion", "a plane cannot be a rigid pendulum");
+    const Eigen::Vector3d arm = c.center - c.motion.pivot;
+    if ((arm - c.motion.axis * c.motion.axis.dot(arm)).norm() < 1e-9)
+      o.fail("motion", "a rigid pendulum's centre must lie off its axis (it has no inertia)");
+  }
   o.rejectUnknownKeys();
   return c;
 }

@@ -69,7 +69,8 @@ struct MotionDesc {
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // Linear, m/s
   Eigen::Vector3d pivot = Eigen::Vector3d::Zero();     // Pendulum
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
-  double angularVelocity = 0.0;  // rad/s
+  double angularVelocity = 0.0;  // rad/s (at time 0 for a rigid pendulum)
+  double mass = 0.0;             // Pendulum: kg, > 0 a rigid pendulum (ColliderMotion::mass)
 };
 
 struct ColliderDesc {

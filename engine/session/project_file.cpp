@@ -83,6 +83,10 @@ void writeProject(const fs::path& file, const SceneDescription& scene, const Sim
   h["scene_file"] = scene.file.generic_string();
   h["frame"] = state.frame;
   h["time"] = state.time;
+  nlohmann::json colliders = nlohmann::json::array();
+  for (const ColliderState& c : state.colliders)
+    colliders.push_back({{"angle", c.angle}, {"angular_velocity", c.angularVelocity}});
+  h["colliders"] = colliders;
   h["vertices"] = model.numVertices();
   h["tets"] = model.numTets();
   h["edges"] = model.numEdges();
@@ -315,6 +319,23 @@ Project readProject(const fs::path& file) {
   SimulationSnapshot& s = p.state;
   s.frame = o.integer("frame", 0, 0, 2000000000);
   s.time = o.number("time", 0.0, 0.0, 1e12);
+  // Rigid pendulums' states (files written before they existed: the colliders' initial states).
+  const auto colliders = o.array("colliders");
+  if (o.has("colliders") && colliders.size() != p.scene.colliders.size())
+    o.fail("colliders", "holds " + std::to_string(colliders.size()) + " states; the scene has " +
+                            std::to_string(p.scene.colliders.size()) + " colliders");
+  for (size_t i = 0; i < p.scene.colliders.size(); ++i) {
+    const MotionDesc& motion = p.scene.colliders[i].motion;
+    ColliderState c;
+    c.angularVelocity = motion.type == MotionDesc::Type::Pendulum ? motion.angularVelocity : 0.0;
+    if (i < colliders.size()) {
+      JsonObject j(colliders[i], o.childPath("colliders") + "[" + std::to_string(i) + "]", name);
+      c.angle = j.number("angle", 0.0, -1e9, 1e9);
+      c.angularVelocity = j.number("angular_velocity", c.angularVelocity, -1e9, 1e9);
+      j.rejectUnknownKeys();
+    }
+    s.colliders.push_back(c);
+  }
   const int nv = o.integer("vertices", 0, 4, 2000000000);
   const int nt = o.integer("tets", 0, 1, 2000000000);
   const int ne = o.integer("edges", 0, 6, 2000000000);

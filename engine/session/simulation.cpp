@@ -68,6 +68,7 @@ Collider colliderFromScene(const ColliderDesc& d) {
   c.motion.pivot = d.motion.pivot;
   c.motion.axis = d.motion.axis;
   c.motion.angularVelocity = d.motion.angularVelocity;
+  c.motion.mass = d.motion.mass;
   return c;
 }
 
@@ -116,6 +117,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   }
   for (const ColliderDesc& c : scene.colliders) {
     model_.colliders.push_back(colliderFromScene(c));
+    state_.colliders.push_back(initialColliderState(model_.colliders.back()));
     if (c.friction > 0.0 && notes_.empty())
       notes_.push_back("collider friction is not modelled yet: contacts are frictionless");
   }
@@ -364,6 +366,7 @@ SimulationSnapshot Simulation::snapshot() const {
   s.crossing = state_.crossing;
   s.plasticInverse = state_.plasticInverse;
   s.plasticStrain = state_.plasticStrain;
+  s.colliders = state_.colliders;
   s.time = state_.time;
   s.frame = frame_;
   s.anchors = state_.anchors;
@@ -378,7 +381,7 @@ void Simulation::restore(const SimulationSnapshot& s) {
       s.damaged.size() != state_.damaged.size() || s.crossing.size() != state_.crossing.size() ||
       s.plasticInverse.size() != state_.plasticInverse.size() ||
       s.plasticStrain.size() != state_.plasticStrain.size() ||
-      s.anchors.size() != s.anchorIds.size())
+      s.colliders.size() != state_.colliders.size() || s.anchors.size() != s.anchorIds.size())
     throw std::invalid_argument(
         "the saved state does not fit this model (" + std::to_string(s.x.size()) + " vertices, " +
         std::to_string(s.damaged.size()) + " edges, " +
@@ -395,6 +398,7 @@ void Simulation::restore(const SimulationSnapshot& s) {
   }
   state_.plasticInverse = s.plasticInverse;
   state_.plasticStrain = s.plasticStrain;
+  state_.colliders = s.colliders;
   state_.time = s.time;
   frame_ = s.frame;
   state_.anchors = s.anchors;
@@ -513,8 +517,15 @@ FrameMetrics Simulation::advance() {
   m.contactForceN = contact.norm();
   m.msFracture = r.msFracture;
   m.newlyDamaged = r.newlyDamaged + toolDamage_;
-  if (loadCollider_ >= 0 && loadCollider_ < static_cast<int>(r.contactForces.size()))
+  if (loadCollider_ >= 0 && loadCollider_ < static_cast<int>(r.contactForces.size())) {
     m.loadN = r.contactForces[loadCollider_].norm();
+    const Collider& c = model_.colliders[loadCollider_];
+    const ColliderState& now = state_.colliders[loadCollider_];
+    m.strikerDisplacementM = (colliderCentre(c, state_.time, &now) - c.center).norm();
+    if (c.motion.rigidPendulum())
+      m.absorbedEnergyJ = pendulumEnergy(c, initialColliderState(c), model_.gravity) -
+                          pendulumEnergy(c, now, model_.gravity);
+  }
   if (openingVertices_.size() == 2) {
     const int a = openingVertices_[0], b = openingVertices_[1];
     m.openingM = (state_.x[a] - state_.x[b]).norm() -
@@ -544,7 +555,8 @@ std::string metricsCsvHeader() {
   return "frame,time_s,ms_total,ms_elements,ms_solve,ms_plastic,ms_other,volume,volume_change_pct,"
          "kinetic_energy,elastic_energy,residual,max_displacement,damaged_edges,pieces,warnings,"
          "newton_iterations,contact_force_n,ms_fracture,opening_m,load_n,backtracks,cg_iterations,"
-         "converged,energy_passes,debris_pieces,debris_volume_pct,inverted_pieces";
+         "converged,energy_passes,debris_pieces,debris_volume_pct,inverted_pieces,"
+         "striker_displacement_m,absorbed_energy_j";
 }
 
 std::string metricsCsvRow(const FrameMetrics& m) {
@@ -556,7 +568,8 @@ std::string metricsCsvRow(const FrameMetrics& m) {
     << ',' << m.newtonIterations << ',' << m.contactForceN << ',' << m.msFracture << ','
     << m.openingM << ',' << m.loadN << ',' << m.backtracks << ',' << m.cgIterations << ','
     << (m.converged ? 1 : 0) << ',' << m.energyPasses << ',' << m.debrisPieces << ','
-    << m.debrisVolumePct << ',' << m.invertedPieces;
+    << m.debrisVolumePct << ',' << m.invertedPieces << ',' << m.strikerDisplacementM << ','
+    << m.absorbedEnergyJ;
   return s.str();
 }
 

@@ -24,6 +24,7 @@ struct SimulationSnapshot {
   std::vector<float> crossing;                  // (nEdges) where blades crossed, or kNoCrossing
   std::vector<Eigen::Matrix3d> plasticInverse;  // (nTets) or empty
   std::vector<double> plasticStrain;            // (nTets) or empty
+  std::vector<ColliderState> colliders;         // (nColliders) rigid pendulums' angles, speeds
   double time = 0.0;
   int frame = 0;
   std::vector<AnchorConstraint> anchors;
@@ -58,6 +59,11 @@ struct FrameMetrics {
   int debrisPieces = 0;
   double debrisVolumePct = 0.0;
   int invertedPieces = 0;
+  // The load collider (measure.load_collider): how far its centre has moved from where it
+  // started (m), and for a rigid pendulum the energy it has lost (J: kinetic and gravitational,
+  // what the body absorbed; 0 for a kinematic collider).
+  double strikerDisplacementM = 0.0;
+  double absorbedEnergyJ = 0.0;
   int invertedElements = 0;  // intact elements inside out at the frame's end (a warning)
   // Whether the frame solved its equations: every sub-step's residual within the solver's
   // tolerance (solver.residual_tolerance). A frame that did not is one warning.

@@ -237,6 +237,10 @@ class FrameSolver {
       plasticFlowed_ = false;
     }
     time_ = state.time;
+    colliderStates_ = state.colliders;
+    for (size_t c = colliderStates_.size(); c < model_.colliders.size(); ++c)
+      colliderStates_.push_back(initialColliderState(model_.colliders[c]));
+    colliderStates_.resize(model_.colliders.size());
     settings_ = &settings;
     anchors_ = &state.anchors;
     if (settings.multigrid) ensureMultigrid(settings);
@@ -259,6 +263,7 @@ class FrameSolver {
       download(strain_, hostStrain_, state.plasticStrain);
     }
     state.time = time_;
+    state.colliders = colliderStates_;
   }
 
   // One frame, from the host state to the host state.
@@ -275,6 +280,7 @@ class FrameSolver {
 
   struct Saved {
     double time;
+    std::vector<ColliderState> colliders;
   };
   struct Ops {
     FrameSolver& s;
@@ -296,7 +302,7 @@ class FrameSolver {
       ex_.copy(savedFp_.data(), fp_.data(), 9 * static_cast<size_t>(tets_));
       ex_.copy(savedStrain_.data(), strain_.data(), tets_);
     }
-    return Saved{time_};
+    return Saved{time_, colliderStates_};
   }
   // Damage never needs restoring: a failed sub-step is rolled back before its fracture pass,
   // and a fracture re-solve keeps the new damage.
@@ -309,6 +315,7 @@ class FrameSolver {
       ex_.copy(strain_.data(), savedStrain_.data(), tets_);
     }
     time_ = saved.time;
+    colliderStates_ = saved.colliders;
   }
 
   // ---- kernels ----------------------------------------------------------------------------
@@ -681,7 +688,13 @@ class FrameSolver {
     endSubstep(h, result);
     result.converged = stationary || result.residual <= s.residualTolerance;
     result.cgIterations = pcgIterations_;
-    if (result.ok) time_ += h;
+    if (result.ok) {
+      for (size_t c = 0; c < model_.colliders.size(); ++c)
+        if (model_.colliders[c].motion.rigidPendulum())
+          advancePendulum(model_.colliders[c], colliderStates_[c], h, contactMoments_[c],
+                          model_.gravity);
+      time_ += h;
+    }
     return result;
   }
 
@@ -736,7 +749,7 @@ class FrameSolver {
   void beginSubstep(double h) {
     h_step_ = h;
     pcgIterations_ = 0;
-    prepareAnchorsAndColliders(time_ + h);
+    prepareAnchorsAndColliders(time_ + h, h);
     double* x = x_.data();
     double* v = v_.data();
     double* xn = xn_.data();
@@ -1087,9 +1100,12 @@ class FrameSolver {
     result.residual = relativeResidual(read);
     result.invertedElements = static_cast<int>(read[kTrialInverted]);  // the accepted trial's
     result.contactForces.assign(poses_.size(), Vec3::Zero());
-    for (size_t c = 0; c < poses_.size(); ++c)
+    contactMoments_.assign(poses_.size(), 0.0);
+    for (size_t c = 0; c < poses_.size(); ++c) {
       result.contactForces[c] =
           Vec3(read[kForce + 3 * c], read[kForce + 3 * c + 1], read[kForce + 3 * c + 2]);
+      if (model_.colliders[c].motion.rigidPendulum()) contactMoments_[c] = read[kMoment + c];
+    }
     // Otherwise the caller restores x and v.
     if (read[kBad] > 0.0 || !std::isfinite(result.energy)) result.ok = false;
   }
@@ -1249,7 +1265,9 @@ class FrameSolver {
     });
   }
 
-  // Force of each collider on the body at y, into slots kForce + 3 c + k.
+  // Force of each collider on the body at y, into slots kForce + 3 c + k; for a rigid
+  // pendulum also the moment of the body's reaction about its axis (slot kMoment + c), what
+  // turns it.
   void contactForces(const double* y) {
     const kernels::ColliderPose* poses = poseBuffer_.data();
     const std::uint8_t* fixed = fixed_.data();
@@ -1257,8 +1275,8 @@ class FrameSolver {
     const double h = h_step_;
     double* sc = scalars_.data();
     for (size_t c = 0; c < poses_.size(); ++c) {
+      const int ci = static_cast<int>(c);
       for (int k = 0; k < 3; ++k) {
-        const int ci = static_cast<int>(c);
         ex_.sum(
             n_,
             [=] GALSCULPT_LAMBDA(int v) {
@@ -1270,6 +1288,27 @@ class FrameSolver {
             },
             sc + kForce + 3 * ci + k);
       }
+      const ColliderMotion& motion = model_.colliders[c].motion;
+      if (!motion.rigidPendulum()) continue;
+      const Vec3 a = motion.axis.normalized();
+      const double p0 = motion.pivot.x(), p1 = motion.pivot.y(), p2 = motion.pivot.z();
+      const double a0 = a.x(), a1 = a.y(), a2 = a.z();
+      ex_.sum(
+          n_,
+          [=] GALSCULPT_LAMBDA(int v) {
+            if (fixed[v]) return 0.0;
+            double normal[3];
+            const double d = kernels::colliderDistance(poses[ci], y + 3 * v, normal);
+            if (d >= 0.0) return 0.0;
+            // The body pushes back with -f at the vertex: ((x - p) x -f) . a
+            const double s = poses[ci].contactStiffness * mass[v] / (h * h) * d;  // -f = s n
+            const double r0 = y[3 * v] - p0, r1 = y[3 * v + 1] - p1, r2 = y[3 * v + 2] - p2;
+            const double m0 = r1 * normal[2] - r2 * normal[1];
+            const double m1 = r2 * normal[0] - r0 * normal[2];
+            const double m2 = r0 * normal[1] - r1 * normal[0];
+            return s * (m0 * a0 + m1 * a1 + m2 * a2);
+          },
+          sc + kMoment + ci);
     }
   }
 
@@ -1528,8 +1567,9 @@ class FrameSolver {
   }
 
   // Anchored vertices and their targets at `time`, and the colliders' poses (host-computed,
-  // uploaded when they change).
-  void prepareAnchorsAndColliders(double time) {
+  // uploaded when they change); a rigid pendulum where its angular velocity takes it in the
+  // sub-step h (advancePendulum).
+  void prepareAnchorsAndColliders(double time, double h) {
     std::vector<std::uint8_t> fixed(n_, 0);
     std::vector<int> vertices;
     std::vector<double> targets;
@@ -1557,7 +1597,11 @@ class FrameSolver {
       anchorTargets_.upload(targets);
     }
     std::vector<kernels::ColliderPose> poses;
-    for (const Collider& c : model_.colliders) poses.push_back(colliderPose(c, time));
+    for (size_t c = 0; c < model_.colliders.size(); ++c) {
+      ColliderState at = colliderStates_[c];
+      at.angle += h * at.angularVelocity;
+      poses.push_back(colliderPose(model_.colliders[c], time, &at));
+    }
     poses_ = poses;
     if (!poses.empty()) poseBuffer_.upload(poses);
   }
@@ -1613,7 +1657,8 @@ class FrameSolver {
     kGuardLevel,
     kForceScale = kGuardLevel + kGuardLevels + 1,
     kForce,
-    kScalars = kForce + 3 * 16
+    kMoment = kForce + 3 * 16,
+    kScalars = kMoment + 16
   };
 
  private:
@@ -1664,6 +1709,8 @@ class FrameSolver {
   Buffer<double> anchorTargets_;
   size_t anchorCount_ = 0;
   std::vector<kernels::ColliderPose> poses_;
+  std::vector<ColliderState> colliderStates_;  // the stepped state's, advanced per sub-step
+  std::vector<double> contactMoments_;         // (nColliders) the last sub-step's, N m
   Buffer<kernels::ColliderPose> poseBuffer_;
   // Fracture (the model's field; scratch for the pass).
   Mirror<int> edgeSlotStart_, edgeSlots_, cellBegin_, cellEnd_, cellEdges_, edgeCell_,

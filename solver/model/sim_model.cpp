@@ -111,6 +111,7 @@ SimState initialState(const SimModel& model) {
     s.plasticInverse.assign(model.mesh.tets.size(), Eigen::Matrix3d::Identity());
     s.plasticStrain.assign(model.mesh.tets.size(), 0.0);
   }
+  for (const Collider& c : model.colliders) s.colliders.push_back(initialColliderState(c));
   return s;
 }
 

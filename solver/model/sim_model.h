@@ -3,8 +3,8 @@
 // fracture field, edge graph, sparsity pattern and the assembly's fixed-order lists), as flat
 // arrays that the executors read as they are: the CPU executor reads them in place, the CUDA one
 // copies them to the device once. SimState is everything that changes (positions, velocities,
-// damage, plastic state, anchors, time) and nothing else. StepSettings (solver/frame/step.h)
-// holds only numerical settings; the solver owns its scratch memory.
+// damage, plastic state, anchors, rigid pendulums' states, time) and nothing else. StepSettings
+// (solver/frame/step.h) holds only numerical settings; the solver owns its scratch memory.
 //   SimModel model = buildSimModel(mesh, material);
 //   model.gravity = ...; model.colliders = ...; model.fracture = buildFractureField(model, f);
 //   SimState state = initialState(model);
@@ -94,7 +94,10 @@ struct SimState {
   std::vector<Eigen::Matrix3d> plasticInverse;  // (nTets) Fp^-1; empty for elastic materials
   std::vector<double> plasticStrain;            // (nTets) accumulated, for hardening
   std::vector<AnchorConstraint> anchors;        // held vertices and their paths
-  double time = 0.0;                            // s
+  // (nColliders) the rigid pendulums' angles and angular velocities; missing entries are the
+  // colliders' initial states (initialColliderState).
+  std::vector<ColliderState> colliders;
+  double time = 0.0;  // s
 };
 
 SimState initialState(const SimModel& model);

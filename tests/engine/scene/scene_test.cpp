@@ -135,6 +135,19 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{
             std::string("{") + kMesh + R"(, "colliders": [{"type": "box", "center": [0, 0, 0]}]})",
             "$.colliders[0].half_extents: is required for a box"},
+        BadScene{std::string("{") + kMesh +
+                     R"(, "colliders": [{"type": "sphere", "radius": 0.1, "center": [0, 0, 0],
+                     "motion": {"type": "pendulum", "pivot": [0, 0, 1], "axis": [0, 0, 1],
+                     "angular_velocity": 1, "mass": 5}}]})",
+                 "$.colliders[0].motion: a rigid pendulum's centre must lie off its axis"},
+        BadScene{std::string("{") + kMesh +
+                     R"(, "colliders": [{"type": "plane", "motion": {"type": "pendulum",
+                     "pivot": [0, 0, 1], "axis": [1, 0, 0], "angular_velocity": 1, "mass": 5}}]})",
+                 "$.colliders[0].motion: a plane cannot be a rigid pendulum"},
+        BadScene{std::string("{") + kMesh +
+                     R"(, "colliders": [{"type": "sphere", "radius": 0.1, "motion": {"type":
+                     "pendulum", "axis": [1, 0, 0], "angular_velocity": 1, "mass": -5}}]})",
+                 "$.colliders[0].motion.mass: must be at least 0"},
         BadScene{std::string("{") + kMesh + R"(, "solver": {"grid": "1000/50/all"}})",
                  "$.solver.grid: grid levels must be positive and increase"},
         BadScene{std::string("{") + kMesh + R"(, "solver": {"grid": "50"}})",

@@ -80,6 +80,63 @@ TEST(ProjectFile, RoundTripRestoresTheSessionExactlyAndItRunsOnIdentically) {
   EXPECT_EQ(script.frames, reopened->simulation().frame());
 }
 
+// The rigid pendulum's angle and speed are state: saved mid-strike, the reopened Charpy runs on
+// as the original does; a state that does not fit the scene's colliders is refused.
+TEST(ProjectFile, ARigidPendulumsStateIsSavedAndReopened) {
+  test::TempDir dir;
+  // The project keeps the scene's text: the pendulum's mass must be written in it.
+  nlohmann::json text = nlohmann::json::parse(
+      test::readText(fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "charpy.json"));
+  text["mesh"]["tets"] = 2000;
+  text["colliders"][3]["motion"]["mass"] = 22.0;
+  test::writeText(dir / "charpy.json", text.dump());
+  const SceneDescription scene = loadScene(dir / "charpy.json");
+  SculptSession session(scene, loadSceneMesh(scene));
+  for (int f = 0; f < 40; ++f) session.step();
+  const ColliderState hammer = session.simulation().state().colliders[3];
+  ASSERT_LT(hammer.angularVelocity, 6.5) << "saved mid-strike: the bar has slowed the hammer";
+  writeProject(dir / "charpy.gsproj", session, std::nullopt);
+  const Project p = readProject(dir / "charpy.gsproj");
+  ASSERT_EQ(p.state.colliders.size(), 4u);
+  EXPECT_EQ(p.state.colliders[3].angle, hammer.angle);
+  EXPECT_EQ(p.state.colliders[3].angularVelocity, hammer.angularVelocity);
+  std::unique_ptr<SculptSession> reopened = sessionFromProject(p, dir / "charpy.gsproj");
+  for (int f = 0; f < 3; ++f) {
+    session.step();
+    reopened->step();
+  }
+  EXPECT_TRUE(session.simulation().state().x == reopened->simulation().state().x);
+  EXPECT_EQ(session.simulation().state().colliders[3].angularVelocity,
+            reopened->simulation().state().colliders[3].angularVelocity);
+
+  const std::string good = test::readText(dir / "charpy.gsproj");
+  auto errorOf = [&](const std::function<void(nlohmann::json&)>& edit) {
+    test::writeText(dir / "bad.gsproj", test::withProjectHeader(good, edit));
+    try {
+      readProject(dir / "bad.gsproj");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(errorOf([](nlohmann::json& h) {
+              h["colliders"].erase(0);
+            }).find("$.colliders: holds 3 states; the scene has 4 colliders"),
+            std::string::npos);
+  EXPECT_NE(errorOf([](nlohmann::json& h) {
+              h["colliders"][3]["angle"] = "up";
+            }).find("$.colliders[3].angle"),
+            std::string::npos);
+  EXPECT_NE(errorOf([](nlohmann::json& h) {
+              h["colliders"][3]["spin"] = 1;
+            }).find("$.colliders[3].spin: unknown key"),
+            std::string::npos);
+  // Written before pendulums had a state: the colliders start as the scene gives them.
+  test::writeText(dir / "old.gsproj",
+                  test::withProjectHeader(good, [](nlohmann::json& h) { h.erase("colliders"); }));
+  EXPECT_EQ(readProject(dir / "old.gsproj").state.colliders[3].angularVelocity, 6.5);
+}
+
 TEST(ProjectFile, MalformedProjectsGetClearErrors) {
   test::TempDir dir;
   SculptedBall ball;

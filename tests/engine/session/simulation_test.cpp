@@ -87,6 +87,40 @@ TEST(Simulation, MeasureProbesReportOpeningAndLoad) {
   EXPECT_NE(metricsCsvRow(m).find(","), std::string::npos);
 }
 
+// A rigid pendulum as the load collider: its centre's travel and the energy it lost are metrics;
+// before it reaches the ball it swings freely and loses nothing, after it the energy lost is
+// what the ball took.
+TEST(Simulation, ARigidPendulumsTravelAndAbsorbedEnergyAreMetrics) {
+  test::TempDir dir;
+  const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + R"(,
+    "material": {"preset": "rubber", "youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000},
+    "gravity": [0, -9.81, 0], "time_step": 0.002,
+    "anchors": [{"box": {"min": [-1, -1, -1], "max": [1, 1, -0.08]}}],
+    "colliders": [{"type": "sphere", "center": [-0.2, 0, 0.05], "radius": 0.05,
+      "motion": {"type": "pendulum", "pivot": [-0.2, 1, 0.05], "axis": [0, 0, 1],
+                 "angular_velocity": 2, "mass": 1}}],
+    "measure": {"load_collider": 0}})");
+  Simulation sim(scene, loadSceneMesh(scene));
+  const Collider& hammer = sim.model().colliders[0];
+  FrameMetrics m = sim.advance();
+  EXPECT_EQ(m.loadN, 0.0);
+  EXPECT_NEAR(m.strikerDisplacementM, 2.0 * 0.002, 1e-5) << "2 rad/s on a 1 m arm";
+  EXPECT_NEAR(m.absorbedEnergyJ, 0.0, 1e-4) << "a free swing loses nothing";
+  double peak = 0.0;
+  for (int f = 0; f < 60; ++f) {
+    m = sim.advance();
+    peak = std::max(peak, m.loadN);
+  }
+  EXPECT_GT(peak, 1.0) << "the hammer reaches the ball";
+  const ColliderState& now = sim.state().colliders[0];
+  EXPECT_NEAR(m.absorbedEnergyJ,
+              pendulumEnergy(hammer, initialColliderState(hammer), sim.model().gravity) -
+                  pendulumEnergy(hammer, now, sim.model().gravity),
+              1e-12);
+  EXPECT_GT(m.absorbedEnergyJ, 0.05) << "the ball took a share of the hammer's 2 J";
+  EXPECT_LT(now.angularVelocity, 1.9);
+}
+
 // A sphere cut in two: the lower half falls away. Tets across the cut are no longer material,
 // so the volume change stays that of the two halves (it read thousands of percent when the
 // parted tets were counted).
