@@ -355,7 +355,7 @@ std::size_t SimulationSnapshot::bytes() const {
                    a.path.size() * sizeof(AnchorKey);
   return (x.size() + v.size()) * sizeof(Vec3) + damaged.size() + crossing.size() * sizeof(float) +
          plasticInverse.size() * sizeof(Eigen::Matrix3d) + plasticStrain.size() * sizeof(double) +
-         anchorBytes + sizeof(*this);
+         colliders.size() * sizeof(ColliderState) + anchorBytes + sizeof(*this);
 }
 
 SimulationSnapshot Simulation::snapshot() const {

@@ -80,4 +80,16 @@ GALSCULPT_HD double colliderDistance(const ColliderPose& c, const double p[3], d
   return distance;
 }
 
+// The penalty force of collider c on a vertex of mass m at p in a sub-step h, k (-phi) n with
+// k = contactStiffness m / h^2 (colliders.h); false, and no force, outside the collider.
+GALSCULPT_HD bool contactForce(const ColliderPose& c, const double p[3], double m, double h,
+                               double force[3]) {
+  double normal[3];
+  const double d = colliderDistance(c, p, normal);
+  if (d >= 0.0) return false;
+  const double s = -c.contactStiffness * m / (h * h) * d;
+  for (int k = 0; k < 3; ++k) force[k] = s * normal[k];
+  return true;
+}
+
 }  // namespace galsculpt::kernels

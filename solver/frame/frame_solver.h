@@ -1280,11 +1280,10 @@ class FrameSolver {
         ex_.sum(
             n_,
             [=] GALSCULPT_LAMBDA(int v) {
-              if (fixed[v]) return 0.0;
-              double normal[3];
-              const double d = kernels::colliderDistance(poses[ci], y + 3 * v, normal);
-              if (d >= 0.0) return 0.0;
-              return -poses[ci].contactStiffness * mass[v] / (h * h) * d * normal[k];
+              double f[3];
+              if (fixed[v] || !kernels::contactForce(poses[ci], y + 3 * v, mass[v], h, f))
+                return 0.0;
+              return f[k];
             },
             sc + kForce + 3 * ci + k);
       }
@@ -1296,17 +1295,14 @@ class FrameSolver {
       ex_.sum(
           n_,
           [=] GALSCULPT_LAMBDA(int v) {
-            if (fixed[v]) return 0.0;
-            double normal[3];
-            const double d = kernels::colliderDistance(poses[ci], y + 3 * v, normal);
-            if (d >= 0.0) return 0.0;
+            double f[3];
+            if (fixed[v] || !kernels::contactForce(poses[ci], y + 3 * v, mass[v], h, f)) return 0.0;
             // The body pushes back with -f at the vertex: ((x - p) x -f) . a
-            const double s = poses[ci].contactStiffness * mass[v] / (h * h) * d;  // -f = s n
             const double r0 = y[3 * v] - p0, r1 = y[3 * v + 1] - p1, r2 = y[3 * v + 2] - p2;
-            const double m0 = r1 * normal[2] - r2 * normal[1];
-            const double m1 = r2 * normal[0] - r0 * normal[2];
-            const double m2 = r0 * normal[1] - r1 * normal[0];
-            return s * (m0 * a0 + m1 * a1 + m2 * a2);
+            const double m0 = r1 * f[2] - r2 * f[1];
+            const double m1 = r2 * f[0] - r0 * f[2];
+            const double m2 = r0 * f[1] - r1 * f[0];
+            return -(m0 * a0 + m1 * a1 + m2 * a2);
           },
           sc + kMoment + ci);
     }

@@ -25,6 +25,16 @@ inline SceneDescription sceneNamed(const std::string& name, int tets) {
   return s;
 }
 
+// The scene with the paper's one linearized step a frame (the Charpy scene's solver before it
+// moved to converged frames): the executor comparisons need the same equations on both sides,
+// not converged ones, and cost a fraction.
+inline SceneDescription withPaperSolver(SceneDescription s) {
+  const std::string grid = s.solver.grid;
+  s.solver = solverPreset(SolverPreset::Paper);
+  s.solver.grid = grid;
+  return s;
+}
+
 struct Comparison {
   double maxRelativeError = 0.0;  // largest |x_dev - x_cpu| over the largest displacement
   int cpuDamaged = 0, deviceDamaged = 0;

@@ -1,5 +1,6 @@
-// The Charpy scene at full size (labelled `slow`): the pendulum starts a crack at the notch root
-// and breaks the bar in two; gravity alone breaks nothing.
+// The Charpy scene at full size (labelled `slow`): the rigid pendulum starts a crack at the notch
+// root and breaks the bar in two under a laboratory-sized load, losing the energy the bar took;
+// gravity alone breaks nothing.
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -26,6 +27,9 @@ struct CharpyRun {
   std::vector<int> pieceSizes;      // largest first
   Vec3 firstDamage = Vec3::Zero();  // mean rest midpoint of the first frame's broken edges
   double peakLoad = 0.0, opening = 0.0;
+  double absorbed = 0.0;    // J, the pendulum's energy lost (metrics)
+  double work = 0.0;        // J, the load's work along the striker's path, frame by frame
+  int invertedPieces = 0;   // the most over the frames
   int surfaceProblems = 0;  // frames (every 25th and the last) whose surface was not closed
   int exportedPieces = 0;   // surface pieces of the final OBJ, read back
   bool exportClosed = false;
@@ -43,12 +47,16 @@ CharpyRun runCharpy(bool pendulum, int frames) {
   const TetMesh mesh = loadSceneMesh(scene);
   Simulation sim(scene, mesh);
   CharpyRun run;
+  double lastDisplacement = 0.0;
   for (int f = 0; f < frames; ++f) {
     const FrameMetrics m = sim.advance();
-    // The scene runs the paper's solver (docs/scenes.md): its frames are flagged as not
-    // converged; none may fail and be halved.
+    // No frame may fail and be halved.
     EXPECT_EQ(m.retries, 0) << "frame " << m.frame;
     run.peakLoad = std::max(run.peakLoad, m.loadN);
+    run.work += m.loadN * (m.strikerDisplacementM - lastDisplacement);
+    lastDisplacement = m.strikerDisplacementM;
+    run.absorbed = m.absorbedEnergyJ;
+    run.invertedPieces = std::max(run.invertedPieces, m.invertedPieces);
     run.opening = m.openingM;
     if (run.damaged == 0 && m.damagedEdges > 0) {
       const SimModel& model = sim.model();
@@ -86,21 +94,36 @@ CharpyRun runCharpy(bool pendulum, int frames) {
   return run;
 }
 
+// The net-section estimate of docs/benchmarks.md: P = 2/3 sigma_f B b^2 / S for the scene's
+// 2 GPa, B = 10 mm, b = 8 mm under the notch, S = 40 mm.
+constexpr double kNetSectionLoad = 2.0 / 3.0 * 2.0e9 * 0.010 * 0.008 * 0.008 / 0.040;
+
 TEST(CharpyFracture, ThePendulumBreaksTheBarInTwoFromTheNotchAndGravityAloneDoesNot) {
-  const CharpyRun struck = runCharpy(true, 150);
+  const CharpyRun struck = runCharpy(true, 160);
   ASSERT_GT(struck.damaged, 0);
   // The notch root is at x = 27.5 mm, y = 8 mm (the notch is 2 mm deep in the 10 mm top face).
   EXPECT_NEAR(struck.firstDamage.x(), 0.0275, 0.002);
   EXPECT_NEAR(struck.firstDamage.y(), 0.008, 0.002);
-  EXPECT_GT(struck.peakLoad, 1e3) << "the striker loads the bar (N)";
+  // A laboratory Charpy load (measured 33.8 kN), not what keeps a kinematic hammer on its path
+  // (1.1 MN), and what the pendulum lost is the load's work along its path (measured 29.4 J of
+  // its 297 J: a brittle break; the hammer swings on).
+  EXPECT_GT(struck.peakLoad, 0.5 * kNetSectionLoad);
+  EXPECT_LT(struck.peakLoad, 2.0 * kNetSectionLoad);
+  EXPECT_GT(struck.absorbed, 5.0);
+  EXPECT_LT(struck.absorbed, 60.0);
+  EXPECT_NEAR(struck.work, struck.absorbed, 0.05 * struck.absorbed)
+      << "the hammer's lost energy is the work its load did";
   EXPECT_GT(struck.opening, 0.0) << "the notch mouth opens";
   // Two halves, each with over 40 % of the vertices; what else broke off is crushed debris
-  // under the striker (loose vertices).
+  // under the striker.
   ASSERT_GE(struck.pieceSizes.size(), 2u);
   const int total = std::accumulate(struck.pieceSizes.begin(), struck.pieceSizes.end(), 0);
   EXPECT_GT(struck.pieceSizes[0], 0.4 * total);
   EXPECT_GT(struck.pieceSizes[1], 0.4 * total);
-  EXPECT_LT(struck.pieceSizes[2], 0.01 * total);
+  if (struck.pieceSizes.size() > 2) {
+    EXPECT_LT(struck.pieceSizes[2], 0.01 * total);
+  }
+  EXPECT_EQ(struck.invertedPieces, 0) << "no piece turned inside out at any frame";
   // The exported surface, as indexed in the file: closed pieces, at least the two halves.
   EXPECT_EQ(struck.surfaceProblems, 0);
   EXPECT_TRUE(struck.exportClosed);

@@ -70,7 +70,7 @@ TEST(FrameSolver, CutSphereIsTheSameAtOneAndTwoThreads) {
 
 // Colliders (a moving pendulum striker), non-local fracture with a compressive threshold.
 TEST(FrameSolver, CharpyBarIsTheSameAtOneAndTwoThreads) {
-  SceneDescription scene = sceneNamed("charpy", 8000);
+  SceneDescription scene = withPaperSolver(sceneNamed("charpy", 8000));
   scene.fracture.threshold = 1.0e9;  // cracks within the frames
   const Simulation sim(scene, loadSceneMesh(scene));
   CpuStepBackend probe(sim.model());
