@@ -325,9 +325,7 @@ Project readProject(const fs::path& file) {
     o.fail("colliders", "holds " + std::to_string(colliders.size()) + " states; the scene has " +
                             std::to_string(p.scene.colliders.size()) + " colliders");
   for (size_t i = 0; i < p.scene.colliders.size(); ++i) {
-    const MotionDesc& motion = p.scene.colliders[i].motion;
-    ColliderState c;
-    c.angularVelocity = motion.type == MotionDesc::Type::Pendulum ? motion.angularVelocity : 0.0;
+    ColliderState c = initialColliderState(colliderFromScene(p.scene.colliders[i]));
     if (i < colliders.size()) {
       JsonObject j(colliders[i], o.childPath("colliders") + "[" + std::to_string(i) + "]", name);
       c.angle = j.number("angle", 0.0, -1e9, 1e9);

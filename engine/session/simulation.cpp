@@ -51,6 +51,8 @@ std::vector<int> selectAnchorVertices(const AnchorDesc& a, const TetMesh& mesh,
   return out;
 }
 
+}  // namespace
+
 Collider colliderFromScene(const ColliderDesc& d) {
   Collider c;
   c.type = d.type == ColliderDesc::Type::Plane    ? Collider::Type::Plane
@@ -71,8 +73,6 @@ Collider colliderFromScene(const ColliderDesc& d) {
   c.motion.mass = d.motion.mass;
   return c;
 }
-
-}  // namespace
 
 void checkSceneAnchors(const SceneDescription& scene, const TetMesh& mesh) {
   for (size_t i = 0; i < scene.anchors.size(); ++i)

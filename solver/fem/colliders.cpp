@@ -11,25 +11,36 @@ Eigen::Matrix3d rotationAbout(const Collider& c, double angle) {
   return Eigen::AngleAxisd(angle, c.motion.axis.normalized()).toRotationMatrix();
 }
 
-}  // namespace
-
-Eigen::Matrix3d colliderRotation(const Collider& c, double time) {
+// The pose at `time`: a rigid pendulum at its state's angle (when given), a kinematic one at
+// angularVelocity * time.
+Eigen::Matrix3d rotationAt(const Collider& c, double time, const ColliderState* state) {
   if (c.motion.type != ColliderMotion::Type::Pendulum) return Eigen::Matrix3d::Identity();
-  return rotationAbout(c, c.motion.angularVelocity * time);
+  const bool rigid = state && c.motion.rigidPendulum();
+  return rotationAbout(c, rigid ? state->angle : c.motion.angularVelocity * time);
 }
 
-Vec3 colliderTranslation(const Collider& c, double time) {
+Vec3 translationAt(const Collider& c, double time, const ColliderState* state) {
   switch (c.motion.type) {
     case ColliderMotion::Type::Static:
       return Vec3::Zero();
     case ColliderMotion::Type::Linear:
       return c.motion.velocity * time;
     case ColliderMotion::Type::Pendulum: {
-      const Eigen::Matrix3d r = colliderRotation(c, time);
+      const Eigen::Matrix3d r = rotationAt(c, time, state);
       return c.motion.pivot - r * c.motion.pivot;  // rotation about the pivot
     }
   }
   return Vec3::Zero();
+}
+
+}  // namespace
+
+Eigen::Matrix3d colliderRotation(const Collider& c, double time) {
+  return rotationAt(c, time, nullptr);
+}
+
+Vec3 colliderTranslation(const Collider& c, double time) {
+  return translationAt(c, time, nullptr);
 }
 
 kernels::ColliderPose colliderPose(const Collider& c, double time, const ColliderState* state) {
@@ -43,10 +54,9 @@ kernels::ColliderPose colliderPose(const Collider& c, double time, const Collide
     pose.halfExtents[i] = c.halfExtents[i];
   }
   pose.radius = c.radius;
-  const bool rigid = state && c.motion.rigidPendulum();
-  const Eigen::Matrix3d r = rigid ? rotationAbout(c, state->angle) : colliderRotation(c, time);
+  const Eigen::Matrix3d r = rotationAt(c, time, state);
   for (int i = 0; i < 9; ++i) pose.rotation.a[i] = r.data()[i];
-  const Vec3 t = rigid ? Vec3(c.motion.pivot - r * c.motion.pivot) : colliderTranslation(c, time);
+  const Vec3 t = translationAt(c, time, state);
   for (int i = 0; i < 3; ++i) pose.translation[i] = t[i];
   pose.contactStiffness = c.contactStiffness;
   return pose;
