@@ -38,6 +38,8 @@ constexpr Named<EnergyGuard> kEnergyGuardNames[] = {{EnergyGuard::Vertex, "verte
                                                     {EnergyGuard::Body, "body"}};
 constexpr Named<Generator> kGeneratorNames[] = {
     {Generator::Sphere, "sphere"}, {Generator::Charpy, "charpy"}, {Generator::Steak, "steak"}};
+constexpr Named<DebrisRule> kDebrisRuleNames[] = {{DebrisRule::Remove, "remove"},
+                                                  {DebrisRule::Keep, "keep"}};
 constexpr Named<BackendRequest> kBackendNames[] = {
     {BackendRequest::Auto, "auto"}, {BackendRequest::Cpu, "cpu"}, {BackendRequest::Cuda, "cuda"}};
 
@@ -238,6 +240,7 @@ FractureDesc readFracture(JsonObject o) {
   f.compressiveThreshold = o.number("compressive_threshold", 0.0, 0.0, 1e13);
   f.criticalFraction = o.number("critical_fraction", 0.0, 0.0, 1.0);
   f.debrisFraction = o.number("debris_fraction", f.debrisFraction, 0.0, 1.0);
+  f.debris = readEnum(o, "debris", f.debris, kDebrisRuleNames);
   o.rejectUnknownKeys();
   return f;
 }

@@ -85,6 +85,9 @@ struct ColliderDesc {
   MotionDesc motion;
 };
 
+// What becomes of pieces under debris_fraction (solver/fracture/debris.h).
+enum class DebrisRule { Remove, Keep };
+
 struct FractureDesc {
   bool enabled = false;
   double threshold = 0.0;        // Pa, edge normal stress that damages an edge
@@ -95,8 +98,10 @@ struct FractureDesc {
   int iterations = 1;                 // solves per step while edges keep breaking
   double compressiveThreshold = 0.0;  // Pa, edges crushed beyond it break too (0: never)
   double criticalFraction = 0.0;      // (0, 1]: the most critical breaks first (0: all at once)
-  // A piece holding less than this fraction of the body's rest volume is debris (metrics).
+  // A piece holding less than this fraction of the body's rest volume is debris (metrics), cut
+  // or broken off, fracture enabled or not; the rule says whether it is removed.
   double debrisFraction = 0.01;
+  DebrisRule debris = DebrisRule::Remove;
 };
 
 // The solver's choices, parsed once from their names (scene files, the command line, the Scene

@@ -8,12 +8,12 @@
 #include <sstream>
 
 #include "engine/session/backend_select.h"
+#include "solver/fracture/debris.h"
 #include "solver/frame/timing.h"
 #include "solver/io/damage_io.h"
 #include "solver/io/input_error.h"
 #include "solver/io/tetgen_io.h"
 #include "solver/io/vtk_io.h"
-#include "solver/mesh/union_find.h"
 
 namespace galsculpt {
 
@@ -147,6 +147,9 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     model_.fracture = buildFractureField(model_, f);
     settings_.fractureIterations = scene.fracture.iterations;
   }
+  // Cut or broken off, debris is removed by the solver too (fracture enabled or not).
+  if (scene.fracture.debris == DebrisRule::Remove)
+    model_.debrisRemoval = scene.fracture.debrisFraction;
   BackendChoice backend = chooseBackend(scene.solver.backend, model_, settings_);
   backend_ = std::move(backend.backend);
   if (!backend.note.empty()) notes_.push_back(backend.note);
@@ -159,52 +162,39 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   }
   loadCollider_ = scene.measure.loadCollider;
   debrisFraction_ = scene.fracture.debrisFraction;
+  removesDebris_ = scene.fracture.debris == DebrisRule::Remove;
   updatePieces();
 }
 
 void Simulation::updatePieces() {
   if (piecesRevision_ == state_.damageRevision) return;
   piecesRevision_ = state_.damageRevision;
-  UnionFind uf(model_.numVertices());
-  pieces_ = model_.numVertices();
-  for (int e = 0; e < model_.numEdges(); ++e) {
-    if (!state_.damaged[e]) pieces_ -= uf.unite(model_.edges[e][0], model_.edges[e][1]);
-  }
+  const PieceCensus census = censusPieces(model_, state_.damaged);
+  pieces_ = census.pieces;
+  pieceNumber_ = census.pieceOfVertex;
+  bodyRestVolume_ = census.bodyRestVolume;
   // A tet whose corners lie in different pieces is no longer material (its vertices have
   // parted): volumes count only tets inside one piece, at rest and now alike.
-  pieceOfVertex_.resize(model_.numVertices());
-  for (int v = 0; v < model_.numVertices(); ++v) pieceOfVertex_[v] = uf.find(v);
   countedTets_.assign(model_.numTets(), 1);
   restVolume_ = 0.0;
-  bodyRestVolume_ = 0.0;
-  // Each piece's rest volume is that of its vertices' corner cells (docs/surface.md): a quarter
-  // of every tet around each of its vertices, spanning tets included, which is what its closed
-  // surface encloses at rest. Pieces numbered compactly, 0 .. pieces_ - 1.
-  pieceNumber_.assign(model_.numVertices(), -1);
-  int count = 0;
-  for (int v = 0; v < model_.numVertices(); ++v) {
-    int& n = pieceNumber_[pieceOfVertex_[v]];
-    if (n < 0) n = count++;
-  }
-  for (int v = 0; v < model_.numVertices(); ++v) pieceNumber_[v] = pieceNumber_[pieceOfVertex_[v]];
-  std::vector<double> pieceRest(count, 0.0);
   for (int t = 0; t < model_.numTets(); ++t) {
     const Tet& tet = model_.mesh.tets[t];
-    const int p = pieceOfVertex_[tet[0]];
+    const int p = pieceNumber_[tet[0]];
     countedTets_[t] =
-        pieceOfVertex_[tet[1]] == p && pieceOfVertex_[tet[2]] == p && pieceOfVertex_[tet[3]] == p;
-    const double volume = model_.rest[t].volume;
-    bodyRestVolume_ += volume;
-    if (countedTets_[t]) restVolume_ += volume;
-    for (int a = 0; a < 4; ++a) pieceRest[pieceNumber_[tet[a]]] += 0.25 * volume;
+        pieceNumber_[tet[1]] == p && pieceNumber_[tet[2]] == p && pieceNumber_[tet[3]] == p;
+    if (countedTets_[t]) restVolume_ += model_.rest[t].volume;
   }
+  debrisPiece_ = debrisPieces(census, debrisFraction_);
   debrisPieces_ = 0;
   debrisRestVolume_ = 0.0;
-  for (double v : pieceRest) {
-    if (v >= debrisFraction_ * bodyRestVolume_) continue;
+  debrisMass_ = 0.0;
+  for (int p = 0; p < pieces_; ++p) {
+    if (!debrisPiece_[p]) continue;
     ++debrisPieces_;
-    debrisRestVolume_ += v;
+    debrisRestVolume_ += census.restVolume[p];
   }
+  for (int v = 0; v < model_.numVertices(); ++v)
+    if (debrisPiece_[pieceNumber_[v]]) debrisMass_ += model_.mass[v];
 }
 
 int Simulation::invertedPieces() const {
@@ -217,8 +207,13 @@ int Simulation::invertedPieces() const {
     sixVolume[pieceNumber_[surf.cellVertex[f]]] +=
         a.dot(surf.mesh.vertices[tri[1]].cross(surf.mesh.vertices[tri[2]]));
   }
-  return static_cast<int>(
-      std::count_if(sixVolume.begin(), sixVolume.end(), [](double v) { return !(v > 0.0); }));
+  int inverted = 0;
+  for (int p = 0; p < pieces_; ++p) {
+    // Removed debris has no surface any more: it is no piece to look at.
+    if (removesDebris_ && debrisPiece_[p]) continue;
+    inverted += !(sixVolume[p] > 0.0);
+  }
+  return inverted;
 }
 
 double Simulation::currentVolume() const {
@@ -242,6 +237,7 @@ Simulation::PieceStats Simulation::pieceStats() {
   p.pieces = pieces_;
   p.debrisPieces = debrisPieces_;
   p.debrisVolumePct = debrisVolumePercent();
+  p.debrisMassKg = debrisMass_;
   p.invertedPieces = invertedPieces();
   return p;
 }
@@ -258,10 +254,33 @@ const VisualSurface& Simulation::surface(SurfaceUpdateStats* stats) const {
     surfaceFrame_ = frame_;
     surfaceRevision_ = state_.damageRevision;
     if (stats) *stats = s;
+    if (removesDebris_ && debrisPieces_ > 0) shownSurface_ = withoutRemovedDebris();
   } else if (stats) {
     *stats = SurfaceUpdateStats{};
   }
-  return surfaceBuilder_.surface();
+  return removesDebris_ && debrisPieces_ > 0 ? shownSurface_ : surfaceBuilder_.surface();
+}
+
+VisualSurface Simulation::withoutRemovedDebris() const {
+  const VisualSurface& all = surfaceBuilder_.surface();
+  VisualSurface shown;
+  std::vector<int> number(all.mesh.numVertices(), -1);
+  for (int f = 0; f < all.mesh.numFaces(); ++f) {
+    if (removed(all.cellVertex[f])) continue;
+    Tri tri = all.mesh.faces[f];
+    for (int& v : tri) {
+      int& n = number[v];
+      if (n < 0) {
+        n = shown.mesh.numVertices();
+        shown.mesh.vertices.push_back(all.mesh.vertices[v]);
+      }
+      v = n;
+    }
+    shown.mesh.faces.push_back(tri);
+    shown.tags.push_back(all.tags[f]);
+    shown.cellVertex.push_back(all.cellVertex[f]);
+  }
+  return shown;
 }
 
 void Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
@@ -278,7 +297,7 @@ void Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
   VtkCellField piece{"piece", std::vector<double>(model_.numTets(), -1.0)};
   for (int t = 0; t < model_.numTets(); ++t) {
     if (!countedTets_[t]) continue;
-    int& id = label[pieceOfVertex_[model_.mesh.tets[t][0]]];
+    int& id = label[pieceNumber_[model_.mesh.tets[t][0]]];
     if (id < 0) id = pieces++;
     piece.values[t] = id;
   }
@@ -537,6 +556,7 @@ FrameMetrics Simulation::advance() {
   m.volume = currentVolume();
   m.debrisPieces = debrisPieces_;
   m.debrisVolumePct = debrisVolumePercent();
+  m.debrisMassKg = debrisMass_;
   m.volumeChangePct = restVolume_ > 0.0 ? 100.0 * (m.volume - restVolume_) / restVolume_ : 0.0;
   for (int v = 0; v < model_.numVertices(); ++v) {
     m.kineticEnergy += 0.5 * model_.mass[v] * state_.v[v].squaredNorm();
@@ -556,7 +576,7 @@ std::string metricsCsvHeader() {
          "kinetic_energy,elastic_energy,residual,max_displacement,damaged_edges,pieces,warnings,"
          "newton_iterations,contact_force_n,ms_fracture,opening_m,load_n,backtracks,cg_iterations,"
          "converged,energy_passes,debris_pieces,debris_volume_pct,inverted_pieces,"
-         "striker_displacement_m,absorbed_energy_j";
+         "striker_displacement_m,absorbed_energy_j,debris_mass_kg";
 }
 
 std::string metricsCsvRow(const FrameMetrics& m) {
@@ -569,7 +589,7 @@ std::string metricsCsvRow(const FrameMetrics& m) {
     << m.openingM << ',' << m.loadN << ',' << m.backtracks << ',' << m.cgIterations << ','
     << (m.converged ? 1 : 0) << ',' << m.energyPasses << ',' << m.debrisPieces << ','
     << m.debrisVolumePct << ',' << m.invertedPieces << ',' << m.strikerDisplacementM << ','
-    << m.absorbedEnergyJ;
+    << m.absorbedEnergyJ << ',' << m.debrisMassKg;
   return s.str();
 }
 

@@ -59,6 +59,7 @@ struct FrameMetrics {
   int debrisPieces = 0;
   double debrisVolumePct = 0.0;
   int invertedPieces = 0;
+  double debrisMassKg = 0.0;  // the debris' mass (removed from the simulation by default)
   // The load collider (measure.load_collider): how far its centre has moved from where it
   // started (m), and for a rigid pendulum the energy it has lost (J: kinetic and gravitational,
   // what the body absorbed; 0 for a kinematic collider).
@@ -125,11 +126,14 @@ class Simulation {
   // body's), and how many enclose no positive volume (FrameMetrics' columns).
   struct PieceStats {
     int pieces = 1, debrisPieces = 0, invertedPieces = 0;
-    double debrisVolumePct = 0.0;
+    double debrisVolumePct = 0.0, debrisMassKg = 0.0;
   };
   PieceStats pieceStats();
-  // A representative vertex of the piece (part joined by undamaged edges) `vertex` lies in.
-  int pieceOf(int vertex) const { return pieceOfVertex_[vertex]; }
+  // The number of the piece (part joined by undamaged edges) `vertex` lies in.
+  int pieceOf(int vertex) const { return pieceNumber_[vertex]; }
+  // Whether `vertex` lies in debris that the debris rule removed (fracture.debris: hidden from
+  // the surface and exports, held out of the solve).
+  bool removed(int vertex) const { return removesDebris_ && debrisPiece_[pieceNumber_[vertex]]; }
   // Per vertex, for the views: the fraction of its edges that are damaged, and the largest
   // tensile edge normal stress (Pa) of the tets around it.
   std::vector<double> vertexDamage() const;
@@ -179,11 +183,16 @@ class Simulation {
   void updatePieces();  // pieces and counted tets, when the damage changed
   std::uint64_t piecesRevision_ = ~0ull;
   std::vector<char> countedTets_;
-  std::vector<int> pieceOfVertex_;  // a representative vertex of each vertex's piece
   int pieces_ = 1;
-  std::vector<int> pieceNumber_;  // each vertex's piece, numbered 0 .. pieces_ - 1
+  std::vector<int> pieceNumber_;           // each vertex's piece, numbered 0 .. pieces_ - 1
+  std::vector<std::uint8_t> debrisPiece_;  // (pieces_) 1 for debris
   int debrisPieces_ = 0;
   double debrisRestVolume_ = 0.0;
+  double debrisMass_ = 0.0;    // kg
+  bool removesDebris_ = true;  // fracture.debris: remove
+  // The surface without removed debris (when there is any).
+  mutable VisualSurface shownSurface_;
+  VisualSurface withoutRemovedDebris() const;
   double bodyRestVolume_ = 0.0;  // every tet's, damaged or not
   double debrisFraction_ = 0.01;
   // Pieces whose closed surface (the visualization surface, brought up to date) encloses no

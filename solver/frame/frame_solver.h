@@ -32,6 +32,7 @@
 #include "solver/fem/collider_kernels.h"
 #include "solver/fem/dense_kernels.h"
 #include "solver/fem/element_lanes.h"
+#include "solver/fracture/debris.h"
 #include "solver/frame/direct_solver.h"
 #include "solver/frame/frame_loop.h"
 #include "solver/frame/step.h"
@@ -60,6 +61,7 @@ struct ElementInputs {
   const kernels::RestData* rest;          // (nTets)
   const kernels::RestData* plasticShape;  // (nTets) or null: elastic
   const std::uint8_t* plasticShaped;      // (nTets): 1 where plasticShape is the rest shape
+  const std::uint8_t* removed;            // (nVerts) or null: 1 on removed debris
 
   // The rest data is returned by reference, not copied: an intact element reads 80 of its 416
   // bytes (copying them all was a seventh of the element pass). A flowed element's plastic rest
@@ -74,6 +76,14 @@ struct ElementInputs {
       if (!damaged[tetEdges[6 * t + e]]) intact |= static_cast<std::uint8_t>(1u << e);
     if (plasticShaped && plasticShaped[t]) return plasticShape[t];
     return rest[t];
+  }
+  // Whether element t's damaged edges push back when compressed: not where a corner is removed
+  // debris (the rest of the body passes through where it was).
+  GALSCULPT_HD bool resists(int t, bool materialResists) const {
+    if (!materialResists || !removed) return materialResists;
+    for (int a = 0; a < 4; ++a)
+      if (removed[tetVertices[4 * t + a]]) return false;
+    return true;
   }
   GALSCULPT_HD static bool isIdentity(const double* m) {
     for (int c = 0; c < 3; ++c)
@@ -130,8 +140,8 @@ struct ElementPass {
   GALSCULPT_HD void evaluate(int t, const double x12[12], std::uint8_t intact,
                              const kernels::RestData& r, kernels::Hessian elementMode) const {
     double hess[144];
-    kernels::evaluateElement(model, lame, r, x12, intact, resists, elementMode, energy[t],
-                             gradient + 12 * t, hess);
+    kernels::evaluateElement(model, lame, r, x12, intact, in.resists(t, resists), elementMode,
+                             energy[t], gradient + 12 * t, hess);
     if (elementMode != kernels::Hessian::None)
       pack(hess, packedHessian + kPackedHessian * static_cast<size_t>(t));
   }
@@ -186,6 +196,7 @@ class FrameSolver {
           &dampedK_, &tmp_, &savedX_, &savedV_, &pcgB_, &pcgAp_})
       b->resize(3 * n_);
     fixed_.resize(n_);
+    removed_.resize(n_);
     damaged_.resize(edges_);
     elemEnergy_.resize(tets_);
     elemInverted_.resize(tets_);
@@ -221,6 +232,16 @@ class FrameSolver {
       damaged_.upload(hostDamaged_);
       damageRevision_ = state.damageRevision;
     }
+    // (The fracture pass changes hostDamaged_ within a frame: compared by content.)
+    if (model_.debrisRemoval > 0.0 && removedFor_ != hostDamaged_) {
+      removedFor_ = hostDamaged_;
+      updateRemovedDebris();
+    }
+    // Removed debris stays where the state has it (a backend may step several states).
+    removedTargets_.clear();
+    for (int v : removedVertices_)
+      removedTargets_.insert(removedTargets_.end(),
+                             {state.x[v].x(), state.x[v].y(), state.x[v].z()});
     plastic_ = !state.plasticInverse.empty();
     if (plastic_) {
       if (plasticShape_.size() != static_cast<size_t>(tets_)) {
@@ -483,7 +504,8 @@ class FrameSolver {
             damaged_.data(),
             rest_.data(),
             plastic_ ? plasticShape_.data() : nullptr,
-            plastic_ ? plasticShaped_.data() : nullptr};
+            plastic_ ? plasticShaped_.data() : nullptr,
+            removed_.data()};
   }
 
   // out = beta K0 (y - x_n).
@@ -1423,7 +1445,7 @@ class FrameSolver {
       double x12[12];
       std::uint8_t intact;
       const kernels::RestData& r = in.load(t, x, x12, intact);
-      kernels::edgeNormalStress(model, lame, r, x12, intact, resists, slot + 6 * t);
+      kernels::edgeNormalStress(model, lame, r, x12, intact, in.resists(t, resists), slot + 6 * t);
     });
     const int* slotStart = edgeSlotStart_.data();
     const int* slots = edgeSlots_.data();
@@ -1562,6 +1584,21 @@ class FrameSolver {
     hot_.resize(edges_);
   }
 
+  // The debris rule (solver/fracture/debris.h): the vertices of pieces under
+  // model_.debrisRemoval of the body's rest volume are held where they are, out of the solve,
+  // and the elements around them stop pushing back on the rest of the body.
+  void updateRemovedDebris() {
+    std::vector<std::uint8_t> removed =
+        debrisVertices(censusPieces(model_, hostDamaged_), model_.debrisRemoval);
+    if (removed.empty()) removed.assign(n_, 0);
+    if (removed == hostRemoved_) return;
+    hostRemoved_ = std::move(removed);
+    removed_.upload(hostRemoved_);
+    removedVertices_.clear();
+    for (int v = 0; v < n_; ++v)
+      if (hostRemoved_[v]) removedVertices_.push_back(v);
+  }
+
   // Anchored vertices and their targets at `time`, and the colliders' poses (host-computed,
   // uploaded when they change); a rigid pendulum where its angular velocity takes it in the
   // sub-step h (advancePendulum).
@@ -1578,6 +1615,14 @@ class FrameSolver {
         vertices.push_back(v);
         targets.insert(targets.end(), {p.x(), p.y(), p.z()});
       }
+    }
+    for (size_t i = 0; i < removedVertices_.size(); ++i) {
+      const int v = removedVertices_[i];
+      if (fixed[v]) continue;  // an anchor keeps it on its path
+      fixed[v] = 1;
+      vertices.push_back(v);
+      targets.insert(targets.end(), removedTargets_.begin() + 3 * i,
+                     removedTargets_.begin() + 3 * i + 3);
     }
     if (fixed != hostFixed_) {
       hostFixed_ = fixed;
@@ -1716,7 +1761,11 @@ class FrameSolver {
   Buffer<std::uint8_t> breaks_, hot_, cellHot_;
   // Host shadows: what the device holds, to upload only changes.
   std::vector<double> hostX_, hostV_, hostFp_, hostStrain_, hostAnchorTargets_;
-  std::vector<std::uint8_t> hostDamaged_, hostFixed_;
+  std::vector<std::uint8_t> hostDamaged_, hostFixed_, hostRemoved_;
+  Buffer<std::uint8_t> removed_;          // (nVerts) 1 on removed debris
+  std::vector<int> removedVertices_;      // ascending
+  std::vector<std::uint8_t> removedFor_;  // the damage removedVertices_ was found for
+  std::vector<double> removedTargets_;    // (3 per removed vertex) where each is held
   std::vector<int> hostAnchorVertices_;
   std::uint64_t damageRevision_ = ~std::uint64_t{0};
 };

@@ -60,6 +60,9 @@ struct SimModel {
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);           // m/s^2
   std::vector<Collider> colliders;                // with their motions
   FractureField fracture;                         // not enabled: no fracture pass
+  // Pieces under this fraction of the body's rest volume are removed from the simulation
+  // (solver/fracture/debris.h; scene: fracture.debris); 0 keeps every piece.
+  double debrisRemoval = 0.0;
 
   int numVertices() const { return mesh.numVertices(); }
   int numTets() const { return mesh.numTets(); }

@@ -309,7 +309,7 @@ TEST(Simulation, PieceStatsCountDebrisAndInvertedPieces) {
   test::TempDir dir;
   const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + R"(,
     "material": {"preset": "rubber"},
-    "fracture": {"enabled": false, "debris_fraction": 0.2}})");
+    "fracture": {"enabled": false, "debris_fraction": 0.2, "debris": "keep"}})");
   Simulation sim(scene, loadSceneMesh(scene));
   Simulation::PieceStats stats = sim.pieceStats();
   EXPECT_EQ(stats.pieces, 1);
@@ -333,12 +333,14 @@ TEST(Simulation, PieceStatsCountDebrisAndInvertedPieces) {
     if (inCap(a) != inCap(b) || a == lowest || b == lowest) snap.damaged[e] = 1;
   }
   // A piece's volume is its vertices' corner cells': a quarter of each tet per corner.
-  double debrisVolume = 0.0, body = 0.0;
+  double debrisVolume = 0.0, body = 0.0, debrisMass = 0.0;
   for (int t = 0; t < m.numTets(); ++t) {
     body += m.rest[t].volume;
     for (int v : m.mesh.tets[t])
       if (inCap(v) || v == lowest) debrisVolume += 0.25 * m.rest[t].volume;
   }
+  for (int v = 0; v < m.numVertices(); ++v)
+    if (inCap(v) || v == lowest) debrisMass += m.mass[v];
   for (int v = 0; v < m.numVertices(); ++v)
     if (inCap(v)) snap.x[v].y() = 2.0 * cut - rest[v].y();  // mirrored: every cap tet inside out
   sim.restore(snap);
@@ -349,13 +351,121 @@ TEST(Simulation, PieceStatsCountDebrisAndInvertedPieces) {
   EXPECT_GT(debrisVolume, 0.0);
   EXPECT_NEAR(stats.debrisVolumePct, 100.0 * debrisVolume / body, 1e-9);
   EXPECT_LT(stats.debrisVolumePct, 20.0);
-  EXPECT_EQ(stats.invertedPieces, 1);
+  EXPECT_NEAR(stats.debrisMassKg, debrisMass, 1e-12);
+  EXPECT_EQ(stats.invertedPieces, 1) << "kept, the mirrored cap is a piece inside out";
   // The frame's metrics carry the same piece columns.
   const FrameMetrics frame = sim.advance();
   EXPECT_EQ(frame.pieces, 3);
   EXPECT_EQ(frame.debrisPieces, 2);
   EXPECT_NEAR(frame.debrisVolumePct, stats.debrisVolumePct, 1e-12);
   EXPECT_EQ(frame.invertedPieces, sim.pieceStats().invertedPieces);
+  EXPECT_NEAR(frame.debrisMassKg, debrisMass, 1e-12);
+}
+
+// A sphere with a cap cut off (under debris_fraction) and one loose vertex, falling freely.
+struct CutCapSphere {
+  std::unique_ptr<Simulation> sim;
+  std::vector<int> cap;  // the cap's vertices and the loose one
+  int loose = 0;
+  explicit CutCapSphere(const test::TempDir& dir, const std::string& rule) {
+    const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + R"(,
+      "material": {"preset": "rubber"},
+      "fracture": {"enabled": false, "debris_fraction": 0.2, "debris": ")" +
+                                                      rule + R"("}})");
+    sim = std::make_unique<Simulation>(scene, loadSceneMesh(scene));
+    const SimModel& m = sim->model();
+    double top = -1e9, bottom = 1e9;
+    for (const Vec3& p : m.mesh.vertices)
+      top = std::max(top, p.y()), bottom = std::min(bottom, p.y());
+    const double cut = top - 0.25 * (top - bottom);
+    // The loose vertex: the one nearest the centre, deep inside the body.
+    for (int v = 1; v < m.numVertices(); ++v)
+      if (m.mesh.vertices[v].norm() < m.mesh.vertices[loose].norm()) loose = v;
+    auto inCap = [&](int v) { return m.mesh.vertices[v].y() > cut; };
+    SimulationSnapshot snap = sim->snapshot();
+    for (int e = 0; e < m.numEdges(); ++e) {
+      const int a = m.edges[e][0], b = m.edges[e][1];
+      if (inCap(a) != inCap(b) || a == loose || b == loose) snap.damaged[e] = 1;
+    }
+    sim->restore(snap);
+    for (int v = 0; v < m.numVertices(); ++v)
+      if (inCap(v) || v == loose) cap.push_back(v);
+  }
+};
+
+// The debris rule (fracture.debris, default "remove"): debris stays where it was, out of the
+// solve, out of the surface and the exports, its mass reported; kept, it falls with the body.
+TEST(Simulation, RemovedDebrisIsHeldOutOfTheSolveAndOutOfSight) {
+  test::TempDir dir;
+  for (const std::string rule : {"remove", "keep"}) {
+    SCOPED_TRACE(rule);
+    CutCapSphere s(dir, rule);
+    Simulation& sim = *s.sim;
+    const std::vector<Vec3> start = sim.state().x;
+    double capMass = 0.0;
+    for (int v : s.cap) capMass += sim.model().mass[v];
+    FrameMetrics m;
+    for (int f = 0; f < 5; ++f) m = sim.advance();
+    EXPECT_EQ(m.pieces, 3);
+    EXPECT_EQ(m.debrisPieces, 2);
+    EXPECT_NEAR(m.debrisMassKg, capMass, 1e-12) << "removed or kept, the debris' mass is reported";
+    EXPECT_EQ(m.warnings, 0);
+    double capMoved = 0.0, bodyMoved = 1e9;
+    for (int v = 0; v < sim.model().numVertices(); ++v) {
+      const double moved = (sim.state().x[v] - start[v]).norm();
+      if (std::find(s.cap.begin(), s.cap.end(), v) != s.cap.end())
+        capMoved = std::max(capMoved, moved);
+      else
+        bodyMoved = std::min(bodyMoved, moved);
+    }
+    EXPECT_GT(bodyMoved, 0.5 * 0.5 * 9.81 * std::pow(5.0 / 60.0, 2)) << "the body falls freely";
+    int capFaces = 0;
+    const VisualSurface& surface = sim.surface();
+    for (int f = 0; f < surface.mesh.numFaces(); ++f)
+      capFaces += std::find(s.cap.begin(), s.cap.end(), surface.cellVertex[f]) != s.cap.end();
+    if (rule == "remove") {
+      EXPECT_EQ(capMoved, 0.0) << "removed debris is held where it was";
+      for (int v : s.cap) EXPECT_EQ(sim.state().v[v], Vec3::Zero()) << v;
+      EXPECT_EQ(capFaces, 0) << "and is not drawn or exported";
+      EXPECT_TRUE(sim.removed(s.loose));
+      EXPECT_FALSE(sim.removed(sim.nearestVertex(Vec3(0, -1, 0))));
+      EXPECT_EQ(m.invertedPieces, 0);
+    } else {
+      EXPECT_GT(capMoved, 0.01) << "kept debris falls";
+      EXPECT_GT(capFaces, 0);
+      EXPECT_FALSE(sim.removed(s.loose));
+    }
+  }
+}
+
+// Removed debris does not push back: the cap and the loose vertex pushed down into the body
+// (the damaged edges between them squeezed) change nothing for the rest of the body, where kept
+// they push it away.
+TEST(Simulation, RemovedDebrisDoesNotPushOnTheBody) {
+  test::TempDir dir;
+  for (const std::string rule : {"remove", "keep"}) {
+    SCOPED_TRACE(rule);
+    std::vector<Vec3> after[2];
+    std::vector<int> cap;
+    for (int pushed = 0; pushed < 2; ++pushed) {
+      CutCapSphere s(dir, rule);
+      cap = s.cap;
+      SimulationSnapshot snap = s.sim->snapshot();
+      if (pushed)
+        for (int v : s.cap) snap.x[v].y() -= 0.01;
+      s.sim->restore(snap);
+      s.sim->advance();
+      after[pushed] = s.sim->state().x;
+      for (int v : s.cap) after[pushed][v] = Vec3::Zero();
+    }
+    double largest = 0.0;
+    for (size_t v = 0; v < after[0].size(); ++v)
+      largest = std::max(largest, (after[0][v] - after[1][v]).norm());
+    if (rule == "remove")
+      EXPECT_LT(largest, 1e-12);
+    else
+      EXPECT_GT(largest, 1e-5);
+  }
 }
 
 }  // namespace

@@ -1,0 +1,37 @@
+// Pieces and debris. A piece is a part of the body joined by undamaged edges (a vertex whose
+// edges are all damaged is a piece of its own). Its rest volume is that of its vertices' corner
+// cells: a quarter of every tet around each of its vertices, which is what its closed surface
+// encloses at rest (docs/surface.md). Debris is a piece under a fraction of the body's rest
+// volume.
+//
+// The debris rule (scene: fracture.debris, docs/physics.md): debris is removed from the
+// simulation. Damage only grows, so a piece only ever splits and debris stays debris: what is
+// removed is a function of the damage alone, the same for every executor, after an undo and in
+// a reopened project, and needs no state of its own.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "solver/model/sim_model.h"
+
+namespace galsculpt {
+
+struct PieceCensus {
+  int pieces = 0;
+  std::vector<int> pieceOfVertex;  // (nVerts) compact: 0 .. pieces - 1, in first-vertex order
+  std::vector<double> restVolume;  // (pieces) m^3
+  std::vector<int> vertexCount;    // (pieces)
+  double bodyRestVolume = 0.0;     // every tet's, damaged or not
+};
+
+PieceCensus censusPieces(const SimModel& model, const std::vector<std::uint8_t>& damaged);
+
+// 1 for each piece under `fraction` of the body's rest volume (none for fraction 0).
+std::vector<std::uint8_t> debrisPieces(const PieceCensus& census, double fraction);
+
+// 1 for each vertex of a debris piece; empty when there is none (the common case costs no
+// per-vertex test downstream).
+std::vector<std::uint8_t> debrisVertices(const PieceCensus& census, double fraction);
+
+}  // namespace galsculpt

@@ -1,0 +1,64 @@
+#include "solver/fracture/debris.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+SimModel barModel() {
+  return buildSimModel(test::gridBar(2, 8, 2, 0.1),
+                       {MaterialModel::StVK, lameFromYoungPoisson(1e5, 0.3), 1000.0, {}});
+}
+
+// Pieces over undamaged edges, each with the rest volume of its vertices' corner cells (a
+// quarter of every tet around each vertex); the pieces' volumes add up to the body's.
+TEST(Debris, CensusCountsPiecesAndTheirCornerCellVolumes) {
+  const SimModel m = barModel();
+  std::vector<std::uint8_t> damaged(m.numEdges(), 0);
+  PieceCensus whole = censusPieces(m, damaged);
+  ASSERT_EQ(whole.pieces, 1);
+  double body = 0.0;
+  for (const TetRest& r : m.rest) body += r.volume;
+  EXPECT_NEAR(whole.bodyRestVolume, body, 1e-15);
+  EXPECT_NEAR(whole.restVolume[0], body, 1e-15);
+  EXPECT_EQ(whole.vertexCount[0], m.numVertices());
+  EXPECT_TRUE(debrisVertices(whole, 0.5).empty()) << "one piece is never debris of itself";
+
+  // Free vertex 0 (a corner) and cut the bar across the middle of its length.
+  const double mid = 0.5 * 8 * 0.1;
+  for (int e = 0; e < m.numEdges(); ++e) {
+    const int a = m.edges[e][0], b = m.edges[e][1];
+    const bool across = (m.mesh.vertices[a].y() < mid) != (m.mesh.vertices[b].y() < mid);
+    if (a == 0 || b == 0 || across) damaged[e] = 1;
+  }
+  const PieceCensus c = censusPieces(m, damaged);
+  ASSERT_EQ(c.pieces, 3);
+  double corner = 0.0;
+  for (int t = 0; t < m.numTets(); ++t)
+    for (int v : m.mesh.tets[t])
+      if (v == 0) corner += 0.25 * m.rest[t].volume;
+  const int loose = c.pieceOfVertex[0];
+  EXPECT_EQ(loose, 0) << "pieces are numbered in first-vertex order";
+  EXPECT_EQ(c.vertexCount[loose], 1);
+  EXPECT_NEAR(c.restVolume[loose], corner, 1e-15);
+  double sum = 0.0;
+  for (double v : c.restVolume) sum += v;
+  EXPECT_NEAR(sum, body, 1e-14);
+  for (int v = 0; v < m.numVertices(); ++v) ASSERT_LT(c.pieceOfVertex[v], c.pieces);
+
+  // Debris is what lies under the fraction: the loose corner only, then everything.
+  const std::vector<std::uint8_t> small = debrisVertices(c, 0.01);
+  ASSERT_EQ(small.size(), static_cast<size_t>(m.numVertices()));
+  EXPECT_EQ(std::count(small.begin(), small.end(), 1), 1);
+  EXPECT_EQ(small[0], 1);
+  EXPECT_EQ(debrisPieces(c, 0.01), (std::vector<std::uint8_t>{1, 0, 0}));
+  EXPECT_EQ(debrisPieces(c, 0.6), (std::vector<std::uint8_t>{1, 1, 1}));
+  EXPECT_TRUE(debrisVertices(c, 0.0).empty()) << "a fraction of 0 keeps everything";
+}
+
+}  // namespace
+}  // namespace galsculpt
