@@ -3,6 +3,8 @@
 #include <imgui.h>
 
 #include <cstdio>
+#include <string>
+#include <vector>
 
 namespace galsculpt {
 
@@ -194,11 +196,13 @@ void SculptApp::drawScenePanel() {
   ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
   ImGui::Begin("Scene settings", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   MaterialDesc& m = editing_.material;
-  static const char* presets[] = {"clay", "rubber", "flesh", "steel"};
+  std::vector<const char*> presets;
+  for (const std::string& name : materialPresetNames()) presets.push_back(name.c_str());
   int preset = 0;
-  for (int i = 0; i < 4; ++i)
-    if (m.preset == presets[i]) preset = i;
-  if (ImGui::Combo("preset", &preset, presets, 4)) m = materialPreset(presets[preset]);
+  for (size_t i = 0; i < presets.size(); ++i)
+    if (m.preset == presets[i]) preset = static_cast<int>(i);
+  if (ImGui::Combo("preset", &preset, presets.data(), static_cast<int>(presets.size())))
+    m = materialPreset(presets[preset]);
   pickEnum("model", m.model,
            {MaterialModel::Corotational, MaterialModel::StVK, MaterialModel::StableNeoHookean},
            materialModelName);

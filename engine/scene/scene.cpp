@@ -15,7 +15,8 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-const std::vector<std::string> kPresets = {"clay", "rubber", "flesh", "steel"};
+const std::vector<std::string> kPresets = {"clay",  "rubber",        "flesh",
+                                           "steel", "brittle_steel", "ductile_steel"};
 // Enum values and their names, in enum order.
 template <typename E>
 struct Named {
@@ -118,6 +119,8 @@ MaterialDesc readMaterial(JsonObject o) {
   m.yieldStress = o.number("yield_stress", m.yieldStress, 0.0, 1e13);
   m.hardening = o.number("hardening", m.hardening, 0.0, 1e13);
   m.fractureThreshold = o.number("fracture_threshold", m.fractureThreshold, 0.0, 1e13);
+  m.compressiveThreshold = o.number("compressive_threshold", m.compressiveThreshold, 0.0, 1e13);
+  m.fractureEnergy = o.number("fracture_energy", m.fractureEnergy, 0.0, 1e9);
   o.rejectUnknownKeys();
   return m;
 }
@@ -239,6 +242,7 @@ FractureDesc readFracture(JsonObject o) {
   f.iterations = o.integer("iterations", 1, 1, 100);
   f.compressiveThreshold = o.number("compressive_threshold", 0.0, 0.0, 1e13);
   f.criticalFraction = o.number("critical_fraction", 0.0, 0.0, 1.0);
+  f.energy = o.number("energy", 0.0, 0.0, 1e9);
   f.debrisFraction = o.number("debris_fraction", f.debrisFraction, 0.0, 1.0);
   f.debris = readEnum(o, "debris", f.debris, kDebrisRuleNames);
   o.rejectUnknownKeys();
@@ -316,6 +320,10 @@ std::optional<BackendRequest> backendRequestFromName(const std::string& name) {
   return valueOf(kBackendNames, name);
 }
 
+const std::vector<std::string>& materialPresetNames() {
+  return kPresets;
+}
+
 MaterialDesc materialPreset(const std::string& name) {
   MaterialDesc m;
   m.preset = name;
@@ -347,6 +355,23 @@ MaterialDesc materialPreset(const std::string& name) {
     m.poissonRatio = 0.3;
     m.density = 7850.0;
     m.fractureThreshold = 4.0e8;
+  } else if (name == "brittle_steel" || name == "ductile_steel") {
+    // Ferritic steel below and above its transition (docs/scenes.md): both cleave where the
+    // normal stress passes the cleavage stress, crush at twice it; the ductile one yields
+    // first (S355), and only the hardening and the triaxiality under a notch raise its stress to
+    // the break.
+    m.model = MaterialModel::Corotational;
+    m.youngsModulus = 2.0e11;
+    m.poissonRatio = 0.3;
+    m.density = 7850.0;
+    if (name == "brittle_steel") {
+      m.fractureThreshold = 2.0e9;
+    } else {
+      m.yieldStress = 3.55e8;
+      m.hardening = 1.0e9;
+      m.fractureThreshold = 1.2e9;
+    }
+    m.compressiveThreshold = 2.0 * m.fractureThreshold;
   } else {
     throw std::invalid_argument("unknown material preset '" + name + "'");
   }
@@ -398,6 +423,9 @@ SceneDescription parseScene(const nlohmann::json& root, const fs::path& file) {
         f.fail("threshold",
                "must be positive when fracture is enabled (the material has no default)");
     }
+    if (!f.has("compressive_threshold"))
+      s.fracture.compressiveThreshold = s.material.compressiveThreshold;
+    if (!f.has("energy")) s.fracture.energy = s.material.fractureEnergy;
   }
   if (o.has("solver")) s.solver = readSolver(o.object("solver"));
   if (o.has("measure")) {
@@ -417,6 +445,12 @@ SceneDescription parseScene(const nlohmann::json& root, const fs::path& file) {
     if (s.measure.loadCollider >= static_cast<int>(s.colliders.size()))
       m.fail("load_collider",
              "names no collider (the scene has " + std::to_string(s.colliders.size()) + ")");
+    s.measure.loadAnchor = m.integer("load_anchor", -1, 0, 1000000);
+    if (s.measure.loadAnchor >= static_cast<int>(s.anchors.size()))
+      m.fail("load_anchor",
+             "names no anchor (the scene has " + std::to_string(s.anchors.size()) + ")");
+    if (s.measure.loadAnchor >= 0 && s.measure.loadCollider >= 0)
+      m.fail("load_anchor", "load_n measures one thing: give load_collider or load_anchor");
     m.rejectUnknownKeys();
   }
   o.rejectUnknownKeys();

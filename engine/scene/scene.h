@@ -35,18 +35,22 @@ struct MeshSource {
 };
 
 struct MaterialDesc {
-  std::string preset = "rubber";  // clay | rubber | flesh | steel
+  std::string preset = "rubber";  // clay | rubber | flesh | steel | brittle_steel | ductile_steel
   MaterialModel model = MaterialModel::StableNeoHookean;
   double youngsModulus = 0.0;  // Pa
   double poissonRatio = 0.0;
-  double density = 0.0;            // kg/m^3
-  double yieldStress = 0.0;        // Pa, 0 = elastic
-  double hardening = 0.0;          // Pa (linear isotropic hardening modulus)
-  double fractureThreshold = 0.0;  // Pa, the preset's edge stress at break (fracture default)
+  double density = 0.0;               // kg/m^3
+  double yieldStress = 0.0;           // Pa, 0 = elastic
+  double hardening = 0.0;             // Pa (linear isotropic hardening modulus)
+  double fractureThreshold = 0.0;     // Pa, the preset's edge stress at break (fracture default)
+  double compressiveThreshold = 0.0;  // Pa, crushing (fracture default; 0: never)
+  double fractureEnergy = 0.0;        // J/m^2, G_c (fracture default; 0: thresholds as given)
 };
 
 // Default values of a named preset; throws std::invalid_argument for an unknown name.
 MaterialDesc materialPreset(const std::string& name);
+// Every preset's name, in the order the documentation lists them.
+const std::vector<std::string>& materialPresetNames();
 
 struct PathKey {
   double time = 0.0;                                 // s
@@ -98,6 +102,7 @@ struct FractureDesc {
   int iterations = 1;                 // solves per step while edges keep breaking
   double compressiveThreshold = 0.0;  // Pa, edges crushed beyond it break too (0: never)
   double criticalFraction = 0.0;      // (0, 1]: the most critical breaks first (0: all at once)
+  double energy = 0.0;                // J/m^2, fracture energy G_c (0: none, the paper)
   // A piece holding less than this fraction of the body's rest volume is debris (metrics), cut
   // or broken off, fracture enabled or not; the rule says whether it is removed.
   double debrisFraction = 0.01;
@@ -160,8 +165,10 @@ struct MeasureDesc {
   // Opening: the change in distance between the mesh vertices nearest two rest points (the
   // Charpy test's crack-mouth opening displacement, CMOD). Empty: not measured.
   std::vector<Eigen::Vector3d> opening;
-  // Load: the force magnitude of one collider (index into colliders; -1: not measured).
+  // Load: the force magnitude of one collider (index into colliders; -1: not measured), or
+  // the elastic force the body exerts on one anchor's vertices (index into anchors; a grip).
   int loadCollider = -1;
+  int loadAnchor = -1;
 };
 
 struct SceneDescription {

@@ -33,7 +33,9 @@ SceneDescription editScene(const SceneDescription& base, const SceneSettings& s)
                    {"density", m.density},
                    {"yield_stress", m.yieldStress},
                    {"hardening", m.hardening},
-                   {"fracture_threshold", m.fractureThreshold}};
+                   {"fracture_threshold", m.fractureThreshold},
+                   {"compressive_threshold", m.compressiveThreshold},
+                   {"fracture_energy", m.fractureEnergy}};
   nlohmann::json fracture = j.contains("fracture") ? j["fracture"] : nlohmann::json::object();
   fracture["enabled"] = s.fracture;
   fracture["threshold"] = s.fractureThreshold;

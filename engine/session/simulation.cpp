@@ -144,6 +144,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     f.seed = scene.fracture.seed;
     f.compressiveThreshold = scene.fracture.compressiveThreshold;
     f.criticalFraction = scene.fracture.criticalFraction;
+    f.fractureEnergy = scene.fracture.energy;
     model_.fracture = buildFractureField(model_, f);
     settings_.fractureIterations = scene.fracture.iterations;
   }
@@ -161,6 +162,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     openingVertices_.push_back(best);
   }
   loadCollider_ = scene.measure.loadCollider;
+  loadAnchor_ = scene.measure.loadAnchor;
   debrisFraction_ = scene.fracture.debrisFraction;
   removesDebris_ = scene.fracture.debris == DebrisRule::Remove;
   updatePieces();
@@ -225,6 +227,16 @@ double Simulation::currentVolume() const {
         tetSixVolume(state_.x[tet[0]], state_.x[tet[1]], state_.x[tet[2]], state_.x[tet[3]]) / 6.0;
   }
   return sum;
+}
+
+double Simulation::anchorLoad(int id) const {
+  const auto it = std::find(anchorIds_.begin(), anchorIds_.end(), id);
+  if (it == anchorIds_.end()) return 0.0;  // removed
+  Eigen::VectorXd gradient;
+  assembleElastic(model_, state_.x, state_, gradient, nullptr);
+  Vec3 sum = Vec3::Zero();
+  for (int v : state_.anchors[it - anchorIds_.begin()].vertices) sum += gradient.segment<3>(3 * v);
+  return sum.norm();
 }
 
 double Simulation::debrisVolumePercent() const {
@@ -545,6 +557,7 @@ FrameMetrics Simulation::advance() {
       m.absorbedEnergyJ = pendulumEnergy(c, initialColliderState(c), model_.gravity) -
                           pendulumEnergy(c, now, model_.gravity);
   }
+  if (loadAnchor_ >= 0) m.loadN = anchorLoad(-loadAnchor_ - 1);
   if (openingVertices_.size() == 2) {
     const int a = openingVertices_[0], b = openingVertices_[1];
     m.openingM = (state_.x[a] - state_.x[b]).norm() -

@@ -47,11 +47,11 @@ struct FrameMetrics {
   double msFracture = 0.0;     // the fracture pass (part of ms_other before it had a column)
   int newlyDamaged = 0;        // edges broken this frame (fracture and tools)
   double openingM = 0.0;       // scene measure.opening: distance change of its two vertices, m
-  double loadN = 0.0;          // scene measure.load_collider: that collider's force magnitude, N
-  int backtracks = 0;          // Newton steps shortened by the energy guard / line search
-  double energyPasses = 0.0;   // their energy evaluations in whole-body passes (StepReport)
-  int cgIterations = 0;        // PCG iterations of the frame's linear solves
-  int retries = 0;             // rolled-back and halved sub-steps (part of warnings)
+  double loadN = 0.0;  // measure.load_collider / load_anchor: that collider's or grip's force, N
+  int backtracks = 0;  // Newton steps shortened by the energy guard / line search
+  double energyPasses = 0.0;  // their energy evaluations in whole-body passes (StepReport)
+  int cgIterations = 0;       // PCG iterations of the frame's linear solves
+  int retries = 0;            // rolled-back and halved sub-steps (part of warnings)
   // Pieces under fracture.debris_fraction of the body's rest volume (a piece's rest volume is
   // its vertices' corner cells', what its surface encloses at rest: docs/surface.md), the rest
   // volume they hold (% of the body's), and pieces whose surface encloses no positive volume
@@ -201,6 +201,10 @@ class Simulation {
   double debrisVolumePercent() const;
   std::vector<int> openingVertices_;  // measure.opening: the two probed vertices
   int loadCollider_ = -1;
+  int loadAnchor_ = -1;  // measure.load_anchor: a scene anchor
+  // The elastic force the body exerts on the vertices of the anchor with this id (N; 0 once it
+  // is removed).
+  double anchorLoad(int id) const;
   double restVolume_ = 0.0;
   int frame_ = 0;
   std::uint64_t generation_ = 0;

@@ -59,6 +59,35 @@ void buildKernelGrid(FractureField& f, double cellSize) {
 
 }  // namespace
 
+std::vector<double> edgeMeshSize(const SimModel& model) {
+  std::vector<double> volume(model.numEdges(), 0.0);
+  std::vector<int> count(model.numEdges(), 0);
+  for (int t = 0; t < model.numTets(); ++t)
+    for (int e : model.tetEdges[t]) {
+      volume[e] += model.rest[t].volume;
+      ++count[e];
+    }
+  std::vector<double> size(model.numEdges());
+  for (int e = 0; e < model.numEdges(); ++e)
+    size[e] = std::cbrt(6.0 * std::sqrt(2.0) * volume[e] / std::max(count[e], 1));
+  return size;
+}
+
+double youngsModulus(const Lame& l) {
+  return l.mu * (3.0 * l.lambda + 2.0 * l.mu) / (l.lambda + l.mu);
+}
+
+std::vector<double> fractureSizeScale(const SimModel& model, const FractureSettings& settings) {
+  if (!(settings.fractureEnergy > 0.0)) return {};
+  const double youngs = youngsModulus(model.material.lame);
+  if (!(youngs > 0.0)) throw std::invalid_argument("a fracture energy needs a Young's modulus");
+  const double characteristic =
+      2.0 * youngs * settings.fractureEnergy / (settings.threshold * settings.threshold);
+  std::vector<double> scale = edgeMeshSize(model);
+  for (double& s : scale) s = std::sqrt(characteristic / s);
+  return scale;
+}
+
 FractureField buildFractureField(const SimModel& model, const FractureSettings& settings) {
   if (!(settings.threshold > 0.0))
     throw std::invalid_argument("fracture threshold must be positive");
@@ -69,16 +98,20 @@ FractureField buildFractureField(const SimModel& model, const FractureSettings& 
     throw std::invalid_argument("critical fraction must lie in [0, 1]");
   if (!(settings.compressiveThreshold >= 0.0))
     throw std::invalid_argument("compressive threshold must be >= 0");
+  if (!(settings.fractureEnergy >= 0.0))
+    throw std::invalid_argument("fracture energy must be >= 0");
   FractureField f;
   f.settings = settings;
   const int nEdges = model.numEdges();
+  const std::vector<double> scale = fractureSizeScale(model, settings);
   f.threshold.resize(nEdges);
-  f.minThreshold = settings.threshold;
+  f.minThreshold = std::numeric_limits<double>::infinity();
   for (int e = 0; e < nEdges; ++e) {
-    f.threshold[e] =
-        settings.threshold * (1.0 + settings.thresholdJitter * uniformSigned(settings.seed, e));
+    f.threshold[e] = settings.threshold * (scale.empty() ? 1.0 : scale[e]) *
+                     (1.0 + settings.thresholdJitter * uniformSigned(settings.seed, e));
     f.minThreshold = std::min(f.minThreshold, f.threshold[e]);
   }
+  if (nEdges == 0) f.minThreshold = settings.threshold;
   f.slotStart.assign(nEdges + 1, 0);
   for (const auto& te : model.tetEdges) {
     for (int e : te) ++f.slotStart[e + 1];

@@ -16,6 +16,10 @@
 //   averaged: the pass costs nothing extra while nothing is close to breaking.
 // - Randomized thresholds: threshold * (1 + jitter * u), u uniform in [-1, 1] from a hash of
 //   (seed, edge index): the same on every run and for any thread count.
+// - A fracture energy G_c (crack band): thresholds scaled by sqrt(l_ch / h) with the local mesh
+//   size h and l_ch = 2 E G_c / threshold^2, so that a broken edge releases G_c per unit of crack
+//   area; a sharp crack then runs at the stress intensity sqrt(4 pi E G_c) (about K_Ic) on any
+//   mesh, where a fixed threshold makes a finer mesh break earlier.
 #pragma once
 
 #include "solver/model/sim_model.h"
@@ -24,6 +28,14 @@ namespace galsculpt {
 
 // Throws std::invalid_argument for a non-positive threshold or a jitter outside [0, 1).
 FractureField buildFractureField(const SimModel& model, const FractureSettings& settings);
+
+// The mesh size at each edge: the edge length of the regular tet with the mean rest volume of
+// the tets around it.
+std::vector<double> edgeMeshSize(const SimModel& model);
+// Young's modulus of the Lame parameters.
+double youngsModulus(const Lame& lame);
+// Each edge's threshold factor sqrt(l_ch / h) for settings.fractureEnergy > 0; empty otherwise.
+std::vector<double> fractureSizeScale(const SimModel& model, const FractureSettings& settings);
 
 struct FractureReport {
   int newlyDamaged = 0;

@@ -17,8 +17,15 @@ struct FractureSettings {
   double thresholdJitter = 0.0;  // relative, in [0, 1)
   std::uint32_t seed = 1;
   // Pa; > 0: an edge also breaks when compressed beyond it (crushing, shear lips). 0: never;
-  // the paper's criterion is tension only.
+  // the paper's criterion is tension only. Scaled per edge as its tensile threshold is
+  // (jitter, fracture energy): an edge crushes beyond compressiveThreshold * threshold[e] /
+  // threshold.
   double compressiveThreshold = 0.0;
+  // J/m^2; > 0: the fracture energy G_c (crack band). An edge where the mesh size is h breaks
+  // at threshold * sqrt(l_ch / h), l_ch = 2 E G_c / threshold^2, so that breaking it releases
+  // G_c per unit of crack area whatever the mesh size (docs/physics.md). 0: every edge at
+  // `threshold` (the paper).
+  double fractureEnergy = 0.0;
   // In (0, 1]: of the edges past their threshold in one pass, only those whose criticality (the
   // larger of stress / threshold and compression / compressive threshold) is within this
   // fraction of the largest break; the others wait for the re-solve with the new damage

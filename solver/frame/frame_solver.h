@@ -1396,9 +1396,10 @@ class FrameSolver {
     if (settings.criticalFraction > 0.0) {
       // The most critical breaks first (fracture_field.h).
       const double* compression = compression_.data();
-      const double crush = settings.compressiveThreshold;
+      const double crush = settings.compressiveThreshold / settings.threshold;
+      const double* threshold = threshold_.data();
       auto criticality = [=] GALSCULPT_LAMBDA(int e) {
-        const double crushed = crush > 0.0 ? -compression[e] / crush : 0.0;
+        const double crushed = crush > 0.0 ? -compression[e] / (crush * threshold[e]) : 0.0;
         return breaks[e] ? fmax(ratio[e], crushed) : -kInf;
       };
       ex_.maximum(edges, criticality, sc + kCritical);
@@ -1466,13 +1467,15 @@ class FrameSolver {
     const double* threshold = threshold_.data();
     std::uint8_t* breaks = breaks_.data();
     double* ratio = mean_.data();
-    const double crush = field.settings.compressiveThreshold;
+    // Crushing scales per edge as the tensile threshold does (fracture_field.h).
+    const double crush = field.settings.compressiveThreshold / field.settings.threshold;
     if (field.settings.kernelRadius <= 0.0) {
       ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
         breaks[e] = 0;
         ratio[e] = -kInf;
         if (damaged[e]) return;
-        breaks[e] = (crush > 0.0 && -compression[e] > crush) || local[e] > threshold[e];
+        breaks[e] =
+            (crush > 0.0 && -compression[e] > crush * threshold[e]) || local[e] > threshold[e];
         ratio[e] = local[e] / threshold[e];
       });
     } else {
@@ -1492,7 +1495,7 @@ class FrameSolver {
     const double* threshold = threshold_.data();
     std::uint8_t* breaks = breaks_.data();
     double* ratio = mean_.data();
-    const double crush = field.settings.compressiveThreshold;
+    const double crush = field.settings.compressiveThreshold / field.settings.threshold;
     double* sc = scalars_.data();
     // Only edges within R_d of an edge over the smallest threshold can average above theirs.
     const double minThreshold = field.minThreshold;
@@ -1513,7 +1516,7 @@ class FrameSolver {
       cellHot[c] = any;
     });
     ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
-      breaks[e] = !damaged[e] && crush > 0.0 && -compression[e] > crush;
+      breaks[e] = !damaged[e] && crush > 0.0 && -compression[e] > crush * threshold[e];
       ratio[e] = -kInf;
       if (damaged[e]) return;
       const int* around = neighbors + 27 * edgeCell[e];

@@ -250,6 +250,56 @@ TEST(Fracture, CompressiveThresholdCrushesSqueezedEdges) {
   EXPECT_GT(crushed(1.0e4), 0);
 }
 
+// With a fracture energy each edge's threshold is sqrt(2 E G_c / h) (the threshold at the
+// characteristic size l_ch = 2 E G_c / threshold^2, scaled by sqrt(l_ch / h)): breaking it
+// releases G_c per unit of crack area in a band of the mesh size h, and a mesh twice as fine
+// holds sqrt(2) times the stress. Crushing scales alike.
+TEST(Fracture, FractureEnergyScalesThresholdsWithTheMeshSize) {
+  const Lame lame = lameFromYoungPoisson(1e5, 0.3);
+  const SimModel coarse =
+      buildSimModel(test::gridBar(2, 8, 2, 0.1), {MaterialModel::StVK, lame, 1000.0, {}});
+  const SimModel fine =
+      buildSimModel(test::gridBar(4, 16, 4, 0.05), {MaterialModel::StVK, lame, 1000.0, {}});
+  EXPECT_NEAR(youngsModulus(lame), 1e5, 1e-9);
+  FractureSettings f{1000.0, 0.0, 0.0, 1};
+  f.fractureEnergy = 0.2;
+  const std::vector<double> h = edgeMeshSize(coarse);
+  const std::vector<double> hFine = edgeMeshSize(fine);
+  // gridBar's tets all have the cell's sixth: h is the regular tet's edge for that volume.
+  const double cell = 0.1 * 0.1 * 0.1 / 6.0;
+  for (double v : h) ASSERT_NEAR(v, std::cbrt(6.0 * std::sqrt(2.0) * cell), 1e-12);
+  for (double v : hFine) ASSERT_NEAR(v, 0.5 * h[0], 1e-12);
+  const FractureField a = buildFractureField(coarse, f);
+  const FractureField b = buildFractureField(fine, f);
+  for (int e = 0; e < coarse.numEdges(); ++e)
+    ASSERT_NEAR(a.threshold[e] * a.threshold[e] * h[e] / (2.0 * 1e5), f.fractureEnergy, 1e-12);
+  EXPECT_NEAR(b.threshold[0] / a.threshold[0], std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(a.minThreshold, a.threshold[0], 1e-12);
+  f.fractureEnergy = 0.0;
+  EXPECT_EQ(buildFractureField(coarse, f).threshold[0], 1000.0) << "no energy: the threshold";
+  f.fractureEnergy = -1.0;
+  EXPECT_THROW(buildFractureField(coarse, f), std::invalid_argument);
+
+  // A squeezed bar crushes at compressiveThreshold * threshold[e] / threshold: where G_c makes
+  // the edges 10x stronger, the squeeze that crushed it no longer does.
+  auto crushed = [](double energy) {
+    FractureSettings s{1e9, 0.0, 0.0, 1};
+    s.compressiveThreshold = 1.0e4;
+    TensionCase c = tensionCase(0.0, s);
+    const double l = edgeMeshSize(c.model)[0];
+    // sqrt(l_ch / h) = 10: l_ch = 100 h, G_c = l_ch threshold^2 / (2 E).
+    s.fractureEnergy = energy * 100.0 * l * 1e18 / (2.0 * youngsModulus(c.model.material.lame));
+    c.model.fracture = buildFractureField(c.model, s);
+    c.state.anchors[1].path = {{0.0, Vec3::Zero()}, {1.0, Vec3(0, 0.3, 0)}};
+    int damaged = 0;
+    const StepSettings st;
+    for (int frame = 0; frame < 30; ++frame) damaged += step(c.model, c.state, st).newlyDamaged;
+    return damaged;
+  };
+  EXPECT_GT(crushed(0.0), 0);
+  EXPECT_EQ(crushed(1.0), 0);
+}
+
 TEST(Fracture, NoPassAndNoDamageWhenFractureIsOff) {
   const SimModel m = barModel();
   SimState s = initialState(m);
