@@ -106,7 +106,7 @@ struct FractureDesc {
   // A piece holding less than this fraction of the body's rest volume is debris (metrics), cut
   // or broken off, fracture enabled or not; the rule says whether it is removed.
   double debrisFraction = 0.01;
-  DebrisRule debris = DebrisRule::Remove;
+  DebrisRule debris = DebrisRule::Keep;
 };
 
 // The solver's choices, parsed once from their names (scene files, the command line, the Scene

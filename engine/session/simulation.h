@@ -189,7 +189,7 @@ class Simulation {
   int debrisPieces_ = 0;
   double debrisRestVolume_ = 0.0;
   double debrisMass_ = 0.0;    // kg
-  bool removesDebris_ = true;  // fracture.debris: remove
+  bool removesDebris_ = false;  // fracture.debris: remove
   // The surface without removed debris (when there is any).
   mutable VisualSurface shownSurface_;
   VisualSurface withoutRemovedDebris() const;

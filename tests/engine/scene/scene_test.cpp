@@ -76,25 +76,25 @@ TEST(Scene, FractureThresholdDefaultsToTheMaterialPreset) {
 
 // The two steel presets (docs/scenes.md): one cleavage stress crushing at twice it, the ductile
 // one yielding well below its break; the fracture section takes both thresholds from the
-// material unless it gives its own, and the debris rule defaults to removal.
+// material unless it gives its own; the debris rule is kept unless a scene asks for removal.
 TEST(Scene, SteelPresetsCarryTheirBreakingAndCrushingStresses) {
   test::TempDir dir;
   const std::string mesh = R"("mesh": {"generate": "sphere", "tets": 500})";
   test::writeText(dir / "b.json", "{" + mesh + R"(, "material": {"preset": "brittle_steel"},
                   "fracture": {"enabled": true}})");
   test::writeText(dir / "d.json", "{" + mesh + R"(, "material": {"preset": "ductile_steel"},
-                  "fracture": {"enabled": true, "compressive_threshold": 0, "debris": "keep"}})");
+                  "fracture": {"enabled": true, "compressive_threshold": 0, "debris": "remove"}})");
   const SceneDescription brittle = loadScene(dir / "b.json");
   const SceneDescription ductile = loadScene(dir / "d.json");
   EXPECT_EQ(brittle.material.yieldStress, 0.0) << "elastic up to its break";
   EXPECT_DOUBLE_EQ(brittle.fracture.threshold, 2.0e9);
   EXPECT_DOUBLE_EQ(brittle.fracture.compressiveThreshold, 4.0e9);
-  EXPECT_EQ(brittle.fracture.debris, DebrisRule::Remove);
+  EXPECT_EQ(brittle.fracture.debris, DebrisRule::Keep) << "the default";
   EXPECT_DOUBLE_EQ(ductile.material.yieldStress, 3.55e8);
   EXPECT_LT(3.0 * ductile.material.yieldStress, ductile.fracture.threshold)
       << "the ductile steel yields long before the triaxial stress under a notch breaks it";
   EXPECT_EQ(ductile.fracture.compressiveThreshold, 0.0) << "the scene's own: never crushes";
-  EXPECT_EQ(ductile.fracture.debris, DebrisRule::Keep);
+  EXPECT_EQ(ductile.fracture.debris, DebrisRule::Remove);
   EXPECT_EQ(loadScene(kScenes / "charpy.json").material.preset, "brittle_steel");
   EXPECT_EQ(loadScene(kScenes / "charpy_ductile.json").material.preset, "ductile_steel");
   test::writeText(dir / "bad.json", "{" + mesh + R"(, "fracture": {"debris": "merge"}})");
