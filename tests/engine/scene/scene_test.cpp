@@ -54,16 +54,22 @@ TEST(Scene, CharpyHasAPendulumAndFracture) {
   EXPECT_EQ(s.colliders[3].motion.type, MotionDesc::Type::Pendulum);
 }
 
+// A scene of a 500-tet sphere with the given sections (`"key": value, ...`), written to `name`
+// in `dir` and loaded.
+SceneDescription sphereSceneWith(const test::TempDir& dir, const std::string& name,
+                                 const std::string& sections) {
+  test::writeText(dir / name, R"({"mesh": {"generate": "sphere", "tets": 500}, )" + sections + "}");
+  return loadScene(dir / name);
+}
+
 // Brittle and ductile presets carry their own break stress; a scene may leave it out.
 TEST(Scene, FractureThresholdDefaultsToTheMaterialPreset) {
   test::TempDir dir;
-  const std::string mesh = R"("mesh": {"generate": "sphere", "tets": 500})";
-  test::writeText(dir / "steel.json", "{" + mesh + R"(, "material": {"preset": "steel"},
-                  "fracture": {"enabled": true}})");
-  test::writeText(dir / "flesh.json", "{" + mesh + R"(, "material": {"preset": "flesh"},
-                  "fracture": {"enabled": true, "threshold": 1234}, "solver": {"split_aggregates": false}})");
-  const SceneDescription steel = loadScene(dir / "steel.json");
-  const SceneDescription flesh = loadScene(dir / "flesh.json");
+  const SceneDescription steel = sphereSceneWith(
+      dir, "steel.json", R"("material": {"preset": "steel"}, "fracture": {"enabled": true})");
+  const SceneDescription flesh =
+      sphereSceneWith(dir, "flesh.json", R"("material": {"preset": "flesh"},
+                  "fracture": {"enabled": true, "threshold": 1234}, "solver": {"split_aggregates": false})");
   EXPECT_DOUBLE_EQ(steel.fracture.threshold, materialPreset("steel").fractureThreshold);
   EXPECT_GT(materialPreset("steel").fractureThreshold, 1e8);
   EXPECT_GT(materialPreset("flesh").yieldStress, 0.0) << "ductile: plastic before it breaks";
@@ -79,13 +85,11 @@ TEST(Scene, FractureThresholdDefaultsToTheMaterialPreset) {
 // material unless it gives its own; the debris rule is kept unless a scene asks for removal.
 TEST(Scene, SteelPresetsCarryTheirBreakingAndCrushingStresses) {
   test::TempDir dir;
-  const std::string mesh = R"("mesh": {"generate": "sphere", "tets": 500})";
-  test::writeText(dir / "b.json", "{" + mesh + R"(, "material": {"preset": "brittle_steel"},
-                  "fracture": {"enabled": true}})");
-  test::writeText(dir / "d.json", "{" + mesh + R"(, "material": {"preset": "ductile_steel"},
-                  "fracture": {"enabled": true, "compressive_threshold": 0, "debris": "remove"}})");
-  const SceneDescription brittle = loadScene(dir / "b.json");
-  const SceneDescription ductile = loadScene(dir / "d.json");
+  const SceneDescription brittle = sphereSceneWith(
+      dir, "b.json", R"("material": {"preset": "brittle_steel"}, "fracture": {"enabled": true})");
+  const SceneDescription ductile =
+      sphereSceneWith(dir, "d.json", R"("material": {"preset": "ductile_steel"},
+                  "fracture": {"enabled": true, "compressive_threshold": 0, "debris": "remove"})");
   EXPECT_EQ(brittle.material.yieldStress, 0.0) << "elastic up to its break";
   EXPECT_DOUBLE_EQ(brittle.fracture.threshold, 2.0e9);
   EXPECT_DOUBLE_EQ(brittle.fracture.compressiveThreshold, 4.0e9);
@@ -97,9 +101,8 @@ TEST(Scene, SteelPresetsCarryTheirBreakingAndCrushingStresses) {
   EXPECT_EQ(ductile.fracture.debris, DebrisRule::Remove);
   EXPECT_EQ(loadScene(kScenes / "charpy.json").material.preset, "brittle_steel");
   EXPECT_EQ(loadScene(kScenes / "charpy_ductile.json").material.preset, "ductile_steel");
-  test::writeText(dir / "bad.json", "{" + mesh + R"(, "fracture": {"debris": "merge"}})");
   try {
-    loadScene(dir / "bad.json");
+    sphereSceneWith(dir, "bad.json", R"("fracture": {"debris": "merge"})");
     ADD_FAILURE() << "an unknown debris rule is refused";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("$.fracture.debris"), std::string::npos) << e.what();
