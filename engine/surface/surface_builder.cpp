@@ -538,7 +538,9 @@ void SurfaceBuilder::preparePlacements(const SimModel& model) {
 Eigen::Matrix3d SurfaceBuilder::fitDeformation(const SimModel& model, const SimState& state,
                                                int v) const {
   // Least-squares fit of dx = F dX over the undamaged edges at v: the deformation of v's own
-  // side. Too few directions (a vertex on a thin sliver): regularized towards the identity.
+  // side. Too few directions (a vertex on a thin sliver): regularized towards the rotation that
+  // best carries its edges where they are (Kabsch), not towards the identity, which turns a
+  // sliver that has tumbled over inside out (a single edge reversed gave F a negative stretch).
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero(), B = Eigen::Matrix3d::Zero();
   for (int k = vertexEdgeStart_[v]; k < vertexEdgeStart_[v + 1]; ++k) {
     const int e = vertexEdges_[k];
@@ -552,8 +554,16 @@ Eigen::Matrix3d SurfaceBuilder::fitDeformation(const SimModel& model, const SimS
   const double scale = A.trace() / 3.0;
   if (scale <= 0.0) return Eigen::Matrix3d::Identity();
   if (A.determinant() > 1e-6 * scale * scale * scale) return B * A.inverse();
+  // The rotation is left free about directions no edge constrains; the small identity term
+  // picks the one nearest the identity there (at rest: the identity).
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(B + 1e-6 * scale * Eigen::Matrix3d::Identity(),
+                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d flip = Eigen::Matrix3d::Identity();
+  flip(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
+  const Eigen::Matrix3d rotation = svd.matrixU() * flip * svd.matrixV().transpose();
+  // F = R + G with G the least-squares correction (G dX = dx - R dX), damped by mu |G|^2.
   const double mu = 1e-2 * scale;
-  return (B + mu * Eigen::Matrix3d::Identity()) * (A + mu * Eigen::Matrix3d::Identity()).inverse();
+  return rotation + (B - rotation * A) * (A + mu * Eigen::Matrix3d::Identity()).inverse();
 }
 
 void SurfaceBuilder::evaluatePositions(const SimModel& model, const SimState& state) {

@@ -126,6 +126,38 @@ GALSCULPT_HD double maxAbs(const M3& m) {
   return s;
 }
 
+// Gauss-Jordan inverse of a 6x6 column-major matrix with partial pivoting; false when singular.
+GALSCULPT_HD bool invert6(const double in[36], double out[36]) {
+  double a[6][12];
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) {
+      a[r][c] = in[r + 6 * c];
+      a[r][c + 6] = r == c ? 1.0 : 0.0;
+    }
+  for (int col = 0; col < 6; ++col) {
+    int pivot = col;
+    for (int r = col + 1; r < 6; ++r)
+      if (fabs(a[r][col]) > fabs(a[pivot][col])) pivot = r;
+    if (!(fabs(a[pivot][col]) > 0.0)) return false;
+    if (pivot != col)
+      for (int c = 0; c < 12; ++c) {
+        const double t = a[col][c];
+        a[col][c] = a[pivot][c];
+        a[pivot][c] = t;
+      }
+    const double inv = 1.0 / a[col][col];
+    for (int c = 0; c < 12; ++c) a[col][c] *= inv;
+    for (int r = 0; r < 6; ++r) {
+      if (r == col || a[r][col] == 0.0) continue;
+      const double factor = a[r][col];
+      for (int c = 0; c < 12; ++c) a[r][c] -= factor * a[col][c];
+    }
+  }
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) out[r + 6 * c] = a[r][c + 6];
+  return true;
+}
+
 // U diag(d) V^T.
 GALSCULPT_HD M3 scaledProduct(const M3& u, const double d[3], const M3& v) {
   M3 m{};
@@ -552,52 +584,11 @@ GALSCULPT_HD M3 directStress(MaterialModel model, const Lame& lame, const M3& f,
   return p;
 }
 
-// --- damaged elements: St. Venant-Kirchhoff in the masked edge strains -------------------------
+// --- damaged elements: St. Venant-Kirchhoff in the edge strains, cracks open one way ---------
 
-// The strain band over which a damaged edge's resistance to compression sets in. The masked
-// strain of a closed crack, min(eps, 0), has a kink at eps = 0 that no Newton iteration can
-// resolve (the residual stalls at the body's weight while faces touch); blending over the band
-// makes the energy C1: phi(eps) = 0 for eps >= 0, -eps^2 / (2 band) on (-band, 0), and
-// eps + band / 2 below. Opening a crack stays free; a closed one sits band / 2 deeper.
-inline constexpr double kCrackContactBand = 1e-4;
-
-// Edge Green strains through their mask phi: phi(eps) = eps for an intact edge; for a damaged
-// one the C1 compression blend above while damaged edges resist compression, 0 otherwise.
-// `slope` is phi', `curvature` phi''.
-GALSCULPT_HD void maskedEdgeStrains(const RestData& rest, const double x[12], std::uint8_t intact,
-                                    bool compressionResists, double d[6][3], double strain[6],
-                                    double slope[6], double curvature[6]) {
-  constexpr double band = kCrackContactBand;
-  for (int e = 0; e < 6; ++e) {
-    const int a = edgeVertex(e, 0), b = edgeVertex(e, 1);
-    double len2 = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      d[e][k] = x[3 * b + k] - x[3 * a + k];
-      len2 += d[e][k] * d[e][k];
-    }
-    const double raw = (len2 - rest.restLengthSq[e]) / (2.0 * rest.restLengthSq[e]);
-    curvature[e] = 0.0;
-    if ((intact >> e) & 1) {
-      slope[e] = 1.0;
-      strain[e] = raw;
-    } else if (!compressionResists || raw >= 0.0) {
-      slope[e] = 0.0;
-      strain[e] = 0.0;
-    } else if (raw > -band) {
-      slope[e] = -raw / band;
-      strain[e] = -raw * raw / (2.0 * band);
-      curvature[e] = -1.0 / band;
-    } else {
-      slope[e] = 1.0;
-      strain[e] = raw + 0.5 * band;
-    }
-  }
-}
-
-// The strain-space stiffness K = B^-T C B^-1, with the coupling of two opposite intact edges
-// (two separate pieces) removed by a PSD term.
-GALSCULPT_HD void edgeStrainStiffness(const Lame& lame, const RestData& rest, std::uint8_t intact,
-                                      double k[6][6]) {
+// The strain-space stiffness K = B^-T C B^-1 on the six edge Green strains: the element's
+// St. Venant-Kirchhoff energy is 1/2 eps^T K eps.
+GALSCULPT_HD void edgeStrainStiffness(const Lame& lame, const RestData& rest, double k[6][6]) {
   // Isotropic elasticity on (E11,E22,E33,E12,E13,E23); shear entries count twice in E:E.
   double cb[6][6];  // C B^-1
   for (int r = 0; r < 6; ++r) {
@@ -612,7 +603,7 @@ GALSCULPT_HD void edgeStrainStiffness(const Lame& lame, const RestData& rest, st
       cb[r][c] = sum;
     }
   }
-  // Exactly symmetric (upper triangle mirrored): the decoupling below relies on k01 == k10.
+  // Exactly symmetric (upper triangle mirrored): the eliminations below stay symmetric.
   for (int r = 0; r < 6; ++r) {
     for (int c = r; c < 6; ++c) {
       double sum = 0.0;
@@ -620,53 +611,192 @@ GALSCULPT_HD void edgeStrainStiffness(const Lame& lame, const RestData& rest, st
       k[r][c] = k[c][r] = sum;
     }
   }
-  for (int pair = 0; pair < 3; ++pair) {
-    const int e0 = pair, e1 = 5 - pair;  // (0,5), (1,4), (2,3): opposite edges
-    if (intact != ((1u << e0) | (1u << e1))) continue;
-    const double k01 = k[e0][e1];
-    const double sign = k01 >= 0.0 ? 1.0 : -1.0;
-    k[e0][e0] += fabs(k01);
-    k[e1][e1] += fabs(k01);
-    k[e0][e1] -= sign * fabs(k01);
-    k[e1][e0] -= sign * fabs(k01);
+}
+
+// Solves a x = b for the symmetric positive definite submatrix of `a` on the edges in `set`
+// (Cholesky); x is zero off the set. False when that submatrix is not positive definite.
+GALSCULPT_HD bool solveOnEdges(const double a[6][6], std::uint8_t set, const double b[6],
+                               double x[6]) {
+  int idx[6], n = 0;
+  for (int e = 0; e < 6; ++e) {
+    x[e] = 0.0;
+    if ((set >> e) & 1) idx[n++] = e;
+  }
+  double l[6][6], y[6];
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j <= i; ++j) {
+      double sum = a[idx[i]][idx[j]];
+      for (int m = 0; m < j; ++m) sum -= l[i][m] * l[j][m];
+      if (i == j) {
+        if (!(sum > 0.0)) return false;
+        l[i][i] = sqrt(sum);
+      } else {
+        l[i][j] = sum / l[j][j];
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    double sum = b[idx[i]];
+    for (int m = 0; m < i; ++m) sum -= l[i][m] * y[m];
+    y[i] = sum / l[i][i];
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    double sum = y[i];
+    for (int m = i + 1; m < n; ++m) sum -= l[m][i] * x[idx[m]];
+    x[idx[i]] = sum / l[i][i];
+  }
+  return true;
+}
+
+// The strain-space state of a damaged element: the edge forces tau = dPsi/d eps (eps the six
+// raw edge Green strains), the elastic edge strains z (what the material is strained by once the
+// cracks have opened: the stress is C B^-1 z), the energy, and d2Psi/d eps2.
+struct CrackedStrainState {
+  double tau[6];
+  double z[6];
+  double energy;
+  double stiffness[6][6];
+};
+
+// Adds to `out` the energy min over openings c of 1/2 (eps - c)^T K (eps - c), with c_e free on
+// the edges in `free`, c_e >= 0 on those in `oneWay` and 0 elsewhere. It is convex and C1 in eps
+// (a partial minimum of a convex quadratic over a convex set); its gradient tau = K (eps - c*)
+// is zero on every opened edge and compressive (<= 0) on every closed one-way edge, and its
+// Hessian is the Schur complement of K on the opened edges. The openings solve a linear
+// complementarity problem with a positive definite matrix: Murty's least-index principal
+// pivoting finds the opened set exactly in finitely many flips (at most 2^6 sets), starting from
+// the edges that are not compressed. A crack at rest (zero strain, zero force) is a tie between
+// open and closed; it counts as open, so that a freshly cut body's linearized step lets its
+// sides part (counted closed, its stiffness would glue them for that step).
+GALSCULPT_HD void addOpenedCrackEnergy(const double k[6][6], const double eps[6], std::uint8_t free,
+                                       std::uint8_t oneWay, bool wantStiffness,
+                                       CrackedStrainState& out) {
+  double keps[6], scale = 0.0, kScale = 0.0;
+  for (int r = 0; r < 6; ++r) {
+    keps[r] = 0.0;
+    for (int c = 0; c < 6; ++c) {
+      keps[r] += k[r][c] * eps[c];
+      kScale = fmax(kScale, fabs(k[r][c]));
+    }
+    scale = fmax(scale, fabs(eps[r]));
+  }
+  std::uint8_t opened = free;
+  for (int e = 0; e < 6; ++e)
+    if (((oneWay >> e) & 1) && eps[e] >= 0.0) opened |= static_cast<std::uint8_t>(1u << e);
+  double c[6], z[6] = {eps[0], eps[1], eps[2], eps[3], eps[4], eps[5]}, tau[6];
+  const double tolerance = 1e-13 * scale;
+  for (int flip = 0; flip <= 64; ++flip) {
+    if (!solveOnEdges(k, opened, keps, c)) break;  // K is positive definite: not reached
+    for (int e = 0; e < 6; ++e) z[e] = eps[e] - c[e];
+    for (int r = 0; r < 6; ++r) {
+      tau[r] = 0.0;
+      for (int m = 0; m < 6; ++m) tau[r] += k[r][m] * z[m];
+    }
+    int violated = -1;
+    for (int e = 0; e < 6 && violated < 0; ++e) {
+      if (!((oneWay >> e) & 1)) continue;
+      const bool open = (opened >> e) & 1;
+      if ((open && c[e] < -tolerance) || (!open && tau[e] > tolerance * kScale)) violated = e;
+    }
+    if (violated < 0) break;
+    opened ^= static_cast<std::uint8_t>(1u << violated);
+  }
+  // The Schur complement of K on the opened edges gives tau = H eps: the opened edges' strains
+  // enter nothing, exactly (a vertex whose edges all opened moves no other force, bit for bit).
+  double h[6][6];
+  for (int r = 0; r < 6; ++r)
+    for (int m = 0; m < 6; ++m) h[r][m] = k[r][m];
+  for (int o = 0; o < 6; ++o) {
+    if (!((opened >> o) & 1)) continue;
+    const double pivot = h[o][o];
+    for (int r = 0; r < 6; ++r) {
+      if (r == o) continue;
+      const double factor = h[r][o] / pivot;
+      for (int m = 0; m < 6; ++m)
+        if (m != o) h[r][m] -= factor * h[o][m];
+    }
+    for (int m = 0; m < 6; ++m) h[o][m] = h[m][o] = 0.0;
+  }
+  for (int r = 0; r < 6; ++r)
+    for (int m = r + 1; m < 6; ++m) h[r][m] = h[m][r] = 0.5 * (h[r][m] + h[m][r]);
+  for (int r = 0; r < 6; ++r) {
+    double t = 0.0;
+    for (int m = 0; m < 6; ++m) t += h[r][m] * eps[m];
+    out.tau[r] += t;
+    out.z[r] += z[r];
+    out.energy += 0.5 * eps[r] * t;
+  }
+  if (!wantStiffness) return;
+  for (int r = 0; r < 6; ++r)
+    for (int m = 0; m < 6; ++m) out.stiffness[r][m] += h[r][m];
+}
+
+// A damaged element in strain space. Damaged edges carry no tension: their cracks open freely
+// (the opening absorbs all of the edge's stretch, so not even the coupling through the other
+// edges pulls on it) and, where damaged edges resist compression, close against each other.
+// With only two opposite edges intact the element holds two pieces (say {0, 1} and {2, 3}):
+// each intact edge is then a bar of its own with the uniaxial stiffness 1 / (K^-1)_ee, and the
+// closing contact acts on the four edges between them, so neither piece feels the other move
+// unless they touch.
+GALSCULPT_HD void crackedStrainState(const Lame& lame, const RestData& rest, const double eps[6],
+                                     std::uint8_t intact, bool compressionResists,
+                                     bool wantStiffness, CrackedStrainState& out) {
+  double k[6][6];
+  edgeStrainStiffness(lame, rest, k);
+  out.energy = 0.0;
+  for (int r = 0; r < 6; ++r) {
+    out.tau[r] = out.z[r] = 0.0;
+    for (int c = 0; c < 6; ++c) out.stiffness[r][c] = 0.0;
+  }
+  const std::uint8_t damaged = static_cast<std::uint8_t>(~intact & kIntact);
+  const std::uint8_t oneWay = compressionResists ? damaged : 0;
+  const bool twoPieces = intact == 0x21 || intact == 0x12 || intact == 0x0c;
+  if (!twoPieces) {
+    addOpenedCrackEnergy(k, eps, static_cast<std::uint8_t>(damaged & ~oneWay), oneWay,
+                         wantStiffness, out);
+    return;
+  }
+  double kFlat[36], kInverse[36];
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) kFlat[r + 6 * c] = k[r][c];
+  if (!invert6(kFlat, kInverse)) return;  // K is positive definite: not reached
+  for (int e = 0; e < 6; ++e) {
+    if (!((intact >> e) & 1)) continue;
+    const double bar = 1.0 / kInverse[e + 6 * e];
+    out.tau[e] += bar * eps[e];
+    out.energy += 0.5 * bar * eps[e] * eps[e];
+    out.stiffness[e][e] += bar;
+    for (int r = 0; r < 6; ++r) out.z[r] += bar * eps[e] * kInverse[r + 6 * e];
+  }
+  if (oneWay) addOpenedCrackEnergy(k, eps, intact, oneWay, wantStiffness, out);
+}
+
+// The six edge vectors d_k and raw Green strains (|d|^2 - |D|^2) / (2 |D|^2).
+GALSCULPT_HD void edgeGreenStrains(const RestData& rest, const double x[12], double d[6][3],
+                                   double strain[6]) {
+  for (int e = 0; e < 6; ++e) {
+    const int a = edgeVertex(e, 0), b = edgeVertex(e, 1);
+    double len2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      d[e][k] = x[3 * b + k] - x[3 * a + k];
+      len2 += d[e][k] * d[e][k];
+    }
+    strain[e] = (len2 - rest.restLengthSq[e]) / (2.0 * rest.restLengthSq[e]);
   }
 }
 
-// `hessian` (12x12 column-major) may be null when mode is None.
-GALSCULPT_HD void evaluateEdgeStrainElement(const Lame& lame, const RestData& rest,
-                                            const double x[12], std::uint8_t intact,
-                                            bool compressionResists, Hessian mode, double& energy,
-                                            double gradient[12], double* hessian) {
-  double k[6][6];
-  edgeStrainStiffness(lame, rest, intact, k);
-  double d[6][3], strain[6], slope[6], curvature[6];
-  maskedEdgeStrains(rest, x, intact, compressionResists, d, strain, slope, curvature);
-  double tension[6];  // dPsi / d(masked strain)
-  energy = 0.0;
-  for (int r = 0; r < 6; ++r) {
-    tension[r] = 0.0;
-    for (int c = 0; c < 6; ++c) tension[r] += k[r][c] * strain[c];
-    energy += 0.5 * strain[r] * tension[r];
-  }
-  energy *= rest.volume;
-  // d eps_k / d x_b = d_k / |D_k|^2 = -d eps_k / d x_a for edge (a, b).
+// Writes the 12x12 Hessian of the edge-strain energy: G^T H G plus the edges' own curvature.
+GALSCULPT_HD void edgeStrainHessian(const RestData& rest, const double d[6][3],
+                                       const CrackedStrainState& state, Hessian mode,
+                                       double* hessian) {
   double g[6][3];
   for (int e = 0; e < 6; ++e)
-    for (int c = 0; c < 3; ++c) g[e][c] = slope[e] * d[e][c] / rest.restLengthSq[e];
-  for (int i = 0; i < 12; ++i) gradient[i] = 0.0;
-  for (int e = 0; e < 6; ++e) {
-    const int a = edgeVertex(e, 0), b = edgeVertex(e, 1);
-    for (int c = 0; c < 3; ++c) {
-      gradient[3 * b + c] += rest.volume * tension[e] * g[e][c];
-      gradient[3 * a + c] -= rest.volume * tension[e] * g[e][c];
-    }
-  }
-  if (mode == Hessian::None) return;
+    for (int c = 0; c < 3; ++c) g[e][c] = d[e][c] / rest.restLengthSq[e];
   for (int i = 0; i < 144; ++i) hessian[i] = 0.0;
-  // V g^T K g: edge e touches vertices (a_e: -g_e, b_e: +g_e).
+  // V g^T H g: edge e touches vertices (a_e: -g_e, b_e: +g_e).
   for (int e = 0; e < 6; ++e) {
     for (int f = 0; f < 6; ++f) {
-      const double kef = rest.volume * k[e][f];
+      const double kef = rest.volume * state.stiffness[e][f];
       if (kef == 0.0) continue;
       for (int se = 0; se < 2; ++se) {
         const int ve = edgeVertex(e, se);
@@ -684,8 +814,9 @@ GALSCULPT_HD void evaluateEdgeStrainElement(const Lame& lame, const RestData& re
   // The second derivative of eps_k is [I -I; -I I] / |D_k|^2: indefinite only for a compressive
   // edge force, which projection drops.
   for (int e = 0; e < 6; ++e) {
-    double t = slope[e] * tension[e] / rest.restLengthSq[e];
+    double t = state.tau[e] / rest.restLengthSq[e];
     if (mode == Hessian::ProjectedSpd) t = fmax(t, 0.0);
+    if (t == 0.0) continue;
     const double block = rest.volume * t;
     const int a = 3 * edgeVertex(e, 0), b = 3 * edgeVertex(e, 1);
     for (int c = 0; c < 3; ++c) {
@@ -695,25 +826,32 @@ GALSCULPT_HD void evaluateEdgeStrainElement(const Lame& lame, const RestData& re
       hessian[(b + c) + 12 * (a + c)] -= block;
     }
   }
-  // Within the compression band the mask bends: tension phi'' (d eps)(d eps)^T, PSD while the
-  // edge force is compressive (phi'' < 0); projection drops it otherwise.
+}
+
+// `hessian` (12x12 column-major) may be null when mode is None.
+GALSCULPT_HD void evaluateEdgeStrainElement(const Lame& lame, const RestData& rest,
+                                            const double x[12], std::uint8_t intact,
+                                            bool compressionResists, Hessian mode, double& energy,
+                                            double gradient[12], double* hessian) {
+  double d[6][3], strain[6];
+  edgeGreenStrains(rest, x, d, strain);
+  CrackedStrainState state;
+  crackedStrainState(lame, rest, strain, intact, compressionResists, mode != Hessian::None, state);
+  energy = rest.volume * state.energy;
+  // d eps_k / d x_b = d_k / |D_k|^2 = -d eps_k / d x_a for edge (a, b).
+  double g[6][3];
+  for (int e = 0; e < 6; ++e)
+    for (int c = 0; c < 3; ++c) g[e][c] = d[e][c] / rest.restLengthSq[e];
+  for (int i = 0; i < 12; ++i) gradient[i] = 0.0;
   for (int e = 0; e < 6; ++e) {
-    if (curvature[e] == 0.0) continue;
-    double t = tension[e] * curvature[e];
-    if (mode == Hessian::ProjectedSpd) t = fmax(t, 0.0);
-    if (t == 0.0) continue;
-    const double scale = rest.volume * t / (rest.restLengthSq[e] * rest.restLengthSq[e]);
-    const int a = 3 * edgeVertex(e, 0), b = 3 * edgeVertex(e, 1);
+    if (state.tau[e] == 0.0) continue;
+    const int a = edgeVertex(e, 0), b = edgeVertex(e, 1);
     for (int c = 0; c < 3; ++c) {
-      for (int r = 0; r < 3; ++r) {
-        const double w = scale * d[e][r] * d[e][c];
-        hessian[(a + r) + 12 * (a + c)] += w;
-        hessian[(b + r) + 12 * (b + c)] += w;
-        hessian[(a + r) + 12 * (b + c)] -= w;
-        hessian[(b + r) + 12 * (a + c)] -= w;
-      }
+      gradient[3 * b + c] += rest.volume * state.tau[e] * g[e][c];
+      gradient[3 * a + c] -= rest.volume * state.tau[e] * g[e][c];
     }
   }
+  if (mode != Hessian::None) edgeStrainHessian(rest, d, state, mode, hessian);
 }
 
 // Energy, gradient and (unless mode is None) the 12x12 Hessian of one element: the model itself
@@ -780,12 +918,14 @@ GALSCULPT_HD void edgeNormalStress(MaterialModel model, const Lame& lame, const 
   if (intact == kIntact) {
     p = firstPiolaStress(model, lame, f);
   } else {
-    double d[6][3], strain[6], slope[6], curvature[6];
-    maskedEdgeStrains(rest, x, intact, compressionResists, d, strain, slope, curvature);
-    double v[6];  // (E11,E22,E33,E12,E13,E23)
+    double d[6][3], strain[6];
+    edgeGreenStrains(rest, x, d, strain);
+    CrackedStrainState state;
+    crackedStrainState(lame, rest, strain, intact, compressionResists, false, state);
+    double v[6];  // (E11,E22,E33,E12,E13,E23) of the elastic strain
     for (int r = 0; r < 6; ++r) {
       v[r] = 0.0;
-      for (int c = 0; c < 6; ++c) v[r] += rest.strainFromEdges[r + 6 * c] * strain[c];
+      for (int c = 0; c < 6; ++c) v[r] += rest.strainFromEdges[r + 6 * c] * state.z[c];
     }
     M3 e{};
     e(0, 0) = v[0], e(1, 1) = v[1], e(2, 2) = v[2];
@@ -820,38 +960,6 @@ GALSCULPT_HD void edgeNormalStress(MaterialModel model, const Lame& lame, const 
 }
 
 // --- rest data and plasticity -----------------------------------------------------------------
-
-// Gauss-Jordan inverse of a 6x6 column-major matrix with partial pivoting; false when singular.
-GALSCULPT_HD bool invert6(const double in[36], double out[36]) {
-  double a[6][12];
-  for (int r = 0; r < 6; ++r)
-    for (int c = 0; c < 6; ++c) {
-      a[r][c] = in[r + 6 * c];
-      a[r][c + 6] = r == c ? 1.0 : 0.0;
-    }
-  for (int col = 0; col < 6; ++col) {
-    int pivot = col;
-    for (int r = col + 1; r < 6; ++r)
-      if (fabs(a[r][col]) > fabs(a[pivot][col])) pivot = r;
-    if (!(fabs(a[pivot][col]) > 0.0)) return false;
-    if (pivot != col)
-      for (int c = 0; c < 12; ++c) {
-        const double t = a[col][c];
-        a[col][c] = a[pivot][c];
-        a[pivot][c] = t;
-      }
-    const double inv = 1.0 / a[col][col];
-    for (int c = 0; c < 12; ++c) a[col][c] *= inv;
-    for (int r = 0; r < 6; ++r) {
-      if (r == col || a[r][col] == 0.0) continue;
-      const double factor = a[r][col];
-      for (int c = 0; c < 12; ++c) a[r][c] -= factor * a[col][c];
-    }
-  }
-  for (int r = 0; r < 6; ++r)
-    for (int c = 0; c < 6; ++c) out[r + 6 * c] = a[r][c + 6];
-  return true;
-}
 
 // Rest data of the tet with corners p (12 coordinates); false for a degenerate tet.
 GALSCULPT_HD bool computeRest(const double p[12], RestData& r) {

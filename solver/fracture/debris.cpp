@@ -22,12 +22,17 @@ PieceCensus censusPieces(const SimModel& model, const std::vector<std::uint8_t>&
   }
   c.restVolume.assign(c.pieces, 0.0);
   c.vertexCount.assign(c.pieces, 0);
+  c.wholeTets.assign(c.pieces, 0);
   for (int v = 0; v < n; ++v) ++c.vertexCount[c.pieceOfVertex[v]];
   for (int t = 0; t < model.numTets(); ++t) {
     const double volume = model.rest[t].volume;
     c.bodyRestVolume += volume;
-    for (int a = 0; a < 4; ++a)
-      c.restVolume[c.pieceOfVertex[model.mesh.tets[t][a]]] += 0.25 * volume;
+    const Tet& tet = model.mesh.tets[t];
+    for (int a = 0; a < 4; ++a) c.restVolume[c.pieceOfVertex[tet[a]]] += 0.25 * volume;
+    const int p = c.pieceOfVertex[tet[0]];
+    if (c.pieceOfVertex[tet[1]] == p && c.pieceOfVertex[tet[2]] == p &&
+        c.pieceOfVertex[tet[3]] == p)
+      ++c.wholeTets[p];
   }
   return c;
 }
@@ -35,7 +40,9 @@ PieceCensus censusPieces(const SimModel& model, const std::vector<std::uint8_t>&
 std::vector<std::uint8_t> debrisPieces(const PieceCensus& census, double fraction) {
   std::vector<std::uint8_t> debris(census.pieces, 0);
   const double below = fraction * census.bodyRestVolume;
-  for (int p = 0; p < census.pieces; ++p) debris[p] = census.restVolume[p] < below;
+  if (!(fraction > 0.0)) return debris;
+  for (int p = 0; p < census.pieces; ++p)
+    debris[p] = census.restVolume[p] < below || census.wholeTets[p] == 0;
   return debris;
 }
 

@@ -2,7 +2,9 @@
 // edges are all damaged is a piece of its own). Its rest volume is that of its vertices' corner
 // cells: a quarter of every tet around each of its vertices, which is what its closed surface
 // encloses at rest (docs/surface.md). Debris is a piece under a fraction of the body's rest
-// volume.
+// volume, or a sliver: a piece that holds no whole tet (every tet at its vertices has a corner
+// in another piece), whose shape no element holds, so that edge lengths alone let it turn
+// inside out whatever its size.
 //
 // The debris rule (scene: fracture.debris, docs/physics.md): debris is removed from the
 // simulation. Damage only grows, so a piece only ever splits and debris stays debris: what is
@@ -22,12 +24,14 @@ struct PieceCensus {
   std::vector<int> pieceOfVertex;  // (nVerts) compact: 0 .. pieces - 1, in first-vertex order
   std::vector<double> restVolume;  // (pieces) m^3
   std::vector<int> vertexCount;    // (pieces)
+  std::vector<int> wholeTets;      // (pieces) tets with all four corners in the piece
   double bodyRestVolume = 0.0;     // every tet's, damaged or not
 };
 
 PieceCensus censusPieces(const SimModel& model, const std::vector<std::uint8_t>& damaged);
 
-// 1 for each piece under `fraction` of the body's rest volume (none for fraction 0).
+// 1 for each piece under `fraction` of the body's rest volume or holding no whole tet (none for
+// fraction 0).
 std::vector<std::uint8_t> debrisPieces(const PieceCensus& census, double fraction);
 
 // 1 for each vertex of a debris piece; empty when there is none (the common case costs no

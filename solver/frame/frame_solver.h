@@ -120,8 +120,8 @@ struct ElementPass {
     const kernels::M3 f = kernels::deformationGradient(*r, x12);
     elementMode = mode;
     if (keep > 0.0) {
-      // A damaged element's stiffness switches within the crack-contact band (1e-4 of
-      // strain): it is evaluated every time.
+      // A damaged element's stiffness switches where one of its cracks opens or closes: it is
+      // evaluated every time.
       // Every entry within the tolerance; a NaN record (never evaluated, flowed) fails the
       // comparison and is evaluated (a running maximum through fmax dropped the NaN).
       bool kept = intact == kernels::kIntact;

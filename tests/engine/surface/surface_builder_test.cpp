@@ -264,6 +264,48 @@ TEST(SurfaceBuilder, NoTriangleStretchesAcrossAnOpenedCrack) {
   expectWatertightPieces(b, s, totalVolume(b.model.mesh), "opened");
 }
 
+// A sliver of two vertices joined by one intact edge, everything else around them damaged, that
+// tumbles end over end: its surface turns with it and keeps enclosing its rest volume. (Its
+// sides' deformation fitted towards the identity gave the reversed edge a negative stretch and
+// the sliver's surface enclosed negative volume.)
+TEST(SurfaceBuilder, ASliverThatTumblesEndOverEndStaysRightSideOut) {
+  Body b = makeBody(test::gridBar(4, 3, 2, 0.1));
+  int kept = -1;
+  for (int e = 0; e < b.model.numEdges() && kept < 0; ++e)
+    if (b.model.edges[e][0] == 5 || b.model.edges[e][1] == 5) kept = e;
+  const int a = b.model.edges[kept][0], c = b.model.edges[kept][1];
+  for (int e = 0; e < b.model.numEdges(); ++e) {
+    const Edge& ed = b.model.edges[e];
+    if (e != kept && (ed[0] == a || ed[1] == a || ed[0] == c || ed[1] == c))
+      b.state.damaged[e] = 1;
+  }
+  ASSERT_EQ(countDamagePieces(b.model, b.state), 2);
+  SurfaceBuilder builder(b.model);
+  auto sliverSixVolume = [&] {
+    builder.update(b.model, b.state);
+    const VisualSurface& surf = builder.surface();
+    double six = 0.0;
+    for (int f = 0; f < surf.mesh.numFaces(); ++f) {
+      if (surf.cellVertex[f] != a && surf.cellVertex[f] != c) continue;
+      const Tri& t = surf.mesh.faces[f];
+      six += surf.mesh.vertices[t[0]].dot(surf.mesh.vertices[t[1]].cross(surf.mesh.vertices[t[2]]));
+    }
+    return six;
+  };
+  const double atRest = sliverSixVolume();
+  ASSERT_GT(atRest, 0.0);
+  // Half a turn about an axis across the edge, through its midpoint, and 1 m away.
+  const Vec3 mid = 0.5 * (b.model.mesh.vertices[a] + b.model.mesh.vertices[c]);
+  const Vec3 along = b.model.mesh.vertices[c] - b.model.mesh.vertices[a];
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(M_PI, along.unitOrthogonal()).toRotationMatrix();
+  for (int v : {a, c}) b.state.x[v] = mid + turn * (b.model.mesh.vertices[v] - mid) + Vec3(1, 0, 0);
+  const double turned = sliverSixVolume();
+  std::cout << "sliver six-volume at rest " << atRest << ", tumbled " << turned << "\n";
+  EXPECT_GT(turned, 0.5 * atRest);
+  EXPECT_LT(turned, 1.5 * atRest);
+}
+
 TEST(SurfaceBuilder, APartialCutIsASlitWhoseSidesMeetAtTheCrackFront) {
   Body b = makeBody(test::gridBar(4, 3, 2, 0.1));
   // Half way into the bar's depth.

@@ -213,39 +213,105 @@ TEST(TetElement, DamagedEdgesStillResistCompressionUnlessToldNot) {
   EXPECT_DOUBLE_EQ(a.energy, b.energy) << "in tension a damaged edge carries nothing either way";
 }
 
-// A closed crack's resistance sets in over a small strain band (kCrackContactBand), so that the
-// energy is C1 and Newton can converge on touching crack faces: inside the band the derivatives
-// match finite differences, and across its ends and across zero strain the force is continuous.
-TEST(TetElement, ClosedCrackResistanceIsSmoothAcrossItsBand) {
+// A crack opens where its edge force would turn tensile, not where its own strain changes
+// sign. Along a path that pulls vertex 1 from squeezing its damaged edges to stretching them,
+// the force must never jump (the energy is C1): each step's change of force stays within what
+// the largest stiffness on the path allows. A mask such as min(eps, 0), whose force jumps where
+// a crack closes, fails this by orders of magnitude.
+TEST(TetElement, ForceIsContinuousWhereACrackOpensOrCloses) {
   const TetPoints rest = restTet();
   const TetRest r = computeTetRest(rest);
-  const EdgeDamage damage{0x3e, true};  // edge 0 (vertices 0-1) damaged, resisting compression
-  const double band = kernels::kCrackContactBand;
-  auto withStrain = [&](double strain, unsigned seed) {
-    TetPoints x = deformed(rest, 0.05, seed);
-    const Eigen::Vector3d d = x[1] - x[0];
-    const double restLength = (rest[1] - rest[0]).norm();
-    x[1] = x[0] + d.normalized() * restLength * std::sqrt(1.0 + 2.0 * strain);
-    return x;
-  };
-  for (unsigned seed = 1; seed <= 3; ++seed) {
-    const TetPoints x = withStrain(-0.5 * band, seed);
-    const ElementEval e = eval(MaterialModel::StVK, r, x, damage, HessianMode::Exact);
-    Mat12 fdHessian;
-    Vec12 fdGradient;
-    finiteDifferences(MaterialModel::StVK, r, x, damage, 1e-8, fdGradient, fdHessian);
-    EXPECT_LT((fdGradient - e.gradient).norm(), 1e-5 * std::max(1.0, e.gradient.norm()));
-    EXPECT_LT((fdHessian - e.hessian).norm(), 1e-5 * std::max(1.0, e.hessian.norm()));
-    for (double at : {0.0, -band}) {
-      const double gap = 1e-10;
-      const ElementEval below =
-          eval(MaterialModel::StVK, r, withStrain(at - gap, seed), damage, HessianMode::None);
-      const ElementEval above =
-          eval(MaterialModel::StVK, r, withStrain(at + gap, seed), damage, HessianMode::None);
-      EXPECT_LT((below.gradient - above.gradient).norm(), 1e-6 * below.gradient.norm())
-          << "force continuous at strain " << at;
+  for (std::uint8_t mask : {0x3e, 0x38, 0x15, 0x00, 0x21}) {
+    for (unsigned seed = 1; seed <= 3; ++seed) {
+      SCOPED_TRACE(::testing::Message() << "mask " << static_cast<int>(mask) << " seed " << seed);
+      const EdgeDamage damage{mask, true};
+      const TetPoints base = deformed(rest, 0.05, seed);
+      const Eigen::Vector3d direction = (rest[1] - rest[0]).normalized();
+      const int steps = 4000;
+      const double from = -0.15, to = 0.15, h = (to - from) / steps;
+      double maxStiffness = 0.0, maxJumpRate = 0.0;
+      Vec12 previous;
+      for (int i = 0; i <= steps; ++i) {
+        TetPoints x = base;
+        x[1] += (from + i * h) * direction;
+        const ElementEval e = eval(MaterialModel::StVK, r, x, damage, HessianMode::Exact);
+        maxStiffness = std::max(maxStiffness, e.hessian.norm());
+        if (i > 0) maxJumpRate = std::max(maxJumpRate, (e.gradient - previous).norm() / h);
+        previous = e.gradient;
+      }
+      EXPECT_GT(maxStiffness, 0.0);
+      EXPECT_LT(maxJumpRate, 1.5 * maxStiffness);
     }
   }
+}
+
+// A damaged element's energy is the least over crack openings c (c >= 0 on damaged edges that
+// resist compression, free on the others) of 1/2 (eps - c)^T K (eps - c): no opening does
+// better, damaged edges carry no tension, and the energy is convex in the edge strains.
+TEST(TetElement, CrackOpeningsMinimizeTheEnergyAndCarryNoTension) {
+  const TetRest r = computeTetRest(restTet());
+  const kernels::RestData& rest = r;
+  double k[6][6];
+  kernels::edgeStrainStiffness(kLame, rest, k);
+  auto quadratic = [&](const double z[6]) {
+    double sum = 0.0;
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) sum += 0.5 * z[a] * k[a][b] * z[b];
+    return sum;
+  };
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> strain(-0.1, 0.1), opening(0.0, 0.1);
+  int closedSeen = 0, openedSeen = 0;
+  for (std::uint8_t mask : {0x3e, 0x38, 0x15, 0x00, 0x07}) {
+    for (bool resists : {true, false}) {
+      for (int trial = 0; trial < 200; ++trial) {
+        double eps[6], other[6], mid[6];
+        for (int e = 0; e < 6; ++e) {
+          eps[e] = strain(gen);
+          other[e] = strain(gen);
+          mid[e] = 0.5 * (eps[e] + other[e]);
+        }
+        kernels::CrackedStrainState s, so, sm;
+        kernels::crackedStrainState(kLame, rest, eps, mask, resists, true, s);
+        kernels::crackedStrainState(kLame, rest, other, mask, resists, false, so);
+        kernels::crackedStrainState(kLame, rest, mid, mask, resists, false, sm);
+        const double scale = std::max(1.0, s.energy);
+        EXPECT_LE(sm.energy, 0.5 * (s.energy + so.energy) + 1e-12 * scale) << "convex";
+        for (int e = 0; e < 6; ++e) {
+          if ((mask >> e) & 1) continue;
+          if (resists) {
+            EXPECT_LE(s.tau[e], 1e-9 * kLame.mu) << "a damaged edge pushes, never pulls";
+            (s.tau[e] < 0.0 ? closedSeen : openedSeen)++;
+          } else {
+            EXPECT_EQ(s.tau[e], 0.0) << "a damaged edge carries nothing";
+          }
+        }
+        for (int sample = 0; sample < 20; ++sample) {  // feasible openings do no better
+          double z[6];
+          for (int e = 0; e < 6; ++e) {
+            const bool damaged = !((mask >> e) & 1);
+            const double c = !damaged ? 0.0 : resists ? opening(gen) : strain(gen);
+            z[e] = eps[e] - c;
+          }
+          EXPECT_GE(quadratic(z), s.energy - 1e-12 * scale);
+        }
+        // Energy and edge forces agree: central differences of the energy in each strain.
+        for (int e = 0; e < 6; ++e) {
+          const double h = 1e-7;
+          double plus[6], minus[6];
+          for (int m = 0; m < 6; ++m) plus[m] = minus[m] = eps[m];
+          plus[e] += h;
+          minus[e] -= h;
+          kernels::CrackedStrainState sp, sn;
+          kernels::crackedStrainState(kLame, rest, plus, mask, resists, false, sp);
+          kernels::crackedStrainState(kLame, rest, minus, mask, resists, false, sn);
+          EXPECT_NEAR((sp.energy - sn.energy) / (2 * h), s.tau[e], 1e-6 * kLame.mu);
+        }
+      }
+    }
+  }
+  EXPECT_GT(closedSeen, 100) << "the samples close cracks";
+  EXPECT_GT(openedSeen, 100) << "and open them";
 }
 
 TEST(TetElement, InvertedStableNeoHookeanStaysFiniteAndPushesBack) {

@@ -60,5 +60,34 @@ TEST(Debris, CensusCountsPiecesAndTheirCornerCellVolumes) {
   EXPECT_TRUE(debrisVertices(c, 0.0).empty()) << "a fraction of 0 keeps everything";
 }
 
+// A sliver, a piece that holds no whole tet, is debris whatever its size: no element holds its
+// shape (edge lengths alone let it turn inside out). Here two vertices joined by one intact edge,
+// everything else around them damaged, with a fraction far below their corner cells' volume.
+TEST(Debris, APieceHoldingNoWholeTetIsDebrisWhateverItsSize) {
+  const SimModel m = barModel();
+  std::vector<std::uint8_t> damaged(m.numEdges(), 0);
+  int kept = -1;
+  for (int e = 0; e < m.numEdges() && kept < 0; ++e)
+    if (m.edges[e][0] == 0 || m.edges[e][1] == 0) kept = e;
+  ASSERT_GE(kept, 0);
+  const int a = m.edges[kept][0], b = m.edges[kept][1];
+  for (int e = 0; e < m.numEdges(); ++e) {
+    const bool touches =
+        m.edges[e][0] == a || m.edges[e][1] == a || m.edges[e][0] == b || m.edges[e][1] == b;
+    if (touches && e != kept) damaged[e] = 1;
+  }
+  const PieceCensus c = censusPieces(m, damaged);
+  ASSERT_EQ(c.pieces, 2);
+  const int sliver = c.pieceOfVertex[a];
+  EXPECT_EQ(c.vertexCount[sliver], 2);
+  EXPECT_EQ(c.wholeTets[sliver], 0);
+  EXPECT_GT(c.wholeTets[1 - sliver], 0);
+  const double tiny = 1e-3 * c.restVolume[sliver] / c.bodyRestVolume;
+  std::vector<std::uint8_t> expected(2, 0);
+  expected[sliver] = 1;
+  EXPECT_EQ(debrisPieces(c, tiny), expected);
+  EXPECT_EQ(debrisPieces(c, 0.0), (std::vector<std::uint8_t>{0, 0})) << "0 keeps everything";
+}
+
 }  // namespace
 }  // namespace galsculpt
