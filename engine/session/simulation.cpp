@@ -177,15 +177,8 @@ void Simulation::updatePieces() {
   bodyRestVolume_ = census.bodyRestVolume;
   // A tet whose corners lie in different pieces is no longer material (its vertices have
   // parted): volumes count only tets inside one piece, at rest and now alike.
-  countedTets_.assign(model_.numTets(), 1);
-  restVolume_ = 0.0;
-  for (int t = 0; t < model_.numTets(); ++t) {
-    const Tet& tet = model_.mesh.tets[t];
-    const int p = pieceNumber_[tet[0]];
-    countedTets_[t] =
-        pieceNumber_[tet[1]] == p && pieceNumber_[tet[2]] == p && pieceNumber_[tet[3]] == p;
-    if (countedTets_[t]) restVolume_ += model_.rest[t].volume;
-  }
+  countedTets_ = census.isWhole;
+  restVolume_ = census.wholeRestVolume;
   debrisPiece_ = debrisPieces(census, debrisFraction_);
   debrisPieces_ = 0;
   debrisRestVolume_ = 0.0;

@@ -182,13 +182,13 @@ class Simulation {
   int toolDamage_ = 0;  // edges cut by tools since the last frame
   void updatePieces();  // pieces and counted tets, when the damage changed
   std::uint64_t piecesRevision_ = ~0ull;
-  std::vector<char> countedTets_;
+  std::vector<std::uint8_t> countedTets_;
   int pieces_ = 1;
   std::vector<int> pieceNumber_;           // each vertex's piece, numbered 0 .. pieces_ - 1
   std::vector<std::uint8_t> debrisPiece_;  // (pieces_) 1 for debris
   int debrisPieces_ = 0;
   double debrisRestVolume_ = 0.0;
-  double debrisMass_ = 0.0;    // kg
+  double debrisMass_ = 0.0;     // kg
   bool removesDebris_ = false;  // fracture.debris: remove
   // The surface without removed debris (when there is any).
   mutable VisualSurface shownSurface_;

@@ -11,6 +11,10 @@ Lame lameFromYoungPoisson(double e, double nu) {
   return {e / (2.0 * (1.0 + nu)), e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))};
 }
 
+double youngsModulus(const Lame& l) {
+  return l.mu * (3.0 * l.lambda + 2.0 * l.mu) / (l.lambda + l.mu);
+}
+
 SingularValueEnergy evaluateSingularValueEnergy(MaterialModel model, const Lame& lame,
                                                 const Eigen::Vector3d& s) {
   const kernels::SingularValueEnergy k = kernels::singularValueEnergy(model, lame, s.data());

@@ -13,6 +13,8 @@
 namespace galsculpt {
 
 Lame lameFromYoungPoisson(double youngsModulus, double poissonRatio);
+// Young's modulus of the Lame parameters (the inverse of lameFromYoungPoisson's first half).
+double youngsModulus(const Lame& lame);
 
 struct SingularValueEnergy {
   double energy = 0.0;                                 // per unit rest volume (J/m^3)

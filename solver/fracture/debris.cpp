@@ -23,6 +23,7 @@ PieceCensus censusPieces(const SimModel& model, const std::vector<std::uint8_t>&
   c.restVolume.assign(c.pieces, 0.0);
   c.vertexCount.assign(c.pieces, 0);
   c.wholeTets.assign(c.pieces, 0);
+  c.isWhole.assign(model.numTets(), 0);
   for (int v = 0; v < n; ++v) ++c.vertexCount[c.pieceOfVertex[v]];
   for (int t = 0; t < model.numTets(); ++t) {
     const double volume = model.rest[t].volume;
@@ -30,9 +31,12 @@ PieceCensus censusPieces(const SimModel& model, const std::vector<std::uint8_t>&
     const Tet& tet = model.mesh.tets[t];
     for (int a = 0; a < 4; ++a) c.restVolume[c.pieceOfVertex[tet[a]]] += 0.25 * volume;
     const int p = c.pieceOfVertex[tet[0]];
-    if (c.pieceOfVertex[tet[1]] == p && c.pieceOfVertex[tet[2]] == p &&
-        c.pieceOfVertex[tet[3]] == p)
-      ++c.wholeTets[p];
+    if (c.pieceOfVertex[tet[1]] != p || c.pieceOfVertex[tet[2]] != p ||
+        c.pieceOfVertex[tet[3]] != p)
+      continue;
+    c.isWhole[t] = 1;
+    ++c.wholeTets[p];
+    c.wholeRestVolume += volume;
   }
   return c;
 }

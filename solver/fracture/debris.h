@@ -21,11 +21,13 @@ namespace galsculpt {
 
 struct PieceCensus {
   int pieces = 0;
-  std::vector<int> pieceOfVertex;  // (nVerts) compact: 0 .. pieces - 1, in first-vertex order
-  std::vector<double> restVolume;  // (pieces) m^3
-  std::vector<int> vertexCount;    // (pieces)
-  std::vector<int> wholeTets;      // (pieces) tets with all four corners in the piece
-  double bodyRestVolume = 0.0;     // every tet's, damaged or not
+  std::vector<int> pieceOfVertex;     // (nVerts) compact: 0 .. pieces - 1, in first-vertex order
+  std::vector<double> restVolume;     // (pieces) m^3
+  std::vector<int> vertexCount;       // (pieces)
+  std::vector<int> wholeTets;         // (pieces) tets with all four corners in the piece
+  std::vector<std::uint8_t> isWhole;  // (tets) 1 when all four corners lie in one piece
+  double bodyRestVolume = 0.0;        // every tet's, damaged or not
+  double wholeRestVolume = 0.0;       // the whole tets' (what the pieces' material fills)
 };
 
 PieceCensus censusPieces(const SimModel& model, const std::vector<std::uint8_t>& damaged);

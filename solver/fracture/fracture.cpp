@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "solver/fem/isotropic_material.h"
+
 namespace galsculpt {
 
 namespace {
@@ -71,10 +73,6 @@ std::vector<double> edgeMeshSize(const SimModel& model) {
   for (int e = 0; e < model.numEdges(); ++e)
     size[e] = std::cbrt(6.0 * std::sqrt(2.0) * volume[e] / std::max(count[e], 1));
   return size;
-}
-
-double youngsModulus(const Lame& l) {
-  return l.mu * (3.0 * l.lambda + 2.0 * l.mu) / (l.lambda + l.mu);
 }
 
 std::vector<double> fractureSizeScale(const SimModel& model, const FractureSettings& settings) {

@@ -32,8 +32,6 @@ FractureField buildFractureField(const SimModel& model, const FractureSettings& 
 // The mesh size at each edge: the edge length of the regular tet with the mean rest volume of
 // the tets around it.
 std::vector<double> edgeMeshSize(const SimModel& model);
-// Young's modulus of the Lame parameters.
-double youngsModulus(const Lame& lame);
 // Each edge's threshold factor sqrt(l_ch / h) for settings.fractureEnergy > 0; empty otherwise.
 std::vector<double> fractureSizeScale(const SimModel& model, const FractureSettings& settings);
 

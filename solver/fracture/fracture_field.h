@@ -33,6 +33,9 @@ struct FractureSettings {
   // critical edges and unloads the rest instead of everything past the threshold breaking at
   // once. 0: every edge past its threshold breaks (the paper's pass).
   double criticalFraction = 0.0;
+  // The crushing threshold as a multiple of the tensile one (0: no crushing), by which every
+  // edge's tensile threshold scales to its crushing threshold.
+  double crushRatio() const { return threshold > 0.0 ? compressiveThreshold / threshold : 0.0; }
 };
 
 // Per-edge thresholds, the element slots around each edge, and a uniform grid of rest edge

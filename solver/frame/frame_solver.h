@@ -1396,7 +1396,7 @@ class FrameSolver {
     if (settings.criticalFraction > 0.0) {
       // The most critical breaks first (fracture_field.h).
       const double* compression = compression_.data();
-      const double crush = settings.compressiveThreshold / settings.threshold;
+      const double crush = settings.crushRatio();
       const double* threshold = threshold_.data();
       auto criticality = [=] GALSCULPT_LAMBDA(int e) {
         const double crushed = crush > 0.0 ? -compression[e] / (crush * threshold[e]) : 0.0;
@@ -1468,7 +1468,7 @@ class FrameSolver {
     std::uint8_t* breaks = breaks_.data();
     double* ratio = mean_.data();
     // Crushing scales per edge as the tensile threshold does (fracture_field.h).
-    const double crush = field.settings.compressiveThreshold / field.settings.threshold;
+    const double crush = field.settings.crushRatio();
     if (field.settings.kernelRadius <= 0.0) {
       ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
         breaks[e] = 0;
@@ -1495,7 +1495,7 @@ class FrameSolver {
     const double* threshold = threshold_.data();
     std::uint8_t* breaks = breaks_.data();
     double* ratio = mean_.data();
-    const double crush = field.settings.compressiveThreshold / field.settings.threshold;
+    const double crush = field.settings.crushRatio();
     double* sc = scalars_.data();
     // Only edges within R_d of an edge over the smallest threshold can average above theirs.
     const double minThreshold = field.minThreshold;

@@ -9,6 +9,8 @@ TEST(IsotropicMaterial, LameParameters) {
   const Lame l = lameFromYoungPoisson(1000.0, 0.25);
   EXPECT_DOUBLE_EQ(l.mu, 1000.0 / 2.5);
   EXPECT_DOUBLE_EQ(l.lambda, 1000.0 * 0.25 / (1.25 * 0.5));
+  for (const double nu : {-0.5, 0.0, 0.3, 0.49})
+    EXPECT_NEAR(youngsModulus(lameFromYoungPoisson(2e11, nu)), 2e11, 1e-3) << "nu " << nu;
 }
 
 // At rest (s = 1) every model has zero energy and zero gradient; away from rest the analytic

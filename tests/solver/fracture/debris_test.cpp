@@ -82,6 +82,21 @@ TEST(Debris, APieceHoldingNoWholeTetIsDebrisWhateverItsSize) {
   EXPECT_EQ(c.vertexCount[sliver], 2);
   EXPECT_EQ(c.wholeTets[sliver], 0);
   EXPECT_GT(c.wholeTets[1 - sliver], 0);
+  // Each tet is whole exactly when its corners share a piece; the whole tets' rest volume is
+  // what the pieces' material fills (the sliver's tets have a corner in the other piece).
+  double wholeVolume = 0.0;
+  int whole = 0;
+  for (int t = 0; t < m.numTets(); ++t) {
+    const Tet& tet = m.mesh.tets[t];
+    const bool touchesSliver =
+        c.pieceOfVertex[tet[0]] == sliver || c.pieceOfVertex[tet[1]] == sliver ||
+        c.pieceOfVertex[tet[2]] == sliver || c.pieceOfVertex[tet[3]] == sliver;
+    EXPECT_EQ(c.isWhole[t], touchesSliver ? 0 : 1) << "tet " << t;
+    if (!touchesSliver) wholeVolume += m.rest[t].volume, ++whole;
+  }
+  EXPECT_EQ(whole, c.wholeTets[1 - sliver]);
+  EXPECT_NEAR(c.wholeRestVolume, wholeVolume, 1e-12 * c.bodyRestVolume);
+  EXPECT_LT(c.wholeRestVolume, c.bodyRestVolume);
   const double tiny = 1e-3 * c.restVolume[sliver] / c.bodyRestVolume;
   std::vector<std::uint8_t> expected(2, 0);
   expected[sliver] = 1;

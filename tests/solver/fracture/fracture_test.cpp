@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "solver/fem/isotropic_material.h"
 #include "solver/frame/step.h"
 #include "tests/test_util.h"
 
@@ -231,6 +232,10 @@ TEST(Fracture, CriticalFractionBreaksTheMostCriticalEdgesFirst) {
 // Crushing: squeezed edges break only when a compressive threshold is set (the paper's
 // criterion is tension only).
 TEST(Fracture, CompressiveThresholdCrushesSqueezedEdges) {
+  FractureSettings ratio{4e8, 0.0, 0.0, 1};
+  EXPECT_EQ(ratio.crushRatio(), 0.0) << "no crushing threshold, no crushing";
+  ratio.compressiveThreshold = 1e9;
+  EXPECT_DOUBLE_EQ(ratio.crushRatio(), 2.5);
   auto crushed = [](double compressive) {
     FractureSettings f{1e9, 0.0, 0.0, 1};
     f.compressiveThreshold = compressive;
