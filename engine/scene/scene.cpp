@@ -243,6 +243,7 @@ FractureDesc readFracture(JsonObject o) {
   f.compressiveThreshold = o.number("compressive_threshold", 0.0, 0.0, 1e13);
   f.criticalFraction = o.number("critical_fraction", 0.0, 0.0, 1.0);
   f.energy = o.number("energy", 0.0, 0.0, 1e9);
+  f.partCrackedSections = o.boolean("part_cracked_sections", f.partCrackedSections);
   f.debrisFraction = o.number("debris_fraction", f.debrisFraction, 0.0, 1.0);
   f.debris = readEnum(o, "debris", f.debris, kDebrisRuleNames);
   o.rejectUnknownKeys();

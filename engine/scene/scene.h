@@ -103,6 +103,9 @@ struct FractureDesc {
   double compressiveThreshold = 0.0;  // Pa, edges crushed beyond it break too (0: never)
   double criticalFraction = 0.0;      // (0, 1]: the most critical breaks first (0: all at once)
   double energy = 0.0;                // J/m^2, fracture energy G_c (0: none, the paper)
+  // Parts whose undamaged elements share no face part: the edges still linking them break
+  // (solver/fracture/cracked_sections.h; false: stress alone, the paper).
+  bool partCrackedSections = true;
   // A piece holding less than this fraction of the body's rest volume is debris (metrics), cut
   // or broken off, fracture enabled or not; the rule says whether it is removed.
   double debrisFraction = 0.01;

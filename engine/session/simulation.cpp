@@ -145,6 +145,10 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     f.compressiveThreshold = scene.fracture.compressiveThreshold;
     f.criticalFraction = scene.fracture.criticalFraction;
     f.fractureEnergy = scene.fracture.energy;
+    // Parts count from the debris size: a part below it would be debris once it parted.
+    if (scene.fracture.partCrackedSections)
+      f.partingFraction =
+          scene.fracture.debrisFraction > 0.0 ? scene.fracture.debrisFraction : 0.01;
     model_.fracture = buildFractureField(model_, f);
     settings_.fractureIterations = scene.fracture.iterations;
   }

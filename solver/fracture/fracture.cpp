@@ -94,6 +94,8 @@ FractureField buildFractureField(const SimModel& model, const FractureSettings& 
   if (!(settings.kernelRadius >= 0.0)) throw std::invalid_argument("kernel radius must be >= 0");
   if (!(settings.criticalFraction >= 0.0 && settings.criticalFraction <= 1.0))
     throw std::invalid_argument("critical fraction must lie in [0, 1]");
+  if (!(settings.partingFraction >= 0.0 && settings.partingFraction <= 1.0))
+    throw std::invalid_argument("parting fraction must lie in [0, 1]");
   if (!(settings.compressiveThreshold >= 0.0))
     throw std::invalid_argument("compressive threshold must be >= 0");
   if (!(settings.fractureEnergy >= 0.0))

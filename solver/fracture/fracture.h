@@ -36,7 +36,7 @@ std::vector<double> edgeMeshSize(const SimModel& model);
 std::vector<double> fractureSizeScale(const SimModel& model, const FractureSettings& settings);
 
 struct FractureReport {
-  int newlyDamaged = 0;
+  int newlyDamaged = 0;         // every edge the pass broke, those of cracked sections included
   double maxStressRatio = 0.0;  // largest edge stress / its threshold among undamaged edges
 };
 

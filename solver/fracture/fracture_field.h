@@ -33,6 +33,12 @@ struct FractureSettings {
   // critical edges and unloads the rest instead of everything past the threshold breaking at
   // once. 0: every edge past its threshold breaks (the paper's pass).
   double criticalFraction = 0.0;
+  // In (0, 1]: sections cracked through part (cracked_sections.h): after a pass that broke
+  // edges, the intact edges still linking parts whose undamaged elements share no face break
+  // too, parts counted from this fraction of the body's rest volume. 0: stress alone breaks
+  // edges (the paper).
+  double partingFraction = 0.0;
+
   // The crushing threshold as a multiple of the tensile one (0: no crushing), by which every
   // edge's tensile threshold scales to its crushing threshold.
   double crushRatio() const { return threshold > 0.0 ? compressiveThreshold / threshold : 0.0; }

@@ -32,6 +32,7 @@
 #include "solver/fem/collider_kernels.h"
 #include "solver/fem/dense_kernels.h"
 #include "solver/fem/element_lanes.h"
+#include "solver/fracture/cracked_sections.h"
 #include "solver/fracture/debris.h"
 #include "solver/frame/direct_solver.h"
 #include "solver/frame/frame_loop.h"
@@ -1424,6 +1425,13 @@ class FrameSolver {
         if (breaks[e]) d[e] = 1;
       });
       damaged_.download(hostDamaged_.data(), hostDamaged_.size());
+      const std::vector<int> parted =
+          crackedSectionEdges(model_, hostDamaged_, settings.partingFraction);
+      if (!parted.empty()) {
+        for (const int e : parted) hostDamaged_[e] = 1;
+        damaged_.upload(hostDamaged_);
+        report.newlyDamaged += static_cast<int>(parted.size());
+      }
       ++damageRevision_;
     }
     return report;

@@ -76,6 +76,10 @@ TEST(Scene, FractureThresholdDefaultsToTheMaterialPreset) {
   EXPECT_LT(materialPreset("flesh").yieldStress, materialPreset("flesh").fractureThreshold);
   EXPECT_DOUBLE_EQ(flesh.fracture.threshold, 1234.0);
   EXPECT_DOUBLE_EQ(steel.fracture.debrisFraction, 0.01) << "debris: under 1 % of the body";
+  EXPECT_TRUE(steel.fracture.partCrackedSections) << "sections cracked through part by default";
+  const SceneDescription paper = sphereSceneWith(
+      dir, "paper.json", R"("fracture": {"enabled": true, "part_cracked_sections": false})");
+  EXPECT_FALSE(paper.fracture.partCrackedSections);
   EXPECT_TRUE(steel.solver.splitAggregates);
   EXPECT_FALSE(flesh.solver.splitAggregates);
 }
@@ -194,6 +198,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "$.fracture.threshold: must be positive when fracture is enabled"},
         BadScene{std::string("{") + kMesh + R"(, "fracture": {"debris_fraction": 1.5}})",
                  "$.fracture.debris_fraction: must be at most 1"},
+        BadScene{std::string("{") + kMesh + R"(, "fracture": {"part_cracked_sections": 1}})",
+                 "$.fracture.part_cracked_sections: expected true or false, got number"},
         BadScene{std::string("{") + kMesh + R"(, "time_step": "fast"})",
                  "$.time_step: expected a number, got string"},
         BadScene{std::string("{") + kMesh + R"(, "gravty": [0, -9.81, 0]})",

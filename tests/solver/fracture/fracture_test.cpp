@@ -227,6 +227,9 @@ TEST(Fracture, CriticalFractionBreaksTheMostCriticalEdgesFirst) {
   FractureSettings bad{2.0e4, 0.0, 0.0, 1};
   bad.criticalFraction = 1.5;
   EXPECT_THROW(buildFractureField(barModel(), bad), std::invalid_argument);
+  FractureSettings badParting{2.0e4, 0.0, 0.0, 1};
+  badParting.partingFraction = -0.1;
+  EXPECT_THROW(buildFractureField(barModel(), badParting), std::invalid_argument);
 }
 
 // Crushing: squeezed edges break only when a compressive threshold is set (the paper's
