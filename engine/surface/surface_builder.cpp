@@ -553,7 +553,14 @@ Eigen::Matrix3d SurfaceBuilder::fitDeformation(const SimModel& model, const SimS
   }
   const double scale = A.trace() / 3.0;
   if (scale <= 0.0) return Eigen::Matrix3d::Identity();
-  if (A.determinant() > 1e-6 * scale * scale * scale) return B * A.inverse();
+  // A direction the edges barely reach is not fitted: a residual of the neighbours' motion off
+  // the affine (a tearing zone strains its edges unevenly) divided by a small eigenvalue of A
+  // blew F up 20-fold at a crack-face vertex whose edges were nearly coplanar, and the surface
+  // around it shot out as a spike across the opened crack (measured on a torn steak).
+  constexpr double kConstrained = 0.02;  // of the mean eigenvalue
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(A);
+  const Vec3 lambda = eigen.eigenvalues();  // ascending
+  if (lambda(0) >= kConstrained * scale) return B * A.inverse();
   // The rotation is left free about directions no edge constrains; the small identity term
   // picks the one nearest the identity there (at rest: the identity).
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(B + 1e-6 * scale * Eigen::Matrix3d::Identity(),
@@ -561,9 +568,14 @@ Eigen::Matrix3d SurfaceBuilder::fitDeformation(const SimModel& model, const SimS
   Eigen::Matrix3d flip = Eigen::Matrix3d::Identity();
   flip(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
   const Eigen::Matrix3d rotation = svd.matrixU() * flip * svd.matrixV().transpose();
-  // F = R + G with G the least-squares correction (G dX = dx - R dX), damped by mu |G|^2.
-  const double mu = 1e-2 * scale;
-  return rotation + (B - rotation * A) * (A + mu * Eigen::Matrix3d::Identity()).inverse();
+  // F = R + G with G the least-squares correction (G dX = dx - R dX) in the directions the
+  // edges constrain (A's pseudo-inverse over them), the rotation alone in the others.
+  Eigen::Matrix3d constrained = Eigen::Matrix3d::Zero();
+  for (int k = 0; k < 3; ++k)
+    if (lambda(k) >= kConstrained * scale)
+      constrained +=
+          eigen.eigenvectors().col(k) * eigen.eigenvectors().col(k).transpose() / lambda(k);
+  return rotation + (B - rotation * A) * constrained;
 }
 
 void SurfaceBuilder::evaluatePositions(const SimModel& model, const SimState& state) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <map>
@@ -276,8 +277,7 @@ TEST(SurfaceBuilder, ASliverThatTumblesEndOverEndStaysRightSideOut) {
   const int a = b.model.edges[kept][0], c = b.model.edges[kept][1];
   for (int e = 0; e < b.model.numEdges(); ++e) {
     const Edge& ed = b.model.edges[e];
-    if (e != kept && (ed[0] == a || ed[1] == a || ed[0] == c || ed[1] == c))
-      b.state.damaged[e] = 1;
+    if (e != kept && (ed[0] == a || ed[1] == a || ed[0] == c || ed[1] == c)) b.state.damaged[e] = 1;
   }
   ASSERT_EQ(countDamagePieces(b.model, b.state), 2);
   SurfaceBuilder builder(b.model);
@@ -297,13 +297,65 @@ TEST(SurfaceBuilder, ASliverThatTumblesEndOverEndStaysRightSideOut) {
   // Half a turn about an axis across the edge, through its midpoint, and 1 m away.
   const Vec3 mid = 0.5 * (b.model.mesh.vertices[a] + b.model.mesh.vertices[c]);
   const Vec3 along = b.model.mesh.vertices[c] - b.model.mesh.vertices[a];
-  const Eigen::Matrix3d turn =
-      Eigen::AngleAxisd(M_PI, along.unitOrthogonal()).toRotationMatrix();
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI, along.unitOrthogonal()).toRotationMatrix();
   for (int v : {a, c}) b.state.x[v] = mid + turn * (b.model.mesh.vertices[v] - mid) + Vec3(1, 0, 0);
   const double turned = sliverSixVolume();
   std::cout << "sliver six-volume at rest " << atRest << ", tumbled " << turned << "\n";
   EXPECT_GT(turned, 0.5 * atRest);
   EXPECT_LT(turned, 1.5 * atRest);
+}
+
+// A vertex left with three intact edges that are nearly coplanar at rest (1 % of the edge out
+// of plane), one of whose ends moves 10 % of the edge out of that plane: the surface around the
+// vertex stays near the body. (Fitted exactly, F took that motion over the 1 % as a ten-fold
+// stretch along the plane's normal and the crack faces at the vertex shot out five edges: the
+// spike a torn steak showed across its opened crack.)
+TEST(SurfaceBuilder, AVertexOnNearlyCoplanarEdgesGrowsNoSpike) {
+  const double h = 0.1;
+  TetMesh mesh = test::gridBar(2, 2, 2, h);  // v at the centre
+  const SimModel grid = buildSimModel(mesh, MaterialParams{});
+  int v = -1;
+  for (int i = 0; i < grid.numVertices() && v < 0; ++i)
+    if ((grid.mesh.vertices[i] - Vec3(h, h, h)).norm() < 1e-9) v = i;
+  ASSERT_GE(v, 0);
+  std::vector<int> around;
+  for (const Edge& e : grid.edges)
+    if (e[0] == v || e[1] == v) around.push_back(e[0] == v ? e[1] : e[0]);
+  // Three neighbours in one plane through v, pairwise apart.
+  std::array<int, 3> three{-1, -1, -1};
+  Vec3 normal;
+  const auto dir = [&](int u) { return Vec3(grid.mesh.vertices[u] - grid.mesh.vertices[v]); };
+  for (size_t i = 0; i < around.size() && three[0] < 0; ++i)
+    for (size_t j = i + 1; j < around.size() && three[0] < 0; ++j)
+      for (size_t k = j + 1; k < around.size() && three[0] < 0; ++k) {
+        const Vec3 a = dir(around[i]), b = dir(around[j]), c = dir(around[k]);
+        if (a.cross(b).norm() > 0.3 * h * h && a.cross(c).norm() > 0.3 * h * h &&
+            b.cross(c).norm() > 0.3 * h * h && std::abs(a.cross(b).dot(c)) < 1e-12) {
+          three = {around[i], around[j], around[k]};
+          normal = a.cross(b).normalized();
+        }
+      }
+  ASSERT_GE(three[0], 0);
+  mesh.vertices[three[2]] += 0.01 * h * normal;
+  Body b = makeBody(mesh);
+  for (int e = 0; e < b.model.numEdges(); ++e) {
+    const Edge& ed = b.model.edges[e];
+    const int other = ed[0] == v ? ed[1] : ed[1] == v ? ed[0] : -1;
+    if (other >= 0 && std::find(three.begin(), three.end(), other) == three.end())
+      b.state.damaged[e] = 1;
+  }
+  b.state.x[three[2]] += 0.1 * h * normal;
+  SurfaceBuilder builder(b.model);
+  builder.update(b.model, b.state);
+  double farthest = 0.0;
+  for (const Vec3& p : builder.surface().mesh.vertices) {
+    double nearest = 1e300;
+    for (const Vec3& x : b.state.x) nearest = std::min(nearest, (p - x).norm());
+    farthest = std::max(farthest, nearest);
+  }
+  // A surface point lies within a tet of the mesh: within its longest edge of a corner.
+  EXPECT_LT(farthest, std::sqrt(3.0) * h) << "a spike off the body";
+  std::cout << "farthest surface point from the body: " << farthest / h << " edges\n";
 }
 
 TEST(SurfaceBuilder, APartialCutIsASlitWhoseSidesMeetAtTheCrackFront) {
