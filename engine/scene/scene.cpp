@@ -41,6 +41,10 @@ constexpr Named<Generator> kGeneratorNames[] = {
     {Generator::Sphere, "sphere"}, {Generator::Charpy, "charpy"}, {Generator::Steak, "steak"}};
 constexpr Named<DebrisRule> kDebrisRuleNames[] = {{DebrisRule::Remove, "remove"},
                                                   {DebrisRule::Keep, "keep"}};
+constexpr Named<FractureCriterion> kCriterionNames[] = {
+    {FractureCriterion::Stress, "stress"},
+    {FractureCriterion::Strain, "strain"},
+    {FractureCriterion::StressOrStrain, "stress_or_strain"}};
 constexpr Named<BackendRequest> kBackendNames[] = {
     {BackendRequest::Auto, "auto"}, {BackendRequest::Cpu, "cpu"}, {BackendRequest::Cuda, "cuda"}};
 
@@ -121,6 +125,7 @@ MaterialDesc readMaterial(JsonObject o) {
   m.fractureThreshold = o.number("fracture_threshold", m.fractureThreshold, 0.0, 1e13);
   m.compressiveThreshold = o.number("compressive_threshold", m.compressiveThreshold, 0.0, 1e13);
   m.fractureEnergy = o.number("fracture_energy", m.fractureEnergy, 0.0, 1e9);
+  m.fractureStrain = o.number("fracture_strain", m.fractureStrain, 0.0, 1e3);
   o.rejectUnknownKeys();
   return m;
 }
@@ -234,7 +239,9 @@ ColliderDesc readCollider(JsonObject o) {
 FractureDesc readFracture(JsonObject o) {
   FractureDesc f;
   f.enabled = o.boolean("enabled", true);
+  f.criterion = readEnum(o, "criterion", f.criterion, kCriterionNames);
   f.threshold = o.number("threshold", 0.0, 0.0, 1e13);  // 0: the material preset's
+  f.strain = o.number("strain", 0.0, 0.0, 1e3);         // 0: the material preset's
   f.kernelRadius = o.number("kernel_radius", 0.0, 0.0, 1e6);
   f.thresholdJitter = o.number("threshold_jitter", 0.0, 0.0, 0.99);
   f.seed = static_cast<unsigned>(o.integer("seed", 1, 0, std::numeric_limits<int>::max()));
@@ -350,6 +357,7 @@ MaterialDesc materialPreset(const std::string& name) {
     m.yieldStress = 2.0e4;
     m.hardening = 1.0e4;
     m.fractureThreshold = 5.0e4;
+    m.fractureStrain = 0.5;      // raw muscle tears at tens of per cent
   } else if (name == "steel") {  // structural steel, brittle fracture preset
     m.model = MaterialModel::Corotational;
     m.youngsModulus = 2.0e11;
@@ -418,13 +426,28 @@ SceneDescription parseScene(const nlohmann::json& root, const fs::path& file) {
   if (o.has("fracture")) {
     JsonObject f = o.object("fracture");
     s.fracture = readFracture(f);
-    if (s.fracture.enabled && s.fracture.threshold <= 0.0) {
+    const bool stress = s.fracture.criterion != FractureCriterion::Strain;
+    const bool strain = s.fracture.criterion != FractureCriterion::Stress;
+    if (stress && s.fracture.enabled && s.fracture.threshold <= 0.0) {
       s.fracture.threshold = s.material.fractureThreshold;
       if (s.fracture.threshold <= 0.0)
         f.fail("threshold",
                "must be positive when fracture is enabled (the material has no default)");
     }
-    if (!f.has("compressive_threshold"))
+    if (strain && s.fracture.enabled && s.fracture.strain <= 0.0) {
+      s.fracture.strain = s.material.fractureStrain;
+      if (s.fracture.strain <= 0.0)
+        f.fail("strain",
+               "must be positive when the criterion uses strain (the material has no "
+               "fracture_strain)");
+    }
+    // A key the criterion would not use is an error, not silently ignored.
+    if (!stress)
+      for (const char* key : {"threshold", "compressive_threshold", "kernel_radius"})
+        if (f.has(key)) f.fail(key, "the strain criterion uses no stress (stress_or_strain does)");
+    if (!strain && f.has("strain"))
+      f.fail("strain", "the stress criterion uses no strain (stress_or_strain does)");
+    if (stress && !f.has("compressive_threshold"))
       s.fracture.compressiveThreshold = s.material.compressiveThreshold;
     if (!f.has("energy")) s.fracture.energy = s.material.fractureEnergy;
   }

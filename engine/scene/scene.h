@@ -45,6 +45,7 @@ struct MaterialDesc {
   double fractureThreshold = 0.0;     // Pa, the preset's edge stress at break (fracture default)
   double compressiveThreshold = 0.0;  // Pa, crushing (fracture default; 0: never)
   double fractureEnergy = 0.0;        // J/m^2, G_c (fracture default; 0: thresholds as given)
+  double fractureStrain = 0.0;        // edge strain at break (fracture default; 0: none)
 };
 
 // Default values of a named preset; throws std::invalid_argument for an unknown name.
@@ -91,10 +92,15 @@ struct ColliderDesc {
 
 // What becomes of pieces under debris_fraction (solver/fracture/debris.h).
 enum class DebrisRule { Remove, Keep };
+// What breaks an edge: its normal stress past `threshold` (the paper), its engineering strain
+// past `strain` (ductile tearing), or whichever comes first.
+enum class FractureCriterion { Stress, Strain, StressOrStrain };
 
 struct FractureDesc {
   bool enabled = false;
+  FractureCriterion criterion = FractureCriterion::Stress;
   double threshold = 0.0;        // Pa, edge normal stress that damages an edge
+  double strain = 0.0;           // edge engineering strain that damages an edge
   double kernelRadius = 0.0;     // m, non-local averaging radius (0 = local)
   double thresholdJitter = 0.0;  // relative spread of random thresholds (0 = uniform)
   unsigned seed = 1;

@@ -35,10 +35,13 @@ SceneDescription editScene(const SceneDescription& base, const SceneSettings& s)
                    {"hardening", m.hardening},
                    {"fracture_threshold", m.fractureThreshold},
                    {"compressive_threshold", m.compressiveThreshold},
-                   {"fracture_energy", m.fractureEnergy}};
+                   {"fracture_energy", m.fractureEnergy},
+                   {"fracture_strain", m.fractureStrain}};
   nlohmann::json fracture = j.contains("fracture") ? j["fracture"] : nlohmann::json::object();
   fracture["enabled"] = s.fracture;
-  fracture["threshold"] = s.fractureThreshold;
+  // The strain criterion takes no stress threshold.
+  if (base.fracture.criterion != FractureCriterion::Strain)
+    fracture["threshold"] = s.fractureThreshold;
   j["fracture"] = fracture;
   const SolverDesc& v = s.solver;
   nlohmann::json solver = j.contains("solver") ? j["solver"] : nlohmann::json::object();

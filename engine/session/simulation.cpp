@@ -138,7 +138,9 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   }
   if (scene.fracture.enabled) {
     FractureSettings f;
-    f.threshold = scene.fracture.threshold;
+    const FractureCriterion criterion = scene.fracture.criterion;
+    f.threshold = criterion != FractureCriterion::Strain ? scene.fracture.threshold : 0.0;
+    f.strainThreshold = criterion != FractureCriterion::Stress ? scene.fracture.strain : 0.0;
     f.kernelRadius = scene.fracture.kernelRadius;
     f.thresholdJitter = scene.fracture.thresholdJitter;
     f.seed = scene.fracture.seed;

@@ -79,16 +79,21 @@ std::vector<double> fractureSizeScale(const SimModel& model, const FractureSetti
   if (!(settings.fractureEnergy > 0.0)) return {};
   const double youngs = youngsModulus(model.material.lame);
   if (!(youngs > 0.0)) throw std::invalid_argument("a fracture energy needs a Young's modulus");
-  const double characteristic =
-      2.0 * youngs * settings.fractureEnergy / (settings.threshold * settings.threshold);
+  // The stress at break: the threshold, or for a strain criterion alone E times its strain
+  // (the linear elastic crack band, docs/physics.md).
+  const double atBreak =
+      settings.threshold > 0.0 ? settings.threshold : youngs * settings.strainThreshold;
+  const double characteristic = 2.0 * youngs * settings.fractureEnergy / (atBreak * atBreak);
   std::vector<double> scale = edgeMeshSize(model);
   for (double& s : scale) s = std::sqrt(characteristic / s);
   return scale;
 }
 
 FractureField buildFractureField(const SimModel& model, const FractureSettings& settings) {
-  if (!(settings.threshold > 0.0))
-    throw std::invalid_argument("fracture threshold must be positive");
+  if (!(settings.threshold >= 0.0) || !(settings.strainThreshold >= 0.0))
+    throw std::invalid_argument("fracture thresholds must be >= 0");
+  if (!(settings.threshold > 0.0) && !(settings.strainThreshold > 0.0))
+    throw std::invalid_argument("fracture needs a positive stress or strain threshold");
   if (!(settings.thresholdJitter >= 0.0 && settings.thresholdJitter < 1.0))
     throw std::invalid_argument("fracture threshold jitter must lie in [0, 1)");
   if (!(settings.kernelRadius >= 0.0)) throw std::invalid_argument("kernel radius must be >= 0");
@@ -104,14 +109,24 @@ FractureField buildFractureField(const SimModel& model, const FractureSettings& 
   f.settings = settings;
   const int nEdges = model.numEdges();
   const std::vector<double> scale = fractureSizeScale(model, settings);
+  const bool stress = settings.threshold > 0.0, strain = settings.strainThreshold > 0.0;
   f.threshold.resize(nEdges);
-  f.minThreshold = std::numeric_limits<double>::infinity();
-  for (int e = 0; e < nEdges; ++e) {
-    f.threshold[e] = settings.threshold * (scale.empty() ? 1.0 : scale[e]) *
-                     (1.0 + settings.thresholdJitter * uniformSigned(settings.seed, e));
-    f.minThreshold = std::min(f.minThreshold, f.threshold[e]);
+  if (strain) {
+    f.strainLimit.resize(nEdges);
+    f.restLength.resize(nEdges);
   }
-  if (nEdges == 0) f.minThreshold = settings.threshold;
+  f.minThreshold = kNeverBreaks;
+  for (int e = 0; e < nEdges; ++e) {
+    const double factor = (scale.empty() ? 1.0 : scale[e]) *
+                          (1.0 + settings.thresholdJitter * uniformSigned(settings.seed, e));
+    f.threshold[e] = stress ? settings.threshold * factor : kNeverBreaks;
+    f.minThreshold = std::min(f.minThreshold, f.threshold[e]);
+    if (!strain) continue;
+    f.strainLimit[e] = settings.strainThreshold * factor;
+    f.restLength[e] =
+        (model.mesh.vertices[model.edges[e][1]] - model.mesh.vertices[model.edges[e][0]]).norm();
+  }
+  if (nEdges == 0) f.minThreshold = stress ? settings.threshold : kNeverBreaks;
   f.slotStart.assign(nEdges + 1, 0);
   for (const auto& te : model.tetEdges) {
     for (int e : te) ++f.slotStart[e + 1];

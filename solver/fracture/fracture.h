@@ -20,13 +20,19 @@
 //   size h and l_ch = 2 E G_c / threshold^2, so that a broken edge releases G_c per unit of crack
 //   area; a sharp crack then runs at the stress intensity sqrt(4 pi E G_c) (about K_Ic) on any
 //   mesh, where a fixed threshold makes a finer mesh break earlier.
+// - A strain criterion (not in the paper): an edge also breaks, or with no stress threshold
+//   only breaks, when its engineering strain passes a limit. A ductile body yields long before
+//   its stress can pass a tearing threshold except where it is confined (the hydrostatic
+//   tension under a rigid grip or ahead of a notch, which plastic flow does not relieve), so a
+//   stress criterion tears it there; its edges' stretch grows where it actually flows.
 #pragma once
 
 #include "solver/model/sim_model.h"
 
 namespace galsculpt {
 
-// Throws std::invalid_argument for a non-positive threshold or a jitter outside [0, 1).
+// Throws std::invalid_argument for neither a positive stress nor a positive strain threshold,
+// a negative one, or a jitter outside [0, 1).
 FractureField buildFractureField(const SimModel& model, const FractureSettings& settings);
 
 // The mesh size at each edge: the edge length of the regular tet with the mean rest volume of
@@ -36,8 +42,10 @@ std::vector<double> edgeMeshSize(const SimModel& model);
 std::vector<double> fractureSizeScale(const SimModel& model, const FractureSettings& settings);
 
 struct FractureReport {
-  int newlyDamaged = 0;         // every edge the pass broke, those of cracked sections included
-  double maxStressRatio = 0.0;  // largest edge stress / its threshold among undamaged edges
+  int newlyDamaged = 0;  // every edge the pass broke, those of cracked sections included
+  // The largest criticality among undamaged edges: edge stress / its threshold, or with a
+  // strain criterion edge strain / its limit where that is larger.
+  double maxStressRatio = 0.0;
 };
 
 }  // namespace galsculpt

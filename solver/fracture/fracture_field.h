@@ -12,10 +12,16 @@
 namespace galsculpt {
 
 struct FractureSettings {
-  double threshold = 0.0;        // Pa; edges whose normal stress passes it break
+  // Pa; edges whose normal stress passes it break. 0: no stress criterion (strainThreshold
+  // must then be > 0).
+  double threshold = 0.0;
   double kernelRadius = 0.0;     // m; 0: local
   double thresholdJitter = 0.0;  // relative, in [0, 1)
   std::uint32_t seed = 1;
+  // > 0: an edge also breaks when its engineering strain |x_b - x_a| / L - 1 passes it (a
+  // ductile criterion, not in the paper: plastic flow, not stress, tears a ductile body).
+  // Scaled per edge as the tensile threshold is (jitter, fracture energy). 0: never.
+  double strainThreshold = 0.0;
   // Pa; > 0: an edge also breaks when compressed beyond it (crushing, shear lips). 0: never;
   // the paper's criterion is tension only. Scaled per edge as its tensile threshold is
   // (jitter, fracture energy): an edge crushes beyond compressiveThreshold * threshold[e] /
@@ -44,6 +50,10 @@ struct FractureSettings {
   double crushRatio() const { return threshold > 0.0 ? compressiveThreshold / threshold : 0.0; }
 };
 
+// Edges of no criterion: their threshold (Pa) where only strain breaks edges, their strain
+// limit where only stress does. Finite, so that ratios stay 0, not NaN.
+inline constexpr double kNeverBreaks = 1e300;
+
 // Per-edge thresholds, the element slots around each edge, and a uniform grid of rest edge
 // midpoints for the kernel. The grid's cells are numbered in key order, each with the numbers of
 // the 27 cells around it (-1 where there is none, dz fastest), so a thread finds an edge's
@@ -52,8 +62,10 @@ struct FractureSettings {
 struct FractureField {
   bool enabled = false;  // false: no fracture pass (and no cost)
   FractureSettings settings;
-  std::vector<double> threshold;        // (nEdges) Pa
+  std::vector<double> threshold;        // (nEdges) Pa; kNeverBreaks without a stress criterion
   double minThreshold = 0.0;            // Pa
+  std::vector<double> strainLimit;      // (nEdges) strainThreshold > 0 only
+  std::vector<double> restLength;       // (nEdges) strainThreshold > 0 only
   std::vector<int> slotStart, slots;    // edge -> 6 * tet + local edge, CSR
   std::vector<Vec3> midpoint;           // (nEdges) rest midpoints
   double cellSize = 0.0;                // kernel grid (kernelRadius > 0 only)

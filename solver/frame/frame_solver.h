@@ -1399,9 +1399,10 @@ class FrameSolver {
       const double* compression = compression_.data();
       const double crush = settings.crushRatio();
       const double* threshold = threshold_.data();
+      const double* stretch = stretch_.data();
       auto criticality = [=] GALSCULPT_LAMBDA(int e) {
         const double crushed = crush > 0.0 ? -compression[e] / (crush * threshold[e]) : 0.0;
-        return breaks[e] ? fmax(ratio[e], crushed) : -kInf;
+        return breaks[e] ? fmax(fmax(ratio[e], crushed), stretch[e]) : -kInf;
       };
       ex_.maximum(edges, criticality, sc + kCritical);
       double most = 0.0;
@@ -1411,8 +1412,9 @@ class FrameSolver {
         if (breaks[e] && !(criticality(e) >= below)) breaks[e] = 0;
       });
     }
+    const double* stretch = stretch_.data();
     ex_.maximum(
-        edges, [=] GALSCULPT_LAMBDA(int e) { return ratio[e]; }, sc + kRatio);
+        edges, [=] GALSCULPT_LAMBDA(int e) { return fmax(ratio[e], stretch[e]); }, sc + kRatio);
     ex_.sum(
         edges, [=] GALSCULPT_LAMBDA(int e) { return breaks[e] ? 1.0 : 0.0; }, sc + kCount);
     double read[kScalars];
@@ -1442,6 +1444,18 @@ class FrameSolver {
   void evaluateEdgeStress(bool everyEdge) {
     const FractureField& field = model_.fracture;
     const int edges = edges_;
+    if (!(field.settings.threshold > 0.0)) {  // strain alone: no element stress to project
+      std::uint8_t* breaks = breaks_.data();
+      double* ratio = mean_.data();
+      double* local = localStress_.data();
+      double* compression = compression_.data();
+      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
+        breaks[e] = 0;
+        ratio[e] = local[e] = compression[e] = 0.0;
+      });
+      edgeStrain();
+      return;
+    }
     // Element edge stresses into slots 6 t + k.
     const ElementInputs in = elementInputs();
     const std::uint8_t* damaged = damaged_.data();
@@ -1489,6 +1503,33 @@ class FrameSolver {
     } else {
       kernelMeanStress(everyEdge);
     }
+    edgeStrain();
+  }
+
+  // The strain criterion (fracture.h): each undamaged edge's engineering strain over its limit
+  // (`stretch_`, -inf without the criterion), and it breaks past 1. Local: the edge's own
+  // stretch already averages the strain along it.
+  void edgeStrain() {
+    double* stretch = stretch_.data();
+    if (model_.fracture.strainLimit.empty()) {
+      ex_.forEach(edges_, [=] GALSCULPT_LAMBDA(int e) { stretch[e] = -kInf; });
+      return;
+    }
+    const std::uint8_t* damaged = damaged_.data();
+    const double* x = x_.data();
+    const int* ends = edgeEnds_.data();
+    const double* limit = strainLimit_.data();
+    const double* length = restLength_.data();
+    std::uint8_t* breaks = breaks_.data();
+    ex_.forEach(edges_, [=] GALSCULPT_LAMBDA(int e) {
+      stretch[e] = -kInf;
+      if (damaged[e]) return;
+      const double* a = x + 3 * ends[2 * e];
+      const double* b = x + 3 * ends[2 * e + 1];
+      const double d0 = b[0] - a[0], d1 = b[1] - a[1], d2 = b[2] - a[2];
+      stretch[e] = (sqrt(d0 * d0 + d1 * d1 + d2 * d2) / length[e] - 1.0) / limit[e];
+      if (stretch[e] > 1.0) breaks[e] = 1;
+    });
   }
 
   // The non-local criterion: each edge's stress is the weighted mean over the undamaged edges
@@ -1581,6 +1622,10 @@ class FrameSolver {
     edgeSlotStart_.mirror(field.slotStart);
     edgeSlots_.mirror(field.slots);
     threshold_.mirror(field.threshold);
+    strainLimit_.mirror(field.strainLimit);
+    restLength_.mirror(field.restLength);
+    edgeEnds_.mirror(model_.edges.empty() ? nullptr : model_.edges[0].data(),
+                     field.strainLimit.empty() ? 0 : 2 * model_.edges.size());
     midpoint_.mirror(field.midpoint.empty() ? nullptr : field.midpoint[0].data(),
                      3 * field.midpoint.size());
     cellBegin_.mirror(field.cellBegin);
@@ -1590,7 +1635,7 @@ class FrameSolver {
     cellNeighbors_.mirror(field.cellNeighbors);
     cellHot_.resize(field.cells());
     slotStress_.resize(6 * static_cast<size_t>(tets_));
-    for (Buffer<double>* b : {&localStress_, &compression_, &mean_}) b->resize(edges_);
+    for (Buffer<double>* b : {&localStress_, &compression_, &mean_, &stretch_}) b->resize(edges_);
     breaks_.resize(edges_);
     hot_.resize(edges_);
   }
@@ -1767,8 +1812,9 @@ class FrameSolver {
   // Fracture (the model's field; scratch for the pass).
   Mirror<int> edgeSlotStart_, edgeSlots_, cellBegin_, cellEnd_, cellEdges_, edgeCell_,
       cellNeighbors_;
-  Mirror<double> threshold_, midpoint_;
-  Buffer<double> slotStress_, localStress_, compression_, mean_;
+  Mirror<double> threshold_, midpoint_, strainLimit_, restLength_;
+  Mirror<int> edgeEnds_;  // (2 nEdges) strain criterion only
+  Buffer<double> slotStress_, localStress_, compression_, mean_, stretch_;
   Buffer<std::uint8_t> breaks_, hot_, cellHot_;
   // Host shadows: what the device holds, to upload only changes.
   std::vector<double> hostX_, hostV_, hostFp_, hostStrain_, hostAnchorTargets_;

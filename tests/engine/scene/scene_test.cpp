@@ -113,6 +113,43 @@ TEST(Scene, SteelPresetsCarryTheirBreakingAndCrushingStresses) {
   }
 }
 
+// The fracture criterion: stress by default (the paper); strain takes its limit from the scene
+// or the material's fracture_strain; stress_or_strain both. A key the criterion does not use is
+// refused, not ignored.
+TEST(Scene, FractureCriterionTakesItsLimitsAndRefusesUnusedKeys) {
+  test::TempDir dir;
+  const SceneDescription stress =
+      sphereSceneWith(dir, "a.json", R"("fracture": {"enabled": true})");
+  EXPECT_EQ(stress.fracture.criterion, FractureCriterion::Stress);
+  EXPECT_EQ(stress.fracture.strain, 0.0);
+  const SceneDescription strain =
+      sphereSceneWith(dir, "b.json", R"("material": {"preset": "flesh", "fracture_strain": 0.7},
+                  "fracture": {"criterion": "strain"})");
+  EXPECT_EQ(strain.fracture.criterion, FractureCriterion::Strain);
+  EXPECT_DOUBLE_EQ(strain.fracture.strain, 0.7) << "the material's";
+  EXPECT_EQ(strain.fracture.compressiveThreshold, 0.0) << "no stress, no crushing";
+  const SceneDescription both = sphereSceneWith(dir, "c.json", R"("material": {"preset": "flesh"},
+                  "fracture": {"criterion": "stress_or_strain", "strain": 0.4})");
+  EXPECT_DOUBLE_EQ(both.fracture.strain, 0.4);
+  EXPECT_DOUBLE_EQ(both.fracture.threshold, materialPreset("flesh").fractureThreshold);
+  EXPECT_THROW_WITH(
+      sphereSceneWith(dir, "d.json", R"("fracture": {"criterion": "strain", "threshold": 1e4,
+                      "strain": 0.5})"),
+      InputError, "$.fracture.threshold: the strain criterion uses no stress");
+  EXPECT_THROW_WITH(
+      sphereSceneWith(dir, "e.json", R"("fracture": {"criterion": "strain", "strain": 0.5,
+                      "kernel_radius": 0.01})"),
+      InputError, "$.fracture.kernel_radius: the strain criterion uses no stress");
+  EXPECT_THROW_WITH(sphereSceneWith(dir, "f.json", R"("fracture": {"strain": 0.5})"), InputError,
+                    "$.fracture.strain: the stress criterion uses no strain");
+  EXPECT_THROW_WITH(sphereSceneWith(dir, "g.json", R"("fracture": {"criterion": "strain"})"),
+                    InputError, "$.fracture.strain: must be positive when the criterion uses");
+  EXPECT_THROW_WITH(sphereSceneWith(dir, "h.json", R"("fracture": {"criterion": "plastic"})"),
+                    InputError,
+                    "$.fracture.criterion: unknown value 'plastic' (expected one of: stress, "
+                    "strain, stress_or_strain)");
+}
+
 TEST(Scene, MeasureProbesAreReadAndChecked) {
   const SceneDescription charpy = loadScene(kScenes / "charpy.json");
   ASSERT_EQ(charpy.measure.opening.size(), 2u);

@@ -308,6 +308,105 @@ TEST(Fracture, FractureEnergyScalesThresholdsWithTheMeshSize) {
   EXPECT_EQ(crushed(1.0), 0);
 }
 
+double edgeStrain(const SimModel& m, const SimState& s, int e) {
+  const Edge& ab = m.edges[e];
+  return (s.x[ab[1]] - s.x[ab[0]]).norm() /
+             (m.mesh.vertices[ab[1]] - m.mesh.vertices[ab[0]]).norm() -
+         1.0;
+}
+
+// The strain criterion alone (no stress threshold): in the first frame that breaks anything,
+// exactly the edges whose engineering strain passes their (jittered) limit break, and the bar
+// still parts in the end.
+TEST(Fracture, StrainCriterionBreaksExactlyTheEdgesStretchedPastTheirLimit) {
+  FractureSettings f{0.0, 0.0, 0.2, 7};
+  f.strainThreshold = 0.05;
+  TensionCase c = tensionCase(0.0, f);
+  const SimModel& m = c.model;
+  SimState& s = c.state;
+  ASSERT_EQ(m.fracture.strainLimit.size(), static_cast<size_t>(m.numEdges()));
+  for (double l : m.fracture.strainLimit) {
+    EXPECT_GE(l, 0.04);
+    EXPECT_LE(l, 0.06);
+  }
+  const StepSettings st = referenceSettings(StepSettings{});
+  int firstBreak = -1;
+  for (int frame = 1; frame <= 75; ++frame) {
+    const StepReport r = step(m, s, st);
+    if (firstBreak < 0 && r.newlyDamaged > 0) {
+      firstBreak = frame;
+      for (int e = 0; e < m.numEdges(); ++e)
+        EXPECT_EQ(s.damaged[e] != 0, edgeStrain(m, s, e) > m.fracture.strainLimit[e])
+            << "edge " << e << " strain " << edgeStrain(m, s, e);
+      EXPECT_GT(r.maxStressRatio, 1.0) << "the strain's criticality";
+    } else if (firstBreak < 0) {
+      double most = 0.0;
+      for (int e = 0; e < m.numEdges(); ++e)
+        most = std::max(most, edgeStrain(m, s, e) / m.fracture.strainLimit[e]);
+      EXPECT_NEAR(r.maxStressRatio, most, 1e-9) << "the criticality is the strain's";
+    }
+  }
+  EXPECT_GT(firstBreak, 1) << "the bar holds at first";
+  EXPECT_GE(countDamagePieces(m, s), 2);
+}
+
+// Why a ductile body wants it: a nearly incompressible block held dilated by 1 % carries a
+// hydrostatic stress of about 10 kPa at 1 % strain (the confinement under a rigid grip). A 5 kPa
+// stress criterion breaks it; a 5 % strain criterion does not; stress-or-strain does.
+TEST(Fracture, StrainCriterionIgnoresConfinedTensionThatBreaksByStress) {
+  auto breaks = [](double threshold, double strain) {
+    SimModel m = buildSimModel(test::gridBar(2, 2, 2, 0.1),
+                               {MaterialModel::StVK, lameFromYoungPoisson(1e5, 0.45), 1000.0, {}});
+    m.gravity.setZero();
+    FractureSettings f{threshold, 0.0, 0.0, 1};
+    f.strainThreshold = strain;
+    m.fracture = buildFractureField(m, f);
+    SimState s = initialState(m);
+    AnchorConstraint dilated;
+    for (int v = 0; v < m.numVertices(); ++v) {
+      dilated.vertices.push_back(v);
+      dilated.origin.push_back(1.01 * m.mesh.vertices[v]);
+    }
+    s.anchors = {dilated};
+    return step(m, s, referenceSettings(StepSettings{})).newlyDamaged;
+  };
+  EXPECT_GT(breaks(5e3, 0.0), 0) << "stress";
+  EXPECT_EQ(breaks(0.0, 0.05), 0) << "strain";
+  EXPECT_GT(breaks(5e3, 0.05), 0) << "stress or strain";
+  EXPECT_GT(breaks(0.0, 0.005), 0) << "strain past its limit";
+}
+
+// Strain limits scale per edge as thresholds do (jitter, fracture energy); for strain alone the
+// crack band takes E times the strain as the stress at break. Bad settings are refused.
+TEST(Fracture, StrainLimitsScaleLikeThresholds) {
+  const SimModel m = barModel();
+  FractureSettings both{1000.0, 0.0, 0.25, 3};
+  both.strainThreshold = 0.1;
+  both.fractureEnergy = 0.2;
+  const FractureField a = buildFractureField(m, both);
+  ASSERT_EQ(a.strainLimit.size(), a.threshold.size());
+  for (int e = 0; e < m.numEdges(); ++e) {
+    EXPECT_NEAR(a.strainLimit[e] / 0.1, a.threshold[e] / 1000.0, 1e-12);
+    EXPECT_GT(a.restLength[e], 0.0);
+  }
+  FractureSettings strainOnly{0.0, 0.0, 0.0, 1};
+  strainOnly.strainThreshold = 0.01;
+  strainOnly.fractureEnergy = 0.2;
+  const FractureField b = buildFractureField(m, strainOnly);
+  const std::vector<double> h = edgeMeshSize(m);
+  const double youngs = 1e5;
+  for (int e = 0; e < m.numEdges(); ++e) {
+    const double stressAtBreak = youngs * b.strainLimit[e];
+    ASSERT_NEAR(stressAtBreak * stressAtBreak * h[e] / (2.0 * youngs), 0.2, 1e-12);
+    EXPECT_GE(b.threshold[e], kNeverBreaks) << "no stress criterion";
+  }
+  EXPECT_TRUE(buildFractureField(m, {1000.0, 0.0, 0.0, 1}).strainLimit.empty());
+  EXPECT_THROW(buildFractureField(m, {0.0, 0.0, 0.0, 1}), std::invalid_argument);
+  FractureSettings negative{1000.0, 0.0, 0.0, 1};
+  negative.strainThreshold = -0.1;
+  EXPECT_THROW(buildFractureField(m, negative), std::invalid_argument);
+}
+
 TEST(Fracture, NoPassAndNoDamageWhenFractureIsOff) {
   const SimModel m = barModel();
   SimState s = initialState(m);
