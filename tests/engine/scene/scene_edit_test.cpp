@@ -38,6 +38,21 @@ TEST(SceneEdit, ReplacesTheSettingsAndKeepsTheMeshReachableFromAnywhere) {
   EXPECT_TRUE(fs::exists(moved.mesh.path));
 }
 
+// The steak tears by strain: an edit keeps its criterion and writes no stress threshold, which
+// that criterion would refuse; the material's fracture strain goes through.
+TEST(SceneEdit, AStrainCriterionSceneStaysValid) {
+  const SceneDescription base =
+      loadScene(fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "steak.json");
+  ASSERT_EQ(base.fracture.criterion, FractureCriterion::Strain);
+  SceneSettings s = sceneSettings(base);
+  s.material.fractureStrain = 0.4;
+  const SceneDescription edited = editScene(base, s);
+  EXPECT_EQ(edited.fracture.criterion, FractureCriterion::Strain);
+  EXPECT_FALSE(edited.source["fracture"].contains("threshold"));
+  EXPECT_DOUBLE_EQ(edited.fracture.strain, 0.5) << "the scene's own strain stays";
+  EXPECT_DOUBLE_EQ(edited.material.fractureStrain, 0.4);
+}
+
 TEST(SceneEdit, RefusesValuesNoSceneFileMayHold) {
   const SceneDescription base =
       loadScene(fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json");
