@@ -1,51 +1,30 @@
 #include "solver/fracture/cracked_sections.h"
 
 #include <algorithm>
-#include <array>
 
 #include "solver/mesh/union_find.h"
 
 namespace galsculpt {
 
-namespace {
-
-struct FaceOfTet {
-  std::array<int, 3> vertices;  // sorted
-  int tet;
-  bool operator<(const FaceOfTet& o) const {
-    return vertices != o.vertices ? vertices < o.vertices : tet < o.tet;
-  }
-};
-
-}  // namespace
-
 std::vector<int> crackedSectionEdges(const SimModel& model,
+                                     const std::vector<std::array<int, 4>>& neighbours,
                                      const std::vector<std::uint8_t>& damaged, double fraction) {
   const int tets = model.numTets(), verts = model.numVertices();
   if (!(fraction > 0.0) || tets == 0) return {};
   // Undamaged elements, joined through their shared faces.
   std::vector<std::uint8_t> sound(tets, 1);
-  std::vector<FaceOfTet> faces;
-  faces.reserve(4 * static_cast<size_t>(tets));
   double body = 0.0;
   for (int t = 0; t < tets; ++t) {
     body += model.rest[t].volume;
     for (const int e : model.tetEdges[t])
       if (damaged[e]) sound[t] = 0;
-    if (!sound[t]) continue;
-    const Tet& tet = model.mesh.tets[t];
-    for (int skip = 0; skip < 4; ++skip) {
-      FaceOfTet f{{}, t};
-      for (int a = 0, k = 0; a < 4; ++a)
-        if (a != skip) f.vertices[k++] = tet[a];
-      std::sort(f.vertices.begin(), f.vertices.end());
-      faces.push_back(f);
-    }
   }
-  std::sort(faces.begin(), faces.end());
   UnionFind joined(tets);
-  for (size_t i = 1; i < faces.size(); ++i)
-    if (faces[i].vertices == faces[i - 1].vertices) joined.unite(faces[i].tet, faces[i - 1].tet);
+  for (int t = 0; t < tets; ++t) {
+    if (!sound[t]) continue;
+    for (const int n : neighbours[t])
+      if (n > t && sound[n]) joined.unite(t, n);
+  }
   std::vector<double> volume(tets, 0.0);
   for (int t = 0; t < tets; ++t)
     if (sound[t]) volume[joined.find(t)] += model.rest[t].volume;

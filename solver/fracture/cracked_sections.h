@@ -16,6 +16,7 @@
 // cut through (no intact edge crosses it). Damage only grows, so the rule never undoes a break.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -24,8 +25,10 @@
 namespace galsculpt {
 
 // The intact edges linking parts whose undamaged elements share no face, in increasing order;
-// empty for fraction <= 0 or when the body holds fewer than two such parts.
+// empty for fraction <= 0 or when the body holds fewer than two such parts. `neighbours`:
+// tetFaceNeighbours(model.mesh), computed once (FractureField::tetNeighbours).
 std::vector<int> crackedSectionEdges(const SimModel& model,
+                                     const std::vector<std::array<int, 4>>& neighbours,
                                      const std::vector<std::uint8_t>& damaged, double fraction);
 
 }  // namespace galsculpt

@@ -142,6 +142,7 @@ FractureField buildFractureField(const SimModel& model, const FractureSettings& 
     f.midpoint[e] =
         0.5 * (model.mesh.vertices[model.edges[e][0]] + model.mesh.vertices[model.edges[e][1]]);
   if (settings.kernelRadius > 0.0) buildKernelGrid(f, settings.kernelRadius);
+  if (settings.partingFraction > 0.0) f.tetNeighbours = tetFaceNeighbours(model.mesh);
   f.enabled = true;
   return f;
 }

@@ -62,11 +62,13 @@ inline constexpr double kNeverBreaks = 1e300;
 struct FractureField {
   bool enabled = false;  // false: no fracture pass (and no cost)
   FractureSettings settings;
-  std::vector<double> threshold;        // (nEdges) Pa; kNeverBreaks without a stress criterion
-  double minThreshold = 0.0;            // Pa
-  std::vector<double> strainLimit;      // (nEdges) strainThreshold > 0 only
-  std::vector<double> restLength;       // (nEdges) strainThreshold > 0 only
-  std::vector<int> slotStart, slots;    // edge -> 6 * tet + local edge, CSR
+  std::vector<double> threshold;      // (nEdges) Pa; kNeverBreaks without a stress criterion
+  double minThreshold = 0.0;          // Pa
+  std::vector<double> strainLimit;    // (nEdges) strainThreshold > 0 only
+  std::vector<double> restLength;     // (nEdges) strainThreshold > 0 only
+  std::vector<int> slotStart, slots;  // edge -> 6 * tet + local edge, CSR
+  // tetFaceNeighbours of the mesh, for sections cracked through (partingFraction > 0 only).
+  std::vector<std::array<int, 4>> tetNeighbours;
   std::vector<Vec3> midpoint;           // (nEdges) rest midpoints
   double cellSize = 0.0;                // kernel grid (kernelRadius > 0 only)
   std::vector<int> cellBegin, cellEnd;  // (cells) range of each cell in cellEdges

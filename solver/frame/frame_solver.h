@@ -1427,8 +1427,8 @@ class FrameSolver {
         if (breaks[e]) d[e] = 1;
       });
       damaged_.download(hostDamaged_.data(), hostDamaged_.size());
-      const std::vector<int> parted =
-          crackedSectionEdges(model_, hostDamaged_, settings.partingFraction);
+      const std::vector<int> parted = crackedSectionEdges(model_, model_.fracture.tetNeighbours,
+                                                          hostDamaged_, settings.partingFraction);
       if (!parted.empty()) {
         for (const int e : parted) hostDamaged_[e] = 1;
         damaged_.upload(hostDamaged_);

@@ -25,26 +25,54 @@ std::array<Tri, 4> tetFacesOutward(const Tet& t) {
           Tri{t[0], t[2], t[1]}};
 }
 
-std::vector<Tri> boundaryFaces(const TetMesh& mesh) {
-  struct Keyed {
-    std::array<int, 3> key;
-    Tri face;
-  };
-  std::vector<Keyed> all;
+namespace {
+
+// Every tet's four faces keyed by their sorted vertices, sorted by key: shared faces side by side.
+struct KeyedFace {
+  std::array<int, 3> key;
+  int tet;
+  int opposite;  // the local corner the face leaves out
+};
+std::vector<KeyedFace> sortedTetFaces(const TetMesh& mesh) {
+  std::vector<KeyedFace> all;
   all.reserve(mesh.tets.size() * 4);
-  for (const Tet& t : mesh.tets) {
-    for (const Tri& f : tetFacesOutward(t)) {
-      std::array<int, 3> key = f;
+  for (size_t t = 0; t < mesh.tets.size(); ++t) {
+    const std::array<Tri, 4> faces = tetFacesOutward(mesh.tets[t]);
+    for (int k = 0; k < 4; ++k) {
+      std::array<int, 3> key = faces[k];
       std::sort(key.begin(), key.end());
-      all.push_back({key, f});
+      all.push_back({key, static_cast<int>(t), k});
     }
   }
-  std::sort(all.begin(), all.end(), [](const Keyed& a, const Keyed& b) { return a.key < b.key; });
+  std::sort(all.begin(), all.end(),
+            [](const KeyedFace& a, const KeyedFace& b) { return a.key < b.key; });
+  return all;
+}
+
+}  // namespace
+
+std::vector<Tri> boundaryFaces(const TetMesh& mesh) {
+  const std::vector<KeyedFace> all = sortedTetFaces(mesh);
   std::vector<Tri> out;
   for (size_t i = 0; i < all.size();) {
     size_t j = i + 1;
     while (j < all.size() && all[j].key == all[i].key) ++j;
-    if (j - i == 1) out.push_back(all[i].face);
+    if (j - i == 1) out.push_back(tetFacesOutward(mesh.tets[all[i].tet])[all[i].opposite]);
+    i = j;
+  }
+  return out;
+}
+
+std::vector<std::array<int, 4>> tetFaceNeighbours(const TetMesh& mesh) {
+  std::vector<std::array<int, 4>> out(mesh.tets.size(), {-1, -1, -1, -1});
+  const std::vector<KeyedFace> all = sortedTetFaces(mesh);
+  for (size_t i = 0; i < all.size();) {
+    size_t j = i + 1;
+    while (j < all.size() && all[j].key == all[i].key) ++j;
+    if (j - i == 2) {
+      out[all[i].tet][all[i].opposite] = all[i + 1].tet;
+      out[all[i + 1].tet][all[i + 1].opposite] = all[i].tet;
+    }
     i = j;
   }
   return out;

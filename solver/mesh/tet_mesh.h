@@ -57,6 +57,9 @@ std::array<Tri, 4> tetFacesOutward(const Tet& t);
 
 // Faces that belong to exactly one tet, oriented outward (the tet mesh's boundary).
 std::vector<Tri> boundaryFaces(const TetMesh& mesh);
+// For each tet, the tet across its face opposite each corner (tetFacesOutward's order); -1 on
+// the boundary (and where more than two tets share a face, which a valid mesh never has).
+std::vector<std::array<int, 4>> tetFaceNeighbours(const TetMesh& mesh);
 // The boundary as a surface with its own compact vertex numbering; `toTetVertex` (optional)
 // receives the tet-mesh index of each surface vertex.
 TriMesh boundarySurface(const TetMesh& mesh, std::vector<int>* toTetVertex = nullptr);

@@ -44,14 +44,22 @@ TEST(CrackedSections, AnEdgeThatAloneLinksTwoPartsThroughCrackedElementsBreaks) 
       pins.push_back(e);
   }
   ASSERT_EQ(pins.size(), 1u);
-  EXPECT_EQ(crackedSectionEdges(slab.model, slab.damaged, 0.01), pins);
+  EXPECT_EQ(crackedSectionEdges(slab.model, tetFaceNeighbours(slab.model.mesh), slab.damaged, 0.01),
+            pins);
   for (const int e : pins) slab.damaged[e] = 1;
   EXPECT_EQ(slab.pieces(), 2);
-  EXPECT_TRUE(crackedSectionEdges(slab.model, slab.damaged, 0.01).empty()) << "nothing left";
+  EXPECT_TRUE(
+      crackedSectionEdges(slab.model, tetFaceNeighbours(slab.model.mesh), slab.damaged, 0.01)
+          .empty())
+      << "nothing left";
   // Off (fraction 0), and when one half is below the fraction (it is no part of its own).
   CrackedSlab again(onBottomEdgeLine);
-  EXPECT_TRUE(crackedSectionEdges(again.model, again.damaged, 0.0).empty());
-  EXPECT_TRUE(crackedSectionEdges(again.model, again.damaged, 0.4).empty())
+  EXPECT_TRUE(
+      crackedSectionEdges(again.model, tetFaceNeighbours(again.model.mesh), again.damaged, 0.0)
+          .empty());
+  EXPECT_TRUE(
+      crackedSectionEdges(again.model, tetFaceNeighbours(again.model.mesh), again.damaged, 0.4)
+          .empty())
       << "the 2-cube half holds a third of the body, under 0.4";
 }
 
@@ -62,20 +70,27 @@ TEST(CrackedSections, AnEdgeThatAloneLinksTwoPartsThroughCrackedElementsBreaks) 
 TEST(CrackedSections, ASlitOrALigamentWithAreaBreaksNothing) {
   const CrackedSlab slit([](const Vec3& a, const Vec3& b) { return a.y() > 0.05 && b.y() > 0.05; });
   EXPECT_EQ(slit.pieces(), 1);
-  EXPECT_TRUE(crackedSectionEdges(slit.model, slit.damaged, 0.01).empty());
+  EXPECT_TRUE(
+      crackedSectionEdges(slit.model, tetFaceNeighbours(slit.model.mesh), slit.damaged, 0.01)
+          .empty());
   const CrackedSlab ligament([](const Vec3& a, const Vec3& b) {
     return a.y() < 0.15 && a.z() < 0.15 && b.y() < 0.15 && b.z() < 0.15;
   });
-  EXPECT_TRUE(crackedSectionEdges(ligament.model, ligament.damaged, 0.01).empty())
+  EXPECT_TRUE(crackedSectionEdges(ligament.model, tetFaceNeighbours(ligament.model.mesh),
+                                  ligament.damaged, 0.01)
+                  .empty())
       << "the corner cube across the slab is whole and shares faces with both halves";
   const CrackedSlab line([](const Vec3& a, const Vec3& b) { return a.y() > 0.15 && b.y() > 0.15; });
   EXPECT_EQ(line.pieces(), 1);
-  EXPECT_FALSE(crackedSectionEdges(line.model, line.damaged, 0.01).empty())
+  EXPECT_FALSE(
+      crackedSectionEdges(line.model, tetFaceNeighbours(line.model.mesh), line.damaged, 0.01)
+          .empty())
       << "the top face's edges alone join the halves along a line";
   // Cut clean through (no edge across kept): already two pieces, nothing to break.
   const CrackedSlab cut([](const Vec3&, const Vec3&) { return false; });
   EXPECT_EQ(cut.pieces(), 2);
-  EXPECT_TRUE(crackedSectionEdges(cut.model, cut.damaged, 0.01).empty());
+  EXPECT_TRUE(
+      crackedSectionEdges(cut.model, tetFaceNeighbours(cut.model.mesh), cut.damaged, 0.01).empty());
 }
 
 // A vertex of the crack that no undamaged element holds goes with the part nearest through
@@ -91,7 +106,8 @@ TEST(CrackedSections, PartingLeavesNoLooseVertex) {
     if (across && !onBottomEdgeLine(a, b)) slab.damaged[e] = 1;
   }
   const PieceCensus before = censusPieces(slab.model, slab.damaged);
-  const std::vector<int> parted = crackedSectionEdges(slab.model, slab.damaged, 0.01);
+  const std::vector<int> parted =
+      crackedSectionEdges(slab.model, tetFaceNeighbours(slab.model.mesh), slab.damaged, 0.01);
   ASSERT_FALSE(parted.empty());
   for (const int e : parted) slab.damaged[e] = 1;
   const PieceCensus after = censusPieces(slab.model, slab.damaged);

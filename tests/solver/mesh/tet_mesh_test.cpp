@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "solver/mesh/surface_checks.h"
 #include "tests/test_util.h"
 
@@ -18,6 +20,38 @@ TEST(TetMesh, CubeVolumeAndBoundary) {
   EXPECT_EQ(surface.numVertices(), 8);
   EXPECT_NEAR(enclosedVolume(surface), 8.0, 1e-12) << "boundary faces point outward";
   EXPECT_TRUE(analyzeSurface(surface).closedManifold());
+}
+
+// Each tet's neighbour across the face opposite corner k shares exactly that face, the relation
+// is symmetric, and the faces without one are the boundary.
+TEST(TetMesh, FaceNeighboursShareTheFaceBothWays) {
+  const TetMesh bar = test::gridBar(3, 2, 2, 0.1);
+  const std::vector<std::array<int, 4>> n = tetFaceNeighbours(bar);
+  ASSERT_EQ(n.size(), bar.tets.size());
+  int open = 0, links = 0;
+  for (int t = 0; t < bar.numTets(); ++t) {
+    for (int k = 0; k < 4; ++k) {
+      if (n[t][k] < 0) {
+        ++open;
+        continue;
+      }
+      ++links;
+      const Tet& other = bar.tets[n[t][k]];
+      for (int a = 0; a < 4; ++a) {
+        const bool shared = std::find(other.begin(), other.end(), bar.tets[t][a]) != other.end();
+        EXPECT_EQ(shared, a != k) << "tet " << t << " face " << k;
+      }
+      const auto& back = n[n[t][k]];
+      EXPECT_NE(std::find(back.begin(), back.end(), t), back.end());
+    }
+  }
+  EXPECT_EQ(open, static_cast<int>(boundaryFaces(bar).size()));
+  EXPECT_EQ(links, 4 * bar.numTets() - open);
+  EXPECT_GT(links, 0);
+  TetMesh one;
+  one.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  one.tets = {{0, 1, 2, 3}};
+  EXPECT_EQ(tetFaceNeighbours(one)[0], (std::array<int, 4>{-1, -1, -1, -1}));
 }
 
 TEST(TetMesh, OutwardFacesOfASingleTet) {
