@@ -379,6 +379,9 @@ MaterialDesc materialPreset(const std::string& name) {
       m.yieldStress = 3.55e8;
       m.hardening = 1.0e9;
       m.fractureThreshold = 1.2e9;
+      // An edge of the notch root torn at 15 % stretch: on the 28k-tet specimen a crack starts
+      // there after the bar has bent, and the bar absorbs about 170 J (docs/benchmarks.md).
+      m.fractureStrain = 0.15;
     }
     m.compressiveThreshold = 2.0 * m.fractureThreshold;
   } else {
