@@ -231,11 +231,9 @@ double Simulation::currentVolume() const {
 double Simulation::anchorLoad(int id) const {
   const auto it = std::find(anchorIds_.begin(), anchorIds_.end(), id);
   if (it == anchorIds_.end()) return 0.0;  // removed
-  Eigen::VectorXd gradient;
-  assembleElastic(model_, state_.x, state_, gradient, nullptr);
-  Vec3 sum = Vec3::Zero();
-  for (int v : state_.anchors[it - anchorIds_.begin()].vertices) sum += gradient.segment<3>(3 * v);
-  return sum.norm();
+  return elasticGradientSum(model_, state_.x, state_,
+                            state_.anchors[it - anchorIds_.begin()].vertices)
+      .norm();
 }
 
 double Simulation::debrisVolumePercent() const {

@@ -1393,13 +1393,13 @@ class FrameSolver {
     std::uint8_t* breaks = breaks_.data();
     double* ratio = mean_.data();
     double* sc = scalars_.data();
+    const double* stretch = stretch_.data();
     const FractureSettings& settings = model_.fracture.settings;
     if (settings.criticalFraction > 0.0) {
       // The most critical breaks first (fracture_field.h).
       const double* compression = compression_.data();
       const double crush = settings.crushRatio();
       const double* threshold = threshold_.data();
-      const double* stretch = stretch_.data();
       auto criticality = [=] GALSCULPT_LAMBDA(int e) {
         const double crushed = crush > 0.0 ? -compression[e] / (crush * threshold[e]) : 0.0;
         return breaks[e] ? fmax(fmax(ratio[e], crushed), stretch[e]) : -kInf;
@@ -1412,7 +1412,6 @@ class FrameSolver {
         if (breaks[e] && !(criticality(e) >= below)) breaks[e] = 0;
       });
     }
-    const double* stretch = stretch_.data();
     ex_.maximum(
         edges, [=] GALSCULPT_LAMBDA(int e) { return fmax(ratio[e], stretch[e]); }, sc + kRatio);
     ex_.sum(
@@ -1446,14 +1445,8 @@ class FrameSolver {
     const int edges = edges_;
     if (!(field.settings.threshold > 0.0)) {  // strain alone: no element stress to project
       std::uint8_t* breaks = breaks_.data();
-      double* ratio = mean_.data();
-      double* local = localStress_.data();
-      double* compression = compression_.data();
-      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
-        breaks[e] = 0;
-        ratio[e] = local[e] = compression[e] = 0.0;
-      });
-      edgeStrain();
+      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) { breaks[e] = 0; });
+      edgeStrain();  // the stress ratios stay the zeros mirrorFracture set
       return;
     }
     // Element edge stresses into slots 6 t + k.
@@ -1510,11 +1503,8 @@ class FrameSolver {
   // (`stretch_`, -inf without the criterion), and it breaks past 1. Local: the edge's own
   // stretch already averages the strain along it.
   void edgeStrain() {
+    if (model_.fracture.strainLimit.empty()) return;  // -inf throughout (mirrorFracture)
     double* stretch = stretch_.data();
-    if (model_.fracture.strainLimit.empty()) {
-      ex_.forEach(edges_, [=] GALSCULPT_LAMBDA(int e) { stretch[e] = -kInf; });
-      return;
-    }
     const std::uint8_t* damaged = damaged_.data();
     const double* x = x_.data();
     const int* ends = edgeEnds_.data();
@@ -1638,6 +1628,17 @@ class FrameSolver {
     for (Buffer<double>* b : {&localStress_, &compression_, &mean_, &stretch_}) b->resize(edges_);
     breaks_.resize(edges_);
     hot_.resize(edges_);
+    // What a criterion the scene does not use reads, set once rather than on every pass: no
+    // strain criterion, no strain ratio; no stress criterion, zero stress ratios.
+    double* stretch = stretch_.data();
+    double* ratio = mean_.data();
+    double* local = localStress_.data();
+    double* compression = compression_.data();
+    const bool strain = !field.strainLimit.empty(), stress = field.settings.threshold > 0.0;
+    ex_.forEach(edges_, [=] GALSCULPT_LAMBDA(int e) {
+      if (!strain) stretch[e] = -kInf;
+      if (!stress) ratio[e] = local[e] = compression[e] = 0.0;
+    });
   }
 
   // The debris rule (solver/fracture/debris.h): the vertices of pieces under

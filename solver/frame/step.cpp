@@ -18,6 +18,26 @@ StepSettings referenceSettings(StepSettings base) {
   return base;
 }
 
+namespace {
+
+// Element t at positions x under the state's damage and plastic rest shape.
+void evaluateTetAt(const SimModel& model, const std::vector<Vec3>& x, const SimState& state, int t,
+                   HessianMode mode, ElementEval& ev) {
+  const Tet& tet = model.mesh.tets[t];
+  const TetPoints p{x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]};
+  const EdgeDamage d = tetDamage(model, state.damaged, t, model.material.compressionResists);
+  // A plastically deformed element measures strain from its new rest shape.
+  const bool plastic = !state.plasticInverse.empty() && !state.plasticInverse[t].isIdentity(0.0);
+  if (plastic) {
+    const TetRest r = plasticRest(model.rest[t], state.plasticInverse[t]);
+    evaluateElement(model.material.model, model.material.lame, r, p, d, mode, ev);
+  } else {
+    evaluateElement(model.material.model, model.material.lame, model.rest[t], p, d, mode, ev);
+  }
+}
+
+}  // namespace
+
 double assembleElastic(const SimModel& model, const std::vector<Vec3>& x, const SimState& state,
                        Eigen::VectorXd& gradient, BlockSparseMatrix* hessian) {
   gradient.setZero(3 * model.numVertices());
@@ -29,18 +49,8 @@ double assembleElastic(const SimModel& model, const std::vector<Vec3>& x, const 
     for (size_t i = 0; i < color.size(); ++i) {
       const int t = color[i];
       const Tet& tet = model.mesh.tets[t];
-      const TetPoints p{x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]};
-      const EdgeDamage d = tetDamage(model, state.damaged, t, model.material.compressionResists);
       ElementEval ev;
-      // A plastically deformed element measures strain from its new rest shape.
-      const bool plastic =
-          !state.plasticInverse.empty() && !state.plasticInverse[t].isIdentity(0.0);
-      if (plastic) {
-        const TetRest r = plasticRest(model.rest[t], state.plasticInverse[t]);
-        evaluateElement(model.material.model, model.material.lame, r, p, d, mode, ev);
-      } else {
-        evaluateElement(model.material.model, model.material.lame, model.rest[t], p, d, mode, ev);
-      }
+      evaluateTetAt(model, x, state, t, mode, ev);
       energies[t] = ev.energy;
       for (int a = 0; a < 4; ++a) gradient.segment<3>(3 * tet[a]) += ev.gradient.segment<3>(3 * a);
       if (hessian) {
@@ -54,6 +64,32 @@ double assembleElastic(const SimModel& model, const std::vector<Vec3>& x, const 
   double total = 0.0;
   for (double e : energies) total += e;
   return total;
+}
+
+Vec3 elasticGradientSum(const SimModel& model, const std::vector<Vec3>& x, const SimState& state,
+                        const std::vector<int>& vertices) {
+  std::vector<int> set = vertices;
+  std::sort(set.begin(), set.end());
+  set.erase(std::unique(set.begin(), set.end()), set.end());
+  std::vector<std::uint8_t> in(model.numVertices(), 0);
+  for (const int v : set) in[v] = 1;
+  Vec3 sum = Vec3::Zero();
+  // Each element touching the set once (at its first corner in the set), all its corners in the
+  // set summed, in vertex order: the same sum on every run.
+  for (const int v : set) {
+    for (int k = model.vertexSlotStart[v]; k < model.vertexSlotStart[v + 1]; ++k) {
+      const int t = model.vertexSlots[k] / 4;
+      const Tet& tet = model.mesh.tets[t];
+      int first = 0;
+      while (!in[tet[first]] && first < 3) ++first;
+      if (tet[first] != v) continue;
+      ElementEval ev;
+      evaluateTetAt(model, x, state, t, HessianMode::None, ev);
+      for (int a = 0; a < 4; ++a)
+        if (in[tet[a]]) sum += ev.gradient.segment<3>(3 * a);
+    }
+  }
+  return sum;
 }
 
 }  // namespace galsculpt

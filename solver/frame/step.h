@@ -114,4 +114,10 @@ struct StepReport {
 double assembleElastic(const SimModel& model, const std::vector<Vec3>& x, const SimState& state,
                        Eigen::VectorXd& gradient, BlockSparseMatrix* hessian);
 
+// The elastic energy's gradient summed over `vertices` (the elements' pull on them, negated: an
+// anchor's reaction), evaluating only the elements that touch them; equal to assembleElastic's
+// gradient summed over the same vertices.
+Vec3 elasticGradientSum(const SimModel& model, const std::vector<Vec3>& x, const SimState& state,
+                        const std::vector<int>& vertices);
+
 }  // namespace galsculpt

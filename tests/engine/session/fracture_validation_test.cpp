@@ -142,8 +142,12 @@ TEST(FractureValidation, ABrittleBarUnderSlowBendingBreaksIntoExactlyTwoPieces) 
   EXPECT_NE(left, right);
   for (int v = 0; v < mesh.numVertices(); ++v) {
     const double x = mesh.vertices[v].x();
-    if (x < 0.0225) EXPECT_EQ(sim.pieceOf(v), left) << "vertex " << v << " at x = " << x;
-    if (x > 0.0325) EXPECT_EQ(sim.pieceOf(v), right) << "vertex " << v << " at x = " << x;
+    if (x < 0.0225) {
+      EXPECT_EQ(sim.pieceOf(v), left) << "vertex " << v << " at x = " << x;
+    }
+    if (x > 0.0325) {
+      EXPECT_EQ(sim.pieceOf(v), right) << "vertex " << v << " at x = " << x;
+    }
   }
 
   // The paper's pass alone (stress only): 60 frames past the parting, one piece.

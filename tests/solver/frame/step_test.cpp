@@ -59,6 +59,24 @@ TEST(Step, AssembledStiffnessIsTheSumOfElementMatrices) {
   EXPECT_LT((assembled - assembled.transpose()).norm(), 1e-9 * dense.norm());
 }
 
+TEST(Step, TheGradientOverAFewVerticesIsTheAssembledGradientsSumThere) {
+  const SimModel m = buildSimModel(bar(2, 4, 2), rubber());
+  SimState s = initialState(m);
+  for (int v = 0; v < m.numVertices(); ++v)
+    s.x[v] += 0.01 * Vec3(std::sin(v), std::cos(3 * v), std::sin(5 * v));
+  for (int e = 0; e < m.numEdges(); e += 7) s.damaged[e] = 1;  // cracked elements too
+  Eigen::VectorXd g;
+  assembleElastic(m, s.x, s, g, nullptr);
+  std::vector<int> vertices = topAnchor(m).vertices;
+  vertices.push_back(m.numVertices() / 2);
+  vertices.push_back(vertices.front());  // listed twice, counted once
+  Vec3 expected = Vec3::Zero();
+  for (size_t i = 0; i + 1 < vertices.size(); ++i) expected += g.segment<3>(3 * vertices[i]);
+  const Vec3 sum = elasticGradientSum(m, s.x, s, vertices);
+  ASSERT_GT(expected.norm(), 1.0);
+  EXPECT_LT((sum - expected).norm(), 1e-9 * expected.norm());
+}
+
 TEST(Step, FreeFallIsExactForARigidBody) {
   const SimModel m = buildSimModel(bar(1, 2, 1), rubber());
   SimState s = initialState(m);
