@@ -23,6 +23,7 @@ PieceCensus censusPieces(const SimModel& model, const std::vector<std::uint8_t>&
   c.restVolume.assign(c.pieces, 0.0);
   c.vertexCount.assign(c.pieces, 0);
   c.wholeTets.assign(c.pieces, 0);
+  c.wholeVolume.assign(c.pieces, 0.0);
   c.isWhole.assign(model.numTets(), 0);
   for (int v = 0; v < n; ++v) ++c.vertexCount[c.pieceOfVertex[v]];
   for (int t = 0; t < model.numTets(); ++t) {
@@ -36,6 +37,7 @@ PieceCensus censusPieces(const SimModel& model, const std::vector<std::uint8_t>&
       continue;
     c.isWhole[t] = 1;
     ++c.wholeTets[p];
+    c.wholeVolume[p] += volume;
     c.wholeRestVolume += volume;
   }
   return c;
@@ -46,7 +48,7 @@ std::vector<std::uint8_t> debrisPieces(const PieceCensus& census, double fractio
   const double below = fraction * census.bodyRestVolume;
   if (!(fraction > 0.0)) return debris;
   for (int p = 0; p < census.pieces; ++p)
-    debris[p] = census.restVolume[p] < below || census.wholeTets[p] == 0;
+    debris[p] = census.wholeTets[p] == 0 || census.wholeVolume[p] < below;
   return debris;
 }
 

@@ -1,10 +1,13 @@
 // Pieces and debris. A piece is a part of the body joined by undamaged edges (a vertex whose
 // edges are all damaged is a piece of its own). Its rest volume is that of its vertices' corner
 // cells: a quarter of every tet around each of its vertices, which is what its closed surface
-// encloses at rest (docs/surface.md). Debris is a piece under a fraction of the body's rest
-// volume, or a sliver: a piece that holds no whole tet (every tet at its vertices has a corner
-// in another piece), whose shape no element holds, so that edge lengths alone let it turn
-// inside out whatever its size.
+// encloses at rest (docs/surface.md). Its material is its whole tets (all four corners in it):
+// only they hold its shape, the tets it shares with other pieces hold nothing but edge lengths.
+// Debris is a piece whose material is under a fraction of the body's rest volume. That includes
+// the sliver, a piece with no whole tet, which edge lengths alone let turn inside out whatever
+// its size, and the crushed clump whose corner cells are large beside its few whole tets (a
+// 6-vertex clump holding 2 whole tets, 0.13 % of a ball, counted 2 % by its corner cells, was
+// crushed inside out by the pieces around it).
 //
 // The debris rule (scene: fracture.debris, docs/physics.md): debris is removed from the
 // simulation. Damage only grows, so a piece only ever splits and debris stays debris: what is
@@ -25,6 +28,7 @@ struct PieceCensus {
   std::vector<double> restVolume;     // (pieces) m^3
   std::vector<int> vertexCount;       // (pieces)
   std::vector<int> wholeTets;         // (pieces) tets with all four corners in the piece
+  std::vector<double> wholeVolume;    // (pieces) m^3, their rest volume: the piece's material
   std::vector<std::uint8_t> isWhole;  // (tets) 1 when all four corners lie in one piece
   double bodyRestVolume = 0.0;        // every tet's, damaged or not
   double wholeRestVolume = 0.0;       // the whole tets' (what the pieces' material fills)
@@ -32,7 +36,7 @@ struct PieceCensus {
 
 PieceCensus censusPieces(const SimModel& model, const std::vector<std::uint8_t>& damaged);
 
-// 1 for each piece under `fraction` of the body's rest volume or holding no whole tet (none for
+// 1 for each piece whose whole tets are under `fraction` of the body's rest volume (none for
 // fraction 0).
 std::vector<std::uint8_t> debrisPieces(const PieceCensus& census, double fraction);
 

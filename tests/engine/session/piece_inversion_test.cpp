@@ -1,17 +1,19 @@
 // No piece ever turns inside out (issue 17): random knife cuts through a hanging rubber ball,
-// every piece's closed surface enclosing positive volume at every frame
-// (Simulation::pieceStats, the metrics' `inverted_pieces`), positions finite throughout.
+// and a ball shattering on a floor under random thresholds, every piece's closed surface
+// enclosing positive volume at every frame (Simulation::pieceStats, the metrics'
+// `inverted_pieces`), positions finite throughout.
 //
-// With the debris rule `remove`, which removes slivers (pieces holding no whole tet) whatever
-// their size: kept, slivers of 3 to 7 vertices cut off the ball turn inside out from frame 47
-// (no tet of their own holds their volume, and the pieces around them pass through where they
-// are); with cracks that open one way (softer damaged elements), slivers of 2-4 vertices above
-// 1 % of the ball did so from frame 39 until they counted as debris. The same check on a ball broken by fracture fails even with debris
-// removed (a 17-vertex piece inverted; docs/benchmarks.md), so it is not here yet.
+// Both with the debris rule `remove` (pieces whose whole tets hold under 1 % of the ball). Kept,
+// slivers of 3 to 7 vertices cut off the ball turn inside out from frame 47 (no tet of their own
+// holds their volume, and the pieces around them pass through where they are). The shattering
+// ball inverted a 6-vertex clump of 2 whole tets (0.13 % of the ball) at frame 44 of seed 3
+// while debris was sized by corner cells (2 % of the ball): the pieces around crushed it.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <random>
 #include <string>
+#include <utility>
 
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/simulation.h"
@@ -67,6 +69,40 @@ TEST(PieceInversion, RandomCutsThroughAHangingBallNeverTurnAPieceInsideOut) {
   }
   EXPECT_GT(cuts, 10);
   EXPECT_GT(sim.pieceStats().pieces, 3) << "the cuts made pieces";
+}
+
+// A ball dropped 1.8 m onto a floor (6 m/s at impact, frame 36) with scattered thresholds.
+Simulation shatteringBall(const std::filesystem::path& dir, double threshold, int seed) {
+  test::writeText(dir / "ball.json",
+                  ballScene(R"(
+      "colliders": [{"type": "plane", "point": [0, -1.9, 0], "normal": [0, 1, 0]}],
+      "fracture": {"enabled": true, "threshold": )" +
+                            std::to_string(threshold) + R"(, "threshold_jitter": 0.5, "seed": )" +
+                            std::to_string(seed) + R"(, "debris": "remove"})"));
+  const SceneDescription scene = loadScene(dir / "ball.json");
+  return Simulation(scene, loadSceneMesh(scene));
+}
+
+TEST(PieceInversion, ABallShatteringOnAFloorNeverTurnsAPieceInsideOut) {
+  // 10 kPa +- 50 %: it breaks into a few large pieces and many small ones, which tumble and
+  // press on each other. 2 kPa, seed 3: it turns to dust (three quarters of its edges break),
+  // and while debris was sized by corner cells a clump of 2 whole tets inverted at frame 44.
+  const std::pair<double, int> cases[] = {{1.0e4, 3}, {1.0e4, 4}, {1.0e4, 5}, {2.0e3, 3}};
+  for (const auto& [threshold, seed] : cases) {
+    SCOPED_TRACE("threshold " + std::to_string(threshold) + ", seed " + std::to_string(seed));
+    test::TempDir dir;
+    Simulation sim = shatteringBall(dir.path(), threshold, seed);
+    for (int frame = 0; frame < 80; ++frame) {
+      sim.advance();
+      expectNoPieceInsideOut(sim, "frame " + std::to_string(frame));
+      if (HasFatalFailure()) return;
+    }
+    const Simulation::PieceStats p = sim.pieceStats();
+    if (threshold > 5e3) {
+      EXPECT_GE(p.pieces - p.debrisPieces, 3) << "large pieces";
+    }
+    EXPECT_GT(p.debrisPieces, 20) << "and small ones";
+  }
 }
 
 }  // namespace

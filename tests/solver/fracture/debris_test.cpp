@@ -104,5 +104,37 @@ TEST(Debris, APieceHoldingNoWholeTetIsDebrisWhateverItsSize) {
   EXPECT_EQ(debrisPieces(c, 0.0), (std::vector<std::uint8_t>{0, 0})) << "0 keeps everything";
 }
 
+// Debris is sized by the material a piece holds, its whole tets, not by its corner cells: an
+// end slab of the bar whose corner cells reach into the cracked layer beside it is debris at a
+// fraction between the two.
+TEST(Debris, APieceIsSizedByTheWholeTetsItHolds) {
+  const SimModel m = barModel();
+  std::vector<std::uint8_t> damaged(m.numEdges(), 0);
+  const double cut = 0.15;  // between the first and second layers of cubes
+  for (int e = 0; e < m.numEdges(); ++e) {
+    const int a = m.edges[e][0], b = m.edges[e][1];
+    damaged[e] = (m.mesh.vertices[a].y() < cut) != (m.mesh.vertices[b].y() < cut);
+  }
+  const PieceCensus c = censusPieces(m, damaged);
+  ASSERT_EQ(c.pieces, 2);
+  const int slab = c.pieceOfVertex[0];
+  double layer = 0.0;
+  for (int t = 0; t < m.numTets(); ++t) {
+    bool inFirstLayer = true;
+    for (const int v : m.mesh.tets[t]) inFirstLayer &= m.mesh.vertices[v].y() < cut;
+    if (inFirstLayer) layer += m.rest[t].volume;
+  }
+  EXPECT_EQ(c.wholeTets[slab], 2 * 2 * 6);
+  EXPECT_NEAR(c.wholeVolume[slab], layer, 1e-12 * c.bodyRestVolume);
+  EXPECT_NEAR(c.wholeVolume[0] + c.wholeVolume[1], c.wholeRestVolume, 1e-12 * c.bodyRestVolume);
+  ASSERT_GT(c.restVolume[slab], 1.2 * c.wholeVolume[slab]);
+  const double between = 0.5 * (c.restVolume[slab] + c.wholeVolume[slab]) / c.bodyRestVolume;
+  std::vector<std::uint8_t> expected(2, 0);
+  expected[slab] = 1;
+  EXPECT_EQ(debrisPieces(c, between), expected);
+  EXPECT_EQ(debrisPieces(c, 0.9 * c.wholeVolume[slab] / c.bodyRestVolume),
+            (std::vector<std::uint8_t>{0, 0}));
+}
+
 }  // namespace
 }  // namespace galsculpt
