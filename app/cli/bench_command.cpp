@@ -134,8 +134,11 @@ int motionFrame(int frames) {
   return std::min(frames, 20);
 }
 
+// `settle` frames run untimed after the cuts and before the measured ones: the cost of a body
+// at rest with its cracks, apart from the motion that cutting starts.
 nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
-                       const Setting& setting, int frames, const fs::path& referencePositions) {
+                       const Setting& setting, int frames, int settle,
+                       const fs::path& referencePositions) {
   Simulation sim(sceneWithSetting(baseScene, setting), mesh);
   // The surface is built when the scene opens and brought up to date after each cut, as the app
   // does: what a cut costs the surface is measured here, what a frame costs it below.
@@ -149,6 +152,8 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
     });
   }
   std::sort(msCut.begin(), msCut.end());
+  for (int f = 0; f < settle; ++f) sim.advance();
+  if (settle > 0) sim.surface();
   std::vector<double> ms, msSurface;
   FrameMetrics last;
   double newton = 0.0, cg = 0.0, residualMax = 0.0, motionError = -1.0;
@@ -181,6 +186,7 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
     if (note.find("running on the CPU") != std::string::npos) r["backend_note"] = note;
   }
   r["frames"] = frames;
+  r["settle_frames"] = settle;
   r["ms_per_frame"] = median;
   r["fps"] = 1000.0 / median;
   r["ms_p95"] = p95;
@@ -216,7 +222,7 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
 
 // Runs `measure` in a child process; returns its result (or an "error" entry).
 nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh,
-                              const Setting& setting, int frames,
+                              const Setting& setting, int frames, int settle,
                               const fs::path& referencePositions, const fs::path& scratch) {
   const fs::path resultFile = scratch / "result.json";
   std::error_code ec;
@@ -231,7 +237,7 @@ nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh
   if (pid == 0) {
     int code = 0;
     try {
-      const nlohmann::json r = measure(scene, mesh, setting, frames, referencePositions);
+      const nlohmann::json r = measure(scene, mesh, setting, frames, settle, referencePositions);
       std::ofstream(resultFile) << r.dump();
     } catch (const std::exception& e) {
       std::ofstream(resultFile) << nlohmann::json{{"error", e.what()}}.dump();
@@ -259,7 +265,10 @@ std::string row(const nlohmann::json& r) {
       << std::setw(8) << std::setprecision(1) << r["fps"].get<double>() << " fps" << std::setw(8)
       << r["damaged_edges"].get<int>() << " damaged edges" << std::setw(6) << r["pieces"].get<int>()
       << " pieces" << std::setw(8) << std::setprecision(2) << r["ms_surface"].get<double>()
-      << " ms surface" << std::setw(8) << r.value("ms_surface_cut", 0.0) << " ms surface per cut";
+      << " ms surface" << std::setw(8) << r.value("ms_surface_cut", 0.0) << " ms surface per cut"
+      << std::setw(7) << std::setprecision(1) << r["newton_iters_mean"].get<double>() << " newton"
+      << std::setw(7) << r["cg_iters_mean"].get<double>() << " cg" << std::setw(5)
+      << r["unconverged_frames"].get<int>() << " unconverged";
     return s.str();
   }
   // The solver: its grid and preset, and what differs from the preset's defaults.
@@ -367,14 +376,15 @@ std::vector<Setting> benchSettings(const SceneDescription& scene, bool cracks, b
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(args, {"--scene", "--json", "--frames", "--backend"},
+  const CliArgs a(args, {"--scene", "--json", "--frames", "--settle", "--backend"},
                   {"--quick", "--sweep", "--cracks"});
   a.expectPositional(0, 0,
                      "galsculpt bench [--scene NAME] [--quick] [--sweep] [--cracks] [--frames N] "
-                     "[--json FILE] [--backend auto|cpu|cuda]");
+                     "[--settle N] [--json FILE] [--backend auto|cpu|cuda]");
   const std::optional<BackendRequest> backend = backendOption(a);
   const bool quick = a.has("--quick");
   const int frames = a.intValue("--frames", quick ? 20 : 60, 1, 100000);
+  const int settle = a.intValue("--settle", 0, 0, 100000);
   const std::vector<BenchScene> scenes = benchScenes(a);
   std::string pattern = (fs::temp_directory_path() / "galsculpt-bench-XXXXXX").string();
   if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder");
@@ -398,7 +408,7 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
         scene, a.has("--cracks"), a.has("--sweep") && std::string(bs.name) == "sphere");
     const fs::path refFile = scratch / (std::string(bs.name) + ".ref");
     for (const Setting& s : settings) {
-      nlohmann::json r = measureInChild(scene, mesh, s, frames, refFile, scratch);
+      nlohmann::json r = measureInChild(scene, mesh, s, frames, settle, refFile, scratch);
       r["scene"] = bs.name;
       out << row(r) << '\n' << std::flush;
       results.push_back(r);
@@ -409,6 +419,7 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
     const nlohmann::json doc{
         {"machine", {{"cores", static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN))}}},
         {"frames", frames},
+        {"settle_frames", settle},
         {"results", results}};
     writeFileAtomically(*json, [&](std::ostream& o) { o << doc.dump(2) << '\n'; });
     out << "wrote " << *json << '\n';

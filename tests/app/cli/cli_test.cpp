@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -175,7 +176,25 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
                       R"(/assets/meshes/sphere_small.node"}, "solver": {"preset": "paper"}})");
   const CliRun paperScene =
       run({"bench", "--scene", "charpy", "--frames", "2", "--json", (dir / "p.json").string()});
+  // --settle: untimed frames first; one measured frame after three settling ones ends where four
+  // measured frames do.
+  const CliRun settled = run({"bench", "--scene", "sphere", "--frames", "1", "--settle", "3",
+                              "--json", (dir / "s.json").string()});
+  const CliRun four =
+      run({"bench", "--scene", "sphere", "--frames", "4", "--json", (dir / "f.json").string()});
   unsetenv("GALSCULPT_ASSETS");
+  ASSERT_EQ(settled.code, kExitOk) << settled.err;
+  ASSERT_EQ(four.code, kExitOk) << four.err;
+  const auto s = nlohmann::json::parse(test::readText(dir / "s.json"));
+  const auto f = nlohmann::json::parse(test::readText(dir / "f.json"));
+  EXPECT_EQ(s["settle_frames"], 3);
+  EXPECT_EQ(s["results"][0]["settle_frames"], 3);
+  EXPECT_EQ(f["settle_frames"], 0);
+  EXPECT_NE(f["results"][0]["volume_change_pct"].get<double>(), 0.0);
+  EXPECT_NEAR(s["results"][0]["volume_change_pct"].get<double>(),
+              f["results"][0]["volume_change_pct"].get<double>(),
+              1e-9 * std::fabs(f["results"][0]["volume_change_pct"].get<double>()))
+      << "the reference ran the settling frames";
   ASSERT_EQ(paperScene.code, kExitOk) << paperScene.err;
   const auto p = nlohmann::json::parse(test::readText(dir / "p.json"));
   ASSERT_EQ(p["results"].size(), 3u);
@@ -197,6 +216,8 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   EXPECT_GE(c["results"][2]["ms_surface_cut_max"].get<double>(),
             c["results"][2]["ms_surface_cut"].get<double>());
   EXPECT_NE(cracks.out.find("ms surface per cut"), std::string::npos) << cracks.out;
+  EXPECT_NE(cracks.out.find(" newton"), std::string::npos) << cracks.out;
+  EXPECT_NE(cracks.out.find(" unconverged"), std::string::npos) << cracks.out;
   ASSERT_EQ(r.code, kExitOk) << r.err;
   const auto j = nlohmann::json::parse(test::readText(dir / "b.json"));
   // The reference, the paper's setting and the scene's own (the converged default).
