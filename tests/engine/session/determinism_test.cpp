@@ -89,8 +89,11 @@ std::uint64_t sphereCut() {
 // (stiffness_tolerance 1e-3): other Newton matrices in its later iterations, the same tolerance.
 // The sphere cut again when cracks opened one way (a damaged element's energy the least over its
 // crack openings, solver/fem/element_kernels.h): another energy for the cut elements.
+// The sphere cut again when the host factored a coarsest level of more than 64 handles sparse
+// (solver/multigrid/coarse_cholesky.h; the cut splits the ball's 50 handles into more): the
+// same coarse solve in another order, round-off.
 constexpr std::uint64_t kHangingBall = 0x0ad922397c14fd0a;
-constexpr std::uint64_t kSphereCut = 0xfebcd27cf2ce7677;
+constexpr std::uint64_t kSphereCut = 0x2ab23e2ed41bff72;
 
 TEST(Determinism, PinnedHashesAtOneAndTwoThreads) {
   const int threads = omp_get_max_threads();

@@ -218,6 +218,29 @@ TEST(Multigrid, VCycleReducesTheResidualAndPcgReachesTheDirectSolution) {
   EXPECT_LT(c.solve(x, cg), 1e-3) << "and the coarse CG as well as the Cholesky";
 }
 
+// The coarsest level's direct solve, dense up to 64 handles and sparse on the host above
+// (coarse_cholesky.h; a cracked body's split handles), is exact either way.
+TEST(Multigrid, TheCoarsestLevelIsSolvedExactlyDenseOrSparse) {
+  const System s = elasticitySystem();
+  for (const int handles : {40, 100}) {
+    SCOPED_TRACE(std::to_string(handles) + " handles");
+    Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {handles});
+    Cycle c(s, mg, true);
+    ASSERT_EQ(c.cycle.numLevels(), 1);
+    const Eigen::MatrixXd coarse = c.cycle.coarseMatrix(1);
+    ASSERT_EQ(coarse.rows(), 12 * handles);
+    EXPECT_EQ(MultigridCycle<CpuExecutor>::sparseCoarsest(handles), handles > 64);
+    Eigen::VectorXd b(coarse.rows()), x(coarse.rows());
+    for (int i = 0; i < b.size(); ++i) b[i] = std::sin(0.7 * i) * coarse(i, i);
+    MultigridCycle<CpuExecutor>::Settings st = Cycle::settings();
+    st.coarseCholesky = true;
+    c.cycle.solveCoarsest(b.data(), x.data(), st);
+    const Eigen::VectorXd exact = coarse.ldlt().solve(b);
+    EXPECT_LT((x - exact).norm(), 1e-8 * exact.norm());
+    EXPECT_LT((coarse * x - b).norm(), 1e-8 * b.norm());
+  }
+}
+
 // Under PCG the fine smoother keeps its own single-precision copy of the fine operator, taken
 // at each refresh: its product agrees with the double one to float precision, and a cycle after
 // a new refresh solves the new operator, not the old one. (The V-cycle tests above run the

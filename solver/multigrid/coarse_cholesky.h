@@ -1,0 +1,39 @@
+// The coarsest level's direct solve in host memory: a sparse Cholesky of the level's 12x12
+// blocks (block CSR), with a fill-reducing (AMD) ordering analysed once per pattern.
+//
+// Why not the dense factorization the device uses: cracks split the coarse handles (a handle
+// whose aggregate a crack divides becomes one per part), and the dense factorization grows with
+// the cube of their number. On the hanging sphere (35,540 tets) 10 random cuts took the coarsest
+// level from 50 to 110 handles and 100 cuts to 199, so the dense factorization, refreshed with
+// every Newton matrix, went from a few milliseconds to hundreds and was what made a cut body's
+// frame cost several times the uncut one's. The handles of a cracked body are coupled only to
+// their neighbours, so the sparse factor costs a fraction of the dense one. Simplicial and
+// single-threaded (Eigen's, not CHOLMOD's BLAS-backed supernodal one), so that its round-off
+// does not depend on the thread count (tests/engine/session/determinism_test.cpp).
+#pragma once
+
+#include <memory>
+
+namespace galsculpt {
+
+class CoarseCholesky {
+ public:
+  CoarseCholesky();
+  ~CoarseCholesky();
+  CoarseCholesky(const CoarseCholesky&) = delete;
+  CoarseCholesky& operator=(const CoarseCholesky&) = delete;
+
+  // Factors the symmetric matrix of `handles` x `handles` blocks of 12x12 (block CSR with both
+  // triangles: rowStart (handles + 1), columns, blocks of 144 column-major doubles each). The
+  // ordering is analysed again only when the pattern differs from the last one. False when the
+  // matrix is not positive definite (nothing to solve with then).
+  bool factor(int handles, const int* rowStart, const int* columns, const double* blocks);
+  // x <- A^-1 x with the last successful factorization (12 handles doubles).
+  void solve(double* x) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace galsculpt
