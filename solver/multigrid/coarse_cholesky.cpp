@@ -8,8 +8,8 @@
 namespace galsculpt {
 
 struct CoarseCholesky::Impl {
-  std::vector<int> rowStart, columns;  // the analysed pattern
-  Eigen::SparseMatrix<double> lower;   // the lower triangle, which the factorization reads
+  std::vector<int> rowStart, columns;          // the analysed pattern
+  Eigen::SparseMatrix<double> lower;           // the lower triangle, which the factorization reads
   std::vector<std::pair<double*, int>> entry;  // where each lower entry's value comes from
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> llt;
   bool factored = false;
@@ -45,10 +45,9 @@ CoarseCholesky::~CoarseCholesky() = default;
 bool CoarseCholesky::factor(int handles, const int* rowStart, const int* columns,
                             const double* blocks) {
   Impl& m = *impl_;
-  const bool samePattern =
-      static_cast<int>(m.rowStart.size()) == handles + 1 &&
-      std::equal(m.rowStart.begin(), m.rowStart.end(), rowStart) &&
-      std::equal(m.columns.begin(), m.columns.end(), columns);
+  const bool samePattern = static_cast<int>(m.rowStart.size()) == handles + 1 &&
+                           std::equal(m.rowStart.begin(), m.rowStart.end(), rowStart) &&
+                           std::equal(m.columns.begin(), m.columns.end(), columns);
   if (!samePattern) m.analyse(handles, rowStart, columns);
   for (const auto& [value, from] : m.entry) *value = blocks[from];
   m.llt.factorize(m.lower);

@@ -27,8 +27,8 @@ BlockMatrix chain(int handles, bool extra, double shift = 1.0) {
     for (int j = 0; j < n; ++j)
       random(i, j) = std::sin(1.0 + 3.0 * i + 7.0 * j * j);  // deterministic, fills every block
   auto coupled = [&](int a, int b) {
-    return std::abs(a - b) <= 1 || (extra && ((a == 0 && b == handles - 1) ||
-                                              (b == 0 && a == handles - 1)));
+    return std::abs(a - b) <= 1 ||
+           (extra && ((a == 0 && b == handles - 1) || (b == 0 && a == handles - 1)));
   };
   for (int a = 0; a < handles; ++a)
     for (int b = 0; b < handles; ++b)
@@ -74,11 +74,12 @@ TEST(CoarseCholesky, SolvesLikeTheDenseFactorizationAndFollowsPatternChanges) {
                        shifted.blocks.data()));
   EXPECT_LT(solveError(c, shifted), 1e-12);
   const BlockMatrix ring = chain(9, true);
-  ASSERT_TRUE(c.factor(ring.handles, ring.rowStart.data(), ring.columns.data(), ring.blocks.data()));
+  ASSERT_TRUE(
+      c.factor(ring.handles, ring.rowStart.data(), ring.columns.data(), ring.blocks.data()));
   EXPECT_LT(solveError(c, ring), 1e-12);
   const BlockMatrix larger = chain(14, true);
-  ASSERT_TRUE(
-      c.factor(larger.handles, larger.rowStart.data(), larger.columns.data(), larger.blocks.data()));
+  ASSERT_TRUE(c.factor(larger.handles, larger.rowStart.data(), larger.columns.data(),
+                       larger.blocks.data()));
   EXPECT_LT(solveError(c, larger), 1e-12);
 }
 
