@@ -12,7 +12,6 @@ struct CoarseCholesky::Impl {
   Eigen::SparseMatrix<double> lower;           // the lower triangle, which the factorization reads
   std::vector<std::pair<double*, int>> entry;  // where each lower entry's value comes from
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> llt;
-  bool factored = false;
 
   void analyse(int handles, const int* start, const int* cols) {
     rowStart.assign(start, start + handles + 1);
@@ -51,8 +50,7 @@ bool CoarseCholesky::factor(int handles, const int* rowStart, const int* columns
   if (!samePattern) m.analyse(handles, rowStart, columns);
   for (const auto& [value, from] : m.entry) *value = blocks[from];
   m.llt.factorize(m.lower);
-  m.factored = m.llt.info() == Eigen::Success;
-  return m.factored;
+  return m.llt.info() == Eigen::Success;
 }
 
 void CoarseCholesky::solve(double* x) const {
