@@ -262,6 +262,7 @@ const VisualSurface& Simulation::surface(SurfaceUpdateStats* stats) const {
     const SurfaceUpdateStats s = surfaceBuilder_.update(model_, state_);
     surfaceFrame_ = frame_;
     surfaceRevision_ = state_.damageRevision;
+    lastSurfaceUpdate_ = s;
     if (stats) *stats = s;
     if (removesDebris_ && debrisPieces_ > 0) shownSurface_ = withoutRemovedDebris();
   } else if (stats) {

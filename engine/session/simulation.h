@@ -160,6 +160,10 @@ class Simulation {
   // The visualization surface (engine/surface/surface_builder.h) at the current damage and
   // positions, brought up to date on each call; `stats` (optional) gets what that update cost.
   const VisualSurface& surface(SurfaceUpdateStats* stats = nullptr) const;
+  // What the last update of the surface cost, whoever asked for it: a frame of a body in
+  // several pieces brings the surface up to date itself (its inverted-piece count reads it), so
+  // a later surface() call finds nothing to do.
+  const SurfaceUpdateStats& lastSurfaceUpdate() const { return lastSurfaceUpdate_; }
   // Writes the tet mesh at the current positions with its damage: stem.node/.ele/.face,
   // stem.damage (solver/io/damage_io.h) and stem.vtk (cell data: damage, piece).
   void writeTetsWithDamage(const std::filesystem::path& stem) const;
@@ -177,6 +181,7 @@ class Simulation {
   mutable SurfaceBuilder surfaceBuilder_;
   mutable int surfaceFrame_ = -1;  // the state the surface was last brought up to
   mutable std::uint64_t surfaceRevision_ = 0;
+  mutable SurfaceUpdateStats lastSurfaceUpdate_;
   std::vector<int> anchorIds_;  // id of each entry of state_.anchors (scene anchors: -i - 1)
   int nextAnchorId_ = 0;
   int toolDamage_ = 0;  // edges cut by tools since the last frame
