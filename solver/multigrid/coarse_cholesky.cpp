@@ -16,24 +16,23 @@ struct CoarseCholesky::Impl {
   void analyse(int handles, const int* start, const int* cols) {
     rowStart.assign(start, start + handles + 1);
     columns.assign(cols, cols + rowStart.back());
+    // One walk over the lower entries: where each sits and which block value it takes.
     std::vector<Eigen::Triplet<double>> triplets;
+    std::vector<int> from;
     for (int r = 0; r < handles; ++r)
       for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
         for (int j = 0; j < 12; ++j)
           for (int i = 0; i < 12; ++i)
-            if (12 * r + i >= 12 * columns[k] + j)
+            if (12 * r + i >= 12 * columns[k] + j) {
               triplets.emplace_back(12 * r + i, 12 * columns[k] + j, 0.0);
+              from.push_back(144 * k + i + 12 * j);
+            }
     lower.resize(12 * handles, 12 * handles);
     lower.setFromTriplets(triplets.begin(), triplets.end());
     lower.makeCompressed();
     entry.clear();
-    for (int r = 0; r < handles; ++r)
-      for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
-        for (int j = 0; j < 12; ++j)
-          for (int i = 0; i < 12; ++i)
-            if (12 * r + i >= 12 * columns[k] + j)
-              entry.emplace_back(&lower.coeffRef(12 * r + i, 12 * columns[k] + j),
-                                 144 * k + i + 12 * j);
+    for (size_t n = 0; n < triplets.size(); ++n)
+      entry.emplace_back(&lower.coeffRef(triplets[n].row(), triplets[n].col()), from[n]);
     llt.analyzePattern(lower);
   }
 };
