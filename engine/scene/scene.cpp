@@ -223,6 +223,9 @@ ColliderDesc readCollider(JsonObject o) {
     if (!o.has("half_extents")) o.fail("half_extents", "is required for a box");
     c.halfExtents = o.vec3("half_extents", Eigen::Vector3d::Zero());
     if ((c.halfExtents.array() <= 0.0).any()) o.fail("half_extents", "must be positive");
+    c.cornerRadius = o.number("corner_radius", 0.0, 0.0, kInf);
+    if (c.cornerRadius > c.halfExtents.minCoeff())
+      o.fail("corner_radius", "must not exceed the least half extent");
   }
   c.friction = o.number("friction", 0.0, 0.0, 10.0);
   if (o.has("motion")) c.motion = readMotion(o.object("motion"));

@@ -86,6 +86,7 @@ struct ColliderDesc {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // Sphere, Box
   double radius = 0.0;
   Eigen::Vector3d halfExtents = Eigen::Vector3d::Zero();
+  double cornerRadius = 0.0;  // Box
   double friction = 0.0;
   MotionDesc motion;
 };

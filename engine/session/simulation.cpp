@@ -63,6 +63,7 @@ Collider colliderFromScene(const ColliderDesc& d) {
   c.center = d.center;
   c.radius = d.radius;
   c.halfExtents = d.halfExtents;
+  c.cornerRadius = d.cornerRadius;
   c.motion.type = d.motion.type == MotionDesc::Type::Static   ? ColliderMotion::Type::Static
                   : d.motion.type == MotionDesc::Type::Linear ? ColliderMotion::Type::Linear
                                                               : ColliderMotion::Type::Pendulum;

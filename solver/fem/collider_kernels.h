@@ -15,6 +15,7 @@ struct ColliderPose {
   double center[3] = {0, 0, 0};                        // sphere, box (body frame)
   double radius = 0.0;
   double halfExtents[3] = {0, 0, 0};
+  double cornerRadius = 0.0;  // box: its edges and corners rounded to this radius
   M3 rotation = identity3();  // x_world = rotation x_body + translation
   double translation[3] = {0, 0, 0};
   double contactStiffness = 100.0;
@@ -45,11 +46,15 @@ GALSCULPT_HD double colliderDistance(const ColliderPose& c, const double p[3], d
     if (len > 0.0)
       for (int i = 0; i < 3; ++i) n[i] = d[i] / len;
   } else {
+    // A rounded box is the inner box (half extents less the radius) grown by the radius: its
+    // distance is continuous in gradient wherever a vertex is less than the radius deep, so the
+    // contact force turns smoothly round an edge instead of flipping from face to face.
+    const double r = c.cornerRadius;
     double d[3], q[3];
     bool outside = false;
     for (int i = 0; i < 3; ++i) {
       d[i] = local[i] - c.center[i];
-      q[i] = fabs(d[i]) - c.halfExtents[i];
+      q[i] = fabs(d[i]) - (c.halfExtents[i] - r);
       outside = outside || q[i] > 0.0;
     }
     if (outside) {
@@ -58,7 +63,7 @@ GALSCULPT_HD double colliderDistance(const ColliderPose& c, const double p[3], d
         o[i] = fmax(q[i], 0.0);
         len2 += o[i] * o[i];
       }
-      distance = sqrt(len2);
+      distance = sqrt(len2) - r;
       double m[3], mlen2 = 0.0;
       for (int i = 0; i < 3; ++i) {
         m[i] = o[i] * (d[i] > 0.0 ? 1.0 : (d[i] < 0.0 ? -1.0 : 0.0));
@@ -67,11 +72,11 @@ GALSCULPT_HD double colliderDistance(const ColliderPose& c, const double p[3], d
       if (mlen2 > 0.0)
         for (int i = 0; i < 3; ++i) n[i] = m[i] / sqrt(mlen2);
     } else {
-      // Inside: out through the nearest face.
+      // Deeper than the radius: out through the nearest face.
       int axis = 0;
       for (int i = 1; i < 3; ++i)
         if (q[i] > q[axis]) axis = i;
-      distance = q[axis];
+      distance = q[axis] - r;
       for (int i = 0; i < 3; ++i) n[i] = i == axis ? (d[axis] >= 0.0 ? 1.0 : -1.0) : 0.0;
     }
   }

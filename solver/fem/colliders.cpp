@@ -54,6 +54,7 @@ kernels::ColliderPose colliderPose(const Collider& c, double time, const Collide
     pose.halfExtents[i] = c.halfExtents[i];
   }
   pose.radius = c.radius;
+  pose.cornerRadius = c.cornerRadius;
   const Eigen::Matrix3d r = rotationAt(c, time, state);
   for (int i = 0; i < 9; ++i) pose.rotation.a[i] = r.data()[i];
   const Vec3 t = translationAt(c, time, state);

@@ -34,6 +34,7 @@ struct Collider {
   Vec3 center = Vec3::Zero();                         // Sphere, Box: position at time 0
   double radius = 0.0;
   Vec3 halfExtents = Vec3::Zero();
+  double cornerRadius = 0.0;  // Box: edges and corners rounded (0 <= r <= the least half extent)
   ColliderMotion motion;
   double contactStiffness = 100.0;  // in units of m_v / h^2
 };

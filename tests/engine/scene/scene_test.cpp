@@ -214,6 +214,14 @@ INSTANTIATE_TEST_SUITE_P(
             std::string("{") + kMesh + R"(, "colliders": [{"type": "box", "center": [0, 0, 0]}]})",
             "$.colliders[0].half_extents: is required for a box"},
         BadScene{std::string("{") + kMesh +
+                     R"(, "colliders": [{"type": "box", "half_extents": [1, 0.2, 1],
+                     "corner_radius": 0.3}]})",
+                 "$.colliders[0].corner_radius: must not exceed the least half extent"},
+        BadScene{std::string("{") + kMesh +
+                     R"(, "colliders": [{"type": "box", "half_extents": [1, 1, 1],
+                     "corner_radius": -0.1}]})",
+                 "$.colliders[0].corner_radius: must be at least 0"},
+        BadScene{std::string("{") + kMesh +
                      R"(, "colliders": [{"type": "sphere", "radius": 0.1, "center": [0, 0, 0],
                      "motion": {"type": "pendulum", "pivot": [0, 0, 1], "axis": [0, 0, 1],
                      "angular_velocity": 1, "mass": 5}}]})",
