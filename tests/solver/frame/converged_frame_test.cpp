@@ -333,8 +333,9 @@ TEST(ConvergedFrame, KeptStiffnessesLeaveTheAnswerAsItWas) {
 }
 
 // A damaged element's stiffness switches where a crack opens or closes, at no size of strain the
-// tolerance could bound: it is never kept, and a block with a slab cut free ends where it ends without keeping (three
-// times its motion off, every frame unconverged, when damaged elements kept theirs).
+// tolerance could bound: it is never kept, and a block with a slab cut free ends where it ends
+// without keeping (three times its motion off, every frame unconverged, when damaged elements kept
+// theirs).
 TEST(ConvergedFrame, KeptStiffnessesAreNeverThoseOfDamagedElements) {
   const SimModel m = pressedBlock();
   StepSettings s = tightNewton();
