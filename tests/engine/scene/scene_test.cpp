@@ -52,6 +52,10 @@ TEST(Scene, CharpyHasAPendulumAndFracture) {
   EXPECT_DOUBLE_EQ(s.fracture.compressiveThreshold, 4.0e9);
   ASSERT_EQ(s.colliders.size(), 4u);
   EXPECT_EQ(s.colliders[3].motion.type, MotionDesc::Type::Pendulum);
+  // A test machine's radii (ISO 148-1): anvils rounded 1 mm, the 2 mm striker.
+  EXPECT_DOUBLE_EQ(s.colliders[1].cornerRadius, 0.001);
+  EXPECT_DOUBLE_EQ(s.colliders[2].cornerRadius, 0.001);
+  EXPECT_DOUBLE_EQ(s.colliders[3].cornerRadius, 0.002);
 }
 
 // A scene of a 500-tet sphere with the given sections (`"key": value, ...`), written to `name`
