@@ -71,8 +71,9 @@ Vec3 elasticGradientSum(const SimModel& model, const std::vector<Vec3>& x, const
   std::vector<int> set = vertices;
   std::sort(set.begin(), set.end());
   set.erase(std::unique(set.begin(), set.end()), set.end());
-  std::vector<std::uint8_t> in(model.numVertices(), 0);
-  for (const int v : set) in[v] = 1;
+  // Membership by binary search in the sorted set: a load anchor's few hundred vertices, not a
+  // flag per vertex of the body allocated and cleared every frame.
+  auto in = [&](int v) { return std::binary_search(set.begin(), set.end(), v); };
   Vec3 sum = Vec3::Zero();
   // Each element touching the set once (at its first corner in the set), all its corners in the
   // set summed, in vertex order: the same sum on every run.
@@ -81,12 +82,12 @@ Vec3 elasticGradientSum(const SimModel& model, const std::vector<Vec3>& x, const
       const int t = model.vertexSlots[k] / 4;
       const Tet& tet = model.mesh.tets[t];
       int first = 0;
-      while (!in[tet[first]] && first < 3) ++first;
+      while (!in(tet[first]) && first < 3) ++first;
       if (tet[first] != v) continue;
       ElementEval ev;
       evaluateTetAt(model, x, state, t, HessianMode::None, ev);
       for (int a = 0; a < 4; ++a)
-        if (in[tet[a]]) sum += ev.gradient.segment<3>(3 * a);
+        if (in(tet[a])) sum += ev.gradient.segment<3>(3 * a);
     }
   }
   return sum;
