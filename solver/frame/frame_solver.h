@@ -710,7 +710,7 @@ class FrameSolver {
       // coming and going): every later iteration of the sub-step takes a fresh one. Alternating
       // fresh and chord steps instead wasted every other iteration there, and the chords' poor
       // steps cost more backtracks: Charpy's broken halves took 827 Newton iterations over
-      // frames 41-75 and left 7 frames unconverged, against 358 and none without chords.
+      // frames 41-75 and 7 of frames 1-75 ended unconverged, against 358 and none without chords.
       chordFailed = chordFailed || (reuse && !(residual < 0.5 * lastResidual));
       reuse = s.reuseStiffness && !chordFailed;
       lastResidual = residual;

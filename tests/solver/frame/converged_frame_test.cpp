@@ -392,7 +392,8 @@ TEST(ConvergedFrame, ANullNewtonStepIsTakenAndTheCutBarMovesOn) {
 // matrix) that has not halved the residual says the matrix moved on: the sub-step's later
 // iterations build fresh ones. Alternating fresh and chord steps instead wasted every other
 // iteration (here 226 Newton iterations and a frame unconverged, against 147 without chords;
-// Charpy's broken halves: 827 over frames 41-75 and 7 frames unconverged, against 359 and none).
+// Charpy's broken halves: 827 over frames 41-75 and 7 of frames 1-75 unconverged, against 359
+// and none).
 TEST(ConvergedFrame, ChordStepsStopOnceOneFailsToHalveTheResidual) {
   SimState start;
   const SimModel m = cutBar(start);
