@@ -63,14 +63,11 @@ GALSCULPT_HD double colliderDistance(const ColliderPose& c, const double p[3], d
         o[i] = fmax(q[i], 0.0);
         len2 += o[i] * o[i];
       }
-      distance = sqrt(len2) - r;
-      double m[3], mlen2 = 0.0;
-      for (int i = 0; i < 3; ++i) {
-        m[i] = o[i] * (d[i] > 0.0 ? 1.0 : (d[i] < 0.0 ? -1.0 : 0.0));
-        mlen2 += m[i] * m[i];
-      }
-      if (mlen2 > 0.0)
-        for (int i = 0; i < 3; ++i) n[i] = m[i] / sqrt(mlen2);
+      const double len = sqrt(len2);
+      distance = len - r;
+      // Out along o with d's signs (o is nonzero only where d is: q > 0 there).
+      if (len > 0.0)
+        for (int i = 0; i < 3; ++i) n[i] = (d[i] < 0.0 ? -o[i] : o[i]) / len;
     } else {
       // Deeper than the radius: out through the nearest face.
       int axis = 0;
