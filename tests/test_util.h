@@ -101,6 +101,23 @@ inline TetMesh gridBar(int nx, int ny, int nz, double size) {
 
 namespace galsculpt {
 
+// The scenes' converged preset (engine/scene: solver.preset "converged") on a small mesh: 12
+// coarse handles.
+inline StepSettings convergedPreset() {
+  StepSettings s;
+  s.multigrid = true;
+  s.gridHandles = {12};
+  s.newtonIterations = 40;
+  s.residualTolerance = 1e-2;
+  s.reuseStiffness = true;
+  s.predictedStart = true;
+  s.stiffnessTolerance = 1e-3;
+  s.multigridSettings.pcg = true;
+  s.multigridSettings.pcgTolerance = 1e-2;
+  s.multigridSettings.coarseCholesky = true;
+  return s;
+}
+
 // One frame on a fresh CPU backend: for tests on small meshes (a session keeps its backend and
 // the hierarchy in it; the results are the same either way).
 inline StepReport step(const SimModel& model, SimState& state, const StepSettings& settings) {

@@ -276,6 +276,7 @@ SolverDesc readSolver(JsonObject o) {
   s.frameBudgetMs = o.number("frame_budget_ms", s.frameBudgetMs, 0.0, 1e6);
   s.reuseStiffness = o.boolean("reuse_stiffness", s.reuseStiffness);
   s.predictedStart = o.boolean("predicted_start", s.predictedStart);
+  s.acceleratedStart = o.boolean("accelerated_start", s.acceleratedStart);
   s.energyGuard = readEnum(o, "energy_guard", s.energyGuard, kEnergyGuardNames);
   s.stiffnessTolerance = o.number("stiffness_tolerance", s.stiffnessTolerance, 0.0, 0.1);
   s.backend = readEnum(o, "backend", s.backend, kBackendNames);
@@ -302,6 +303,7 @@ SolverDesc solverPreset(SolverPreset preset) {
     s.pcgTolerance = 0.0;
     s.reuseStiffness = false;
     s.predictedStart = false;
+    s.acceleratedStart = false;
     s.stiffnessTolerance = 0.0;  // every element's stiffness, every step
   }
   return s;

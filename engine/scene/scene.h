@@ -159,6 +159,7 @@ struct SolverDesc {
   double frameBudgetMs = 0.0;       // > 0: Newton stops when a frame has taken this long
   bool reuseStiffness = true;       // chord steps after a sub-step's first Newton iteration
   bool predictedStart = true;       // Newton starts from x_n + h v_n (StepSettings)
+  bool acceleratedStart = true;     // pieces start with their acceleration (StepSettings)
   EnergyGuard energyGuard = EnergyGuard::Body;  // StepSettings::vertexGuard
   double stiffnessTolerance = 1e-3;             // StepSettings::stiffnessTolerance
   BackendRequest backend = BackendRequest::Auto;

@@ -34,6 +34,7 @@
 #include "solver/fem/element_lanes.h"
 #include "solver/fracture/cracked_sections.h"
 #include "solver/fracture/debris.h"
+#include "solver/frame/accelerated_start.h"
 #include "solver/frame/direct_solver.h"
 #include "solver/frame/frame_loop.h"
 #include "solver/frame/step.h"
@@ -791,7 +792,10 @@ class FrameSolver {
       xhat[i] = x[i] + h * v[i];
     });
     predicted_ = settings_->predictedStart;
-    if (predicted_) ex_.copy(x, xhat, 3 * n_);
+    if (predicted_) {
+      ex_.copy(x, xhat, 3 * n_);
+      if (settings_->acceleratedStart) startPiecesAccelerated(h);
+    }
     // Stiffnesses are kept within a sub-step only: a frame's result must follow from the state
     // alone (a project reopened at any frame runs on identically; kept across frames, the
     // clay head's frames were 20 % cheaper but a reopened session took another path). This also
@@ -804,6 +808,34 @@ class FrameSolver {
     }
     placeAnchors();
     frozenIsK_ = true;
+  }
+
+  // Pieces nothing holds start on their path with their acceleration (accelerated_start.h).
+  // Called after prepareAnchorsAndColliders (fixed_ and the poses are the sub-step's).
+  void startPiecesAccelerated(double h) {
+    const ElementInputs in = elementInputs();
+    const MaterialModel model = model_.material.model;
+    const Lame lame = model_.material.lame;
+    const bool resists = model_.material.compressionResists;
+    const auto elementGradient = [=] GALSCULPT_LAMBDA(int t, const double* y, double* gradient) {
+      double x12[12], energy;
+      std::uint8_t intact;
+      const kernels::RestData& r = in.load(t, y, x12, intact);
+      kernels::evaluateElement(model, lame, r, x12, intact, in.resists(t, resists),
+                               kernels::Hessian::None, energy, gradient, nullptr);
+    };
+    const typename AcceleratedStart<Exec>::SubstepInputs inputs{
+        fixed_.data(),
+        xn_.data(),
+        xhat_.data(),
+        vn_.data(),
+        mass_.data(),
+        poseBuffer_.data(),
+        static_cast<int>(poses_.size()),
+        h,
+        model_.material.dampingMass,
+        {model_.gravity.x(), model_.gravity.y(), model_.gravity.z()}};
+    accelerated_.start(ex_, model_, hostDamaged_, inputs, elementGradient, x_.data());
   }
 
   // Anchored vertices on their paths at the sub-step's end.
@@ -1833,6 +1865,7 @@ class FrameSolver {
   // Host shadows: what the device holds, to upload only changes.
   std::vector<double> hostX_, hostV_, hostFp_, hostStrain_, hostAnchorTargets_;
   std::vector<std::uint8_t> hostDamaged_, hostFixed_, hostRemoved_;
+  AcceleratedStart<Exec> accelerated_;    // the pieces' starts (startPiecesAccelerated)
   Buffer<std::uint8_t> removed_;          // (nVerts) 1 on removed debris
   std::vector<int> removedVertices_;      // ascending
   std::vector<std::uint8_t> removedFor_;  // the damage removedVertices_ was found for

@@ -53,6 +53,13 @@ struct StepSettings {
   // damping stiffness is taken where Newton starts (the reference keeps this setting, so it
   // solves the same equations). Off, the first Newton step is the paper's linearized system.
   bool predictedStart = false;
+  // With predictedStart: each piece that no anchor, removed debris or collider holds starts
+  // from x_n + h (v_n + h a) / (1 + h alpha), a = g + F / m its centre of mass's acceleration at
+  // x_n (F: the push of the pieces it touches), instead of the straight line
+  // (accelerated_start.h): pieces falling together off a cut body start where they go. Only
+  // the start changes (with stiffness damping, K(x_0) too, but only in the elements between
+  // pieces: the start moves each piece rigidly).
+  bool acceleratedStart = true;
   // When the full Newton step raises the potential, first shorten it only at the vertices whose
   // share of the potential rose (a few rounds, re-evaluating only the elements around them), and
   // back the whole step off only if that fails: a step that overshoots next to a few vertices (a

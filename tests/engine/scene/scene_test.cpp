@@ -271,8 +271,11 @@ TEST(Scene, SolverChoicesAreTypedAndKeepTheirNames) {
   test::TempDir dir;
   test::writeText(dir / "s.json", std::string("{") + kMesh + R"(, "material": {"model": "stvk"},
       "solver": {"type": "reference", "smoother": "jacobi", "coarse_solver": "cholesky",
-                 "backend": "cpu", "energy_guard": "vertex"}})");
+                 "backend": "cpu", "energy_guard": "vertex", "accelerated_start": false}})");
   const SceneDescription s = loadScene(dir / "s.json");
+  EXPECT_FALSE(s.solver.acceleratedStart);
+  EXPECT_TRUE(solverPreset(SolverPreset::Converged).acceleratedStart);
+  EXPECT_FALSE(solverPreset(SolverPreset::Paper).acceleratedStart);
   EXPECT_EQ(s.material.model, MaterialModel::StVK);
   EXPECT_EQ(s.solver.type, SolverType::Reference);
   EXPECT_EQ(s.solver.smoother, Smoother::Jacobi);

@@ -15,20 +15,8 @@ namespace {
 
 using test::gridBar;
 
-// The scenes' converged preset (engine/scene: solver.preset "converged") on a small mesh.
 StepSettings converged() {
-  StepSettings s;
-  s.multigrid = true;
-  s.gridHandles = {12};
-  s.newtonIterations = 40;
-  s.residualTolerance = 1e-2;
-  s.reuseStiffness = true;
-  s.predictedStart = true;
-  s.stiffnessTolerance = 1e-3;
-  s.multigridSettings.pcg = true;
-  s.multigridSettings.pcgTolerance = 1e-2;
-  s.multigridSettings.coarseCholesky = true;
-  return s;
+  return convergedPreset();
 }
 
 // The paper's setting: one linearized step, one V-cycle, 20 coarse CG iterations.
