@@ -185,6 +185,7 @@ class AcceleratedStart {
   using Buffer = typename Exec::template Buffer<T>;
 
   struct SubstepInputs {
+    bool anyFixed;              // some vertex anchored or removed (known on the host)
     const std::uint8_t* fixed;  // (nVerts) anchored or removed
     const double *xn, *xhat, *vn, *mass;
     const kernels::ColliderPose* poses;
@@ -196,6 +197,7 @@ class AcceleratedStart {
   void start(const Exec& ex, const SimModel& model, const std::vector<std::uint8_t>& damaged,
              const SubstepInputs& in, const ElementGradient& elementGradient, double* x) {
     if (!built_ || builtFor_ != damaged) rebuild(model, damaged);
+    if (pieceCount_ == 1 && in.anyFixed) return;  // a body in one piece, anchored: no launch
     const double g = sqrt(in.gravity[0] * in.gravity[0] + in.gravity[1] * in.gravity[1] +
                           in.gravity[2] * in.gravity[2]);
     const HeldVertices heldTest{in.fixed, in.xn,        in.xhat,         in.vn,

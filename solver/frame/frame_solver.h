@@ -825,6 +825,7 @@ class FrameSolver {
                                kernels::Hessian::None, energy, gradient, nullptr);
     };
     const typename AcceleratedStart<Exec>::SubstepInputs inputs{
+        anchorCount_ > 0,
         fixed_.data(),
         xn_.data(),
         xhat_.data(),
