@@ -76,6 +76,7 @@ inline constexpr double kMostPush = 2.0;
 struct HeldPieces {
   const int *pieceStart, *pieceVertices, *pieceOf;
   const std::uint8_t* heldVertex;
+  const std::uint8_t* removed;  // (nVerts) or null: removed debris, which holds up nothing
   const int *crackStart, *crackEnds;
   const double* crackRestLengthSq;
   const double* xn;
@@ -89,7 +90,8 @@ struct HeldPieces {
     if (held[p]) return 1;
     for (int i = crackStart[p]; i < crackStart[p + 1]; ++i) {
       const int a = crackEnds[2 * i], b = crackEnds[2 * i + 1];
-      if (held[pieceOf[b]] && pressing(a, b, crackRestLengthSq[i])) return 1;
+      if (held[pieceOf[b]] && !(removed && removed[b]) && pressing(a, b, crackRestLengthSq[i]))
+        return 1;
     }
     return 0;
   }
@@ -185,8 +187,9 @@ class AcceleratedStart {
   using Buffer = typename Exec::template Buffer<T>;
 
   struct SubstepInputs {
-    bool anyFixed;              // some vertex anchored or removed (known on the host)
-    const std::uint8_t* fixed;  // (nVerts) anchored or removed
+    bool anyFixed;                // some vertex anchored or removed (known on the host)
+    const std::uint8_t* fixed;    // (nVerts) anchored or removed
+    const std::uint8_t* removed;  // (nVerts) removed debris (it pushes on nothing)
     const double *xn, *xhat, *vn, *mass;
     const kernels::ColliderPose* poses;
     int colliders;
@@ -213,7 +216,7 @@ class AcceleratedStart {
       elementGradient(shared[i], xn, sharedGradient + 12 * i);
     });
     const HeldPieces heldPieces{
-        pieceStart_.data(), pieceVertices_.data(), pieceOf_.data(),           held,
+        pieceStart_.data(), pieceVertices_.data(), pieceOf_.data(),           held, in.removed,
         crackStart_.data(), crackEnds_.data(),     crackRestLengthSq_.data(), xn};
     std::uint8_t* heldPiece = heldPiece_.data();
     const int* small = smallPieces_.data();

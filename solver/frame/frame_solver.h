@@ -827,6 +827,7 @@ class FrameSolver {
     const typename AcceleratedStart<Exec>::SubstepInputs inputs{
         anchorCount_ > 0,
         fixed_.data(),
+        removed_.data(),
         xn_.data(),
         xhat_.data(),
         vn_.data(),

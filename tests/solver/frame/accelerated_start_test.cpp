@@ -166,8 +166,8 @@ TEST(AcceleratedStart, WhatHoldsAVertex) {
 
 // A bar cut in three, its pieces pressed 0.5 mm together: a vertex held in the first piece
 // holds it; the second presses on it across a closed crack and is held by the first round of
-// spreading, the third by the second. A crack just at rest length is not pressing, and the
-// third moved 2 mm off (its crack open 20 %) is free: it presses on nothing.
+// spreading, the third by the second. A crack just at rest length is not pressing, the third
+// moved 2 mm off (its crack open 20 %) is free, and removed debris holds up nothing.
 TEST(AcceleratedStart, APiecePressingOnAHeldPieceIsHeld) {
   const SimModel m = buildSimModel(gridBar(3, 1, 1, 0.01), rubber());
   SimState s = initialState(m);
@@ -190,12 +190,17 @@ TEST(AcceleratedStart, APiecePressingOnAHeldPieceIsHeld) {
       xn[3 * v] -= p == second ? squeeze : (p == third ? 2 * squeeze - thirdOff : 0.0);
     }
   };
-  std::vector<std::uint8_t> heldVertex(n, 0);
+  std::vector<std::uint8_t> heldVertex(n, 0), removed(n, 0);
   heldVertex[0] = 1;  // at x = 0
-  const HeldPieces pieces{layout.pieceStart.data(),        layout.pieceVertices.data(),
-                          layout.pieceOf.data(),           heldVertex.data(),
-                          layout.crackStart.data(),        layout.crackEnds.data(),
-                          layout.crackRestLengthSq.data(), xn.data()};
+  const HeldPieces pieces{layout.pieceStart.data(),
+                          layout.pieceVertices.data(),
+                          layout.pieceOf.data(),
+                          heldVertex.data(),
+                          removed.data(),
+                          layout.crackStart.data(),
+                          layout.crackEnds.data(),
+                          layout.crackRestLengthSq.data(),
+                          xn.data()};
   std::vector<std::uint8_t> held(3), next(3);
   auto settle = [&](int rounds) {
     for (int p = 0; p < 3; ++p) held[p] = pieces(p);
@@ -220,6 +225,13 @@ TEST(AcceleratedStart, APiecePressingOnAHeldPieceIsHeld) {
   settle(2);
   EXPECT_EQ(held[second], 1);
   EXPECT_EQ(held[third], 0) << "its crack open: free";
+  // Removed debris is held where it was but holds up nothing: the second piece pressing on a
+  // removed first piece is free.
+  for (int v = 0; v < n; ++v) removed[v] = layout.pieceOf[v] == first;
+  place(0.0005, 0.0);
+  settle(2);
+  EXPECT_EQ(held[first], 1);
+  EXPECT_EQ(held[second] + held[third], 0) << "pressing on removed debris";
 }
 
 // The push of its neighbours (through the elements between them) adds to a piece's
