@@ -154,7 +154,7 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   std::sort(msCut.begin(), msCut.end());
   for (int f = 0; f < settle; ++f) sim.advance();
   if (settle > 0) sim.surface();
-  std::vector<double> ms, msSurface;
+  std::vector<double> ms, msSurface, msElements, msSolve, msFracture, msOther;
   FrameMetrics last;
   double newton = 0.0, cg = 0.0, residualMax = 0.0, motionError = -1.0;
   int unconverged = 0;
@@ -163,6 +163,10 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   for (int f = 0; f < frames; ++f) {
     last = sim.advance();
     ms.push_back(last.msTotal);
+    msElements.push_back(last.msElements);
+    msSolve.push_back(last.msSolve);
+    msFracture.push_back(last.msFracture);
+    msOther.push_back(last.msOther);
     newton += last.newtonIterations;
     cg += last.cgIterations;
     residualMax = std::max(residualMax, last.residual);
@@ -191,6 +195,15 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   r["ms_per_frame"] = median;
   r["fps"] = 1000.0 / median;
   r["ms_p95"] = p95;
+  // Where a frame's time goes (medians of each part on its own, so they need not add up).
+  auto medianOf = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  r["ms_elements"] = medianOf(msElements);
+  r["ms_solve"] = medianOf(msSolve);
+  r["ms_fracture"] = medianOf(msFracture);
+  r["ms_other"] = medianOf(msOther);
   r["newton_iters_mean"] = newton / frames;
   r["cg_iters_mean"] = cg / frames;
   r["residual_max"] = residualMax;

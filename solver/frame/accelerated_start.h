@@ -29,7 +29,9 @@
 //
 // A piece is a set of vertices joined by undamaged edges (as for debris, debris.h). Pieces are
 // found on the host when the damage changes; per sub-step one launch marks held vertices, one
-// evaluates the elements between pieces at x_n, and one moves the small pieces (a thread each,
+// marks held pieces (then rounds spread them), one evaluates the elements between pieces at x_n
+// that touch a piece not held (between held pieces nothing reads them: after Charpy's break,
+// none), and one moves the small pieces (a thread each,
 // a serial loop over its vertices and corners); a large piece (the body itself, a big chunk)
 // is summed by reductions and moved by a launch over its vertices, so that no GPU thread walks
 // a whole body. Either way the sums are the same for any thread count.
@@ -176,10 +178,10 @@ struct AcceleratedPiece {
 };
 
 // The accelerated start on an executor: the pieces' layout in its memory (rebuilt when the
-// damage changes) and a sub-step's launches. Held vertices, then the elements between pieces at
-// x_n (`elementGradient(t, y, gradient12)`: the frame's element kernel), held pieces (a thread
-// per small piece, reductions for a large one) spread to those pressing on them round by round,
-// and the free pieces moved.
+// damage changes) and a sub-step's launches. Held vertices, held pieces (a thread per small
+// piece, reductions for a large one) spread to those pressing on them round by round, then the
+// elements between pieces at x_n that a free piece reads (`elementGradient(t, y, gradient12)`:
+// the frame's element kernel), and the free pieces moved.
 template <typename Exec>
 class AcceleratedStart {
  public:
@@ -208,13 +210,7 @@ class AcceleratedStart {
     std::uint8_t* held = held_.data();
     ex.forEach(static_cast<int>(held_.size()),
                [=] GALSCULPT_LAMBDA(int v) { held[v] = heldTest(v); });
-    // The elements between pieces at x_n: how hard each piece's neighbours push on it.
-    const int* shared = sharedTets_.data();
     const double* xn = in.xn;
-    double* sharedGradient = sharedGradient_.data();
-    ex.forEach(sharedTetCount_, [=] GALSCULPT_LAMBDA(int i) {
-      elementGradient(shared[i], xn, sharedGradient + 12 * i);
-    });
     const HeldPieces heldPieces{
         pieceStart_.data(), pieceVertices_.data(), pieceOf_.data(),           held, in.removed,
         crackStart_.data(), crackEnds_.data(),     crackRestLengthSq_.data(), xn};
@@ -228,7 +224,7 @@ class AcceleratedStart {
     double* sums = largeSums_.data();
     for (size_t j = 0; j < large_.size(); ++j) {
       const LargePiece& lp = large_[j];
-      const int begin = lp.begin, cBegin = lp.couplingBegin, p = lp.piece;
+      const int begin = lp.begin, p = lp.piece;
       double* out = sums + 5 * j;
       ex.sum(
           lp.end - begin,
@@ -237,13 +233,29 @@ class AcceleratedStart {
       ex.sum(
           lp.end - begin, [=] GALSCULPT_LAMBDA(int i) { return mass[vertices[begin + i]]; },
           out + 1);
+    }
+    spreadHeld(ex, heldPieces);
+    // The elements between pieces at x_n (how hard each piece's neighbours push on it), where a
+    // corner is in a piece that starts on its own: only such a piece reads them.
+    const int* shared = sharedTets_.data();
+    const int* cornerPiece = sharedCornerPieces_.data();
+    double* sharedGradient = sharedGradient_.data();
+    ex.forEach(sharedTetCount_, [=] GALSCULPT_LAMBDA(int i) {
+      const int* pieces = cornerPiece + 4 * i;
+      if (heldPiece[pieces[0]] && heldPiece[pieces[1]] && heldPiece[pieces[2]] &&
+          heldPiece[pieces[3]])
+        return;
+      elementGradient(shared[i], xn, sharedGradient + 12 * i);
+    });
+    for (size_t j = 0; j < large_.size(); ++j) {
+      const int cBegin = large_[j].couplingBegin;
+      double* out = sums + 5 * j;
       for (int k = 0; k < 3; ++k)
         ex.sum(
-            lp.couplingEnd - cBegin,
+            large_[j].couplingEnd - cBegin,
             [=] GALSCULPT_LAMBDA(int i) { return sharedGradient[slots[cBegin + i] + k]; },
             out + 2 + k);
     }
-    spreadHeld(ex, heldPieces);
     const AcceleratedPiece piece{pieceStart_.data(),
                                  vertices,
                                  heldPiece,
@@ -325,6 +337,11 @@ class AcceleratedStart {
     pieceVertices_.upload(layout.pieceVertices);
     pieceOf_.upload(layout.pieceOf);
     sharedTets_.upload(layout.sharedTets);
+    std::vector<int> cornerPieces(4 * layout.sharedTets.size());
+    for (size_t i = 0; i < layout.sharedTets.size(); ++i)
+      for (int c = 0; c < 4; ++c)
+        cornerPieces[4 * i + c] = layout.pieceOf[model.mesh.tets[layout.sharedTets[i]][c]];
+    sharedCornerPieces_.upload(cornerPieces);
     couplingStart_.upload(layout.couplingStart);
     couplingSlot_.upload(layout.couplingSlot);
     crackStart_.upload(layout.crackStart);
@@ -343,6 +360,7 @@ class AcceleratedStart {
   int pieceCount_ = 0, smallPieceCount_ = 0, sharedTetCount_ = 0;
   Buffer<int> pieceStart_, pieceVertices_, pieceOf_, sharedTets_, couplingStart_, couplingSlot_,
       smallPieces_, crackStart_, crackEnds_;
+  Buffer<int> sharedCornerPieces_;  // (4 sharedTets) the piece of each corner
   Buffer<double> sharedGradient_, largeSums_, crackRestLengthSq_;
   Buffer<std::uint8_t> held_, heldPiece_, heldPieceNext_;
 };

@@ -95,8 +95,12 @@ std::uint64_t sphereCut() {
 // Both again when a chord step that did not halve the residual ended the sub-step's chord steps
 // (solver/frame/frame_solver.h, substep) and a null Newton step was taken rather than refused by
 // round-off: other iterates within the same tolerance.
+// The sphere cut again when a damaged element's strain stiffness was formed as
+// lambda a a^T + S^T W S, its Hessian assembled through per-vertex sums, and an element with every
+// crack open returned exact zeros (solver/fem/element_kernels.h): the same energy in another
+// order of round-off.
 constexpr std::uint64_t kHangingBall = 0xf930b134365ac7c2;
-constexpr std::uint64_t kSphereCut = 0xf94ec0464f711e7f;
+constexpr std::uint64_t kSphereCut = 0xe76e9d18e71319af;
 
 TEST(Determinism, PinnedHashesAtOneAndTwoThreads) {
   const int threads = omp_get_max_threads();

@@ -174,6 +174,34 @@ TEST(TetElement, VertexWithAllEdgesDamagedIsFree) {
   EXPECT_EQ((a.hessian.block<3, 12>(0, 0).norm()), 0.0);
 }
 
+// Every edge damaged: stretched (all six cracks open) the element carries nothing, exactly, in
+// every mode (the kernel returns before forming its stiffness); with one edge squeezed shorter
+// than at rest its crack closes and pushes back, as the same element did before the short cut.
+TEST(TetElement, AnElementWithEveryCrackOpenCarriesNothingExactly) {
+  const TetPoints rest = restTet();
+  const TetRest r = computeTetRest(rest);
+  TetPoints stretched = rest;
+  for (Eigen::Vector3d& p : stretched) p *= 1.2;
+  for (HessianMode mode : {HessianMode::None, HessianMode::Exact, HessianMode::ProjectedSpd}) {
+    const ElementEval e = eval(MaterialModel::StVK, r, stretched, EdgeDamage{0x00, true}, mode);
+    EXPECT_EQ(e.energy, 0.0);
+    EXPECT_EQ(e.gradient.norm(), 0.0);
+    if (mode != HessianMode::None) EXPECT_EQ(e.hessian.norm(), 0.0);
+  }
+  TetPoints squeezed = stretched;
+  squeezed[1] = rest[0] + 0.8 * (rest[1] - rest[0]);  // edge 0-1 shorter than at rest
+  const ElementEval e =
+      eval(MaterialModel::StVK, r, squeezed, EdgeDamage{0x00, true}, HessianMode::Exact);
+  EXPECT_GT(e.energy, 0.0);
+  EXPECT_GT(e.gradient.segment<3>(3).dot(rest[0] - rest[1]), 0.0) << "pushes vertex 1 back out";
+  Vec12 fdGradient;
+  Mat12 fdHessian;
+  finiteDifferences(MaterialModel::StVK, r, squeezed, EdgeDamage{0x00, true}, 1e-6, fdGradient,
+                    fdHessian);
+  EXPECT_LT((fdGradient - e.gradient).norm(), 1e-6 * std::max(1.0, e.gradient.norm()));
+  EXPECT_LT((fdHessian - e.hessian).norm(), 1e-5 * std::max(1.0, e.hessian.norm()));
+}
+
 // Only edges 0-1 and 2-3 intact: the element holds two pieces, {0, 1} and {2, 3}; stretching
 // one must not push the other (the strain coupling between them is removed).
 TEST(TetElement, TwoOppositeIntactEdgesAreTwoUncoupledPieces) {

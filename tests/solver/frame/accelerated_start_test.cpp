@@ -8,6 +8,7 @@
 
 #include "solver/frame/accelerated_start.h"
 #include "solver/frame/cpu_backend.h"
+#include "solver/frame/cpu_executor.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -164,15 +165,21 @@ TEST(AcceleratedStart, WhatHoldsAVertex) {
   EXPECT_EQ(test(0), 1) << "the floor within reach";
 }
 
+// The 3-cell bar cut at x = 0.01 and 0.02: pieces at x = 0 and 0.01, at 0.02, at 0.03.
+SimState cutInThree(const SimModel& m) {
+  SimState s = initialState(m);
+  cutAt(m, s, 0.01);
+  cutAt(m, s, 0.02);
+  return s;
+}
+
 // A bar cut in three, its pieces pressed 0.5 mm together: a vertex held in the first piece
 // holds it; the second presses on it across a closed crack and is held by the first round of
 // spreading, the third by the second. A crack just at rest length is not pressing, the third
 // moved 2 mm off (its crack open 20 %) is free, and removed debris holds up nothing.
 TEST(AcceleratedStart, APiecePressingOnAHeldPieceIsHeld) {
   const SimModel m = buildSimModel(gridBar(3, 1, 1, 0.01), rubber());
-  SimState s = initialState(m);
-  cutAt(m, s, 0.01);
-  cutAt(m, s, 0.02);
+  const SimState s = cutInThree(m);
   const PieceLayout layout = pieceLayout(m, s.damaged);
   ASSERT_EQ(layout.pieces(), 3);
   const int n = m.numVertices();
@@ -232,6 +239,61 @@ TEST(AcceleratedStart, APiecePressingOnAHeldPieceIsHeld) {
   settle(2);
   EXPECT_EQ(held[first], 1);
   EXPECT_EQ(held[second] + held[third], 0) << "pressing on removed debris";
+}
+
+// A sub-step's start on the CPU executor: a clamped bar cut in three, its middle piece pressed
+// against the clamped one (held) and its end piece pulled away (free). Only the elements a free
+// piece reads are evaluated (those between the two held pieces were, every sub-step, before),
+// and only the free piece moves: by h^2 g.
+TEST(AcceleratedStart, OnlyTheElementsBetweenAFreePieceAndOthersAreEvaluated) {
+  const SimModel m = buildSimModel(gridBar(3, 1, 1, 0.01), rubber());
+  const SimState s = cutInThree(m);
+  const PieceLayout layout = pieceLayout(m, s.damaged);
+  ASSERT_EQ(layout.pieces(), 3);
+  const int n = m.numVertices();
+  const double h = 0.01;
+  std::vector<std::uint8_t> fixed(n, 0), removed(n, 0);
+  std::vector<double> xn(3 * n), vn(3 * n, 0.0);
+  std::vector<int> region(n);  // 0 clamped piece, 1 pressed, 2 free
+  for (int v = 0; v < n; ++v) {
+    const double px = m.mesh.vertices[v].x();
+    region[v] = px < 0.015 ? 0 : px < 0.025 ? 1 : 2;
+    fixed[v] = px < 1e-9 ? 1 : 0;
+    for (int k = 0; k < 3; ++k) xn[3 * v + k] = m.mesh.vertices[v][k];
+    xn[3 * v] += region[v] == 1 ? -0.0005 : region[v] == 2 ? 0.002 : 0.0;
+  }
+  std::vector<double> x = xn;
+  CpuExecutor ex;
+  AcceleratedStart<CpuExecutor> start;
+  const AcceleratedStart<CpuExecutor>::SubstepInputs in{
+      true,      fixed.data(),     removed.data(), xn.data(), xn.data(),
+      vn.data(), m.mass.data(),    nullptr,        0,         h,
+      0.0,       {0.0, -9.81, 0.0}};
+  std::vector<std::uint8_t> evaluated(m.numTets(), 0);
+  std::uint8_t* mark = evaluated.data();
+  const auto gradient = [mark](int t, const double*, double* g) {
+    mark[t] = 1;
+    for (int i = 0; i < 12; ++i) g[i] = 0.0;
+  };
+  start.start(ex, m, s.damaged, in, gradient, x.data());
+  int betweenHeld = 0, touchingFree = 0;
+  for (int t : layout.sharedTets) {
+    bool free = false;
+    for (int c = 0; c < 4; ++c) free = free || region[m.mesh.tets[t][c]] == 2;
+    if (free) {
+      ++touchingFree;
+      EXPECT_EQ(evaluated[t], 1) << "element " << t << " touches the free piece";
+    } else {
+      ++betweenHeld;
+      EXPECT_EQ(evaluated[t], 0) << "element " << t << " lies between held pieces";
+    }
+  }
+  EXPECT_GT(betweenHeld, 0);
+  EXPECT_GT(touchingFree, 0);
+  for (int v = 0; v < n; ++v) {
+    const double fall = region[v] == 2 ? h * h * 9.81 : 0.0;
+    EXPECT_NEAR(x[3 * v + 1], xn[3 * v + 1] - fall, 1e-15) << "vertex " << v;
+  }
 }
 
 // The push of its neighbours (through the elements between them) adds to a piece's
