@@ -31,10 +31,10 @@
 // found on the host when the damage changes; per sub-step one launch marks held vertices, one
 // marks held pieces (then rounds spread them), one evaluates the elements between pieces at x_n
 // that touch a piece not held (between held pieces nothing reads them: after Charpy's break,
-// none), and one moves the small pieces (a thread each,
-// a serial loop over its vertices and corners); a large piece (the body itself, a big chunk)
-// is summed by reductions and moved by a launch over its vertices, so that no GPU thread walks
-// a whole body. Either way the sums are the same for any thread count.
+// none), and one moves the small pieces (a thread each, a serial loop over its vertices and
+// corners); a large piece (the body itself, a big chunk) is summed by reductions and moved by a
+// launch over its vertices, so that no GPU thread walks a whole body. Either way the sums are
+// the same for any thread count.
 #pragma once
 
 #include <cmath>
