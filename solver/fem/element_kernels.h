@@ -651,7 +651,8 @@ struct CrackedStrainState {
   double z[6];
   double energy;
   double stiffness[6][6];
-  bool unloaded;  // every crack open: all of the above is zero
+  bool unloaded;        // every crack open: all of the above is zero
+  std::uint8_t opened;  // the damaged edges whose cracks are open (the active set)
 };
 
 // Adds to `out` the energy min over openings c of 1/2 (eps - c)^T K (eps - c), with c_e free on
@@ -715,6 +716,7 @@ GALSCULPT_HD void addOpenedCrackEnergy(const double k[6][6], const double eps[6]
   }
   for (int r = 0; r < 6; ++r)
     for (int m = r + 1; m < 6; ++m) h[r][m] = h[m][r] = 0.5 * (h[r][m] + h[m][r]);
+  out.opened = opened;
   for (int r = 0; r < 6; ++r) {
     double t = 0.0;
     for (int m = 0; m < 6; ++m) t += h[r][m] * eps[m];
@@ -750,6 +752,7 @@ GALSCULPT_HD void crackedStrainState(const Lame& lame, const RestData& rest, con
   // its stiffness and the elimination that would return zeros up to round-off.
   out.unloaded = intact == 0;
   for (int e = 0; e < 6 && out.unloaded; ++e) out.unloaded = !((oneWay >> e) & 1) || eps[e] >= 0.0;
+  out.opened = out.unloaded ? damaged : static_cast<std::uint8_t>(damaged & ~oneWay);
   if (out.unloaded) return;
   double k[6][6];
   edgeStrainStiffness(lame, rest, k);
@@ -842,15 +845,18 @@ GALSCULPT_HD void edgeStrainHessian(const RestData& rest, const double d[6][3],
   }
 }
 
-// `hessian` (12x12 column-major) may be null when mode is None.
+// `hessian` (12x12 column-major) may be null when mode is None; `opened`, when not null, gets
+// the damaged edges whose cracks are open (CrackedStrainState::opened).
 GALSCULPT_HD void evaluateEdgeStrainElement(const Lame& lame, const RestData& rest,
                                             const double x[12], std::uint8_t intact,
                                             bool compressionResists, Hessian mode, double& energy,
-                                            double gradient[12], double* hessian) {
+                                            double gradient[12], double* hessian,
+                                            std::uint8_t* opened = nullptr) {
   double d[6][3], strain[6];
   edgeGreenStrains(rest, x, d, strain);
   CrackedStrainState state;
   crackedStrainState(lame, rest, strain, intact, compressionResists, mode != Hessian::None, state);
+  if (opened) *opened = state.opened;
   if (state.unloaded) {
     energy = 0.0;
     for (int i = 0; i < 12; ++i) gradient[i] = 0.0;
@@ -876,16 +882,18 @@ GALSCULPT_HD void evaluateEdgeStrainElement(const Lame& lame, const RestData& re
 }
 
 // Energy, gradient and (unless mode is None) the 12x12 Hessian of one element: the model itself
-// when intact, the edge-strain form when any edge is damaged.
+// when intact, the edge-strain form when any edge is damaged. `opened`, when not null, gets the
+// damaged edges whose cracks are open (none when intact).
 GALSCULPT_HD void evaluateElement(MaterialModel model, const Lame& lame, const RestData& rest,
                                   const double x[12], std::uint8_t intact, bool compressionResists,
                                   Hessian mode, double& energy, double gradient[12],
-                                  double* hessian) {
+                                  double* hessian, std::uint8_t* opened = nullptr) {
   if (intact != kIntact) {
     evaluateEdgeStrainElement(lame, rest, x, intact, compressionResists, mode, energy, gradient,
-                              hessian);
+                              hessian, opened);
     return;
   }
+  if (opened) *opened = 0;
   const M3 f = deformationGradient(rest, x);
   double c[4][3];
   shapeGradients(rest, c);

@@ -110,6 +110,7 @@ struct ElementPass {
   double keep;               // kept-stiffness tolerance; 0: every stiffness evaluated
   double* keptF;             // (9 nTets) F where each kept stiffness was evaluated
   std::uint8_t* fresh;       // (nTets) 1 where the stiffness was evaluated this pass
+  std::uint8_t* opened;      // (nTets) each element's open cracks (0 when intact)
   const std::uint8_t* only;  // (nTets) or null: the elements to evaluate
   static constexpr int kPackedHessian = 90;
 
@@ -135,6 +136,7 @@ struct ElementPass {
       fresh[t] = kept ? 0 : 1;
     }
     inverted[t] = intact == kernels::kIntact && kernels::determinant(f) <= 0.0 ? 1.0 : 0.0;
+    if (intact == kernels::kIntact) opened[t] = 0;  // the SIMD lanes do not write it
     return true;
   }
 
@@ -143,7 +145,7 @@ struct ElementPass {
                              const kernels::RestData& r, kernels::Hessian elementMode) const {
     double hess[144];
     kernels::evaluateElement(model, lame, r, x12, intact, in.resists(t, resists), elementMode,
-                             energy[t], gradient + 12 * t, hess);
+                             energy[t], gradient + 12 * t, hess, opened + t);
     if (elementMode != kernels::Hessian::None)
       pack(hess, packedHessian + kPackedHessian * static_cast<size_t>(t));
   }
@@ -209,6 +211,8 @@ class FrameSolver {
     guardChanged_.resize(n_);
     stiffnessF_.resize(9 * static_cast<size_t>(tets_));
     stiffnessFresh_.resize(tets_);
+    stiffnessOpened_.resize(tets_);
+    trialOpened_.resize(tets_);
     elemGrad_.resize(12 * static_cast<size_t>(tets_));
     elemHess_.resize(kPackedHessian * static_cast<size_t>(tets_));
     for (Buffer<double>* b : {&k_, &h_}) b->resize(9 * static_cast<size_t>(blocks_));
@@ -379,6 +383,7 @@ class FrameSolver {
                            keep,
                            stiffnessF_.data(),
                            stiffnessFresh_.data(),
+                           withHessian ? stiffnessOpened_.data() : trialOpened_.data(),
                            only};
     bool laned = false;
     if constexpr (Exec::kHostMemory) {
@@ -443,6 +448,14 @@ class FrameSolver {
         tets_, [=] GALSCULPT_LAMBDA(int t) { return energy[t]; }, scalars_.data() + energySlot);
     ex_.sum(
         tets_, [=] GALSCULPT_LAMBDA(int t) { return inverted[t]; }, scalars_.data() + invertedSlot);
+    if (!withHessian && settings_->reuseStiffness) {
+      // The damaged elements whose open cracks differ from where the stiffness was evaluated.
+      const std::uint8_t* atStiffness = stiffnessOpened_.data();
+      const std::uint8_t* atTrial = trialOpened_.data();
+      ex_.sum(
+          tets_, [=] GALSCULPT_LAMBDA(int t) { return atStiffness[t] != atTrial[t] ? 1.0 : 0.0; },
+          scalars_.data() + kSwitched);
+    }
     const int* vStart = vertexSlotStart_.data();
     const int* vSlots = vertexSlots_.data();
     ex_.forEach(n_, [=] GALSCULPT_LAMBDA(int v) {
@@ -713,7 +726,14 @@ class FrameSolver {
       // steps cost more backtracks: Charpy's broken halves took 827 Newton iterations over
       // frames 41-75 and 7 of frames 1-75 ended unconverged, against 358 and none without chords.
       chordFailed = chordFailed || (reuse && !(residual < 0.5 * lastResidual));
-      reuse = s.reuseStiffness && !chordFailed;
+      // Nor is a chord taken after a step that opened or closed cracks in more than
+      // kChordSwitchedElements elements: each such element's stiffness is another matrix (a
+      // closed crack's edge carries the faces' contact, an open one nothing), and the chord steps
+      // with the wrong one. After 100 random cuts through the hanging sphere (1,000-2,500
+      // elements switch a step), chords took 2.5 Newton iterations a frame at rest where fresh
+      // stiffnesses took 1.6-1.7. Where fewer switch (slices thrown off a bar: 10-50), chords still
+      // pay as often as not (docs/benchmarks.md).
+      reuse = s.reuseStiffness && !chordFailed && switchedCracks_ <= kChordSwitchedElements;
       lastResidual = residual;
     }
     endSubstep(h, result);
@@ -900,6 +920,7 @@ class FrameSolver {
     ++result.iterations;
     if (!reuse && s.stiffnessTolerance > 0.0) result.keptStiffnesses += read[kKept];
     const double stepLength = lineSearch(result, read);
+    switchedCracks_ = s.reuseStiffness ? read[kSwitched] : 0.0;
     result.msSolve += msSince(t0);
     if constexpr (Exec::kHostMemory) result.msSolve -= result.msElements - elementsBefore;
     if (stepLength < 0.0) return NewtonOutcome::Failed;
@@ -958,6 +979,47 @@ class FrameSolver {
     evaluateTrial(1.0);
   }
 
+  // Whether the trial at `length` (its scalars in `read`) lowers the potential enough: Armijo
+  // with `sufficient`, up to the sums' round-off.
+  static bool descent(const double* read, double length, double sufficient) {
+    const double e0 = read[kE0], e1 = read[kE1];
+    return std::isfinite(e1) &&
+           e1 <= e0 + sufficient * length * read[kSlope] + 1e-12 * std::abs(e0);
+  }
+
+  // A shortened step at which the potential still falls at least half as steeply as the slope
+  // says is doubled while the potential keeps falling, short of the refused length; the trial
+  // evaluated last is the accepted one's. The quadratic fit through a refused length puts the
+  // minimum far too short where the potential kinks instead of curving: a step that closes a
+  // body's cracks (or opens them) rises steeply past the switch, and backtracking took a tenth
+  // of the step each iteration (two halves of a cut slab driven together: 18 Newton iterations
+  // in the impact frame, 9 with this).
+  double lengthened(SubstepOutcome& result, double* read, double length, double refused,
+                    double sufficient) {
+    double best = length, bestEnergy = read[kE1];
+    const double inverted = read[kInverted];
+    while (read[kE1] - read[kE0] <= 0.5 * best * read[kSlope] && 2.0 * best < refused) {
+      evaluateTrial(2.0 * best);
+      result.energyPasses += 1.0;
+      ex_.read(scalars_.data(), read, kScalars);
+      const bool better = !(read[kBad] > 0.0) && descent(read, 2.0 * best, sufficient) &&
+                          read[kE1] < bestEnergy && read[kTrialInverted] <= inverted;
+      if (!better) {
+        evaluateTrial(best);
+        result.energyPasses += 1.0;
+        ex_.read(scalars_.data(), read, kScalars);
+        return best;
+      }
+      best *= 2.0;
+      bestEnergy = read[kE1];
+    }
+    return best;
+  }
+
+  // A chord step is taken while at most this many elements changed their open cracks since the
+  // stiffness was evaluated (substep). A count, not a share of the body: what a switched element
+  // gets wrong in the chord's step is local to it.
+  static constexpr double kChordSwitchedElements = 64;
   static constexpr double kShortestStep = 1e-8;
   // Shorter than this, a step refused only for turning elements inside out is taken anyway
   // (after the lengths 1, 1/2, 1/4 all inverted: on the human figure giving up at 1e-3 instead
@@ -974,7 +1036,8 @@ class FrameSolver {
     const double sufficient = s.lineSearch ? 1e-4 : 0.0;
     double stepLength = 1.0;
     double inverting = 0.0;  // the longest length refused only because it inverted elements
-    bool guarded = !s.vertexGuard;
+    double refused = 0.0;    // the shortest length refused so far (0: none)
+    bool guarded = !s.vertexGuard, folded = false;
     for (;; ex_.read(scalars_.data(), read, kScalars)) {
       if (stepLength == 1.0)
         result.linearResidualReduction =
@@ -990,9 +1053,10 @@ class FrameSolver {
       const double e0 = read[kE0], e1 = read[kE1];
       // A step that turns more elements inside out is shortened (under extreme loads the energy
       // alone may descend through an inversion), down to kInversionGiveUp (below).
-      const bool descends = std::isfinite(e1) && e1 <= e0 + sufficient * stepLength * read[kSlope] +
-                                                           1e-12 * std::abs(e0);
-      if (descends && read[kTrialInverted] <= read[kInverted]) return stepLength;
+      const bool descends = descent(read, stepLength, sufficient);
+      if (descends && read[kTrialInverted] <= read[kInverted])
+        return refused > 0.0 && !folded ? lengthened(result, read, stepLength, refused, sufficient)
+                                        : stepLength;
       if (descends && inverting == 0.0) inverting = stepLength;
       if (!guarded) {  // the full step failed: shorten it only where the potential rose
         guarded = true;
@@ -1003,10 +1067,12 @@ class FrameSolver {
           // Back off the guarded step as a whole: it is the step from here on.
           foldGuardIntoStep();
           inverting = 0.0;
+          folded = true;
           continue;
         }
         std::copy(full, full + kScalars, read);  // back to shortening the whole full step
       }
+      refused = stepLength;
       stepLength = shorterStep(stepLength, e0, e1, read);
       ++result.backtracks;
       // An element on the edge of inversion that the solution turns over (a sliver, a plastic
@@ -1268,6 +1334,7 @@ class FrameSolver {
     mix(m.jacobi);
     mixDouble(m.jacobiWeight);
     mixDouble(s.stiffnessTolerance);
+    mix(s.reuseStiffness);  // the trial counts switched cracks only for chord steps
     return key;
   }
 
@@ -1799,6 +1866,7 @@ class FrameSolver {
     kGuardSlope,
     kGuardElements,
     kKept,
+    kSwitched,
     kGuardLevel,
     kForceScale = kGuardLevel + kGuardLevels + 1,
     kForce,
@@ -1817,8 +1885,9 @@ class FrameSolver {
   const std::vector<AnchorConstraint>* anchors_ = nullptr;  // the stepped state's
   int n_ = 0, tets_ = 0, edges_ = 0, blocks_ = 0;
   double time_ = 0.0, h_step_ = 0.0, modelSize_ = 1.0, massNorm_ = 0.0, pcgReduction_ = 0.0;
-  int pcgIterations_ = 0;    // the current sub-step's
-  double forceScale_ = 0.0;  // the last residual's scale (N): the next solves' target
+  int pcgIterations_ = 0;        // the current sub-step's
+  double forceScale_ = 0.0;      // the last residual's scale (N): the next solves' target
+  double switchedCracks_ = 0.0;  // elements whose open cracks the last accepted step changed
   Clock::time_point frameStart_ = Clock::now();
   std::uint64_t mgRevision_ = 0;  // bumped whenever the hierarchy is uploaded again
   bool plastic_ = false, frozenIsK_ = true;
@@ -1845,6 +1914,9 @@ class FrameSolver {
   // every time, and an intact one's stiffness does not depend on its neighbours'.
   Buffer<double> stiffnessF_;
   Buffer<std::uint8_t> stiffnessFresh_;
+  // Each element's open cracks where the stiffness was evaluated and at the last trial: a chord
+  // step is taken only while few differ (substep).
+  Buffer<std::uint8_t> stiffnessOpened_, trialOpened_;
   Buffer<double> pcgB_, pcgAp_;  // the linear system's right-hand side and A delta
   Buffer<double> fp_, strain_, savedFp_, savedStrain_;
   Buffer<kernels::RestData> plasticShape_;  // refreshPlasticShapes

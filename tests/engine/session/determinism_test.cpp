@@ -99,8 +99,11 @@ std::uint64_t sphereCut() {
 // lambda a a^T + S^T W S, its Hessian assembled through per-vertex sums, and an element with every
 // crack open returned exact zeros (solver/fem/element_kernels.h): the same energy in another
 // order of round-off.
+// The sphere cut again when no chord step followed a step that switched the cracks of more than
+// 64 elements, and a shortened step was lengthened again while the potential kept falling
+// (frame_solver.h): other iterates within the same tolerance. The uncut ball takes neither.
 constexpr std::uint64_t kHangingBall = 0xf930b134365ac7c2;
-constexpr std::uint64_t kSphereCut = 0xe76e9d18e71319af;
+constexpr std::uint64_t kSphereCut = 0x734199b155b14484;
 
 TEST(Determinism, PinnedHashesAtOneAndTwoThreads) {
   const int threads = omp_get_max_threads();

@@ -121,6 +121,31 @@ TEST(ElementKernels, ElementHessianMatchesStressDerivative) {
   }
 }
 
+// The open cracks an evaluation reports (what the frame compares to keep a chord step): none on
+// an intact element, every damaged edge where nothing is pressed or cracks cannot push back, and
+// not a crack whose faces are pressed together (it carries load: another stiffness).
+TEST(ElementKernels, EvaluationReportsWhichCracksAreOpen) {
+  const double rest[12] = {0, 0, 0, 1, 0.1, 0, 0.2, 0.9, 0.1, 0.1, 0.2, 1.1};
+  const RestData r = restOf(rest);
+  const Lame lame{3e4, 8e4};
+  double stretched[12], squeezed[12];
+  for (int i = 0; i < 12; ++i) stretched[i] = squeezed[i] = 1.1 * rest[i];
+  for (int k = 0; k < 3; ++k) squeezed[3 + k] = 0.7 * rest[3 + k];  // edge 0-1 pressed shorter
+  auto opened = [&](const double* x, std::uint8_t intact, bool resists) {
+    double energy, gradient[12], hessian[144];
+    std::uint8_t set = 0xff;
+    evaluateElement(MaterialModel::StVK, lame, r, x, intact, resists, Hessian::Exact, energy,
+                    gradient, hessian, &set);
+    return set;
+  };
+  EXPECT_EQ(opened(squeezed, kIntact, true), 0);
+  EXPECT_EQ(opened(stretched, 0x3e, true), 0x01);
+  EXPECT_EQ(opened(stretched, 0x00, true), 0x3f) << "every crack open";
+  EXPECT_EQ(opened(squeezed, 0x3e, false), 0x01) << "cracks that cannot push back";
+  EXPECT_EQ(opened(squeezed, 0x3e, true), 0x00) << "pressed shut";
+  EXPECT_EQ(opened(squeezed, 0x00, true) & 0x01, 0);
+}
+
 TEST(ElementKernels, RestDataOfADegenerateTetIsRefused) {
   const double flat[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
   RestData r;

@@ -186,7 +186,9 @@ TEST(TetElement, AnElementWithEveryCrackOpenCarriesNothingExactly) {
     const ElementEval e = eval(MaterialModel::StVK, r, stretched, EdgeDamage{0x00, true}, mode);
     EXPECT_EQ(e.energy, 0.0);
     EXPECT_EQ(e.gradient.norm(), 0.0);
-    if (mode != HessianMode::None) EXPECT_EQ(e.hessian.norm(), 0.0);
+    if (mode != HessianMode::None) {
+      EXPECT_EQ(e.hessian.norm(), 0.0);
+    }
   }
   TetPoints squeezed = stretched;
   squeezed[1] = rest[0] + 0.8 * (rest[1] - rest[0]);  // edge 0-1 shorter than at rest
