@@ -50,6 +50,24 @@ TEST(Playback, SphereCutScriptGivesExactlyTwoPieces) {
 }
 
 // The same script gives the same final surface, bit for bit, every run.
+// The validation bodies (docs/benchmarks.md) load as described: a free ball over a floor, a
+// clamped bar, the same bar whipped by its clamp, each cut by its knife strokes.
+TEST(Playback, TheValidationScriptsLoad) {
+  const fs::path dir = kAssets / "validation";
+  const PlaybackScript ball = loadPlaybackScript(dir / "ball_slit.json");
+  EXPECT_TRUE(ball.scene.anchors.empty());
+  EXPECT_EQ(ball.scene.colliders.size(), 1u);
+  const PlaybackScript bar = loadPlaybackScript(dir / "bar_slit.json");
+  ASSERT_EQ(bar.scene.anchors.size(), 1u);
+  const PlaybackScript whip = loadPlaybackScript(dir / "whip_slits.json");
+  ASSERT_EQ(whip.scene.anchors.size(), 1u);
+  EXPECT_FALSE(whip.scene.anchors[0].path.empty()) << "the clamp moves";
+  for (const PlaybackScript* s : {&ball, &bar, &whip}) {
+    EXPECT_GE(s->events.size(), 1u) << s->file;
+    for (const ToolEvent& e : s->events) EXPECT_EQ(e.tool, ToolEvent::Tool::Knife) << s->file;
+  }
+}
+
 TEST(Playback, ReplayIsDeterministic) {
   auto finalSurfaceHash = [] {
     const PlaybackScript script = loadPlaybackScript(kAssets / "scripts" / "sphere_cut.json");
