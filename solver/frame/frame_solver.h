@@ -176,20 +176,13 @@ class FrameSolver {
     tets_ = model.numTets();
     edges_ = model.numEdges();
     blocks_ = model.numBlocks();
-    std::vector<int> blockRow(blocks_);
-    for (int r = 0; r < n_; ++r)
-      for (int k = model.pattern.rowStart[r]; k < model.pattern.rowStart[r + 1]; ++k)
-        blockRow[k] = r;
-    // Each block's transpose partner (c, r) of (r, c): the stiffness is gathered into the blocks
-    // on and above the diagonal and mirrored into the others.
-    std::vector<int> transposed(blocks_);
+    // Each block's row, and the index of its transpose partner (c, r) of (r, c): the stiffness
+    // is gathered into the blocks on and above the diagonal and mirrored into the others.
+    std::vector<int> blockRow(blocks_), transposed(blocks_);
     for (int r = 0; r < n_; ++r)
       for (int k = model.pattern.rowStart[r]; k < model.pattern.rowStart[r + 1]; ++k) {
-        const int c = model.pattern.columns[k];
-        const int* begin = model.pattern.columns.data() + model.pattern.rowStart[c];
-        const int* end = model.pattern.columns.data() + model.pattern.rowStart[c + 1];
-        transposed[k] =
-            static_cast<int>(std::lower_bound(begin, end, r) - model.pattern.columns.data());
+        blockRow[k] = r;
+        transposed[k] = model.pattern.find(model.pattern.columns[k], r);
       }
     blockRow_.adopt(std::move(blockRow));
     transposedBlock_.adopt(std::move(transposed));
