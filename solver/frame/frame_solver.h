@@ -235,18 +235,20 @@ class FrameSolver {
   // Brings the executor's memory up to date with `state` (uploads only what changed since the
   // last sync; on the CPU executor an upload is a copy).
   void syncIn(const SimState& state, const StepSettings& settings) {
-    uploadIfChanged(state.x, hostX_, x_);
+    if (uploadIfChanged(state.x, hostX_, x_)) gradientAtX_ = false;
     uploadIfChanged(state.v, hostV_, v_);
     // Compared by content too: a backend may step several states (tests, undo snapshots).
     if (state.damageRevision != damageRevision_ || hostDamaged_ != state.damaged) {
       hostDamaged_ = state.damaged;
       damaged_.upload(hostDamaged_);
       damageRevision_ = state.damageRevision;
+      gradientAtX_ = false;
     }
     // (The fracture pass changes hostDamaged_ within a frame: compared by content.)
     if (model_.debrisRemoval > 0.0 && removedFor_ != hostDamaged_) {
       removedFor_ = hostDamaged_;
       updateRemovedDebris();
+      gradientAtX_ = false;
     }
     // Removed debris stays where the state has it (a backend may step several states).
     removedTargets_.clear();
@@ -260,7 +262,10 @@ class FrameSolver {
         plasticShaped_.resize(tets_);
         hostFp_.clear();  // the shapes are computed below
       }
-      if (uploadIfChanged(state.plasticInverse, hostFp_, fp_)) refreshPlasticShapes(nullptr);
+      if (uploadIfChanged(state.plasticInverse, hostFp_, fp_)) {
+        refreshPlasticShapes(nullptr);
+        gradientAtX_ = false;
+      }
       uploadIfChanged(state.plasticStrain, hostStrain_, strain_);
       if (savedFp_.size() != fp_.size()) {
         savedFp_.resize(fp_.size());
@@ -339,6 +344,7 @@ class FrameSolver {
   // Damage never needs restoring: a failed sub-step is rolled back before its fracture pass,
   // and a fracture re-solve keeps the new damage.
   void restore(const Saved& saved, bool /*keepDamage*/) {
+    gradientAtX_ = false;
     ex_.copy(x_.data(), savedX_.data(), 3 * n_);
     ex_.copy(v_.data(), savedV_.data(), 3 * n_);
     if (plastic_) {
@@ -829,10 +835,12 @@ class FrameSolver {
       vn[i] = v[i];
       xhat[i] = x[i] + h * v[i];
     });
+    const bool gradientAtXn = gradientAtX_;
+    gradientAtX_ = false;  // x moves on from x_n below
     predicted_ = settings_->predictedStart;
     if (predicted_) {
       ex_.copy(x, xhat, 3 * n_);
-      if (settings_->acceleratedStart) startPiecesAccelerated(h);
+      if (settings_->acceleratedStart) startPiecesAccelerated(h, gradientAtXn);
     }
     // Stiffnesses are kept within a sub-step only: a frame's result must follow from the state
     // alone (a project reopened at any frame runs on identically; kept across frames, the
@@ -850,7 +858,7 @@ class FrameSolver {
 
   // Pieces nothing holds start on their path with their acceleration (accelerated_start.h).
   // Called after prepareAnchorsAndColliders (fixed_ and the poses are the sub-step's).
-  void startPiecesAccelerated(double h) {
+  void startPiecesAccelerated(double h, bool gradientAtXn) {
     const ElementInputs in = elementInputs();
     const MaterialModel model = model_.material.model;
     const Lame lame = model_.material.lame;
@@ -875,7 +883,8 @@ class FrameSolver {
         h,
         model_.material.dampingMass,
         {model_.gravity.x(), model_.gravity.y(), model_.gravity.z()}};
-    accelerated_.start(ex_, model_, hostDamaged_, inputs, elementGradient, x_.data());
+    accelerated_.start(ex_, model_, hostDamaged_, inputs, elementGradient,
+                       gradientAtXn ? elemGrad_.data() : nullptr, x_.data());
   }
 
   // Anchored vertices on their paths at the sub-step's end.
@@ -912,6 +921,7 @@ class FrameSolver {
     const StepSettings& s = *settings_;
     const auto t0 = Clock::now();
     const double elementsBefore = result.msElements;
+    gradientAtX_ = false;  // the element passes below overwrite elemGrad_
     // Structural changes first (host): the hierarchy follows the damage.
     if (s.multigrid && s.multigridSettings.splitAggregates &&
         multigrid_->updateDamage(model_.edges, hostDamaged_, damageRevision_)) {
@@ -949,6 +959,7 @@ class FrameSolver {
     ex_.copy(acceptedGrad_.data(), trialGrad_.data(), 3 * n_);
     ex_.copy(elemEnergy_.data(), trialEnergy_.data(), tets_);
     ex_.copy(elemInverted_.data(), trialInverted_.data(), tets_);
+    gradientAtX_ = true;  // the line search's last trial is the accepted one
     result.energy = read[kTrialElastic];
     // Newton's step test on the full step: a step shortened to nothing says nothing about
     // stationarity (it once flagged the human figure's frozen frames as converged).
@@ -1466,6 +1477,7 @@ class FrameSolver {
   // ---- plasticity and fracture --------------------------------------------------------------
 
   int plasticUpdate() {
+    gradientAtX_ = false;  // rest shapes flow
     const int* tv = tetVertices_.data();
     const int* te = tetEdges_.data();
     const std::uint8_t* damaged = damaged_.data();
@@ -1566,6 +1578,7 @@ class FrameSolver {
         report.newlyDamaged += static_cast<int>(parted.size());
       }
       ++damageRevision_;
+      gradientAtX_ = false;
     }
     return report;
   }
@@ -1958,7 +1971,11 @@ class FrameSolver {
   // Host shadows: what the device holds, to upload only changes.
   std::vector<double> hostX_, hostV_, hostFp_, hostStrain_, hostAnchorTargets_;
   std::vector<std::uint8_t> hostDamaged_, hostFixed_, hostRemoved_;
-  AcceleratedStart<Exec> accelerated_;    // the pieces' starts (startPiecesAccelerated)
+  AcceleratedStart<Exec> accelerated_;  // the pieces' starts (startPiecesAccelerated)
+  // Whether elemGrad_ holds every element's gradient at x_ under the current damage, rest shapes
+  // and removed debris: true from a Newton iteration's accept until x_ or any of those changes
+  // (what the pieces' start reads at x_n instead of evaluating them again).
+  bool gradientAtX_ = false;
   Buffer<std::uint8_t> removed_;          // (nVerts) 1 on removed debris
   std::vector<int> removedVertices_;      // ascending
   std::vector<std::uint8_t> removedFor_;  // the damage removedVertices_ was found for

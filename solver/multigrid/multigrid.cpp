@@ -373,11 +373,18 @@ bool Multigrid::updateDamage(const std::vector<Edge>& edges,
     vertexPiece.resize(rest_.size());
     for (size_t v = 0; v < rest_.size(); ++v) vertexPiece[v] = uf.find(static_cast<int>(v));
   }
-  if (!assignAggregates(edges, anyDamage ? &damaged : nullptr, vertexPiece)) return false;
-  buildLevelStructures();
+  const bool handlesChanged = assignAggregates(edges, anyDamage ? &damaged : nullptr, vertexPiece);
+  if (handlesChanged) buildLevelStructures();
+  // The pieces and fragments follow the damage also where the handles stay (a fragment that
+  // crumbles into loose vertices has no handle to change): kept from before, they made a frame
+  // depend on the order the damage came in, and a fresh solver (a reopened project) ran on
+  // differently from one that had stepped through it.
+  const std::vector<int> piecesBefore = piece_, fragmentsBefore = fragmentVertices_,
+                         fragmentStartBefore = fragmentStart_;
   assignCoarsestPieces(vertexPiece);
   collectFragments(vertexPiece);
-  return true;
+  return handlesChanged || piece_ != piecesBefore || fragmentVertices_ != fragmentsBefore ||
+         fragmentStart_ != fragmentStartBefore;
 }
 
 void Multigrid::collectFragments(const std::vector<int>& vertexPiece) {

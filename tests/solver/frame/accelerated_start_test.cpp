@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "solver/fracture/fracture.h"
 #include "solver/frame/accelerated_start.h"
 #include "solver/frame/cpu_backend.h"
 #include "solver/frame/cpu_executor.h"
@@ -275,7 +276,7 @@ TEST(AcceleratedStart, OnlyTheElementsBetweenAFreePieceAndOthersAreEvaluated) {
     mark[t] = 1;
     for (int i = 0; i < 12; ++i) g[i] = 0.0;
   };
-  start.start(ex, m, s.damaged, in, gradient, x.data());
+  start.start(ex, m, s.damaged, in, gradient, nullptr, x.data());
   int betweenHeld = 0, touchingFree = 0;
   for (int t : layout.sharedTets) {
     bool free = false;
@@ -294,6 +295,49 @@ TEST(AcceleratedStart, OnlyTheElementsBetweenAFreePieceAndOthersAreEvaluated) {
     const double fall = region[v] == 2 ? h * h * 9.81 : 0.0;
     EXPECT_NEAR(x[3 * v + 1], xn[3 * v + 1] - fall, 1e-15) << "vertex " << v;
   }
+}
+
+// Where the frame still has every element's gradient at x_n (its last accepted trial), the
+// elements between pieces are read from it, not evaluated, and the pieces start exactly where
+// the evaluated gradients would have started them.
+TEST(AcceleratedStart, GradientsTheFrameStillHasAreReadNotEvaluated) {
+  const SimModel m = buildSimModel(gridBar(2, 1, 1, 0.01), rubber());
+  SimState s = initialState(m);
+  cutAt(m, s, 0.01);
+  const int n = m.numVertices();
+  std::vector<double> xn(3 * n), vn(3 * n, 0.0);
+  for (int v = 0; v < n; ++v)
+    for (int k = 0; k < 3; ++k) xn[3 * v + k] = m.mesh.vertices[v][k];
+  const std::vector<std::uint8_t> fixed(n, 0), removed(n, 0);
+  const double h = 0.01;
+  const AcceleratedStart<CpuExecutor>::SubstepInputs in{
+      false,     fixed.data(),     removed.data(), xn.data(), xn.data(),
+      vn.data(), m.mass.data(),    nullptr,        0,         h,
+      0.0,       {0.0, -9.81, 0.0}};
+  // Each element's corners pushed up unevenly (an energy gradient pointing down), by its index.
+  const auto push = [](int t, int i) { return i % 3 == 1 ? -1e-4 * (1 + t % 5) * (1 + i) : 0.0; };
+  int evaluated = 0;
+  const auto evaluate = [&](int t, const double*, double* g) {
+    ++evaluated;
+    for (int i = 0; i < 12; ++i) g[i] = push(t, i);
+  };
+  std::vector<double> held(12 * static_cast<size_t>(m.numTets()));
+  for (int t = 0; t < m.numTets(); ++t)
+    for (int i = 0; i < 12; ++i) held[12 * t + i] = push(t, i);
+  CpuExecutor ex;
+  AcceleratedStart<CpuExecutor> start;
+  std::vector<double> fromEvaluated = xn, fromHeld = xn;
+  start.start(ex, m, s.damaged, in, evaluate, nullptr, fromEvaluated.data());
+  const int evaluations = evaluated;
+  start.start(ex, m, s.damaged, in, evaluate, held.data(), fromHeld.data());
+  EXPECT_GT(evaluations, 0);
+  EXPECT_EQ(evaluated, evaluations) << "nothing evaluated where the frame has the gradients";
+  EXPECT_TRUE(fromHeld == fromEvaluated);
+  double offGravity = 0.0;  // the push changed the start
+  for (int v = 0; v < n; ++v)
+    offGravity =
+        std::max(offGravity, std::abs(fromHeld[3 * v + 1] - (xn[3 * v + 1] - h * h * 9.81)));
+  EXPECT_GT(offGravity, 1e-3 * h * h * 9.81);
 }
 
 // The push of its neighbours (through the elements between them) adds to a piece's
@@ -390,6 +434,37 @@ TEST(AcceleratedStart, SlicesThrownOffAClampedBarConvergeInHalfTheIterations) {
   EXPECT_EQ(accelerated.unconverged, 0);
   EXPECT_LT(accelerated.newton, 0.7 * line.newton);
   EXPECT_LT(error(accelerated.state), 1e-3) << "within 0.1 % of the reference's motion";
+}
+
+// The start reads the gradients the last accepted trial left (a frame's later sub-steps, and
+// each frame after the first) where nothing changed since, and evaluates them where damage,
+// positions or rest shapes did: stepping on with one backend gives the same bits as a fresh
+// backend every frame (which has no gradients yet: a reopened project), through the slices
+// thrown off a clamped bar, the bar breaking further at its clamp, and sub-steps.
+TEST(AcceleratedStart, HeldGradientsStartPiecesAsEvaluatedOnesDo) {
+  SimModel m = buildSimModel(gridBar(10, 2, 2, 0.01), rubber(5e6));
+  m.fracture = buildFractureField(m, {2e3, 0.0, 0.0, 1});
+  SimState s = initialState(m);
+  for (double c : {0.03, 0.05, 0.07}) cutAt(m, s, c);
+  AnchorConstraint clamp;
+  for (int v = 0; v < m.numVertices(); ++v)
+    if (m.mesh.vertices[v].x() < 1e-9) clamp.vertices.push_back(v);
+  s.anchors = {clamp};
+  for (int v = 0; v < m.numVertices(); ++v) s.v[v] = Vec3(0.0, 1.0, 0.5);
+  for (const int substeps : {1, 2}) {
+    StepSettings settings = converged();
+    settings.substeps = substeps;
+    SimState on = s, fresh = s;
+    CpuStepBackend backend(m);
+    int broken = 0;
+    for (int f = 0; f < 20; ++f) {
+      broken += backend.step(on, settings).newlyDamaged;
+      CpuStepBackend(m).step(fresh, settings);
+      ASSERT_TRUE(on.x == fresh.x) << "frame " << f << ", " << substeps << " sub-steps";
+      ASSERT_TRUE(on.damaged == fresh.damaged) << "frame " << f;
+    }
+    std::printf("%d sub-steps: %d edges broke\n", substeps, broken);
+  }
 }
 
 // A thrown body cut in two, falling freely, is solved where it starts: every vertex at
