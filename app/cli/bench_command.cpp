@@ -215,6 +215,9 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   r["warnings"] = last.warnings;
   r["damaged_edges"] = last.damagedEdges;
   r["pieces"] = last.pieces;
+  r["debris_pieces"] = last.debrisPieces;
+  r["debris_volume_pct"] = last.debrisVolumePct;
+  r["debris"] = baseScene.fracture.debris == DebrisRule::Remove ? "remove" : "keep";
   if (setting.cuts >= 0) {
     r["cuts"] = setting.cuts;
     r["ms_surface_cut"] = msCut.empty() ? 0.0 : msCut[msCut.size() / 2];
@@ -269,6 +272,15 @@ nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh
   return nlohmann::json::parse(in);
 }
 
+// --debris: every run's debris rule instead of the scene's.
+std::optional<DebrisRule> debrisOption(const CliArgs& args) {
+  const auto v = args.value("--debris");
+  if (!v) return std::nullopt;
+  if (*v == "keep") return DebrisRule::Keep;
+  if (*v == "remove") return DebrisRule::Remove;
+  throw UsageError("--debris must be keep or remove, got '" + *v + "'");
+}
+
 std::string row(const nlohmann::json& r) {
   std::ostringstream s;
   if (r.contains("error")) return "  error: " + r["error"].get<std::string>();
@@ -282,7 +294,9 @@ std::string row(const nlohmann::json& r) {
       << " ms surface" << std::setw(8) << r.value("ms_surface_cut", 0.0) << " ms surface per cut"
       << std::setw(7) << std::setprecision(1) << r["newton_iters_mean"].get<double>() << " newton"
       << std::setw(7) << r["cg_iters_mean"].get<double>() << " cg" << std::setw(5)
-      << r["unconverged_frames"].get<int>() << " unconverged";
+      << r["unconverged_frames"].get<int>() << " unconverged" << std::setw(6)
+      << r["debris_pieces"].get<int>() << " debris" << std::setw(7) << std::setprecision(2)
+      << r["debris_volume_pct"].get<double>() << " % debris volume";
     return s.str();
   }
   // The solver: its grid and preset, and what differs from the preset's defaults.
@@ -390,12 +404,13 @@ std::vector<Setting> benchSettings(const SceneDescription& scene, bool cracks, b
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(args, {"--scene", "--json", "--frames", "--settle", "--backend"},
+  const CliArgs a(args, {"--scene", "--json", "--frames", "--settle", "--backend", "--debris"},
                   {"--quick", "--sweep", "--cracks"});
   a.expectPositional(0, 0,
                      "galsculpt bench [--scene NAME] [--quick] [--sweep] [--cracks] [--frames N] "
-                     "[--settle N] [--json FILE] [--backend auto|cpu|cuda]");
+                     "[--settle N] [--json FILE] [--backend auto|cpu|cuda] [--debris keep|remove]");
   const std::optional<BackendRequest> backend = backendOption(a);
+  const std::optional<DebrisRule> debris = debrisOption(a);
   const bool quick = a.has("--quick");
   const int frames = a.intValue("--frames", quick ? 20 : 60, 1, 100000);
   const int settle = a.intValue("--settle", 0, 0, 100000);
@@ -411,6 +426,7 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
   for (const BenchScene& bs : scenes) {
     SceneDescription scene = loadScene(fs::path(assetDirectory()) / "scenes" / bs.file);
     if (backend) scene.solver.backend = *backend;
+    if (debris) scene.fracture.debris = *debris;
     TetMesh mesh;
     try {
       mesh = loadSceneMesh(scene, [&err](const std::string& line) { err << line << '\n'; });

@@ -170,6 +170,10 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
       run({"bench", "--scene", "sphere", "--frames", "3", "--json", (dir / "b.json").string()});
   const CliRun cracks =
       run({"bench", "--cracks", "--frames", "2", "--json", (dir / "c.json").string()});
+  // --debris: the debris rule of every run instead of the scene's (here: keep, the default).
+  const CliRun removing = run({"bench", "--cracks", "--frames", "2", "--debris", "remove", "--json",
+                               (dir / "d.json").string()});
+  const CliRun badDebris = run({"bench", "--cracks", "--debris", "merge"});
   // A scene whose own preset is the paper's still gets the converged default beside it.
   test::writeText(dir / "scenes" / "charpy.json",
                   std::string(R"({"mesh": {"file": ")") + GALSCULPT_SOURCE_DIR +
@@ -221,6 +225,22 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   EXPECT_NE(cracks.out.find("ms surface per cut"), std::string::npos) << cracks.out;
   EXPECT_NE(cracks.out.find(" newton"), std::string::npos) << cracks.out;
   EXPECT_NE(cracks.out.find(" unconverged"), std::string::npos) << cracks.out;
+  // The debris the cuts left, and the rule that ran: the same pieces and debris either way
+  // (debris is a function of the damage), only what the solver does with it differs.
+  EXPECT_NE(cracks.out.find(" % debris volume"), std::string::npos) << cracks.out;
+  ASSERT_EQ(removing.code, kExitOk) << removing.err;
+  const auto d = nlohmann::json::parse(test::readText(dir / "d.json"));
+  ASSERT_EQ(d["results"].size(), 3u);
+  EXPECT_EQ(c["results"][2]["debris"], "keep");
+  EXPECT_EQ(d["results"][2]["debris"], "remove");
+  EXPECT_GT(c["results"][2]["debris_pieces"].get<int>(), 0);
+  EXPECT_GT(c["results"][2]["debris_volume_pct"].get<double>(), 0.0);
+  EXPECT_EQ(d["results"][2]["debris_pieces"], c["results"][2]["debris_pieces"]);
+  EXPECT_EQ(d["results"][2]["debris_volume_pct"], c["results"][2]["debris_volume_pct"]);
+  EXPECT_EQ(c["results"][0]["debris_pieces"], 0);
+  EXPECT_EQ(badDebris.code, kExitUsage);
+  EXPECT_NE(badDebris.err.find("--debris must be keep or remove"), std::string::npos)
+      << badDebris.err;
   ASSERT_EQ(r.code, kExitOk) << r.err;
   const auto j = nlohmann::json::parse(test::readText(dir / "b.json"));
   // The reference, the paper's setting and the scene's own (the converged default).
