@@ -324,6 +324,21 @@ TEST(Multigrid, DamageSplitsAggregatesAndLeavesLooseVerticesToTheSmoother) {
   EXPECT_EQ(mg.level(0).handles, baseHandles);
 }
 
+// Slices cut off the top of a bar of elasticitySystem(3, 200, 3): 90 cuts between vertex
+// layers, every second one (many small fragments side by side).
+std::vector<std::uint8_t> slicedTop(const System& s) {
+  std::vector<std::uint8_t> damaged(s.model.numEdges(), 0);
+  for (int e = 0; e < s.model.numEdges(); ++e) {
+    const double y0 = s.model.mesh.vertices[s.model.edges[e][0]].y();
+    const double y1 = s.model.mesh.vertices[s.model.edges[e][1]].y();
+    for (int cut = 0; cut < 90; ++cut) {
+      const double y = 0.3 + 0.04 * cut + 0.01;
+      if ((y0 - y) * (y1 - y) < 0.0) damaged[e] = 1;
+    }
+  }
+  return damaged;
+}
+
 // Slices cut off the top of a bar (small fragments, no coarse handle), then one slice crumbled
 // into loose vertices: the handles do not change, yet the fragments do. They follow the damage,
 // the same as a hierarchy that saw the final damage at once (a frame depends on the damage, not
@@ -331,15 +346,7 @@ TEST(Multigrid, DamageSplitsAggregatesAndLeavesLooseVerticesToTheSmoother) {
 // differently from the one that had stepped through the damage).
 TEST(Multigrid, FragmentsFollowTheDamageWhereTheHandlesDoNot) {
   const System s = elasticitySystem(3, 200, 3);
-  std::vector<std::uint8_t> sliced(s.model.numEdges(), 0);
-  for (int e = 0; e < s.model.numEdges(); ++e) {
-    const double y0 = s.model.mesh.vertices[s.model.edges[e][0]].y();
-    const double y1 = s.model.mesh.vertices[s.model.edges[e][1]].y();
-    for (int cut = 0; cut < 90; ++cut) {
-      const double y = 0.3 + 0.04 * cut + 0.01;  // between vertex layers, every second one
-      if ((y0 - y) * (y1 - y) < 0.0) sliced[e] = 1;
-    }
-  }
+  const std::vector<std::uint8_t> sliced = slicedTop(s);
   std::vector<std::uint8_t> crumbled = sliced;
   for (int e = 0; e < s.model.numEdges(); ++e) {
     const double y0 = s.model.mesh.vertices[s.model.edges[e][0]].y();
@@ -365,15 +372,7 @@ TEST(Multigrid, FragmentsFollowTheDamageWhereTheHandlesDoNot) {
 TEST(Multigrid, FragmentCorrectionsDoNotDependOnTheThreadCount) {
   const System s = elasticitySystem(3, 200, 3);
   Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {20});
-  std::vector<std::uint8_t> damaged(s.model.numEdges(), 0);
-  for (int e = 0; e < s.model.numEdges(); ++e) {
-    const double y0 = s.model.mesh.vertices[s.model.edges[e][0]].y();
-    const double y1 = s.model.mesh.vertices[s.model.edges[e][1]].y();
-    for (int cut = 0; cut < 90; ++cut) {
-      const double y = 0.3 + 0.04 * cut + 0.01;  // between vertex layers, every second one
-      if ((y0 - y) * (y1 - y) < 0.0) damaged[e] = 1;
-    }
-  }
+  const std::vector<std::uint8_t> damaged = slicedTop(s);
   ASSERT_TRUE(mg.updateDamage(s.model.edges, damaged, 1));
   ASSERT_GE(mg.fragmentStart().size(), 80u) << "many fragments, more than a thread's chunk";
   const int threads = omp_get_max_threads();
