@@ -39,7 +39,8 @@
 // The elements between pieces are evaluated only where the frame no longer has their gradients
 // at x_n: x_n is the last sub-step's accepted trial, whose element pass left every element's
 // gradient behind, and unless something changed since (damage, positions, rest shapes, removed
-// debris: FrameSolver::gradientAtX_) those are copied instead, the same bits. After 100 random
+// debris: FrameSolver::gradientAtX_) those are copied instead, the same bits (on the host
+// executor; FrameSolver::startPiecesAccelerated says why not on the GPU). After 100 random
 // cuts through the hanging sphere (1,158 pieces, the cracked elements' kernel the expensive one)
 // evaluating them cost 8 ms of a 125 ms frame at rest.
 #pragma once

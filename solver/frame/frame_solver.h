@@ -883,8 +883,13 @@ class FrameSolver {
         h,
         model_.material.dampingMass,
         {model_.gravity.x(), model_.gravity.y(), model_.gravity.z()}};
+    // Copied on the host executor only: its element kernel is compiled without contracted
+    // multiply-adds, so the copy is the evaluation bit for bit and a frame still follows from
+    // the state alone. nvcc contracts them as each kernel's inlining allows, so on the GPU the
+    // two could differ in their last bits; there the elements are evaluated, in parallel.
+    const bool copy = gradientAtXn && Exec::kHostMemory;
     accelerated_.start(ex_, model_, hostDamaged_, inputs, elementGradient,
-                       gradientAtXn ? elemGrad_.data() : nullptr, x_.data());
+                       copy ? elemGrad_.data() : nullptr, x_.data());
   }
 
   // Anchored vertices on their paths at the sub-step's end.
