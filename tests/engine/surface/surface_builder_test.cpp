@@ -323,7 +323,7 @@ TEST(SurfaceBuilder, AVertexOnNearlyCoplanarEdgesGrowsNoSpike) {
     if (e[0] == v || e[1] == v) around.push_back(e[0] == v ? e[1] : e[0]);
   // Three neighbours in one plane through v, pairwise apart.
   std::array<int, 3> three{-1, -1, -1};
-  Vec3 normal;
+  Vec3 normal = Vec3::Zero();
   const auto dir = [&](int u) { return Vec3(grid.mesh.vertices[u] - grid.mesh.vertices[v]); };
   for (size_t i = 0; i < around.size() && three[0] < 0; ++i)
     for (size_t j = i + 1; j < around.size() && three[0] < 0; ++j)
