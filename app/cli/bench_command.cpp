@@ -217,7 +217,7 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   r["pieces"] = last.pieces;
   r["debris_pieces"] = last.debrisPieces;
   r["debris_volume_pct"] = last.debrisVolumePct;
-  r["debris"] = baseScene.fracture.debris == DebrisRule::Remove ? "remove" : "keep";
+  r["debris"] = debrisRuleName(baseScene.fracture.debris);
   if (setting.cuts >= 0) {
     r["cuts"] = setting.cuts;
     r["ms_surface_cut"] = msCut.empty() ? 0.0 : msCut[msCut.size() / 2];
@@ -276,9 +276,9 @@ nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh
 std::optional<DebrisRule> debrisOption(const CliArgs& args) {
   const auto v = args.value("--debris");
   if (!v) return std::nullopt;
-  if (*v == "keep") return DebrisRule::Keep;
-  if (*v == "remove") return DebrisRule::Remove;
-  throw UsageError("--debris must be keep or remove, got '" + *v + "'");
+  const std::optional<DebrisRule> rule = debrisRuleFromName(*v);
+  if (!rule) throw UsageError("--debris must be keep or remove, got '" + *v + "'");
+  return rule;
 }
 
 std::string row(const nlohmann::json& r) {

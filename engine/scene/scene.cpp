@@ -332,6 +332,12 @@ std::optional<Generator> generatorFromName(const std::string& name) {
 std::optional<BackendRequest> backendRequestFromName(const std::string& name) {
   return valueOf(kBackendNames, name);
 }
+const char* debrisRuleName(DebrisRule rule) {
+  return nameOf(kDebrisRuleNames, rule);
+}
+std::optional<DebrisRule> debrisRuleFromName(const std::string& name) {
+  return valueOf(kDebrisRuleNames, name);
+}
 
 const std::vector<std::string>& materialPresetNames() {
   return kPresets;

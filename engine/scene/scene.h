@@ -142,6 +142,9 @@ const char* backendRequestName(BackendRequest b);
 const char* materialModelName(MaterialModel m);
 // The request named `name`, or none for an unknown name.
 std::optional<BackendRequest> backendRequestFromName(const std::string& name);
+// "keep", "remove" (fracture.debris); debrisRuleFromName: none for another name.
+const char* debrisRuleName(DebrisRule rule);
+std::optional<DebrisRule> debrisRuleFromName(const std::string& name);
 
 // Defaults are the converged preset's (solverPreset below).
 struct SolverDesc {
