@@ -774,7 +774,10 @@ GALSCULPT_HD void crackedStrainState(const Lame& lame, const RestData& rest, con
     out.stiffness[e][e] += bar;
     for (int r = 0; r < 6; ++r) out.z[r] += bar * eps[e] * kInverse[r + 6 * e];
   }
+  // The intact edges enter the opening problem as free (each bar is accounted above), so the
+  // set it reports carries them too: the damaged edges' cracks are what `opened` names.
   if (oneWay) addOpenedCrackEnergy(k, eps, intact, oneWay, wantStiffness, out);
+  out.opened &= damaged;
 }
 
 // The six edge vectors d_k and raw Green strains (|d|^2 - |D|^2) / (2 |D|^2).

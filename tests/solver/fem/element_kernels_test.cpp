@@ -144,6 +144,13 @@ TEST(ElementKernels, EvaluationReportsWhichCracksAreOpen) {
   EXPECT_EQ(opened(squeezed, 0x3e, false), 0x01) << "cracks that cannot push back";
   EXPECT_EQ(opened(squeezed, 0x3e, true), 0x00) << "pressed shut";
   EXPECT_EQ(opened(squeezed, 0x00, true) & 0x01, 0);
+  // Two opposite intact edges (two pieces): only damaged edges are ever reported open.
+  for (const std::uint8_t intact : {0x21, 0x12, 0x0c}) {
+    const auto damaged = static_cast<std::uint8_t>(~intact & kIntact);
+    EXPECT_EQ(opened(stretched, intact, true), damaged) << int(intact);
+    EXPECT_EQ(opened(stretched, intact, false), damaged) << int(intact);
+    EXPECT_EQ(opened(squeezed, intact, true) & intact, 0) << int(intact);
+  }
 }
 
 TEST(ElementKernels, RestDataOfADegenerateTetIsRefused) {
