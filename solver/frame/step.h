@@ -30,7 +30,9 @@ struct StepSettings {
   int substeps = 1;
   int newtonIterations = 1;  // the most Newton iterations a sub-step takes (1: the paper's step)
   bool lineSearch = false;
-  double tolerance = 1e-9;  // Newton stops when |dx|_inf < tolerance * model size
+  // Newton's step test: with residualTolerance 0 (the reference), Newton stops and has
+  // converged when |dx|_inf < tolerance * model size; otherwise the residual alone decides.
+  double tolerance = 1e-9;
   // A sub-step has converged when its backward-Euler residual (free DOFs) is at most this times
   // the force scale: the larger of the body's weight |M g| (at least 1 g) and the elastic and
   // contact forces on its free vertices. Newton stops there. A frame that ends above it is
@@ -103,8 +105,8 @@ struct StepReport {
   double maxStressRatio = 0.0;           // largest edge stress over its threshold (last pass)
   double msFracture = 0.0;
   int fractureRedos = 0;  // sub-steps solved again after new damage
-  // Whether every sub-step ended converged: residual within residualTolerance, or Newton's
-  // step-length test met (nothing left to gain).
+  // Whether every sub-step ended converged: residual within residualTolerance (with none,
+  // Newton's step-length test met).
   bool converged = true;
   int cgIterations = 0;  // PCG iterations of the frame's linear solves
   // Intact elements inside out at the frame's end (a warning): Newton's line search refuses
