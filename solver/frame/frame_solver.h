@@ -738,9 +738,9 @@ class FrameSolver {
       // or a chord's): Charpy's first frame stopped on it at 22 times the residual tolerance
       // (four more iterations solved it), and with the compressed cracks' curvature kept
       // unprojected the whipped bar's frames stopped at up to 850 times, all called converged.
-      if (n == NewtonOutcome::Converged) {
+      if (n == NewtonOutcome::Converged && s.residualTolerance <= 0.0) {
         stationary = true;
-        if (s.residualTolerance <= 0.0) break;
+        break;
       }
       if (n == NewtonOutcome::Stalled) break;
       if (it + 1 == s.newtonIterations) break;  // endSubstep measures the last one
