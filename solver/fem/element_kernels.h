@@ -608,39 +608,39 @@ GALSCULPT_HD void edgeStrainStiffness(const Lame& lame, const RestData& rest, do
   }
 }
 
-// Solves a x = b for the symmetric positive definite submatrix of `a` on the edges in `set`
-// (Cholesky); x is zero off the set. False when that submatrix is not positive definite.
-GALSCULPT_HD bool solveOnEdges(const double a[6][6], std::uint8_t set, const double b[6],
-                               double x[6]) {
-  int idx[6], n = 0;
-  for (int e = 0; e < 6; ++e) {
-    x[e] = 0.0;
-    if ((set >> e) & 1) idx[n++] = e;
+// Eliminates the edges in `set` from [K | rhs] (the LDL^T of K on the set: symmetric pivots,
+// upper triangle only). Leaves in h and b, on the rows and columns off the set, the Schur
+// complement and rhs - K c, and in c the solution of K_ss c_s = rhs_s (by back substitution
+// through the pivots' rows; zero off the set). For the opening problem (rhs = K eps): the closed
+// edges' forces (K (eps - c))_c, their stiffness H (tau = H eps) and the openings, from one
+// elimination where a Cholesky solve and a separate elimination took twice the arithmetic.
+GALSCULPT_HD void eliminateEdges(const double k[6][6], const double rhs[6], std::uint8_t set,
+                                 double h[6][6], double b[6], double c[6]) {
+  for (int r = 0; r < 6; ++r) {
+    b[r] = rhs[r];
+    c[r] = 0.0;
+    for (int m = r; m < 6; ++m) h[r][m] = k[r][m];
   }
-  double l[6][6], y[6];
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j <= i; ++j) {
-      double sum = a[idx[i]][idx[j]];
-      for (int m = 0; m < j; ++m) sum -= l[i][m] * l[j][m];
-      if (i == j) {
-        if (!(sum > 0.0)) return false;
-        l[i][i] = sqrt(sum);
-      } else {
-        l[i][j] = sum / l[j][j];
-      }
+  std::uint8_t alive = kIntact;  // the rows and columns not yet eliminated
+  for (int o = 0; o < 6; ++o) {
+    if (!((set >> o) & 1)) continue;
+    alive = static_cast<std::uint8_t>(alive & ~(1u << o));
+    const double inverse = 1.0 / h[o][o];  // K is positive definite: so is every pivot
+    for (int r = 0; r < 6; ++r) {
+      if (!((alive >> r) & 1)) continue;
+      const double factor = (r < o ? h[r][o] : h[o][r]) * inverse;
+      for (int m = r; m < 6; ++m)
+        if ((alive >> m) & 1) h[r][m] -= factor * (m < o ? h[m][o] : h[o][m]);
+      b[r] -= factor * b[o];
     }
   }
-  for (int i = 0; i < n; ++i) {
-    double sum = b[idx[i]];
-    for (int m = 0; m < i; ++m) sum -= l[i][m] * y[m];
-    y[i] = sum / l[i][i];
+  for (int o = 5; o >= 0; --o) {
+    if (!((set >> o) & 1)) continue;
+    double sum = b[o];
+    for (int m = o + 1; m < 6; ++m)
+      if ((set >> m) & 1) sum -= h[o][m] * c[m];
+    c[o] = sum / h[o][o];
   }
-  for (int i = n - 1; i >= 0; --i) {
-    double sum = y[i];
-    for (int m = i + 1; m < n; ++m) sum -= l[m][i] * x[idx[m]];
-    x[idx[i]] = sum / l[i][i];
-  }
-  return true;
 }
 
 // The strain-space state of a damaged element: the edge forces tau = dPsi/d eps (eps the six
@@ -680,48 +680,34 @@ GALSCULPT_HD void addOpenedCrackEnergy(const double k[6][6], const double eps[6]
   std::uint8_t opened = free;
   for (int e = 0; e < 6; ++e)
     if (((oneWay >> e) & 1) && eps[e] >= 0.0) opened |= static_cast<std::uint8_t>(1u << e);
-  double c[6], z[6] = {eps[0], eps[1], eps[2], eps[3], eps[4], eps[5]}, tau[6];
+  double h[6][6], b[6], c[6];
   const double tolerance = 1e-13 * scale;
   for (int flip = 0; flip <= 64; ++flip) {
-    if (!solveOnEdges(k, opened, keps, c)) break;  // K is positive definite: not reached
-    for (int e = 0; e < 6; ++e) z[e] = eps[e] - c[e];
-    for (int r = 0; r < 6; ++r) {
-      tau[r] = 0.0;
-      for (int m = 0; m < 6; ++m) tau[r] += k[r][m] * z[m];
-    }
+    eliminateEdges(k, keps, opened, h, b, c);
     int violated = -1;
     for (int e = 0; e < 6 && violated < 0; ++e) {
       if (!((oneWay >> e) & 1)) continue;
       const bool open = (opened >> e) & 1;
-      if ((open && c[e] < -tolerance) || (!open && tau[e] > tolerance * kScale)) violated = e;
+      if ((open && c[e] < -tolerance) || (!open && b[e] > tolerance * kScale)) violated = e;
     }
     if (violated < 0) break;
     opened ^= static_cast<std::uint8_t>(1u << violated);
   }
-  // The Schur complement of K on the opened edges gives tau = H eps: the opened edges' strains
-  // enter nothing, exactly (a vertex whose edges all opened moves no other force, bit for bit).
-  double h[6][6];
-  for (int r = 0; r < 6; ++r)
-    for (int m = 0; m < 6; ++m) h[r][m] = k[r][m];
-  for (int o = 0; o < 6; ++o) {
-    if (!((opened >> o) & 1)) continue;
-    const double pivot = h[o][o];
-    for (int r = 0; r < 6; ++r) {
-      if (r == o) continue;
-      const double factor = h[r][o] / pivot;
-      for (int m = 0; m < 6; ++m)
-        if (m != o) h[r][m] -= factor * h[o][m];
+  // H on the closed edges only: the opened edges' strains enter nothing, exactly (a vertex whose
+  // edges all opened moves no other force, bit for bit).
+  for (int r = 0; r < 6; ++r) {
+    const bool openRow = (opened >> r) & 1;
+    for (int m = r; m < 6; ++m) {
+      const double v = openRow || ((opened >> m) & 1) ? 0.0 : h[r][m];
+      h[r][m] = h[m][r] = v;
     }
-    for (int m = 0; m < 6; ++m) h[o][m] = h[m][o] = 0.0;
   }
-  for (int r = 0; r < 6; ++r)
-    for (int m = r + 1; m < 6; ++m) h[r][m] = h[m][r] = 0.5 * (h[r][m] + h[m][r]);
   out.opened = opened;
   for (int r = 0; r < 6; ++r) {
     double t = 0.0;
     for (int m = 0; m < 6; ++m) t += h[r][m] * eps[m];
     out.tau[r] += t;
-    out.z[r] += z[r];
+    out.z[r] += eps[r] - c[r];
     out.energy += 0.5 * eps[r] * t;
   }
   if (!wantStiffness) return;
@@ -762,17 +748,18 @@ GALSCULPT_HD void crackedStrainState(const Lame& lame, const RestData& rest, con
                          wantStiffness, out);
     return;
   }
-  double kFlat[36], kInverse[36];
-  for (int r = 0; r < 6; ++r)
-    for (int c = 0; c < 6; ++c) kFlat[r + 6 * c] = k[r][c];
-  if (!invert6(kFlat, kInverse)) return;  // K is positive definite: not reached
   for (int e = 0; e < 6; ++e) {
     if (!((intact >> e) & 1)) continue;
-    const double bar = 1.0 / kInverse[e + 6 * e];
+    // Eliminating the other five edges from K's column e: their strains w (as a multiple of
+    // eps_e) when only edge e is held, and in h[e][e] the bar's stiffness 1 / (K^-1)_ee.
+    const double column[6] = {k[0][e], k[1][e], k[2][e], k[3][e], k[4][e], k[5][e]};
+    double h[6][6], b[6], w[6];
+    eliminateEdges(k, column, static_cast<std::uint8_t>(kIntact & ~(1u << e)), h, b, w);
+    const double bar = h[e][e];
     out.tau[e] += bar * eps[e];
     out.energy += 0.5 * bar * eps[e] * eps[e];
     out.stiffness[e][e] += bar;
-    for (int r = 0; r < 6; ++r) out.z[r] += bar * eps[e] * kInverse[r + 6 * e];
+    for (int r = 0; r < 6; ++r) out.z[r] += eps[e] * (r == e ? 1.0 : -w[r]);
   }
   // The intact edges enter the opening problem as free (each bar is accounted above), so the
   // set it reports carries them too: the damaged edges' cracks are what `opened` names.
@@ -794,17 +781,15 @@ GALSCULPT_HD void edgeGreenStrains(const RestData& rest, const double x[12], dou
   }
 }
 
-// Writes the 12x12 Hessian of the edge-strain energy: G^T H G plus the edges' own curvature.
+// Writes the 12x12 Hessian of the edge-strain energy: G^T H G plus the edges' own curvature
+// (g: the strains' gradients d_e / |D_e|^2, which the caller has for the force).
 // G's row for edge e is -g_e at its first vertex and +g_e at its second (g_e = d_e / |D_e|^2),
 // so the block of vertices (a, c) is sum over f at c of +-u_af g_f^T, with
 // u_af = V sum over e at a of +-H_ef g_e: 486 multiply-adds where the entry-by-entry sum over
 // edge pairs took 1,296, and the lower blocks are the upper ones' transposes.
-GALSCULPT_HD void edgeStrainHessian(const RestData& rest, const double d[6][3],
+GALSCULPT_HD void edgeStrainHessian(const RestData& rest, const double g[6][3],
                                     const CrackedStrainState& state, Hessian mode,
                                     double* hessian) {
-  double g[6][3];
-  for (int e = 0; e < 6; ++e)
-    for (int c = 0; c < 3; ++c) g[e][c] = d[e][c] / rest.restLengthSq[e];
   // The three edges at each vertex, with the sign of d eps_e / d x_vertex.
   constexpr int kEdgesAt[4][3] = {{0, 1, 2}, {0, 3, 4}, {1, 3, 5}, {2, 4, 5}};
   constexpr double kSignAt[4][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {1, 1, 1}};
@@ -881,7 +866,7 @@ GALSCULPT_HD void evaluateEdgeStrainElement(const Lame& lame, const RestData& re
       gradient[3 * a + c] -= rest.volume * state.tau[e] * g[e][c];
     }
   }
-  if (mode != Hessian::None) edgeStrainHessian(rest, d, state, mode, hessian);
+  if (mode != Hessian::None) edgeStrainHessian(rest, g, state, mode, hessian);
 }
 
 // Energy, gradient and (unless mode is None) the 12x12 Hessian of one element: the model itself

@@ -111,7 +111,9 @@ class MultigridCycle {
       fragmentMode_.resize(fragments_);
     }
     denseSize_ = 12 * c.handles;
-    factored_ = false;
+    factored_ = sparseFactored_ = false;
+    factoredBlocks_.clear();
+    coarseFactorsKept_ = 0;
   }
 
   // The anchored fine vertices (one flag per vertex, executor memory; null: none), which the
@@ -123,11 +125,13 @@ class MultigridCycle {
 
   // A_{l+1} = U^T A_l U on every level from the fine matrix (9 doubles per block), the
   // smoothers' diagonal factors, the fragments' and pieces' operators, and (when asked) the
-  // coarsest level's dense Cholesky. Returns nothing the host must wait for unless the dense
-  // Cholesky is asked for. `singleSmoother`: the fine smoother reads a float copy of the fine
-  // blocks (smoothFine), for a V-cycle that preconditions CG.
-  void refresh(const double* fine, bool coarseCholesky, bool singleSmoother = false) {
-    refreshSmoother(fine, singleSmoother);
+  // coarsest level's Cholesky. Returns nothing the host must wait for unless the Cholesky is
+  // asked for. `preconditions`: the V-cycle only preconditions CG, so the fine smoother reads a
+  // float copy of the fine blocks (smoothFine) and, in host memory, the coarsest level keeps
+  // its last factorization while its matrix stays within kCoarseReuse of the one factored
+  // (keptCoarseFactor).
+  void refresh(const double* fine, bool coarseCholesky, bool preconditions = false) {
+    refreshSmoother(fine, preconditions);
     for (size_t l = 0; l < levels_.size(); ++l) {
       Level& d = levels_[l];
       const double* finer = l == 0 ? fine : levels_[l - 1].blocks.data();
@@ -178,18 +182,23 @@ class MultigridCycle {
     }
     if (fragments_ > 0) factorFragments(fine);
     if (pieceCount_ >= 2) factorPieces();
-    factored_ = false;
-    sparseFactored_ = false;
     if (coarseCholesky) {
       const Level& c = levels_.back();
       if constexpr (Exec::kHostMemory) {
+        if (preconditions && keptCoarseFactor(c)) {
+          ++coarseFactorsKept_;
+          return;
+        }
+        factored_ = sparseFactored_ = false;
         if (sparseCoarsest(c.handles)) {
           if (!sparse_) sparse_ = std::make_unique<CoarseCholesky>();
           factored_ = sparseFactored_ =
               sparse_->factor(c.handles, c.rowStart.data(), c.columns.data(), c.blocks.data());
+          rememberFactored(c);
           return;
         }
       }
+      factored_ = sparseFactored_ = false;
       dense_.resize(static_cast<size_t>(denseSize_) * denseSize_);
       double* dense = dense_.data();
       const double* blocks = c.blocks.data();
@@ -207,8 +216,25 @@ class MultigridCycle {
         }
       });
       factored_ = ex_.denseCholesky(n, dense);
+      if constexpr (Exec::kHostMemory) rememberFactored(c);
+      return;
     }
+    factored_ = sparseFactored_ = false;
   }
+
+  // How far the coarsest matrix may move from the one factored, entry by entry relative to the
+  // geometric mean of its row's and column's diagonal entries (|A_ij - F_ij| <= kCoarseReuse
+  // sqrt(F_ii F_jj): scale-free, so an affine handle's linear and translation rows count
+  // alike), before it is factored again. Within it the V-cycle's coarsest solve is that of a
+  // matrix a hundredth off: positive definite all the same, and it only preconditions CG, so
+  // the frame solves the same equations to the same tolerance. What it saves is the
+  // factorization of a body at rest: 5 of the uncut sphere's 50 ms a frame, and a sixth of the
+  // frame once 10 cuts have split its coarsest level to 110 handles (docs/benchmarks.md). In
+  // motion the matrix moves more than this (crack faces meet and part), and it is refactored.
+  static constexpr double kCoarseReuse = 1e-2;
+
+  // Coarsest factorizations reused since the hierarchy was uploaded (for tests and the bench).
+  long coarseFactorsKept() const { return coarseFactorsKept_; }
 
   // Whether the host factors a coarsest level of this many handles sparse (coarse_cholesky.h)
   // rather than dense: above 64. Measured on the hanging sphere (50 handles uncut), the dense
@@ -868,6 +894,43 @@ class MultigridCycle {
   }
 
  private:
+  // Whether the last factorization (of this layout) may serve the coarsest matrix now.
+  bool keptCoarseFactor(const Level& c) const {
+    if (!factored_ || factoredBlocks_.size() != c.blocks.size()) return false;
+    const double* now = c.blocks.data();
+    const double* was = factoredBlocks_.data();
+    const double* root = factoredRootDiagonal_.data();
+    const int* rowStart = c.rowStart.data();
+    const int* columns = c.columns.data();
+    for (int r = 0; r < c.handles; ++r)
+      for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
+        const double* rowRoot = root + 12 * r;
+        const double* columnRoot = root + 12 * columns[k];
+        for (int j = 0; j < 12; ++j)
+          for (int i = 0; i < 12; ++i) {
+            const size_t at = 144 * static_cast<size_t>(k) + i + 12 * j;
+            if (!(std::abs(now[at] - was[at]) <= kCoarseReuse * rowRoot[i] * columnRoot[j]))
+              return false;
+          }
+      }
+    return true;
+  }
+
+  void rememberFactored(const Level& c) {
+    if (!factored_) {
+      factoredBlocks_.clear();
+      return;
+    }
+    factoredBlocks_.assign(c.blocks.data(), c.blocks.data() + c.blocks.size());
+    factoredRootDiagonal_.assign(12 * static_cast<size_t>(c.handles), 0.0);
+    const double* blocks = c.blocks.data();
+    const int* diagonal = c.diagonal.data();
+    for (int h = 0; h < c.handles; ++h)
+      for (int i = 0; i < 12; ++i)
+        factoredRootDiagonal_[12 * h + i] =
+            std::sqrt(std::abs(blocks[144 * static_cast<size_t>(diagonal[h]) + 13 * i]));
+  }
+
   Exec& ex_;
   const BlockPattern& finePattern_;
   int rows_ = 0;
@@ -900,6 +963,9 @@ class MultigridCycle {
   std::unique_ptr<CoarseCholesky> sparse_;
   bool sparseFactored_ = false;
   bool factored_ = false;
+  // The coarsest matrix as last factored (host memory only) and its diagonal's square roots.
+  std::vector<double> factoredBlocks_, factoredRootDiagonal_;
+  long coarseFactorsKept_ = 0;
 };
 
 }  // namespace galsculpt

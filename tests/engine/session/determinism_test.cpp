@@ -102,8 +102,12 @@ std::uint64_t sphereCut() {
 // The sphere cut again when no chord step followed a step that switched the cracks of more than
 // 64 elements, and a shortened step was lengthened again while the potential kept falling
 // (frame_solver.h): other iterates within the same tolerance. The uncut ball takes neither.
-constexpr std::uint64_t kHangingBall = 0xf930b134365ac7c2;
-constexpr std::uint64_t kSphereCut = 0x734199b155b14484;
+// Both again when PCG's V-cycle kept the coarsest level's factorization while its matrix stayed
+// within 1 % of the one factored (solver/multigrid/multigrid_cycle.h, kCoarseReuse): another
+// preconditioner, the same tolerance; and the sphere cut when a damaged element's openings came
+// from one elimination of the opened edges (element_kernels.h, eliminateEdges): round-off.
+constexpr std::uint64_t kHangingBall = 0x60dc9ab88d791610;
+constexpr std::uint64_t kSphereCut = 0x219c3c46761f6b14;
 
 TEST(Determinism, PinnedHashesAtOneAndTwoThreads) {
   const int threads = omp_get_max_threads();

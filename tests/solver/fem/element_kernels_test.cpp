@@ -180,6 +180,56 @@ TEST(ElementKernels, Invert6MatchesEigenAndRefusesSingular) {
   EXPECT_FALSE(invert6(m.data(), inv));
 }
 
+// The opening problem's elimination: for every set of edges, the solution on the set, the
+// right-hand side's remainder off it and the Schur complement, against Eigen's dense solves on
+// a strain stiffness K (badly scaled on purpose: one edge a hundred times stiffer).
+TEST(ElementKernels, EliminatingEdgesGivesTheSolutionTheRemainderAndTheSchurComplement) {
+  std::mt19937 gen(5);
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::Matrix<double, 6, 6> root =
+      Eigen::Matrix<double, 6, 6>::NullaryExpr([&] { return n(gen); });
+  Eigen::Matrix<double, 6, 6> k =
+      root * root.transpose() + 0.1 * Eigen::Matrix<double, 6, 6>::Identity();
+  k.row(2) *= 10.0;
+  k.col(2) *= 10.0;
+  double kk[6][6], rhs[6];
+  for (int r = 0; r < 6; ++r) {
+    rhs[r] = n(gen);
+    for (int c = 0; c < 6; ++c) kk[r][c] = k(r, c);
+  }
+  for (int set = 0; set < 64; ++set) {
+    double h[6][6], b[6], c[6];
+    eliminateEdges(kk, rhs, static_cast<std::uint8_t>(set), h, b, c);
+    std::vector<int> in, out;
+    for (int e = 0; e < 6; ++e) ((set >> e) & 1 ? in : out).push_back(e);
+    const int ni = static_cast<int>(in.size()), no = static_cast<int>(out.size());
+    Eigen::MatrixXd kss(ni, ni), kos(no, ni), koo(no, no);
+    Eigen::VectorXd rs(ni), ro(no);
+    for (int i = 0; i < ni; ++i) {
+      rs[i] = rhs[in[i]];
+      for (int j = 0; j < ni; ++j) kss(i, j) = k(in[i], in[j]);
+      for (int j = 0; j < no; ++j) kos(j, i) = k(out[j], in[i]);
+    }
+    for (int i = 0; i < no; ++i) {
+      ro[i] = rhs[out[i]];
+      for (int j = 0; j < no; ++j) koo(i, j) = k(out[i], out[j]);
+    }
+    const Eigen::VectorXd cs = ni ? Eigen::VectorXd(kss.ldlt().solve(rs)) : Eigen::VectorXd();
+    const Eigen::MatrixXd schur =
+        ni ? Eigen::MatrixXd(koo - kos * kss.ldlt().solve(kos.transpose())) : koo;
+    const double scale = k.cwiseAbs().maxCoeff();
+    for (int i = 0; i < ni; ++i)
+      EXPECT_NEAR(c[in[i]], cs[i], 1e-10 * cs.cwiseAbs().maxCoeff()) << set;
+    for (int i = 0; i < no; ++i) {
+      EXPECT_EQ(c[out[i]], 0.0) << set;
+      const double remainder = ni ? ro[i] - (kos.row(i) * cs)(0) : ro[i];
+      EXPECT_NEAR(b[out[i]], remainder, 1e-10 * scale * (1.0 + cs.cwiseAbs().sum())) << set;
+      for (int j = i; j < no; ++j)
+        EXPECT_NEAR(h[out[i]][out[j]], schur(i, j), 1e-10 * scale) << set;
+    }
+  }
+}
+
 // The return lands on the yield surface and keeps det Fp = 1; a second return barely moves.
 TEST(ElementKernels, PlasticReturnLandsOnTheYieldSurface) {
   const Lame lame{1e5, 2e5};
