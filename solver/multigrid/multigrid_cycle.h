@@ -182,44 +182,45 @@ class MultigridCycle {
     }
     if (fragments_ > 0) factorFragments(fine);
     if (pieceCount_ >= 2) factorPieces();
-    if (coarseCholesky) {
-      const Level& c = levels_.back();
-      if constexpr (Exec::kHostMemory) {
-        if (preconditions && keptCoarseFactor(c)) {
-          ++coarseFactorsKept_;
-          return;
-        }
-        factored_ = sparseFactored_ = false;
-        if (sparseCoarsest(c.handles)) {
-          if (!sparse_) sparse_ = std::make_unique<CoarseCholesky>();
-          factored_ = sparseFactored_ =
-              sparse_->factor(c.handles, c.rowStart.data(), c.columns.data(), c.blocks.data());
-          rememberFactored(c);
-          return;
-        }
-      }
+    if (!coarseCholesky) {
       factored_ = sparseFactored_ = false;
-      dense_.resize(static_cast<size_t>(denseSize_) * denseSize_);
-      double* dense = dense_.data();
-      const double* blocks = c.blocks.data();
-      const int* rowStart = c.rowStart.data();
-      const int* columns = c.columns.data();
-      const int n = denseSize_;
-      ex_.forEach(n * n, [=] GALSCULPT_LAMBDA(int i) { dense[i] = 0.0; });
-      ex_.forEach(c.handles, [=] GALSCULPT_LAMBDA(int r) {
-        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
-          const int col = columns[k];
-          for (int j = 0; j < 12; ++j)
-            for (int i = 0; i < 12; ++i)
-              dense[(12 * r + i) + static_cast<size_t>(n) * (12 * col + j)] =
-                  blocks[144 * k + i + 12 * j];
-        }
-      });
-      factored_ = ex_.denseCholesky(n, dense);
-      if constexpr (Exec::kHostMemory) rememberFactored(c);
       return;
     }
+    const Level& c = levels_.back();
+    if constexpr (Exec::kHostMemory) {
+      if (preconditions && keptCoarseFactor(c)) {
+        ++coarseFactorsKept_;
+        return;
+      }
+    }
     factored_ = sparseFactored_ = false;
+    if constexpr (Exec::kHostMemory) {
+      if (sparseCoarsest(c.handles)) {
+        if (!sparse_) sparse_ = std::make_unique<CoarseCholesky>();
+        factored_ = sparseFactored_ =
+            sparse_->factor(c.handles, c.rowStart.data(), c.columns.data(), c.blocks.data());
+        rememberFactored(c);
+        return;
+      }
+    }
+    dense_.resize(static_cast<size_t>(denseSize_) * denseSize_);
+    double* dense = dense_.data();
+    const double* blocks = c.blocks.data();
+    const int* rowStart = c.rowStart.data();
+    const int* columns = c.columns.data();
+    const int n = denseSize_;
+    ex_.forEach(n * n, [=] GALSCULPT_LAMBDA(int i) { dense[i] = 0.0; });
+    ex_.forEach(c.handles, [=] GALSCULPT_LAMBDA(int r) {
+      for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
+        const int col = columns[k];
+        for (int j = 0; j < 12; ++j)
+          for (int i = 0; i < 12; ++i)
+            dense[(12 * r + i) + static_cast<size_t>(n) * (12 * col + j)] =
+                blocks[144 * k + i + 12 * j];
+      }
+    });
+    factored_ = ex_.denseCholesky(n, dense);
+    if constexpr (Exec::kHostMemory) rememberFactored(c);
   }
 
   // How far the coarsest matrix may move from the one factored, entry by entry relative to the
@@ -233,7 +234,7 @@ class MultigridCycle {
   // motion the matrix moves more than this (crack faces meet and part), and it is refactored.
   static constexpr double kCoarseReuse = 1e-2;
 
-  // Coarsest factorizations reused since the hierarchy was uploaded (for tests and the bench).
+  // Coarsest factorizations reused since the hierarchy was uploaded (for tests).
   long coarseFactorsKept() const { return coarseFactorsKept_; }
 
   // Whether the host factors a coarsest level of this many handles sparse (coarse_cholesky.h)
