@@ -133,6 +133,22 @@ GALSCULPT_HD void addKron4x3(const double* yr, const double* yc, const double* a
     }
 }
 
+// The same sum over a row's blocks in two steps: row (3x12, row[r + 3 (3 j + c)]) += A (3x3) yc_j
+// for each column vertex, then out += (yr_i row) for the row's modes: sum over c of
+// (yr yc^T) kron A_c, a quarter of the multiply-adds of addKron4x3 once a row has four blocks.
+GALSCULPT_HD void addBlockTimesModes(const double* yc, const double* a, double* row) {
+  for (int j = 0; j < 4; ++j)
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) row[r + 3 * (3 * j + c)] += yc[j] * a[r + 3 * c];
+}
+GALSCULPT_HD void addModesTimesRow(const double* yr, const double* row, double* out) {
+  for (int j = 0; j < 4; ++j)
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < 4; ++i)
+        for (int r = 0; r < 3; ++r)
+          out[(3 * i + r) + 12 * (3 * j + c)] += yr[i] * row[r + 3 * (3 * j + c)];
+}
+
 // out += T_r^T B T_c for 12x12 blocks.
 GALSCULPT_HD void addTripleProduct12(const double* tr, const double* b, const double* tc,
                                      double* out) {

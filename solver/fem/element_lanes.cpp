@@ -67,6 +67,23 @@ LaneKernel laneKernel(LaneBuild build) {
   return nullptr;
 }
 
+void openCracks(const double k[6][6], const double eps[6], std::uint8_t free, std::uint8_t oneWay,
+                bool wantStiffness, CrackedStrainState& out) {
+  addOpenedCrackEnergy(k, eps, free, oneWay, wantStiffness, out);
+}
+
+CrackedLaneKernel crackedLaneKernel(LaneBuild build) {
+  switch (build) {
+    case LaneBuild::Off:
+      return nullptr;
+    case LaneBuild::Portable:
+      return &portable::evaluateCrackedLanes;
+    case LaneBuild::Avx2:
+      return cpuHasAvx2() ? &avx2::evaluateCrackedLanes : nullptr;
+  }
+  return nullptr;
+}
+
 const char* laneBuildName(LaneBuild build) {
   switch (build) {
     case LaneBuild::Off:

@@ -1,15 +1,19 @@
-// Intact elements evaluated four at a time, one element per SIMD lane: the CPU's fast path for
-// what dominates an element pass, the energy, force and projected stiffness of intact elements.
+// Elements evaluated four at a time, one element per SIMD lane: the CPU's fast path for what
+// dominates an element pass. Intact elements: the energy, force and projected stiffness.
+// Damaged elements (the edge-strain form with cracks that open one way): the energy, force,
+// open cracks and projected stiffness (after many cuts most of the body's elements).
 //
-// The lanes compute exactly the bits of the scalar kernel (element_kernels.h's evaluateElement
-// with Hessian::ProjectedSpd, then packed): the same algorithm (closed-form eigen-solves and,
-// where those are not accurate, the same cyclic Jacobi sweeps; the rotation-variant SVD; the
-// analytic eigensystem of dP/dF), the same operations in the same order, no fused multiply-add;
-// transcendental calls go to libm lane by lane. Where the scalar kernel would turn to its
-// accurate SVD (a rank-deficient F, factors that do not reproduce F) or F is not finite, the
-// lane is handed back and the caller evaluates that element with the scalar kernel. So the
-// scalar kernel stays the one definition of the physics (and the one the GPU runs), pinned
-// determinism hashes do not move, and a test compares the two bit for bit.
+// The lanes compute exactly the bits of the scalar kernel (element_kernels.h's evaluateElement,
+// the stiffness then packed): the same algorithm (closed-form eigen-solves and, where those are
+// not accurate, the same cyclic Jacobi sweeps; the rotation-variant SVD; the analytic
+// eigensystem of dP/dF; for a damaged element each lane's own pivoting over its open cracks),
+// the same operations in the same order, no fused multiply-add; transcendental calls go to libm
+// lane by lane. Where the scalar kernel would turn to its accurate SVD (a rank-deficient F,
+// factors that do not reproduce F) or a result is not finite, the lane is handed back and the
+// caller evaluates that element with the scalar kernel; an element whose two intact edges hold
+// two pieces (holdsTwoPieces) never enters them. So the scalar kernel stays the one definition
+// of the physics (and the one the GPU runs), pinned determinism hashes do not move, and a test
+// compares the two bit for bit.
 //
 // Two builds of the same source: one for AVX2 (four doubles per instruction), chosen at startup
 // where the CPU has it, and a portable one (SSE2 pairs) for every x86-64, slower than the scalar
@@ -37,10 +41,23 @@ struct LaneOutputs {
   double* energy[kLanes] = {};
   double* gradient[kLanes] = {};
   double* packedHessian[kLanes] = {};
+  std::uint8_t* opened[kLanes] = {};  // damaged elements only: their open cracks
+};
+
+// Damaged elements: besides the rest data and corners, each lane's intact edges (neither all
+// six nor two opposite ones: holdsTwoPieces) and whether its cracks resist closing.
+struct CrackedLaneInputs {
+  int count = 0;
+  const RestData* rest[kLanes] = {};
+  double x[kLanes][12] = {};
+  std::uint8_t intact[kLanes] = {};
+  bool resists[kLanes] = {};
 };
 
 // Evaluates the lanes in use; returns the bit mask of those it handed back (not written).
 using LaneKernel = unsigned (*)(MaterialModel, const Lame&, const LaneInputs&, const LaneOutputs&);
+// Damaged elements with their stiffness (Hessian::ProjectedSpd); returns the lanes handed back.
+using CrackedLaneKernel = unsigned (*)(const Lame&, const CrackedLaneInputs&, const LaneOutputs&);
 
 enum class LaneBuild { Off, Portable, Avx2 };
 
@@ -51,13 +68,21 @@ LaneBuild chosenLaneBuild();
 void setLaneBuild(LaneBuild build);
 // The kernel of a build; null for Off, and for Avx2 on a CPU without AVX2.
 LaneKernel laneKernel(LaneBuild build);
+CrackedLaneKernel crackedLaneKernel(LaneBuild build);
 const char* laneBuildName(LaneBuild build);
+
+// element_kernels.h's addOpenedCrackEnergy, compiled with the program's own flags: what the
+// damaged elements' lanes call for each element's opening problem.
+void openCracks(const double k[6][6], const double eps[6], std::uint8_t free, std::uint8_t oneWay,
+                bool wantStiffness, CrackedStrainState& out);
 
 namespace avx2 {
 unsigned evaluateIntactLanes(MaterialModel, const Lame&, const LaneInputs&, const LaneOutputs&);
-}
+unsigned evaluateCrackedLanes(const Lame&, const CrackedLaneInputs&, const LaneOutputs&);
+}  // namespace avx2
 namespace portable {
 unsigned evaluateIntactLanes(MaterialModel, const Lame&, const LaneInputs&, const LaneOutputs&);
-}
+unsigned evaluateCrackedLanes(const Lame&, const CrackedLaneInputs&, const LaneOutputs&);
+}  // namespace portable
 
 }  // namespace galsculpt::kernels

@@ -3,3 +3,5 @@
 
 #define GALSCULPT_LANES_NAMESPACE avx2
 #include "solver/fem/element_lanes_body.h"
+// (After the intact elements' body: it uses its vector types and helpers.)
+#include "solver/fem/cracked_lanes_body.h"

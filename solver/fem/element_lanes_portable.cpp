@@ -4,3 +4,5 @@
 
 #define GALSCULPT_LANES_NAMESPACE portable
 #include "solver/fem/element_lanes_body.h"
+// (After the intact elements' body: it uses its vector types and helpers.)
+#include "solver/fem/cracked_lanes_body.h"

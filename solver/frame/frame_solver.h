@@ -398,47 +398,84 @@ class FrameSolver {
                            only};
     bool laned = false;
     if constexpr (Exec::kHostMemory) {
-      const kernels::LaneKernel lanes =
-          withHessian ? kernels::laneKernel(kernels::chosenLaneBuild()) : nullptr;
-      laned = lanes != nullptr;
+      const kernels::LaneBuild build = kernels::chosenLaneBuild();
+      const kernels::LaneKernel lanes = withHessian ? kernels::laneKernel(build) : nullptr;
+      // (Without stiffness the damaged elements' lanes were no faster than the scalar kernel:
+      // what they take over is mostly the stiffness.)
+      const kernels::CrackedLaneKernel crackedLanes =
+          withHessian ? kernels::crackedLaneKernel(build) : nullptr;
+      laned = lanes != nullptr || crackedLanes != nullptr;
       if (laned) {
-        // Four consecutive elements per item: the intact ones whose stiffness is wanted go
-        // through the SIMD lanes together (element_lanes.h), the rest and those the lanes hand
-        // back through the scalar kernel.
-        const int groups = (tets_ + kernels::kLanes - 1) / kernels::kLanes;
+        // Sixteen consecutive elements per item: the intact ones whose stiffness is wanted go
+        // through the SIMD lanes four at a time (element_lanes.h), so do the damaged ones but
+        // those holding two pieces; the rest and those the lanes hand back go through the
+        // scalar kernel.
+        constexpr int kGroup = 4 * kernels::kLanes;
+        const int groups = (tets_ + kGroup - 1) / kGroup;
         const int tets = tets_;
         ex_.forEach(
             groups,
             [=](int g) {
-              kernels::LaneInputs laneIn;
-              kernels::LaneOutputs laneOut;
-              int laneTet[kernels::kLanes];
-              const int end = std::min(tets, kernels::kLanes * (g + 1));
-              for (int t = kernels::kLanes * g; t < end; ++t) {
-                double* x12 = laneIn.x[laneIn.count];
+              kernels::LaneInputs intactIn;
+              kernels::LaneOutputs intactOut;
+              int intactTet[kernels::kLanes];
+              kernels::CrackedLaneInputs crackedIn;
+              kernels::LaneOutputs crackedOut;
+              int crackedTet[kernels::kLanes];
+              auto flushIntact = [&] {
+                const unsigned back = lanes(model, lame, intactIn, intactOut);
+                for (int l = 0; l < intactIn.count; ++l)
+                  if (back >> l & 1u)
+                    pass.evaluate(intactTet[l], intactIn.x[l], kernels::kIntact, *intactIn.rest[l],
+                                  kernels::Hessian::ProjectedSpd);
+                intactIn.count = 0;
+              };
+              auto flushCracked = [&] {
+                const unsigned back = crackedLanes(lame, crackedIn, crackedOut);
+                for (int l = 0; l < crackedIn.count; ++l)
+                  if (back >> l & 1u)
+                    pass.evaluate(crackedTet[l], crackedIn.x[l], crackedIn.intact[l],
+                                  *crackedIn.rest[l], mode);
+                crackedIn.count = 0;
+              };
+              const int end = std::min(tets, kGroup * (g + 1));
+              for (int t = kGroup * g; t < end; ++t) {
+                double x12[12];
                 std::uint8_t intact;
                 const kernels::RestData* r;
                 kernels::Hessian elementMode;
                 if (!pass.prepare(t, x12, intact, r, elementMode)) continue;
-                if (elementMode != kernels::Hessian::ProjectedSpd || intact != kernels::kIntact) {
+                if (intact == kernels::kIntact && lanes &&
+                    elementMode == kernels::Hessian::ProjectedSpd) {
+                  const int l = intactIn.count++;
+                  intactTet[l] = t;
+                  intactIn.rest[l] = r;
+                  std::memcpy(intactIn.x[l], x12, sizeof x12);
+                  intactOut.energy[l] = energy + t;
+                  intactOut.gradient[l] = eg + 12 * t;
+                  intactOut.packedHessian[l] = eh + kPackedHessian * static_cast<size_t>(t);
+                  if (intactIn.count == kernels::kLanes) flushIntact();
+                } else if (intact != kernels::kIntact && crackedLanes &&
+                           !kernels::holdsTwoPieces(intact)) {
+                  const int l = crackedIn.count++;
+                  crackedTet[l] = t;
+                  crackedIn.rest[l] = r;
+                  std::memcpy(crackedIn.x[l], x12, sizeof x12);
+                  crackedIn.intact[l] = intact;
+                  crackedIn.resists[l] = pass.in.resists(t, resists);
+                  crackedOut.energy[l] = energy + t;
+                  crackedOut.gradient[l] = eg + 12 * t;
+                  crackedOut.packedHessian[l] = eh + kPackedHessian * static_cast<size_t>(t);
+                  crackedOut.opened[l] = pass.opened + t;
+                  if (crackedIn.count == kernels::kLanes) flushCracked();
+                } else {
                   pass.evaluate(t, x12, intact, *r, elementMode);
-                  continue;
                 }
-                const int l = laneIn.count++;
-                laneTet[l] = t;
-                laneIn.rest[l] = r;
-                laneOut.energy[l] = energy + t;
-                laneOut.gradient[l] = eg + 12 * t;
-                laneOut.packedHessian[l] = eh + kPackedHessian * static_cast<size_t>(t);
               }
-              if (laneIn.count == 0) return;
-              const unsigned handedBack = lanes(model, lame, laneIn, laneOut);
-              for (int l = 0; l < laneIn.count; ++l)
-                if (handedBack >> l & 1u)
-                  pass.evaluate(laneTet[l], laneIn.x[l], kernels::kIntact, *laneIn.rest[l],
-                                kernels::Hessian::ProjectedSpd);
+              if (intactIn.count > 0) flushIntact();
+              if (crackedIn.count > 0) flushCracked();
             },
-            kernels::kLanes);
+            kGroup);
       }
     }
     if (!laned)

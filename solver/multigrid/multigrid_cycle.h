@@ -815,17 +815,21 @@ class MultigridCycle {
     ex_.forEach(fragments_, [=] GALSCULPT_LAMBDA(int f) {
       double m[144] = {};
       const double* frame = frames + 4 * f;
+      // Row by row: the row's blocks against the column modes first (36 multiply-adds a block),
+      // then the row's mode once (144), where the Kronecker product of each block took 144.
       for (int i = start[f]; i < start[f + 1]; ++i) {
         const int r = vertices[i];
-        double yr[4];
-        fragmentModes(frame, rest, r, yr);
+        double row[36] = {};
         for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
           const int c = columns[k];
           if (fragmentOf[c] != f) continue;
           double yc[4];
           fragmentModes(frame, rest, c, yc);
-          addKron4x3(yr, yc, a + 9 * k, m);
+          addBlockTimesModes(yc, a + 9 * k, row);
         }
+        double yr[4];
+        fragmentModes(frame, rest, r, yr);
+        addModesTimesRow(yr, row, m);
       }
       double trace = 0.0;
       for (int i = 0; i < 12; ++i) trace += m[13 * i];

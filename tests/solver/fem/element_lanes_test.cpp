@@ -171,6 +171,137 @@ TEST(ElementLanes, HandBackTheElementsTheClosedFormsCannotTake) {
   }
 }
 
+// A damaged element by the scalar kernel: energy, force, open cracks and the packed projected
+// stiffness.
+struct ScalarCracked {
+  double energy, gradient[12], packed[90];
+  std::uint8_t opened;
+};
+
+ScalarCracked scalarCracked(const Lame& lame, const RestData& rest, const double x[12],
+                            std::uint8_t intact, bool resists) {
+  ScalarCracked out{};
+  double h[144];
+  evaluateElement(MaterialModel::StableNeoHookean, lame, rest, x, intact, resists,
+                  Hessian::ProjectedSpd, out.energy, out.gradient, h, &out.opened);
+  ElementPass::pack(h, out.packed);
+  return out;
+}
+
+// Every damaged-edge set the cracked lanes take (all but intact and the three two-pieces
+// sets), with and without crack contact, over random deformations (some
+// pressing cracks shut, some pulling them open, so that the pivoting flips): the scalar
+// kernel's bits, in groups of 1-4 lanes of mixed sets.
+TEST(ElementLanes, DamagedElementsGetTheScalarKernelsBits) {
+  const Lame lame{3.4e4, 1.4e5};
+  std::vector<std::uint8_t> sets;
+  for (int m = 0; m < kIntact; ++m)
+    if (!holdsTwoPieces(static_cast<std::uint8_t>(m))) sets.push_back(static_cast<std::uint8_t>(m));
+  ASSERT_EQ(sets.size(), 60u);
+  // Random rest tets under random deformations within 20 % of rest (edges pressed and
+  // pulled), and a few at rest exactly (every strain zero: the ties).
+  std::mt19937 gen(23);
+  std::normal_distribution<double> n(0.0, 1.0);
+  std::vector<Element> elements;
+  while (elements.size() < 2400) {
+    double p[12];
+    for (double& v : p) v = 0.01 * n(gen);
+    Element e;
+    if (!computeRest(p, e.rest) || e.rest.volume < 1e-9) continue;
+    Eigen::Matrix3d f = Eigen::Matrix3d::Identity();
+    if (elements.size() % 10 != 0)
+      for (int i = 0; i < 9; ++i) f(i % 3, i / 3) += 0.1 * n(gen);
+    for (int a = 0; a < 4; ++a) {
+      const Eigen::Vector3d y = f * Eigen::Vector3d(p[3 * a], p[3 * a + 1], p[3 * a + 2]);
+      for (int k = 0; k < 3; ++k) e.x[3 * a + k] = y[k] + 0.25;
+    }
+    elements.push_back(e);
+  }
+  for (LaneBuild build : builds()) {
+    const CrackedLaneKernel kernel = crackedLaneKernel(build);
+    ASSERT_NE(kernel, nullptr);
+    int handedBack = 0, flipped = 0, unloaded = 0;
+    size_t next = 0;
+    for (int group = 0; next < elements.size(); ++group) {
+      const int count = std::min<int>(1 + group % kLanes, static_cast<int>(elements.size() - next));
+      CrackedLaneInputs in;
+      LaneOutputs out;
+      ScalarCracked got[kLanes];
+      for (int l = 0; l < count; ++l) {
+        const size_t i = next + l;
+        in.rest[l] = &elements[i].rest;
+        std::memcpy(in.x[l], elements[i].x, sizeof elements[i].x);
+        in.intact[l] = sets[(i * 7) % sets.size()];
+        in.resists[l] = (i / 3) % 4 != 0;
+        got[l].energy = -12345.0;
+        out.energy[l] = &got[l].energy;
+        out.gradient[l] = got[l].gradient;
+        out.packedHessian[l] = got[l].packed;
+        out.opened[l] = &got[l].opened;
+      }
+      in.count = count;
+      const unsigned back = kernel(lame, in, out);
+      EXPECT_EQ(back >> count, 0u);
+      for (int l = 0; l < count; ++l) {
+        if (back >> l & 1u) {
+          ++handedBack;
+          continue;
+        }
+        const size_t i = next + l;
+        const ScalarCracked want =
+            scalarCracked(lame, elements[i].rest, elements[i].x, in.intact[l], in.resists[l]);
+        const std::uint8_t damaged = static_cast<std::uint8_t>(~in.intact[l] & kIntact);
+        unloaded += want.energy == 0.0 && want.opened == damaged;
+        // The pivoting starts from the damaged edges not pressed shorter: count the elements
+        // where it flipped some.
+        double d[6][3], strain[6];
+        edgeGreenStrains(elements[i].rest, elements[i].x, d, strain);
+        std::uint8_t guess = in.resists[l] ? 0 : damaged;
+        for (int e = 0; e < 6; ++e)
+          if ((damaged >> e & 1) && strain[e] >= 0.0) guess |= static_cast<std::uint8_t>(1u << e);
+        flipped += want.opened != guess;
+        ASSERT_EQ(want.opened, got[l].opened) << laneBuildName(build) << " element " << i;
+        ASSERT_EQ(std::memcmp(&want.energy, &got[l].energy, sizeof(double)), 0)
+            << laneBuildName(build) << " element " << i;
+        ASSERT_EQ(std::memcmp(want.gradient, got[l].gradient, sizeof want.gradient), 0)
+            << laneBuildName(build) << " element " << i;
+        ASSERT_EQ(std::memcmp(want.packed, got[l].packed, sizeof want.packed), 0)
+            << laneBuildName(build) << " element " << i;
+      }
+      next += count;
+    }
+    EXPECT_EQ(handedBack, 0) << laneBuildName(build);
+    EXPECT_GT(unloaded, 20) << "the set of unloaded elements is exercised";
+    EXPECT_GT(flipped, 200) << "the pivoting's flips are exercised";
+  }
+}
+
+// A NaN corner goes back, its group's other lanes are written with the scalar kernel's bits.
+TEST(ElementLanes, DamagedElementsWithANaNCornerAreHandedBack) {
+  std::vector<Element> elements = randomElements(4, 9);
+  elements[2].x[7] = std::numeric_limits<double>::quiet_NaN();
+  const Lame lame{3.4e4, 1.4e5};
+  for (LaneBuild build : builds()) {
+    CrackedLaneInputs in;
+    LaneOutputs out;
+    ScalarCracked got[4];
+    in.count = 4;
+    for (int l = 0; l < 4; ++l) {
+      in.rest[l] = &elements[l].rest;
+      std::memcpy(in.x[l], elements[l].x, sizeof elements[l].x);
+      in.intact[l] = 0x07;
+      in.resists[l] = true;
+      out.energy[l] = &got[l].energy;
+      out.gradient[l] = got[l].gradient;
+      out.packedHessian[l] = got[l].packed;
+      out.opened[l] = &got[l].opened;
+    }
+    EXPECT_EQ(crackedLaneKernel(build)(lame, in, out), 0b0100u) << laneBuildName(build);
+    const ScalarCracked want = scalarCracked(lame, elements[3].rest, elements[3].x, 0x07, true);
+    EXPECT_EQ(std::memcmp(want.packed, got[3].packed, sizeof want.packed), 0);
+  }
+}
+
 TEST(ElementLanes, ASimulationRunsOnIdenticallyWithAndWithoutThem) {
   const SimModel m =
       buildSimModel(test::gridBar(2, 8, 2, 0.1),
