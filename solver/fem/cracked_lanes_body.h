@@ -180,7 +180,7 @@ unsigned evaluateCrackedLanes(const Lame& lame, const CrackedLaneInputs& in,
   // A lane whose results are not finite is the scalar kernel's to report.
   ok &= absolute(energy) < 1e300;
   for (const D& v : gradient) ok &= absolute(v) < 1e300;
-  unsigned handedBack = 0;
+  unsigned handedBack = 0, zeroStiffness = 0;
   for (int l = 0; l < in.count; ++l) {
     if (!ok[l]) {
       handedBack |= 1u << l;
@@ -188,9 +188,10 @@ unsigned evaluateCrackedLanes(const Lame& lame, const CrackedLaneInputs& in,
     }
     *out.energy[l] = energyOut[l];
     *out.opened[l] = unloaded[l] ? damaged[l] : opened[l];
+    if (in.intact[l] == 0 && *out.opened[l] == kIntact) zeroStiffness |= 1u << l;
   }
   writeTransposed(gradient, 12, out.gradient, in.count, handedBack);
-  writeTransposed(packed, 90, out.packedHessian, in.count, handedBack);
+  writeTransposed(packed, 90, out.packedHessian, in.count, handedBack | zeroStiffness);
   return handedBack;
 }
 

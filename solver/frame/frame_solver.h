@@ -107,10 +107,13 @@ struct ElementPass {
   Lame lame;
   bool resists;
   kernels::Hessian mode;
-  double keep;               // kept-stiffness tolerance; 0: every stiffness evaluated
-  double* keptF;             // (9 nTets) F where each kept stiffness was evaluated
-  std::uint8_t* fresh;       // (nTets) 1 where the stiffness was evaluated this pass
-  std::uint8_t* opened;      // (nTets) each element's open cracks (0 when intact)
+  double keep;           // kept-stiffness tolerance; 0: every stiffness evaluated
+  double* keptF;         // (9 nTets) F where each kept stiffness was evaluated
+  std::uint8_t* fresh;   // (nTets) 1 where the stiffness was evaluated this pass
+  std::uint8_t* opened;  // (nTets) each element's open cracks (0 when intact)
+  // (nTets) or null (no stiffness): 1 where the stiffness is zero and was not written (an
+  // element with every edge damaged and every crack open, as after many cuts: cutFree).
+  std::uint8_t* stiffnessZero;
   const std::uint8_t* only;  // (nTets) or null: the elements to evaluate
   static constexpr int kPackedHessian = 90;
 
@@ -136,8 +139,17 @@ struct ElementPass {
       fresh[t] = kept ? 0 : 1;
     }
     inverted[t] = intact == kernels::kIntact && kernels::determinant(f) <= 0.0 ? 1.0 : 0.0;
-    if (intact == kernels::kIntact) opened[t] = 0;  // the SIMD lanes do not write it
+    if (intact == kernels::kIntact) {
+      opened[t] = 0;  // the SIMD lanes do not write these
+      if (stiffnessZero) stiffnessZero[t] = 0;
+    }
     return true;
+  }
+
+  // Whether an element's stiffness is zero exactly: no intact edge and every crack open (its
+  // energy, force and stiffness are all zero: crackedStrainState).
+  GALSCULPT_HD static bool cutFree(std::uint8_t intact, std::uint8_t opened) {
+    return intact == 0 && opened == kernels::kIntact;
   }
 
   // Element t by the scalar kernel.
@@ -146,7 +158,10 @@ struct ElementPass {
     double hess[144];
     kernels::evaluateElement(model, lame, r, x12, intact, in.resists(t, resists), elementMode,
                              energy[t], gradient + 12 * t, hess, opened + t);
-    if (elementMode != kernels::Hessian::None)
+    if (elementMode == kernels::Hessian::None) return;
+    const bool zero = cutFree(intact, opened[t]);
+    if (stiffnessZero) stiffnessZero[t] = zero ? 1 : 0;
+    if (!zero || !stiffnessZero)
       pack(hess, packedHessian + kPackedHessian * static_cast<size_t>(t));
   }
 
@@ -217,6 +232,7 @@ class FrameSolver {
     stiffnessF_.resize(9 * static_cast<size_t>(tets_));
     stiffnessFresh_.resize(tets_);
     stiffnessOpened_.resize(tets_);
+    stiffnessZero_.resize(tets_);
     trialOpened_.resize(tets_);
     elemGrad_.resize(12 * static_cast<size_t>(tets_));
     elemHess_.resize(kPackedHessian * static_cast<size_t>(tets_));
@@ -395,6 +411,7 @@ class FrameSolver {
                            stiffnessF_.data(),
                            stiffnessFresh_.data(),
                            withHessian ? stiffnessOpened_.data() : trialOpened_.data(),
+                           withHessian ? stiffnessZero_.data() : nullptr,
                            only};
     bool laned = false;
     if constexpr (Exec::kHostMemory) {
@@ -413,6 +430,7 @@ class FrameSolver {
         constexpr int kGroup = 4 * kernels::kLanes;
         const int groups = (tets_ + kGroup - 1) / kGroup;
         const int tets = tets_;
+        std::uint8_t* zero = pass.stiffnessZero;
         ex_.forEach(
             groups,
             [=](int g) {
@@ -432,10 +450,13 @@ class FrameSolver {
               };
               auto flushCracked = [&] {
                 const unsigned back = crackedLanes(lame, crackedIn, crackedOut);
-                for (int l = 0; l < crackedIn.count; ++l)
+                for (int l = 0; l < crackedIn.count; ++l) {
+                  const int t = crackedTet[l];
                   if (back >> l & 1u)
-                    pass.evaluate(crackedTet[l], crackedIn.x[l], crackedIn.intact[l],
-                                  *crackedIn.rest[l], mode);
+                    pass.evaluate(t, crackedIn.x[l], crackedIn.intact[l], *crackedIn.rest[l], mode);
+                  else
+                    zero[t] = ElementPass::cutFree(crackedIn.intact[l], pass.opened[t]) ? 1 : 0;
+                }
                 crackedIn.count = 0;
               };
               const int end = std::min(tets, kGroup * (g + 1));
@@ -522,6 +543,7 @@ class FrameSolver {
     const int* blockRow = blockRow_.data();
     const int* columns = columns_.data();
     const int* transposed = transposedBlock_.data();
+    const std::uint8_t* zero = stiffnessZero_.data();
     // The blocks on and above the diagonal from the elements' packed upper blocks, then those
     // below as their partners' transposes: an element's stiffness is read once, not its six
     // lower blocks again (the gather reads scattered elements: a sixth of a 100-cut frame).
@@ -535,6 +557,7 @@ class FrameSolver {
       double acc[9] = {};
       for (int i = bStart[b]; i < bStart[b + 1]; ++i) {
         const int slot = bSlots[i], t = slot / 16, a = (slot % 16) / 4, c = slot % 4;
+        if (zero[t]) continue;  // (adding its zeros would leave the sums' bits as they are)
         const double* h = eh + kPackedHessian * static_cast<size_t>(t);
         if (a <= c) {
           const double* blk = h + 9 * packedBlock(a, c);
@@ -1999,6 +2022,8 @@ class FrameSolver {
   // Each element's open cracks where the stiffness was evaluated and at the last trial: a chord
   // step is taken only while few differ (substep).
   Buffer<std::uint8_t> stiffnessOpened_, trialOpened_;
+  // Where the stiffness is zero and elemHess_ holds nothing (ElementPass::stiffnessZero).
+  Buffer<std::uint8_t> stiffnessZero_;
   Buffer<double> pcgB_, pcgAp_;  // the linear system's right-hand side and A delta
   Buffer<double> fp_, strain_, savedFp_, savedStrain_;
   Buffer<kernels::RestData> plasticShape_;  // refreshPlasticShapes
