@@ -123,14 +123,19 @@ struct ElementPass {
                             const kernels::RestData*& r, kernels::Hessian& elementMode) const {
     if (only && !only[t]) return false;
     r = &in.load(t, y, x12, intact);
-    const kernels::M3 f = kernels::deformationGradient(*r, x12);
     elementMode = mode;
-    if (keep > 0.0) {
+    if (intact != kernels::kIntact) {
       // A damaged element's stiffness switches where one of its cracks opens or closes: it is
-      // evaluated every time.
+      // evaluated every time. Its deformation gradient enters nothing: not computed.
+      if (keep > 0.0) fresh[t] = 1;
+      inverted[t] = 0.0;
+      return true;
+    }
+    const kernels::M3 f = kernels::deformationGradient(*r, x12);
+    if (keep > 0.0) {
       // Every entry within the tolerance; a NaN record (never evaluated, flowed) fails the
       // comparison and is evaluated (a running maximum through fmax dropped the NaN).
-      bool kept = intact == kernels::kIntact;
+      bool kept = true;
       for (int i = 0; i < 9; ++i) kept = kept && fabs(f.a[i] - keptF[9 * t + i]) <= keep;
       if (kept)
         elementMode = kernels::Hessian::None;
@@ -138,11 +143,9 @@ struct ElementPass {
         for (int i = 0; i < 9; ++i) keptF[9 * t + i] = f.a[i];
       fresh[t] = kept ? 0 : 1;
     }
-    inverted[t] = intact == kernels::kIntact && kernels::determinant(f) <= 0.0 ? 1.0 : 0.0;
-    if (intact == kernels::kIntact) {
-      opened[t] = 0;  // the SIMD lanes do not write these
-      if (stiffnessZero) stiffnessZero[t] = 0;
-    }
+    inverted[t] = kernels::determinant(f) <= 0.0 ? 1.0 : 0.0;
+    opened[t] = 0;  // the SIMD lanes do not write these
+    if (stiffnessZero) stiffnessZero[t] = 0;
     return true;
   }
 
