@@ -36,6 +36,7 @@
 #include "solver/fracture/debris.h"
 #include "solver/frame/accelerated_start.h"
 #include "solver/frame/direct_solver.h"
+#include "solver/frame/element_pass.h"
 #include "solver/frame/frame_loop.h"
 #include "solver/frame/step.h"
 #include "solver/frame/step_backend.h"
@@ -52,136 +53,6 @@ inline std::string cudaUnsupportedReason(const SimModel& model, const StepSettin
   if (model.colliders.size() > 16) return "more than 16 colliders run on the CPU only";
   return "";
 }
-
-// What one thread needs to set an element up: its corners' positions, its intact-edge mask
-// and its rest data (the plastic rest shape where it has flowed). Plain pointers: captured by
-// value into the element, plasticity and fracture launches.
-struct ElementInputs {
-  const int* tetVertices;                 // (4 nTets)
-  const int* tetEdges;                    // (6 nTets)
-  const std::uint8_t* damaged;            // (nEdges)
-  const kernels::RestData* rest;          // (nTets)
-  const kernels::RestData* plasticShape;  // (nTets) or null: elastic
-  const std::uint8_t* plasticShaped;      // (nTets): 1 where plasticShape is the rest shape
-  const std::uint8_t* removed;            // (nVerts) or null: 1 on removed debris
-
-  // The rest data is returned by reference, not copied: an intact element reads 80 of its 416
-  // bytes (copying them all was a seventh of the element pass). A flowed element's plastic rest
-  // shape is computed when it flows (FrameSolver::refreshPlasticShapes), not at every read
-  // (that was a sixth of the clay head's frame).
-  GALSCULPT_HD const kernels::RestData& load(int t, const double* y, double x12[12],
-                                             std::uint8_t& intact) const {
-    for (int a = 0; a < 4; ++a)
-      for (int k = 0; k < 3; ++k) x12[3 * a + k] = y[3 * tetVertices[4 * t + a] + k];
-    intact = 0;
-    for (int e = 0; e < 6; ++e)
-      if (!damaged[tetEdges[6 * t + e]]) intact |= static_cast<std::uint8_t>(1u << e);
-    if (plasticShaped && plasticShaped[t]) return plasticShape[t];
-    return rest[t];
-  }
-  // Whether element t's damaged edges push back when compressed: not where a corner is removed
-  // debris (the rest of the body passes through where it was).
-  GALSCULPT_HD bool resists(int t, bool materialResists) const {
-    if (!materialResists || !removed) return materialResists;
-    for (int a = 0; a < 4; ++a)
-      if (removed[tetVertices[4 * t + a]]) return false;
-    return true;
-  }
-  GALSCULPT_HD static bool isIdentity(const double* m) {
-    for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 3; ++r)
-        if (m[r + 3 * c] != (r == c ? 1.0 : 0.0)) return false;
-    return true;
-  }
-};
-
-// One element pass's inputs and outputs (FrameSolver::elementPass), copied into its kernels.
-struct ElementPass {
-  ElementInputs in;
-  const double* y;
-  double* energy;    // (nTets)
-  double* inverted;  // (nTets) 1 where an intact element is turned inside out
-  double* gradient;  // (12 nTets)
-  double* packedHessian;
-  MaterialModel model;
-  Lame lame;
-  bool resists;
-  kernels::Hessian mode;
-  double keep;           // kept-stiffness tolerance; 0: every stiffness evaluated
-  double* keptF;         // (9 nTets) F where each kept stiffness was evaluated
-  std::uint8_t* fresh;   // (nTets) 1 where the stiffness was evaluated this pass
-  std::uint8_t* opened;  // (nTets) each element's open cracks (0 when intact)
-  // (nTets) or null (no stiffness): 1 where the stiffness is zero and was not written (an
-  // element with every edge damaged and every crack open, as after many cuts: cutFree).
-  std::uint8_t* stiffnessZero;
-  const std::uint8_t* only;  // (nTets) or null: the elements to evaluate
-  static constexpr int kPackedHessian = 90;
-
-  // Loads element t and records whether it is inverted; false when `only` leaves it out.
-  // `elementMode`: the stiffness it needs (none when its kept one will do).
-  GALSCULPT_HD bool prepare(int t, double x12[12], std::uint8_t& intact,
-                            const kernels::RestData*& r, kernels::Hessian& elementMode) const {
-    if (only && !only[t]) return false;
-    r = &in.load(t, y, x12, intact);
-    elementMode = mode;
-    if (intact != kernels::kIntact) {
-      // A damaged element's stiffness switches where one of its cracks opens or closes: it is
-      // evaluated every time. Its deformation gradient enters nothing: not computed.
-      if (keep > 0.0) fresh[t] = 1;
-      inverted[t] = 0.0;
-      return true;
-    }
-    const kernels::M3 f = kernels::deformationGradient(*r, x12);
-    if (keep > 0.0) {
-      // Every entry within the tolerance; a NaN record (never evaluated, flowed) fails the
-      // comparison and is evaluated (a running maximum through fmax dropped the NaN).
-      bool kept = true;
-      for (int i = 0; i < 9; ++i) kept = kept && fabs(f.a[i] - keptF[9 * t + i]) <= keep;
-      if (kept)
-        elementMode = kernels::Hessian::None;
-      else
-        for (int i = 0; i < 9; ++i) keptF[9 * t + i] = f.a[i];
-      fresh[t] = kept ? 0 : 1;
-    }
-    inverted[t] = kernels::determinant(f) <= 0.0 ? 1.0 : 0.0;
-    opened[t] = 0;  // the SIMD lanes do not write these
-    if (stiffnessZero) stiffnessZero[t] = 0;
-    return true;
-  }
-
-  // Whether an element's stiffness is zero exactly: no intact edge and every crack open (its
-  // energy, force and stiffness are all zero: crackedStrainState).
-  GALSCULPT_HD static bool cutFree(std::uint8_t intact, std::uint8_t opened) {
-    return intact == 0 && opened == kernels::kIntact;
-  }
-
-  // Element t by the scalar kernel.
-  GALSCULPT_HD void evaluate(int t, const double x12[12], std::uint8_t intact,
-                             const kernels::RestData& r, kernels::Hessian elementMode) const {
-    double hess[144];
-    kernels::evaluateElement(model, lame, r, x12, intact, in.resists(t, resists), elementMode,
-                             energy[t], gradient + 12 * t, hess, opened + t);
-    if (elementMode == kernels::Hessian::None) return;
-    const bool zero = cutFree(intact, opened[t]);
-    if (stiffnessZero) stiffnessZero[t] = zero ? 1 : 0;
-    if (!zero || !stiffnessZero)
-      pack(hess, packedHessian + kPackedHessian * static_cast<size_t>(t));
-  }
-
-  // An element's 12x12 stiffness is kept as its ten upper 3x3 blocks (a <= c, each
-  // column-major): the gathers read 72 contiguous bytes per block and the buffer is 90 doubles
-  // per element, not 144, which is most of what a frame moves through memory. (Floats were
-  // measured: no faster on the sphere, and they break the exact translation invariance of K.)
-  GALSCULPT_HD static int packedBlock(int a, int c) { return 4 * a - a * (a - 1) / 2 + (c - a); }
-  GALSCULPT_HD static void pack(const double* h, double* packed) {
-    for (int a = 0; a < 4; ++a)
-      for (int c = a; c < 4; ++c) {
-        double* blk = packed + 9 * packedBlock(a, c);
-        for (int j = 0; j < 3; ++j)
-          for (int r = 0; r < 3; ++r) blk[r + 3 * j] = h[(3 * a + r) + 12 * (3 * c + j)];
-      }
-  }
-};
 
 template <typename Exec>
 class FrameSolver {
@@ -419,88 +290,13 @@ class FrameSolver {
     bool laned = false;
     if constexpr (Exec::kHostMemory) {
       const kernels::LaneBuild build = kernels::chosenLaneBuild();
-      const kernels::LaneKernel lanes = withHessian ? kernels::laneKernel(build) : nullptr;
       // (Without stiffness the damaged elements' lanes were no faster than the scalar kernel:
       // what they take over is mostly the stiffness.)
+      const kernels::LaneKernel lanes = withHessian ? kernels::laneKernel(build) : nullptr;
       const kernels::CrackedLaneKernel crackedLanes =
           withHessian ? kernels::crackedLaneKernel(build) : nullptr;
       laned = lanes != nullptr || crackedLanes != nullptr;
-      if (laned) {
-        // Sixteen consecutive elements per item: the intact ones whose stiffness is wanted go
-        // through the SIMD lanes four at a time (element_lanes.h), so do the damaged ones but
-        // those holding two pieces; the rest and those the lanes hand back go through the
-        // scalar kernel.
-        constexpr int kGroup = 4 * kernels::kLanes;
-        const int groups = (tets_ + kGroup - 1) / kGroup;
-        const int tets = tets_;
-        std::uint8_t* zero = pass.stiffnessZero;
-        ex_.forEach(
-            groups,
-            [=](int g) {
-              kernels::LaneInputs intactIn;
-              kernels::LaneOutputs intactOut;
-              int intactTet[kernels::kLanes];
-              kernels::CrackedLaneInputs crackedIn;
-              kernels::LaneOutputs crackedOut;
-              int crackedTet[kernels::kLanes];
-              auto flushIntact = [&] {
-                const unsigned back = lanes(model, lame, intactIn, intactOut);
-                for (int l = 0; l < intactIn.count; ++l)
-                  if (back >> l & 1u)
-                    pass.evaluate(intactTet[l], intactIn.x[l], kernels::kIntact, *intactIn.rest[l],
-                                  kernels::Hessian::ProjectedSpd);
-                intactIn.count = 0;
-              };
-              auto flushCracked = [&] {
-                const unsigned back = crackedLanes(lame, crackedIn, crackedOut);
-                for (int l = 0; l < crackedIn.count; ++l) {
-                  const int t = crackedTet[l];
-                  if (back >> l & 1u)
-                    pass.evaluate(t, crackedIn.x[l], crackedIn.intact[l], *crackedIn.rest[l], mode);
-                  else
-                    zero[t] = ElementPass::cutFree(crackedIn.intact[l], pass.opened[t]) ? 1 : 0;
-                }
-                crackedIn.count = 0;
-              };
-              const int end = std::min(tets, kGroup * (g + 1));
-              for (int t = kGroup * g; t < end; ++t) {
-                double x12[12];
-                std::uint8_t intact;
-                const kernels::RestData* r;
-                kernels::Hessian elementMode;
-                if (!pass.prepare(t, x12, intact, r, elementMode)) continue;
-                if (intact == kernels::kIntact && lanes &&
-                    elementMode == kernels::Hessian::ProjectedSpd) {
-                  const int l = intactIn.count++;
-                  intactTet[l] = t;
-                  intactIn.rest[l] = r;
-                  std::memcpy(intactIn.x[l], x12, sizeof x12);
-                  intactOut.energy[l] = energy + t;
-                  intactOut.gradient[l] = eg + 12 * t;
-                  intactOut.packedHessian[l] = eh + kPackedHessian * static_cast<size_t>(t);
-                  if (intactIn.count == kernels::kLanes) flushIntact();
-                } else if (intact != kernels::kIntact && crackedLanes &&
-                           !kernels::holdsTwoPieces(intact)) {
-                  const int l = crackedIn.count++;
-                  crackedTet[l] = t;
-                  crackedIn.rest[l] = r;
-                  std::memcpy(crackedIn.x[l], x12, sizeof x12);
-                  crackedIn.intact[l] = intact;
-                  crackedIn.resists[l] = pass.in.resists(t, resists);
-                  crackedOut.energy[l] = energy + t;
-                  crackedOut.gradient[l] = eg + 12 * t;
-                  crackedOut.packedHessian[l] = eh + kPackedHessian * static_cast<size_t>(t);
-                  crackedOut.opened[l] = pass.opened + t;
-                  if (crackedIn.count == kernels::kLanes) flushCracked();
-                } else {
-                  pass.evaluate(t, x12, intact, *r, elementMode);
-                }
-              }
-              if (intactIn.count > 0) flushIntact();
-              if (crackedIn.count > 0) flushCracked();
-            },
-            kGroup);
-      }
+      if (laned) elementPassInLanes(ex_, pass, tets_, lanes, crackedLanes);
     }
     if (!laned)
       ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
