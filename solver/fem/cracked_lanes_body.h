@@ -190,7 +190,7 @@ unsigned evaluateCrackedLanes(const Lame& lame, const CrackedLaneInputs& in,
     }
     *out.energy[l] = energyOut[l];
     *out.opened[l] = unloaded[l] ? damaged[l] : opened[l];
-    if (in.intact[l] == 0 && *out.opened[l] == kIntact) zeroStiffness |= 1u << l;
+    if (*out.opened[l] == kIntact) zeroStiffness |= 1u << l;  // no intact edge either
   }
   writeTransposed(gradient, 12, out.gradient, in.count, handedBack);
   writeTransposed(packed, 90, out.packedHessian, in.count, handedBack | zeroStiffness);

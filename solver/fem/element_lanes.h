@@ -57,8 +57,8 @@ struct CrackedLaneInputs {
 // Evaluates the lanes in use; returns the bit mask of those it handed back (not written).
 using LaneKernel = unsigned (*)(MaterialModel, const Lame&, const LaneInputs&, const LaneOutputs&);
 // Damaged elements with their stiffness (Hessian::ProjectedSpd); returns the lanes handed back.
-// The stiffness of an element with no intact edge whose cracks all opened is zero and is not
-// written (the caller tells it by `opened`: every bit set).
+// The stiffness of an element whose six edges' cracks all opened is zero and is not written
+// (the caller tells it by `opened`: every bit set).
 using CrackedLaneKernel = unsigned (*)(const Lame&, const CrackedLaneInputs&, const LaneOutputs&);
 
 enum class LaneBuild { Off, Portable, Avx2 };

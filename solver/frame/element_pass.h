@@ -69,13 +69,12 @@ struct ElementPass {
   Lame lame;
   bool resists;
   kernels::Hessian mode;
-  double keep;           // kept-stiffness tolerance; 0: every stiffness evaluated
-  double* keptF;         // (9 nTets) F where each kept stiffness was evaluated
-  std::uint8_t* fresh;   // (nTets) 1 where the stiffness was evaluated this pass
-  std::uint8_t* opened;  // (nTets) each element's open cracks (0 when intact)
-  // (nTets) or null (no stiffness): 1 where the stiffness is zero and was not written (an
-  // element with every edge damaged and every crack open, as after many cuts: cutFree).
-  std::uint8_t* stiffnessZero;
+  double keep;          // kept-stiffness tolerance; 0: every stiffness evaluated
+  double* keptF;        // (9 nTets) F where each kept stiffness was evaluated
+  std::uint8_t* fresh;  // (nTets) 1 where the stiffness was evaluated this pass
+  // (nTets) each element's open cracks (0 when intact). In the pass with stiffness, all six
+  // open (zeroStiffness) also says the element's stiffness is zero and was not written.
+  std::uint8_t* opened;
   const std::uint8_t* only;  // (nTets) or null: the elements to evaluate
   static constexpr int kPackedHessian = 90;
 
@@ -106,16 +105,14 @@ struct ElementPass {
       fresh[t] = kept ? 0 : 1;
     }
     inverted[t] = kernels::determinant(f) <= 0.0 ? 1.0 : 0.0;
-    opened[t] = 0;  // the SIMD lanes do not write these
-    if (stiffnessZero) stiffnessZero[t] = 0;
+    opened[t] = 0;  // the SIMD lanes do not write it
     return true;
   }
 
-  // Whether an element's stiffness is zero exactly: no intact edge and every crack open (its
-  // energy, force and stiffness are all zero: crackedStrainState).
-  GALSCULPT_HD static bool cutFree(std::uint8_t intact, std::uint8_t opened) {
-    return intact == 0 && opened == kernels::kIntact;
-  }
+  // Whether an element's stiffness is zero exactly: every crack open, so no intact edge either
+  // (the open cracks are damaged edges) and its energy, force and stiffness are all zero
+  // (crackedStrainState). The state after many cuts of a crumb's interior.
+  GALSCULPT_HD static bool zeroStiffness(std::uint8_t opened) { return opened == kernels::kIntact; }
 
   // Element t by the scalar kernel.
   GALSCULPT_HD void evaluate(int t, const double x12[12], std::uint8_t intact,
@@ -123,10 +120,7 @@ struct ElementPass {
     double hess[144];
     kernels::evaluateElement(model, lame, r, x12, intact, in.resists(t, resists), elementMode,
                              energy[t], gradient + 12 * t, hess, opened + t);
-    if (elementMode == kernels::Hessian::None) return;
-    const bool zero = cutFree(intact, opened[t]);
-    if (stiffnessZero) stiffnessZero[t] = zero ? 1 : 0;
-    if (!zero || !stiffnessZero)
+    if (elementMode != kernels::Hessian::None && !zeroStiffness(opened[t]))
       pack(hess, packedHessian + kPackedHessian * static_cast<size_t>(t));
   }
 
@@ -175,15 +169,10 @@ void elementPassInLanes(Exec& ex, const ElementPass& pass, int tets, kernels::La
         };
         auto flushCracked = [&] {
           const unsigned back = crackedLanes(pass.lame, crackedIn, crackedOut);
-          for (int l = 0; l < crackedIn.count; ++l) {
-            const int t = crackedTet[l];
+          for (int l = 0; l < crackedIn.count; ++l)
             if (back >> l & 1u)
-              pass.evaluate(t, crackedIn.x[l], crackedIn.intact[l], *crackedIn.rest[l],
+              pass.evaluate(crackedTet[l], crackedIn.x[l], crackedIn.intact[l], *crackedIn.rest[l],
                             kernels::Hessian::ProjectedSpd);
-            else
-              pass.stiffnessZero[t] =
-                  ElementPass::cutFree(crackedIn.intact[l], pass.opened[t]) ? 1 : 0;
-          }
           crackedIn.count = 0;
         };
         const int end = std::min(tets, kGroup * (g + 1));

@@ -106,7 +106,6 @@ class FrameSolver {
     stiffnessF_.resize(9 * static_cast<size_t>(tets_));
     stiffnessFresh_.resize(tets_);
     stiffnessOpened_.resize(tets_);
-    stiffnessZero_.resize(tets_);
     trialOpened_.resize(tets_);
     elemGrad_.resize(12 * static_cast<size_t>(tets_));
     elemHess_.resize(kPackedHessian * static_cast<size_t>(tets_));
@@ -285,7 +284,6 @@ class FrameSolver {
                            stiffnessF_.data(),
                            stiffnessFresh_.data(),
                            withHessian ? stiffnessOpened_.data() : trialOpened_.data(),
-                           withHessian ? stiffnessZero_.data() : nullptr,
                            only};
     bool laned = false;
     if constexpr (Exec::kHostMemory) {
@@ -342,7 +340,7 @@ class FrameSolver {
     const int* blockRow = blockRow_.data();
     const int* columns = columns_.data();
     const int* transposed = transposedBlock_.data();
-    const std::uint8_t* zero = stiffnessZero_.data();
+    const std::uint8_t* opened = stiffnessOpened_.data();
     // The blocks on and above the diagonal from the elements' packed upper blocks, then those
     // below as their partners' transposes: an element's stiffness is read once, not its six
     // lower blocks again (the gather reads scattered elements: a sixth of a 100-cut frame).
@@ -356,7 +354,8 @@ class FrameSolver {
       double acc[9] = {};
       for (int i = bStart[b]; i < bStart[b + 1]; ++i) {
         const int slot = bSlots[i], t = slot / 16, a = (slot % 16) / 4, c = slot % 4;
-        if (zero[t]) continue;  // (adding its zeros would leave the sums' bits as they are)
+        // Zero and not written (adding its zeros would leave the sums' bits as they are).
+        if (ElementPass::zeroStiffness(opened[t])) continue;
         const double* h = eh + kPackedHessian * static_cast<size_t>(t);
         if (a <= c) {
           const double* blk = h + 9 * packedBlock(a, c);
@@ -1821,8 +1820,6 @@ class FrameSolver {
   // Each element's open cracks where the stiffness was evaluated and at the last trial: a chord
   // step is taken only while few differ (substep).
   Buffer<std::uint8_t> stiffnessOpened_, trialOpened_;
-  // Where the stiffness is zero and elemHess_ holds nothing (ElementPass::stiffnessZero).
-  Buffer<std::uint8_t> stiffnessZero_;
   Buffer<double> pcgB_, pcgAp_;  // the linear system's right-hand side and A delta
   Buffer<double> fp_, strain_, savedFp_, savedStrain_;
   Buffer<kernels::RestData> plasticShape_;  // refreshPlasticShapes
