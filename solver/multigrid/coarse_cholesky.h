@@ -1,5 +1,5 @@
-// The coarsest level's direct solve in host memory: a sparse Cholesky of the level's 12x12
-// blocks (block CSR), with a fill-reducing (AMD) ordering analysed once per pattern.
+// The coarsest level's direct solve in host memory: a sparse Cholesky by 12x12 blocks (block
+// CSR in), with a fill-reducing (AMD) ordering of the handle graph analysed once per pattern.
 //
 // Why not the dense factorization the device uses: cracks split the coarse handles (a handle
 // whose aggregate a crack divides becomes one per part), and the dense factorization grows with
@@ -7,9 +7,16 @@
 // level from 50 to 110 handles and 100 cuts to 199, so the dense factorization, refreshed with
 // every Newton matrix, went from a few milliseconds to hundreds and was what made a cut body's
 // frame cost several times the uncut one's. The handles of a cracked body are coupled only to
-// their neighbours, so the sparse factor costs a fraction of the dense one. Simplicial and
-// single-threaded (Eigen's, not CHOLMOD's BLAS-backed supernodal one), so that its round-off
-// does not depend on the thread count (tests/engine/session/determinism_test.cpp).
+// their neighbours, so the sparse factor costs a fraction of the dense one.
+//
+// Why by blocks and not Eigen's SimplicialLLT (which this replaced): every handle is twelve
+// affine DOFs coupled as a whole, so the factor's pattern is the handle graph's, block for block.
+// Factored column by column of blocks, each update is a dense 12x12 product instead of scalar
+// updates through index lists: 3.5x faster to factor and 3x to solve on grid-like handle graphs
+// of 100-216 handles (docs/benchmarks.md), where the simplicial factor took a seventh of a
+// 10-cut sphere's frame in motion. Single-threaded, in a fixed order, so its round-off does not
+// depend on the thread count (tests/engine/session/determinism_test.cpp); CHOLMOD's supernodal
+// factor would thread through BLAS.
 #pragma once
 
 #include <memory>
