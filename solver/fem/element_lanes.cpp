@@ -42,6 +42,20 @@ LaneBuild fromEnvironment() {
 // -1 until set: the environment decides.
 std::atomic<int> setBuild{-1};
 
+// A build's kernel of the two it was compiled as: none when off, or AVX2 without the CPU for it.
+template <class Kernel>
+Kernel kernelOf(LaneBuild build, Kernel portable, Kernel avx2) {
+  switch (build) {
+    case LaneBuild::Off:
+      return nullptr;
+    case LaneBuild::Portable:
+      return portable;
+    case LaneBuild::Avx2:
+      return cpuHasAvx2() ? avx2 : nullptr;
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 LaneBuild chosenLaneBuild() {
@@ -56,15 +70,7 @@ void setLaneBuild(LaneBuild build) {
 }
 
 LaneKernel laneKernel(LaneBuild build) {
-  switch (build) {
-    case LaneBuild::Off:
-      return nullptr;
-    case LaneBuild::Portable:
-      return &portable::evaluateIntactLanes;
-    case LaneBuild::Avx2:
-      return cpuHasAvx2() ? &avx2::evaluateIntactLanes : nullptr;
-  }
-  return nullptr;
+  return kernelOf<LaneKernel>(build, &portable::evaluateIntactLanes, &avx2::evaluateIntactLanes);
 }
 
 void openCracks(const double k[6][6], const double eps[6], std::uint8_t free, std::uint8_t oneWay,
@@ -73,15 +79,8 @@ void openCracks(const double k[6][6], const double eps[6], std::uint8_t free, st
 }
 
 CrackedLaneKernel crackedLaneKernel(LaneBuild build) {
-  switch (build) {
-    case LaneBuild::Off:
-      return nullptr;
-    case LaneBuild::Portable:
-      return &portable::evaluateCrackedLanes;
-    case LaneBuild::Avx2:
-      return cpuHasAvx2() ? &avx2::evaluateCrackedLanes : nullptr;
-  }
-  return nullptr;
+  return kernelOf<CrackedLaneKernel>(build, &portable::evaluateCrackedLanes,
+                                     &avx2::evaluateCrackedLanes);
 }
 
 const char* laneBuildName(LaneBuild build) {
