@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
@@ -134,35 +135,20 @@ int motionFrame(int frames) {
   return std::min(frames, 20);
 }
 
-// `settle` frames run untimed after the cuts and before the measured ones: the cost of a body
-// at rest with its cracks, apart from the motion that cutting starts.
-nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
-                       const Setting& setting, int frames, int settle,
-                       const fs::path& referencePositions) {
-  Simulation sim(sceneWithSetting(baseScene, setting), mesh);
-  // The surface is built when the scene opens and brought up to date after each cut, as the app
-  // does: what a cut costs the surface is measured here, what a frame costs it below.
-  sim.surface();
-  std::vector<double> msCut;
-  if (setting.cuts > 0) {
-    applyRandomCuts(sim, setting.cuts, [&] {
-      sim.surface();
-      const SurfaceUpdateStats& st = sim.lastSurfaceUpdate();
-      msCut.push_back(st.msTopology + st.msPositions);
-    });
-  }
-  std::sort(msCut.begin(), msCut.end());
-  for (int f = 0; f < settle; ++f) sim.advance();
-  if (settle > 0) sim.surface();
+// One measured window: `frames` frames from where `sim` stands (`settle` frames after the cuts).
+nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting& setting,
+                             int frames, int settle, const std::vector<double>& msCut,
+                             const fs::path& referencePositions) {
   std::vector<double> ms, msSurface, msElements, msSolve, msFracture, msOther;
   FrameMetrics last;
-  double newton = 0.0, cg = 0.0, residualMax = 0.0, motionError = -1.0;
+  double newton = 0.0, cg = 0.0, residualMax = 0.0, motionError = -1.0, msSum = 0.0;
   int unconverged = 0;
   const int atMotion = motionFrame(frames);
   const fs::path motionPositions = fs::path(referencePositions).concat(".motion");
   for (int f = 0; f < frames; ++f) {
     last = sim.advance();
     ms.push_back(last.msTotal);
+    msSum += last.msTotal;
     msElements.push_back(last.msElements);
     msSolve.push_back(last.msSolve);
     msFracture.push_back(last.msFracture);
@@ -206,6 +192,9 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   r["ms_other"] = medianOf(msOther);
   r["newton_iters_mean"] = newton / frames;
   r["cg_iters_mean"] = cg / frames;
+  // What a Newton iteration costs, apart from how many a motion takes (the mean frame over the
+  // mean iterations).
+  r["ms_per_newton"] = newton > 0.0 ? msSum / newton : 0.0;
   r["residual_max"] = residualMax;
   r["unconverged_frames"] = unconverged;
   r["motion_frame"] = atMotion;
@@ -217,7 +206,6 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   r["pieces"] = last.pieces;
   r["debris_pieces"] = last.debrisPieces;
   r["debris_volume_pct"] = last.debrisVolumePct;
-  r["debris"] = debrisRuleName(baseScene.fracture.debris);
   if (setting.cuts >= 0) {
     r["cuts"] = setting.cuts;
     r["ms_surface_cut"] = msCut.empty() ? 0.0 : msCut[msCut.size() / 2];
@@ -237,9 +225,43 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   return r;
 }
 
-// Runs `measure` in a child process; returns its result (or an "error" entry).
+// A run of one setting: its cuts (with --cracks), then for each count in `settles` (ascending,
+// at least `frames` apart) untimed frames up to that count and a measured window of `frames`
+// (the frames of one window count as settled for the next). One result per window. With several
+// windows one run reads the cost at several settled states: a body in many pieces settles
+// chaotically, and one window is one sample of where its pieces came to lie.
+nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
+                       const Setting& setting, int frames, const std::vector<int>& settles,
+                       const fs::path& referencePositions) {
+  Simulation sim(sceneWithSetting(baseScene, setting), mesh);
+  // The surface is built when the scene opens and brought up to date after each cut, as the app
+  // does: what a cut costs the surface is measured here, what a frame costs it below.
+  sim.surface();
+  std::vector<double> msCut;
+  if (setting.cuts > 0) {
+    applyRandomCuts(sim, setting.cuts, [&] {
+      sim.surface();
+      const SurfaceUpdateStats& st = sim.lastSurfaceUpdate();
+      msCut.push_back(st.msTopology + st.msPositions);
+    });
+  }
+  std::sort(msCut.begin(), msCut.end());
+  nlohmann::json windows = nlohmann::json::array();
+  int done = 0;
+  for (const int settle : settles) {
+    for (; done < settle; ++done) sim.advance();
+    if (settle > 0) sim.surface();
+    nlohmann::json r = measureWindow(sim, mesh, setting, frames, settle, msCut, referencePositions);
+    r["debris"] = debrisRuleName(baseScene.fracture.debris);
+    windows.push_back(r);
+    done += frames;
+  }
+  return windows;
+}
+
+// Runs `measure` in a child process; returns its windows' results (or one "error" entry).
 nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh,
-                              const Setting& setting, int frames, int settle,
+                              const Setting& setting, int frames, const std::vector<int>& settles,
                               const fs::path& referencePositions, const fs::path& scratch) {
   const fs::path resultFile = scratch / "result.json";
   std::error_code ec;
@@ -254,10 +276,11 @@ nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh
   if (pid == 0) {
     int code = 0;
     try {
-      const nlohmann::json r = measure(scene, mesh, setting, frames, settle, referencePositions);
+      const nlohmann::json r = measure(scene, mesh, setting, frames, settles, referencePositions);
       std::ofstream(resultFile) << r.dump();
     } catch (const std::exception& e) {
-      std::ofstream(resultFile) << nlohmann::json{{"error", e.what()}}.dump();
+      std::ofstream(resultFile)
+          << nlohmann::json::array({nlohmann::json{{"error", e.what()}}}).dump();
       code = 1;
     }
     std::fflush(nullptr);
@@ -267,8 +290,8 @@ nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh
   waitpid(pid, &status, 0);
   std::ifstream in(resultFile);
   if (!in)
-    return nlohmann::json{
-        {"error", "the measurement process died (status " + std::to_string(status) + ")"}};
+    return nlohmann::json::array({nlohmann::json{
+        {"error", "the measurement process died (status " + std::to_string(status) + ")"}}});
   return nlohmann::json::parse(in);
 }
 
@@ -296,7 +319,11 @@ std::string row(const nlohmann::json& r) {
       << std::setw(7) << r["cg_iters_mean"].get<double>() << " cg" << std::setw(5)
       << r["unconverged_frames"].get<int>() << " unconverged" << std::setw(6)
       << r["debris_pieces"].get<int>() << " debris" << std::setw(7) << std::setprecision(2)
-      << r["debris_volume_pct"].get<double>() << " % debris volume";
+      << r["debris_volume_pct"].get<double>() << " % debris volume" << std::setw(7)
+      << r["settle_frames"].get<int>() << " settled" << std::setw(8) << std::setprecision(1)
+      << r["ms_per_newton"].get<double>() << " ms per newton";
+    if (r.contains("times_uncut"))
+      s << std::setw(7) << std::setprecision(2) << r["times_uncut"].get<double>() << " x uncut";
     return s.str();
   }
   // The solver: its grid and preset, and what differs from the preset's defaults.
@@ -401,19 +428,53 @@ std::vector<Setting> benchSettings(const SceneDescription& scene, bool cracks, b
   return settings;
 }
 
+// --settle N[,N...]: where each measured window starts, in frames after the cuts: ascending, each
+// window (`frames` long) ended before the next starts. Several only with --cracks: the other
+// rows compare each window with a reference run that has one.
+std::vector<int> settleOption(const CliArgs& args, int frames) {
+  const std::vector<int> settles = args.intListValue("--settle", {0}, 0, 100000);
+  if (settles.size() > 1 && !args.has("--cracks"))
+    throw UsageError("--settle takes several counts only with --cracks");
+  for (size_t k = 1; k < settles.size(); ++k) {
+    if (settles[k] < settles[k - 1] + frames)
+      throw UsageError("--settle: window " + std::to_string(k + 1) + " starts at frame " +
+                       std::to_string(settles[k]) + ", before window " + std::to_string(k) + " (" +
+                       std::to_string(settles[k - 1]) + " + " + std::to_string(frames) +
+                       " frames) has ended");
+  }
+  return settles;
+}
+
+// With several windows, each cut count's cost against the uncut frame in every window, and the
+// median of those ratios.
+void printWindowSummary(const nlohmann::json& rows, std::ostream& out) {
+  std::map<int, std::vector<double>> ratios;
+  for (const nlohmann::json& r : rows)
+    if (r.contains("times_uncut")) ratios[r["cuts"].get<int>()].push_back(r["times_uncut"]);
+  for (auto& [cuts, x] : ratios) {
+    out << "cuts " << cuts << ": x uncut by window";
+    for (double v : x) out << ' ' << std::fixed << std::setprecision(2) << v;
+    std::sort(x.begin(), x.end());
+    const size_t m = x.size();
+    const double median = m % 2 ? x[m / 2] : 0.5 * (x[m / 2 - 1] + x[m / 2]);
+    out << ", median " << median << '\n';
+  }
+}
+
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args, {"--scene", "--json", "--frames", "--settle", "--backend", "--debris"},
                   {"--quick", "--sweep", "--cracks"});
-  a.expectPositional(0, 0,
-                     "galsculpt bench [--scene NAME] [--quick] [--sweep] [--cracks] [--frames N] "
-                     "[--settle N] [--json FILE] [--backend auto|cpu|cuda] [--debris keep|remove]");
+  a.expectPositional(
+      0, 0,
+      "galsculpt bench [--scene NAME] [--quick] [--sweep] [--cracks] [--frames N] "
+      "[--settle N[,N...]] [--json FILE] [--backend auto|cpu|cuda] [--debris keep|remove]");
   const std::optional<BackendRequest> backend = backendOption(a);
   const std::optional<DebrisRule> debris = debrisOption(a);
   const bool quick = a.has("--quick");
   const int frames = a.intValue("--frames", quick ? 20 : 60, 1, 100000);
-  const int settle = a.intValue("--settle", 0, 0, 100000);
+  const std::vector<int> settles = settleOption(a, frames);
   const std::vector<BenchScene> scenes = benchScenes(a);
   std::string pattern = (fs::temp_directory_path() / "galsculpt-bench-XXXXXX").string();
   if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder");
@@ -437,19 +498,31 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
     const std::vector<Setting> settings = benchSettings(
         scene, a.has("--cracks"), a.has("--sweep") && std::string(bs.name) == "sphere");
     const fs::path refFile = scratch / (std::string(bs.name) + ".ref");
+    std::map<int, double> uncutMs;  // per window start: the uncut frame (--cracks)
+    nlohmann::json sceneRows = nlohmann::json::array();
     for (const Setting& s : settings) {
-      nlohmann::json r = measureInChild(scene, mesh, s, frames, settle, refFile, scratch);
-      r["scene"] = bs.name;
-      out << row(r) << '\n' << std::flush;
-      results.push_back(r);
+      for (nlohmann::json r : measureInChild(scene, mesh, s, frames, settles, refFile, scratch)) {
+        r["scene"] = bs.name;
+        if (s.cuts >= 0 && !r.contains("error")) {
+          const int at = r["settle_frames"].get<int>();
+          if (s.cuts == 0) uncutMs[at] = r["ms_per_frame"].get<double>();
+          if (s.cuts > 0 && uncutMs.count(at))
+            r["times_uncut"] = r["ms_per_frame"].get<double>() / uncutMs[at];
+        }
+        out << row(r) << '\n' << std::flush;
+        results.push_back(r);
+        sceneRows.push_back(r);
+      }
     }
+    if (settles.size() > 1) printWindowSummary(sceneRows, out);
   }
   fs::remove_all(scratch);
   if (auto json = a.value("--json")) {
     const nlohmann::json doc{
         {"machine", {{"cores", static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN))}}},
         {"frames", frames},
-        {"settle_frames", settle},
+        {"settle_frames", settles.front()},
+        {"settle_windows", settles},
         {"results", results}};
     writeFileAtomically(*json, [&](std::ostream& o) { o << doc.dump(2) << '\n'; });
     out << "wrote " << *json << '\n';

@@ -55,6 +55,29 @@ int CliArgs::intValue(const std::string& flag, int fallback, int min, int max) c
   return static_cast<int>(x);
 }
 
+std::vector<int> CliArgs::intListValue(const std::string& flag, const std::vector<int>& fallback,
+                                       int min, int max) const {
+  const auto v = value(flag);
+  if (!v) return fallback;
+  std::vector<int> list;
+  size_t begin = 0;
+  while (true) {
+    const size_t end = std::min(v->find(',', begin), v->size());
+    long long x = 0;
+    const auto [ptr, ec] = std::from_chars(v->data() + begin, v->data() + end, x);
+    if (ec != std::errc() || ptr != v->data() + end)
+      throw UsageError(flag + " expects an integer or a comma-separated list of them, got '" + *v +
+                       "'");
+    if (x < min || x > max) {
+      throw UsageError(flag + " must be in [" + std::to_string(min) + ", " + std::to_string(max) +
+                       "], got " + std::to_string(x));
+    }
+    list.push_back(static_cast<int>(x));
+    if (end == v->size()) return list;
+    begin = end + 1;
+  }
+}
+
 double CliArgs::doubleValue(const std::string& flag, double fallback, double min,
                             double max) const {
   const auto v = value(flag);

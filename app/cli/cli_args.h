@@ -30,6 +30,9 @@ class CliArgs {
   std::optional<std::string> value(const std::string& flag) const;
   int intValue(const std::string& flag, int fallback, int min, int max) const;
   double doubleValue(const std::string& flag, double fallback, double min, double max) const;
+  // "3" or "3,40,80": integers, each in [min, max]
+  std::vector<int> intListValue(const std::string& flag, const std::vector<int>& fallback, int min,
+                                int max) const;
   // "WxH"
   std::pair<int, int> sizeValue(const std::string& flag, std::pair<int, int> fallback) const;
   void expectPositional(size_t min, size_t max, const std::string& usage) const;

@@ -289,6 +289,73 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   EXPECT_EQ(run({"bench", "--scene", "moon"}).code, kExitUsage);
 }
 
+TEST(Cli, BenchCracksMeasuresSeveralSettledWindowsInOneRun) {
+  test::TempDir dir;
+  fs::create_directories(dir / "scenes");
+  test::writeText(
+      dir / "scenes" / "hanging_sphere.json",
+      std::string(R"({"mesh": {"file": ")") + GALSCULPT_SOURCE_DIR +
+          R"(/assets/meshes/sphere_small.node"}, "material": {"youngs_modulus": 8000, "poisson_ratio": 0.48,
+                      "density": 1000}, "anchors": [{"box": {"min": [-1, 0.08, -1]}}]})");
+  setenv("GALSCULPT_ASSETS", dir.path().c_str(), 1);
+  const CliRun windows = run({"bench", "--cracks", "--frames", "2", "--settle", "0,3", "--json",
+                              (dir / "w.json").string()});
+  const CliRun single = run(
+      {"bench", "--cracks", "--frames", "2", "--settle", "3", "--json", (dir / "s.json").string()});
+  const CliRun overlapping = run({"bench", "--cracks", "--frames", "2", "--settle", "0,1"});
+  const CliRun noCracks = run({"bench", "--scene", "sphere", "--settle", "0,30"});
+  const CliRun notANumber = run({"bench", "--cracks", "--settle", "3,x"});
+  unsetenv("GALSCULPT_ASSETS");
+  ASSERT_EQ(windows.code, kExitOk) << windows.err;
+  ASSERT_EQ(single.code, kExitOk) << single.err;
+  const auto w = nlohmann::json::parse(test::readText(dir / "w.json"));
+  const auto s = nlohmann::json::parse(test::readText(dir / "s.json"));
+  EXPECT_EQ(w["settle_frames"], 0);
+  EXPECT_EQ(w["settle_windows"], nlohmann::json::array({0, 3}));
+  // Each setting's windows in order: 0, 10 and 100 cuts, each at 0 and 3 frames settled.
+  ASSERT_EQ(w["results"].size(), 6u);
+  ASSERT_EQ(s["results"].size(), 3u);
+  for (int k = 0; k < 6; ++k) {
+    const nlohmann::json& r = w["results"][k];
+    EXPECT_EQ(r["settle_frames"], k % 2 == 0 ? 0 : 3) << k;
+    EXPECT_GT(r["ms_per_newton"].get<double>(), 0.0) << k;
+    const nlohmann::json& uncut = w["results"][k % 2];
+    if (r["cuts"].get<int>() == 0) {
+      EXPECT_FALSE(r.contains("times_uncut")) << k;
+    } else {
+      EXPECT_NEAR(r["times_uncut"].get<double>(),
+                  r["ms_per_frame"].get<double>() / uncut["ms_per_frame"].get<double>(), 1e-12)
+          << k;
+    }
+  }
+  // The second window is the state a run settled for three frames measures: the measured frames
+  // of the first count as settled.
+  for (int c = 0; c < 3; ++c) {
+    const nlohmann::json& a = w["results"][2 * c + 1];
+    const nlohmann::json& b = s["results"][c];
+    EXPECT_EQ(a["cuts"], b["cuts"]);
+    EXPECT_EQ(a["damaged_edges"], b["damaged_edges"]);
+    EXPECT_EQ(a["pieces"], b["pieces"]);
+    EXPECT_EQ(a["newton_iters_mean"], b["newton_iters_mean"]) << c;
+    EXPECT_NEAR(a["volume_change_pct"].get<double>(), b["volume_change_pct"].get<double>(),
+                1e-9 * std::fabs(b["volume_change_pct"].get<double>()) + 1e-12)
+        << c;
+  }
+  EXPECT_NE(windows.out.find("cuts 100: x uncut by window "), std::string::npos) << windows.out;
+  EXPECT_NE(windows.out.find(" ms per newton"), std::string::npos) << windows.out;
+  EXPECT_EQ(single.out.find("x uncut by window"), std::string::npos) << "one window: no summary";
+  EXPECT_EQ(overlapping.code, kExitUsage);
+  EXPECT_NE(overlapping.err.find("before window 1 (0 + 2 frames) has ended"), std::string::npos)
+      << overlapping.err;
+  EXPECT_EQ(noCracks.code, kExitUsage);
+  EXPECT_NE(noCracks.err.find("several counts only with --cracks"), std::string::npos)
+      << noCracks.err;
+  EXPECT_EQ(notANumber.code, kExitUsage);
+  EXPECT_NE(notANumber.err.find("--settle expects an integer or a comma-separated list"),
+            std::string::npos)
+      << notANumber.err;
+}
+
 // --backend on run (and play, bench, open): cpu runs without a note; cuda runs on the GPU or
 // says why not; anything else is a usage error.
 TEST(Cli, BackendFlag) {
