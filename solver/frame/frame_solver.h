@@ -620,7 +620,8 @@ class FrameSolver {
       // elements switch a step), chords took 2.5 Newton iterations a frame at rest where fresh
       // stiffnesses took 1.6-1.7. Where fewer switch (slices thrown off a bar: 10-50), chords still
       // pay as often as not (docs/benchmarks.md).
-      reuse = s.reuseStiffness && !chordFailed && switchedCracks_ <= kChordSwitchedElements;
+      reuse = s.reuseStiffness && !chordFailed && switchedCracks_ <= kChordSwitchedElements &&
+              !systemSkipped_;
       lastResidual = residual;
     }
     endSubstep(h, result);
@@ -861,9 +862,17 @@ class FrameSolver {
       if (frozenCopy) ex_.copy(frozen_.data(), k_.data(), k_.size());
       frozenIsK_ = !(frozenCopy || (it > 0 && s.newtonIterations > 1));
     }
+    // Under PCG a fresh iteration may find the gradient already within the solve's target: the
+    // step is null, and nothing past the gradient is needed (takeNullStep).
+    const bool mayBeNull = !reuse && s.multigrid && s.multigridSettings.pcg && s.skipNullSolves;
     contact(x, grad_.data(), kContact);
     dampedProduct(x, dampedK_.data());
     backwardEulerGradient(x, grad_.data(), dampedK_.data(), g_.data());
+    if (mayBeNull && nullStep()) {
+      takeNullStep();
+      return;
+    }
+    systemSkipped_ = false;
     if (!reuse) buildSystem(x);
     if (s.multigrid) {
       if (!reuse) {
@@ -877,6 +886,39 @@ class FrameSolver {
     }
     stepMeasures();
     evaluateTrial(1.0);
+  }
+
+  // Whether PCG would return the null step: |b| = |g| (all 3n entries, as PCG reads them) within
+  // its target (solveLinear, MultigridCycle::pcg), which it checks before its first iteration
+  // (but after a V-cycle). One host read, where PCG makes several.
+  bool nullStep() {
+    const StepSettings& s = *settings_;
+    const double* g = g_.data();
+    double* sc = scalars_.data();
+    ex_.sum(
+        3 * n_, [=] GALSCULPT_LAMBDA(int i) { return g[i] * g[i]; }, sc + kR0);
+    double r0 = 0.0;
+    ex_.read(sc + kR0, &r0, 1);
+    const double bnorm = std::sqrt(r0);
+    const double target =
+        std::max(s.multigridSettings.pcgTolerance * std::max(bnorm, 1e-300), pcgTarget());
+    if (bnorm > target) return false;
+    pcgReduction_ = bnorm > 0.0 ? 1.0 : 0.0;  // what PCG returns after no iteration
+    return true;
+  }
+
+  // The null step, taken without what it would not use: the system, the multigrid's operators
+  // and PCG's first V-cycle. Its trial (at x) is still evaluated: the trial's element pass is
+  // the one whose energies and gradients the frame reports and the next sub-step's start reads,
+  // and the stiffness pass's (SIMD lanes) may differ from them in the last bits, which a frame
+  // that follows from the state alone cannot allow. At rest most frames are one null step.
+  // The system was not built: the next iteration of the sub-step takes a fresh one.
+  void takeNullStep() {
+    double* delta = delta_.data();
+    ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { delta[i] = 0.0; });
+    stepMeasures();
+    evaluateTrial(1.0);
+    systemSkipped_ = true;
   }
 
   // Whether the trial at `length` (its scalars in `read`) lowers the potential enough: Armijo
@@ -1291,15 +1333,19 @@ class FrameSolver {
           3 * n_, [=] GALSCULPT_LAMBDA(int i) { return (b[i] - ap[i]) * (b[i] - ap[i]); },
           sc + kR1);
     } else {
-      // Never further than half the residual the sub-step must reach: an inexact Newton step.
-      const double target = 0.5 * s.residualTolerance * std::max(weight(), forceScale_);
-      const auto r = mg_.pcg(a, b, delta, mgs, ms.pcgTolerance, ms.pcgMaxIterations, target);
+      const auto r = mg_.pcg(a, b, delta, mgs, ms.pcgTolerance, ms.pcgMaxIterations, pcgTarget());
       pcgReduction_ = r.reduction;
       pcgIterations_ += r.iterations;
     }
     ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) {
       if (fixed[i / 3]) delta[i] = 0.0;
     });
+  }
+
+  // PCG's absolute target: never further than half the residual the sub-step must reach (an
+  // inexact Newton step).
+  double pcgTarget() const {
+    return 0.5 * settings_->residualTolerance * std::max(weight(), forceScale_);
   }
 
   // Force of each collider on the body at y, into slots kForce + 3 c + k; for a rigid
@@ -1794,6 +1840,7 @@ class FrameSolver {
   std::uint64_t mgRevision_ = 0;  // bumped whenever the hierarchy is uploaded again
   bool plastic_ = false, frozenIsK_ = true;
   bool predicted_ = false;      // this sub-step's Newton started from x_n + h v_n, not yet checked
+  bool systemSkipped_ = false;  // the last iteration's null step built no system (takeNullStep)
   bool plasticFlowed_ = false;  // an element flowed this frame: the plastic state goes back
   template <typename T>
   using Mirror = typename Exec::template Mirror<T>;

@@ -42,6 +42,10 @@ struct StepSettings {
   // operators) already built while that still halves the residual each iteration: a chord step
   // costs a gradient and a solve, not an assembly, a projection and a Galerkin refresh.
   bool reuseStiffness = false;
+  // Under PCG, a fresh Newton iteration whose gradient is already within the solve's target
+  // takes its null step without building the system, refreshing the multigrid or running PCG's
+  // first V-cycle: the same bits, less work. Off only to compare (tests).
+  bool skipNullSolves = true;
   // > 0: within a sub-step, an intact element keeps the stiffness of an earlier Newton iteration
   // while no entry of its deformation gradient has moved more than this since (its energy and
   // force are always evaluated), and the 3x3 blocks made of kept stiffnesses only are not

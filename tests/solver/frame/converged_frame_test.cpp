@@ -8,6 +8,8 @@
 #include <cmath>
 
 #include "solver/frame/cpu_backend.h"
+#include "solver/frame/cpu_executor.h"
+#include "solver/frame/frame_solver.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -413,6 +415,46 @@ TEST(ConvergedFrame, ANullNewtonStepIsTakenAndTheCutBarMovesOn) {
     for (int v = 0; v < m.numVertices(); ++v) moved = std::max(moved, (s.x[v] - before[v]).norm());
     EXPECT_GT(moved, 1e-4) << "frame " << f << ": the halves move on";
   }
+}
+
+// The same halves drifting together, with and without skipping what a null step does not use
+// (StepSettings::skipNullSolves): some frames are solved by the predicted start (null steps: no
+// system, no multigrid refresh, no V-cycle), the others are not; every frame ends on the same
+// bits either way, with fewer launches where steps were null.
+TEST(ConvergedFrame, NullStepsSkipTheSolveForTheSameBits) {
+  SimState start;
+  const SimModel m = cutBar(start);
+  for (int v = 0; v < m.numVertices(); ++v) start.v[v] = Vec3(leftHalf(m, v) ? 0.1 : -0.1, 0, 0);
+  StepSettings skipping = converged();
+  ASSERT_TRUE(skipping.multigrid && skipping.multigridSettings.pcg && skipping.skipNullSolves);
+  StepSettings solving = skipping;
+  solving.skipNullSolves = false;
+  SimState a = start, b = start;
+  CpuExecutor exA, exB;
+  FrameSolver<CpuExecutor> solverA(exA, m), solverB(exB, m);
+  int nullFrames = 0, solvedFrames = 0;
+  for (int f = 0; f < 12; ++f) {
+    const auto launchesA = exA.counters().launches, launchesB = exB.counters().launches;
+    const StepReport ra = solverA.step(a, skipping);
+    const StepReport rb = solverB.step(b, solving);
+    ASSERT_EQ(a.x, b.x) << "frame " << f;
+    ASSERT_EQ(a.v, b.v) << "frame " << f;
+    EXPECT_EQ(ra.newtonIterations, rb.newtonIterations) << "frame " << f;
+    EXPECT_EQ(ra.cgIterations, rb.cgIterations) << "frame " << f;
+    EXPECT_EQ(ra.residual, rb.residual) << "frame " << f;
+    EXPECT_EQ(ra.elasticEnergy, rb.elasticEnergy) << "frame " << f;
+    EXPECT_TRUE(ra.converged) << "frame " << f;
+    const auto spentA = exA.counters().launches - launchesA;
+    const auto spentB = exB.counters().launches - launchesB;
+    if (ra.cgIterations == 0 && ra.newtonIterations == 1) {
+      ++nullFrames;
+      EXPECT_LT(2 * spentA, spentB) << "frame " << f << ": a null step skips most of the work";
+    } else {
+      ++solvedFrames;
+    }
+  }
+  EXPECT_GE(nullFrames, 3);
+  EXPECT_GE(solvedFrames, 3);
 }
 
 // The halves spin against each other: the cracked layer's faces close, push and open again, and
