@@ -44,7 +44,7 @@ struct StepSettings {
   bool reuseStiffness = false;
   // Under PCG, a fresh Newton iteration whose gradient is already within the solve's target
   // takes its null step without building the system, refreshing the multigrid or running PCG's
-  // first V-cycle: the same bits, less work. Off only to compare (tests).
+  // first V-cycle: the same step, less work. Off only to compare (tests).
   bool skipNullSolves = true;
   // > 0: within a sub-step, an intact element keeps the stiffness of an earlier Newton iteration
   // while no entry of its deformation gradient has moved more than this since (its energy and

@@ -156,9 +156,9 @@ TEST(Cli, PlayRunsAScriptHeadlessAndWritesTheFinalSurface) {
   EXPECT_NE(bad.err.find("$.scene"), std::string::npos) << bad.err;
 }
 
-TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
-  // A private assets folder whose "sphere" scene uses the small committed mesh.
-  test::TempDir dir;
+// A private assets folder (GALSCULPT_ASSETS, unset by the caller) whose "sphere" scene uses the
+// small committed mesh.
+void useSmallSphereAssets(const test::TempDir& dir) {
   fs::create_directories(dir / "scenes");
   test::writeText(
       dir / "scenes" / "hanging_sphere.json",
@@ -166,6 +166,11 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
           R"(/assets/meshes/sphere_small.node"}, "material": {"youngs_modulus": 8000, "poisson_ratio": 0.48,
                       "density": 1000}, "anchors": [{"box": {"min": [-1, 0.08, -1]}}]})");
   setenv("GALSCULPT_ASSETS", dir.path().c_str(), 1);
+}
+
+TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
+  test::TempDir dir;
+  useSmallSphereAssets(dir);
   const CliRun r =
       run({"bench", "--scene", "sphere", "--frames", "3", "--json", (dir / "b.json").string()});
   const CliRun cracks =
@@ -291,13 +296,7 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
 
 TEST(Cli, BenchCracksMeasuresSeveralSettledWindowsInOneRun) {
   test::TempDir dir;
-  fs::create_directories(dir / "scenes");
-  test::writeText(
-      dir / "scenes" / "hanging_sphere.json",
-      std::string(R"({"mesh": {"file": ")") + GALSCULPT_SOURCE_DIR +
-          R"(/assets/meshes/sphere_small.node"}, "material": {"youngs_modulus": 8000, "poisson_ratio": 0.48,
-                      "density": 1000}, "anchors": [{"box": {"min": [-1, 0.08, -1]}}]})");
-  setenv("GALSCULPT_ASSETS", dir.path().c_str(), 1);
+  useSmallSphereAssets(dir);
   const CliRun windows = run({"bench", "--cracks", "--frames", "2", "--settle", "0,3", "--json",
                               (dir / "w.json").string()});
   const CliRun single = run(

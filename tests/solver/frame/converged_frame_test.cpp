@@ -420,7 +420,8 @@ TEST(ConvergedFrame, ANullNewtonStepIsTakenAndTheCutBarMovesOn) {
 // The same halves drifting together, with and without skipping what a null step does not use
 // (StepSettings::skipNullSolves): some frames are solved by the predicted start (null steps: no
 // system, no multigrid refresh, no V-cycle), the others are not; every frame ends on the same
-// bits either way, with fewer launches where steps were null.
+// bits either way (only a coarsest factor kept from a skipped refresh could differ, and none is
+// here), with fewer launches where steps were null.
 TEST(ConvergedFrame, NullStepsSkipTheSolveForTheSameBits) {
   SimState start;
   const SimModel m = cutBar(start);
