@@ -447,7 +447,7 @@ std::vector<int> settleOption(const CliArgs& args, int frames) {
 
 // With several windows, each cut count's cost against the uncut frame in every window, and the
 // median of those ratios.
-void printWindowSummary(const nlohmann::json& rows, std::ostream& out) {
+void printWindowSummary(const std::vector<nlohmann::json>& rows, std::ostream& out) {
   std::map<int, std::vector<double>> ratios;
   for (const nlohmann::json& r : rows)
     if (r.contains("times_uncut")) ratios[r["cuts"].get<int>()].push_back(r["times_uncut"]);
@@ -499,7 +499,7 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
         scene, a.has("--cracks"), a.has("--sweep") && std::string(bs.name) == "sphere");
     const fs::path refFile = scratch / (std::string(bs.name) + ".ref");
     std::map<int, double> uncutMs;  // per window start: the uncut frame (--cracks)
-    nlohmann::json sceneRows = nlohmann::json::array();
+    const size_t sceneFirst = results.size();
     for (const Setting& s : settings) {
       for (nlohmann::json r : measureInChild(scene, mesh, s, frames, settles, refFile, scratch)) {
         r["scene"] = bs.name;
@@ -511,10 +511,11 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
         }
         out << row(r) << '\n' << std::flush;
         results.push_back(r);
-        sceneRows.push_back(r);
       }
     }
-    if (settles.size() > 1) printWindowSummary(sceneRows, out);
+    if (settles.size() > 1)
+      printWindowSummary(std::vector<nlohmann::json>(results.begin() + sceneFirst, results.end()),
+                         out);
   }
   fs::remove_all(scratch);
   if (auto json = a.value("--json")) {

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <string_view>
 
 namespace galsculpt {
 
@@ -41,18 +42,28 @@ std::optional<std::string> CliArgs::value(const std::string& flag) const {
   return it->second;
 }
 
+namespace {
+
+// One integer of a flag's value, in [min, max]; `expects` names what the flag takes.
+int parseInt(const std::string& flag, std::string_view text, const std::string& whole, int min,
+             int max, const char* expects) {
+  long long x = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
+  if (ec != std::errc() || ptr != text.data() + text.size())
+    throw UsageError(flag + " expects " + expects + ", got '" + whole + "'");
+  if (x < min || x > max) {
+    throw UsageError(flag + " must be in [" + std::to_string(min) + ", " + std::to_string(max) +
+                     "], got " + std::string(text));
+  }
+  return static_cast<int>(x);
+}
+
+}  // namespace
+
 int CliArgs::intValue(const std::string& flag, int fallback, int min, int max) const {
   const auto v = value(flag);
   if (!v) return fallback;
-  long long x = 0;
-  const auto [ptr, ec] = std::from_chars(v->data(), v->data() + v->size(), x);
-  if (ec != std::errc() || ptr != v->data() + v->size())
-    throw UsageError(flag + " expects an integer, got '" + *v + "'");
-  if (x < min || x > max) {
-    throw UsageError(flag + " must be in [" + std::to_string(min) + ", " + std::to_string(max) +
-                     "], got " + *v);
-  }
-  return static_cast<int>(x);
+  return parseInt(flag, *v, *v, min, max, "an integer");
 }
 
 std::vector<int> CliArgs::intListValue(const std::string& flag, const std::vector<int>& fallback,
@@ -63,16 +74,8 @@ std::vector<int> CliArgs::intListValue(const std::string& flag, const std::vecto
   size_t begin = 0;
   while (true) {
     const size_t end = std::min(v->find(',', begin), v->size());
-    long long x = 0;
-    const auto [ptr, ec] = std::from_chars(v->data() + begin, v->data() + end, x);
-    if (ec != std::errc() || ptr != v->data() + end)
-      throw UsageError(flag + " expects an integer or a comma-separated list of them, got '" + *v +
-                       "'");
-    if (x < min || x > max) {
-      throw UsageError(flag + " must be in [" + std::to_string(min) + ", " + std::to_string(max) +
-                       "], got " + std::to_string(x));
-    }
-    list.push_back(static_cast<int>(x));
+    list.push_back(parseInt(flag, std::string_view(*v).substr(begin, end - begin), *v, min, max,
+                            "an integer or a comma-separated list of them"));
     if (end == v->size()) return list;
     begin = end + 1;
   }

@@ -1324,9 +1324,9 @@ class FrameSolver {
     const double* a = h_.data();
     double* sc = scalars_.data();
     double* ap = pcgAp_.data();
-    ex_.sum(
-        3 * n_, [=] GALSCULPT_LAMBDA(int i) { return b[i] * b[i]; }, sc + kR0);
-    if (!ms.pcg) {
+    if (!ms.pcg) {  // (PCG sums |b|^2 itself; kR0 and kR1 are read only for the V-cycles)
+      ex_.sum(
+          3 * n_, [=] GALSCULPT_LAMBDA(int i) { return b[i] * b[i]; }, sc + kR0);
       mg_.cycles(a, b, delta, mgs);
       mg_.multiplyFine(a, delta, ap);
       ex_.sum(
