@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -123,6 +124,15 @@ inline StepSettings convergedPreset() {
 inline StepReport step(const SimModel& model, SimState& state, const StepSettings& settings) {
   CpuStepBackend cpu(model);
   return cpu.step(state, settings);
+}
+
+// Every edge across the plane x = cut damaged: a grid bar cut through between its layers.
+inline void cutAt(const SimModel& m, SimState& s, double cut) {
+  for (int e = 0; e < m.numEdges(); ++e) {
+    const double a = m.mesh.vertices[m.edges[e][0]].x(), b = m.mesh.vertices[m.edges[e][1]].x();
+    if (std::min(a, b) < cut + 1e-9 && std::max(a, b) > cut + 1e-9) s.damaged[e] = 1;
+  }
+  ++s.damageRevision;
 }
 
 }  // namespace galsculpt

@@ -142,6 +142,7 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
   std::vector<double> ms, msSurface, msElements, msSolve, msFracture, msOther;
   FrameMetrics last;
   double newton = 0.0, cg = 0.0, residualMax = 0.0, motionError = -1.0, msSum = 0.0;
+  std::vector<double> pieceResidual;
   int unconverged = 0;
   const int atMotion = motionFrame(frames);
   const fs::path motionPositions = fs::path(referencePositions).concat(".motion");
@@ -156,6 +157,7 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
     newton += last.newtonIterations;
     cg += last.cgIterations;
     residualMax = std::max(residualMax, last.residual);
+    pieceResidual.push_back(last.pieceResidual);
     unconverged += last.converged ? 0 : 1;
     if (f + 1 == atMotion && setting.cuts < 0)
       motionError = positionError(sim.state().x, mesh, setting.reference, motionPositions);
@@ -196,6 +198,15 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
   // mean iterations).
   r["ms_per_newton"] = newton > 0.0 ? msSum / newton : 0.0;
   r["residual_max"] = residualMax;
+  // The worst piece's own residual (more than 10 vertices; the body's when in one piece): what
+  // the body's residual does not show of a body in pieces. Frames whose worst piece is above the
+  // tolerance are counted, not called unconverged: convergence is the body's.
+  r["piece_residual_max"] = *std::max_element(pieceResidual.begin(), pieceResidual.end());
+  r["piece_residual_median"] = medianOf(pieceResidual);
+  const double tolerance = setting.solver.residualTolerance;  // (as `residual_tolerance`)
+  r["piece_unconverged_frames"] =
+      std::count_if(pieceResidual.begin(), pieceResidual.end(),
+                    [&](double residual) { return residual > tolerance; });
   r["unconverged_frames"] = unconverged;
   r["motion_frame"] = atMotion;
   r["ms_surface"] = msSurface[msSurface.size() / 2];
@@ -324,6 +335,10 @@ std::string row(const nlohmann::json& r) {
       << r["ms_per_newton"].get<double>() << " ms per newton";
     if (r.contains("times_uncut"))
       s << std::setw(7) << std::setprecision(2) << r["times_uncut"].get<double>() << " x uncut";
+    else
+      s << std::string(15, ' ');
+    s << std::setw(9) << std::setprecision(4) << r["piece_residual_median"].get<double>()
+      << " piece resid";
     return s.str();
   }
   // The solver: its grid and preset, and what differs from the preset's defaults.

@@ -172,6 +172,10 @@ void SculptApp::drawOverlay() {
       ImGui::TextColored(ImVec4(1, 0.35f, 0.2f, 1),
                          "NOT CONVERGED: residual above %.0e of the loads",
                          scene.solver.residualTolerance);
+    // The body's norm can hide a piece's (docs/physics.md): said, not solved for.
+    if (metrics_.pieces > 1 && metrics_.pieceResidual > scene.solver.residualTolerance)
+      ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "worst piece's residual %.2e of its own loads",
+                         metrics_.pieceResidual);
     if (metrics_.invertedElements > 0)
       ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "%d elements inside out",
                          metrics_.invertedElements);

@@ -534,6 +534,7 @@ FrameMetrics Simulation::advance() {
   m.msSolve = r.msSolve;
   m.msPlastic = r.msPlastic;
   m.residual = r.residual;
+  m.pieceResidual = r.pieceResidual;
   m.elasticEnergy = r.elasticEnergy;
   m.converged = r.converged;
   m.retries = r.retries;
@@ -589,7 +590,7 @@ std::string metricsCsvHeader() {
          "kinetic_energy,elastic_energy,residual,max_displacement,damaged_edges,pieces,warnings,"
          "newton_iterations,contact_force_n,ms_fracture,opening_m,load_n,backtracks,cg_iterations,"
          "converged,energy_passes,debris_pieces,debris_volume_pct,inverted_pieces,"
-         "striker_displacement_m,absorbed_energy_j,debris_mass_kg";
+         "striker_displacement_m,absorbed_energy_j,debris_mass_kg,piece_residual";
 }
 
 std::string metricsCsvRow(const FrameMetrics& m) {
@@ -602,7 +603,7 @@ std::string metricsCsvRow(const FrameMetrics& m) {
     << m.openingM << ',' << m.loadN << ',' << m.backtracks << ',' << m.cgIterations << ','
     << (m.converged ? 1 : 0) << ',' << m.energyPasses << ',' << m.debrisPieces << ','
     << m.debrisVolumePct << ',' << m.invertedPieces << ',' << m.strikerDisplacementM << ','
-    << m.absorbedEnergyJ << ',' << m.debrisMassKg;
+    << m.absorbedEnergyJ << ',' << m.debrisMassKg << ',' << m.pieceResidual;
   return s.str();
 }
 

@@ -41,6 +41,7 @@ struct FrameMetrics {
   double volume = 0.0, volumeChangePct = 0.0;
   double kineticEnergy = 0.0, elasticEnergy = 0.0;
   double residual = 0.0;
+  double pieceResidual = 0.0;  // the worst piece's of more than 10 vertices (StepReport)
   double maxDisplacement = 0.0;
   int damagedEdges = 0, pieces = 0, warnings = 0, newtonIterations = 0;
   double contactForceN = 0.0;  // magnitude of the summed collider forces

@@ -33,6 +33,7 @@ struct SubstepOutcome {
   double keptStiffnesses = 0.0;  // StepReport::keptStiffnesses
   int invertedElements = 0;      // intact elements inside out at the accepted positions
   double residual = 0.0;
+  double pieceResidual = 0.0;  // StepReport::pieceResidual
   double energy = 0.0;
   double msElements = 0.0, msSolve = 0.0;
   double linearResidualReduction = 0.0;
@@ -98,6 +99,7 @@ StepReport runFrame(Ops& ops, const StepSettings& settings) {
     report.keptStiffnesses += r.keptStiffnesses;
     report.invertedElements = r.invertedElements;
     report.residual = r.residual;
+    report.pieceResidual = r.pieceResidual;
     report.elasticEnergy = r.energy;
     report.msElements += r.msElements;
     report.msSolve += r.msSolve;

@@ -38,6 +38,7 @@
 #include "solver/frame/direct_solver.h"
 #include "solver/frame/element_pass.h"
 #include "solver/frame/frame_loop.h"
+#include "solver/frame/piece_residual.h"
 #include "solver/frame/step.h"
 #include "solver/frame/step_backend.h"
 #include "solver/frame/timing.h"
@@ -1176,6 +1177,10 @@ class FrameSolver {
     double read[kScalars];
     ex_.read(scalars_.data(), read, kScalars);
     result.residual = relativeResidual(read);
+    const double pieceResidual =
+        pieceResidual_.measure(ex_, model_, hostDamaged_, g_.data(), tmp_.data(), fixed_.data(),
+                               mass_.data(), model_.gravity.norm());
+    result.pieceResidual = pieceResidual < 0.0 ? result.residual : pieceResidual;
     result.invertedElements = static_cast<int>(read[kTrialInverted]);  // the accepted trial's
     result.contactForces.assign(poses_.size(), Vec3::Zero());
     contactMoments_.assign(poses_.size(), 0.0);
@@ -1890,6 +1895,7 @@ class FrameSolver {
   std::vector<double> hostX_, hostV_, hostFp_, hostStrain_, hostAnchorTargets_;
   std::vector<std::uint8_t> hostDamaged_, hostFixed_, hostRemoved_;
   AcceleratedStart<Exec> accelerated_;  // the pieces' starts (startPiecesAccelerated)
+  PieceResidual<Exec> pieceResidual_;   // the residual piece by piece (endSubstep)
   // Whether elemGrad_ holds every element's gradient at x_ under the current damage, rest shapes
   // and removed debris: true from a Newton iteration's accept until x_ or any of those changes
   // (what the pieces' start reads at x_n instead of evaluating them again).

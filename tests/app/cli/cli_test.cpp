@@ -342,6 +342,21 @@ TEST(Cli, BenchCracksMeasuresSeveralSettledWindowsInOneRun) {
   }
   EXPECT_NE(windows.out.find("cuts 100: x uncut by window "), std::string::npos) << windows.out;
   EXPECT_NE(windows.out.find(" ms per newton"), std::string::npos) << windows.out;
+  // The worst piece's own residual: the body's for the uncut sphere (one piece), measured piece
+  // by piece for the cut ones.
+  EXPECT_NE(windows.out.find(" piece resid"), std::string::npos) << windows.out;
+  for (const nlohmann::json& r : w["results"]) {
+    EXPECT_GE(r["piece_residual_median"].get<double>(), 0.0);
+    EXPECT_LE(r["piece_residual_median"], r["piece_residual_max"]);
+    if (r["cuts"] == 0) {
+      EXPECT_EQ(r["piece_residual_max"], r["residual_max"]);
+      EXPECT_EQ(r["piece_unconverged_frames"], r["unconverged_frames"]);
+    }
+    EXPECT_EQ(r["piece_unconverged_frames"].get<int>() > 0,
+              r["piece_residual_max"].get<double>() > r["residual_tolerance"].get<double>());
+  }
+  EXPECT_GT(w["results"][4]["pieces"].get<int>(), 1);
+  EXPECT_GT(w["results"][4]["piece_residual_max"].get<double>(), 0.0);
   EXPECT_EQ(single.out.find("x uncut by window"), std::string::npos) << "one window: no summary";
   EXPECT_EQ(overlapping.code, kExitUsage);
   EXPECT_NE(overlapping.err.find("before window 1 (0 + 2 frames) has ended"), std::string::npos)

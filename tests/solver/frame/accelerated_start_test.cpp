@@ -21,7 +21,6 @@ MaterialParams rubber(double youngs = 2e5) {
   return {MaterialModel::StableNeoHookean, lameFromYoungPoisson(youngs, 0.45), 1000.0, {}};
 }
 
-// The bar cut through at x = cut (every edge across the plane damaged).
 // Piece kernels over the layout's arrays (gradient: the elements between pieces, or null).
 AcceleratedPiece pieceKernel(const PieceLayout& layout, const std::uint8_t* heldPiece,
                              const double* gradient, const std::vector<double>& xn,
@@ -40,14 +39,6 @@ AcceleratedPiece pieceKernel(const PieceLayout& layout, const std::uint8_t* held
           damping,
           {g.x(), g.y(), g.z()},
           x};
-}
-
-void cutAt(const SimModel& m, SimState& s, double cut) {
-  for (int e = 0; e < m.numEdges(); ++e) {
-    const double a = m.mesh.vertices[m.edges[e][0]].x(), b = m.mesh.vertices[m.edges[e][1]].x();
-    if (std::min(a, b) < cut + 1e-9 && std::max(a, b) > cut + 1e-9) s.damaged[e] = 1;
-  }
-  ++s.damageRevision;
 }
 
 TEST(AcceleratedStart, PiecesAndTheElementsBetweenThem) {
