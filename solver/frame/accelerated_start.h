@@ -208,12 +208,14 @@ class AcceleratedStart {
 
   // `gradientsAtXn`: every element's energy gradient at x_n (12 per element) where the frame
   // still has them from its last accepted trial, or null: the elements between pieces are then
-  // evaluated with `elementGradient`, the same kernel, to the same bits.
+  // evaluated with `elementGradient`, the same kernel, to the same bits. `layout`: the pieces of
+  // `damaged` where the caller has them (pieceLayout), or null.
   template <typename ElementGradient>
   void start(const Exec& ex, const SimModel& model, const std::vector<std::uint8_t>& damaged,
              const SubstepInputs& in, const ElementGradient& elementGradient,
-             const double* gradientsAtXn, double* x) {
-    if (!built_ || builtFor_ != damaged) rebuild(model, damaged);
+             const double* gradientsAtXn, double* x, const PieceLayout* layout = nullptr) {
+    if (layout && (!built_ || builtFor_ != damaged)) rebuild(model, damaged, *layout);
+    if (!built_ || builtFor_ != damaged) rebuild(model, damaged, pieceLayout(model, damaged));
     if (pieceCount_ == 1 && in.anyFixed) return;  // a body in one piece, anchored: no launch
     const double g = sqrt(in.gravity[0] * in.gravity[0] + in.gravity[1] * in.gravity[1] +
                           in.gravity[2] * in.gravity[2]);
@@ -331,10 +333,10 @@ class AcceleratedStart {
   };
   static constexpr int kSpreadRounds = 16;  // then the rest counts as free
 
-  void rebuild(const SimModel& model, const std::vector<std::uint8_t>& damaged) {
+  void rebuild(const SimModel& model, const std::vector<std::uint8_t>& damaged,
+               const PieceLayout& layout) {
     builtFor_ = damaged;
     built_ = true;
-    const PieceLayout layout = pieceLayout(model, damaged);
     std::vector<int> small;
     large_.clear();
     for (int p = 0; p < layout.pieces(); ++p) {

@@ -757,7 +757,18 @@ class FrameSolver {
     // two could differ in their last bits; there the elements are evaluated, in parallel.
     const bool copy = gradientAtXn && Exec::kHostMemory;
     accelerated_.start(ex_, model_, hostDamaged_, inputs, elementGradient,
-                       copy ? elemGrad_.data() : nullptr, x_.data());
+                       copy ? elemGrad_.data() : nullptr, x_.data(), &pieces());
+  }
+
+  // The pieces of the current damage (host), found once per damage change for both the pieces'
+  // start and the residual piece by piece.
+  const PieceLayout& pieces() {
+    if (!piecesBuilt_ || piecesFor_ != hostDamaged_) {
+      pieces_ = pieceLayout(model_, hostDamaged_);
+      piecesFor_ = hostDamaged_;
+      piecesBuilt_ = true;
+    }
+    return pieces_;
   }
 
   // Anchored vertices on their paths at the sub-step's end.
@@ -1178,7 +1189,7 @@ class FrameSolver {
     ex_.read(scalars_.data(), read, kScalars);
     result.residual = relativeResidual(read);
     const double pieceResidual =
-        pieceResidual_.measure(ex_, model_, hostDamaged_, g_.data(), tmp_.data(), fixed_.data(),
+        pieceResidual_.measure(ex_, pieces(), hostDamaged_, g_.data(), tmp_.data(), fixed_.data(),
                                mass_.data(), model_.gravity.norm());
     result.pieceResidual = pieceResidual < 0.0 ? result.residual : pieceResidual;
     result.invertedElements = static_cast<int>(read[kTrialInverted]);  // the accepted trial's
@@ -1896,6 +1907,9 @@ class FrameSolver {
   std::vector<std::uint8_t> hostDamaged_, hostFixed_, hostRemoved_;
   AcceleratedStart<Exec> accelerated_;  // the pieces' starts (startPiecesAccelerated)
   PieceResidual<Exec> pieceResidual_;   // the residual piece by piece (endSubstep)
+  PieceLayout pieces_;                  // pieces(): of piecesFor_
+  std::vector<std::uint8_t> piecesFor_;
+  bool piecesBuilt_ = false;
   // Whether elemGrad_ holds every element's gradient at x_ under the current damage, rest shapes
   // and removed debris: true from a Newton iteration's accept until x_ or any of those changes
   // (what the pieces' start reads at x_n instead of evaluating them again).

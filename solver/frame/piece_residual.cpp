@@ -2,13 +2,9 @@
 
 #include <algorithm>
 
-#include "solver/frame/accelerated_start.h"
-
 namespace galsculpt {
 
-PieceResidualLayout pieceResidualLayout(const SimModel& model,
-                                        const std::vector<std::uint8_t>& damaged, int chunk) {
-  const PieceLayout pieces = pieceLayout(model, damaged);
+PieceResidualLayout pieceResidualLayout(const PieceLayout& pieces, int chunk) {
   PieceResidualLayout layout;
   for (int p = 0; p < pieces.pieces(); ++p) {
     const int begin = pieces.pieceStart[p], end = pieces.pieceStart[p + 1];

@@ -17,7 +17,8 @@
 //
 // A piece's vertices are summed in chunks of kChunk (a thread each) and a piece's chunks by one
 // thread, in a fixed order: the same sums for any thread count, on either executor, and no GPU
-// thread walks a whole body. The layout is rebuilt on the host when the damage changes. The
+// thread walks a whole body. The layout is rebuilt on the host when the damage changes, from
+// the pieces the frame finds once for this and the pieces' start (accelerated_start.h). The
 // largest is read back: one more host read a sub-step, only for a body in two or more measured
 // pieces (on the CPU within the bench's noise after 100 cuts).
 #pragma once
@@ -27,7 +28,7 @@
 #include <vector>
 
 #include "solver/fem/dense_kernels.h"
-#include "solver/model/sim_model.h"
+#include "solver/frame/accelerated_start.h"
 
 namespace galsculpt {
 
@@ -43,8 +44,7 @@ struct PieceResidualLayout {
   int chunks() const { return static_cast<int>(chunkBegin.size()) - 1; }
 };
 
-PieceResidualLayout pieceResidualLayout(const SimModel& model,
-                                        const std::vector<std::uint8_t>& damaged, int chunk);
+PieceResidualLayout pieceResidualLayout(const PieceLayout& pieces, int chunk);
 
 template <typename Exec>
 class PieceResidual {
@@ -54,12 +54,13 @@ class PieceResidual {
   static constexpr int kChunk = 512;
 
   // The largest relative residual over the measured pieces, or -1 when the body has fewer than
-  // two of them (then the body's residual says it all). `g`: the backward-Euler gradient, `f`:
-  // the elastic and contact forces (3n each); `gravity`: |g| in m/s^2.
-  double measure(const Exec& ex, const SimModel& model, const std::vector<std::uint8_t>& damaged,
-                 const double* g, const double* f, const std::uint8_t* fixed, const double* mass,
-                 double gravity) {
-    if (!built_ || builtFor_ != damaged) rebuild(model, damaged);
+  // two of them (then the body's residual says it all). `pieces`: the pieces of `damaged`
+  // (pieceLayout); `g`: the backward-Euler gradient, `f`: the elastic and contact forces (3n
+  // each); `gravity`: |g| in m/s^2.
+  double measure(const Exec& ex, const PieceLayout& pieces,
+                 const std::vector<std::uint8_t>& damaged, const double* g, const double* f,
+                 const std::uint8_t* fixed, const double* mass, double gravity) {
+    if (!built_ || builtFor_ != damaged) rebuild(pieces, damaged);
     if (pieces_ < 2) return -1.0;
     const int* vertices = vertices_.data();
     const int* chunkBegin = chunkBegin_.data();
@@ -100,10 +101,10 @@ class PieceResidual {
   }
 
  private:
-  void rebuild(const SimModel& model, const std::vector<std::uint8_t>& damaged) {
+  void rebuild(const PieceLayout& pieces, const std::vector<std::uint8_t>& damaged) {
     builtFor_ = damaged;
     built_ = true;
-    const PieceResidualLayout layout = pieceResidualLayout(model, damaged, kChunk);
+    const PieceResidualLayout layout = pieceResidualLayout(pieces, kChunk);
     pieces_ = layout.pieces();
     chunks_ = layout.chunks();
     vertices_.upload(layout.vertices);

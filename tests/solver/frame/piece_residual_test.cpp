@@ -47,8 +47,8 @@ TEST(PieceResidual, EachPieceAgainstItsOwnWeight) {
   std::vector<double> g(3 * n, 0.0), f(3 * n, 0.0);
   std::vector<std::uint8_t> fixed(n, 0);
   auto measure = [&] {
-    return measured.measure(ex, m, s.damaged, g.data(), f.data(), fixed.data(), m.mass.data(),
-                            9.81);
+    return measured.measure(ex, pieceLayout(m, s.damaged), s.damaged, g.data(), f.data(),
+                            fixed.data(), m.mass.data(), 9.81);
   };
   EXPECT_EQ(measure(), -1.0) << "one piece: the body's residual says it all";
   cutAt(m, s, 0.005);
@@ -86,7 +86,7 @@ TEST(PieceResidual, ChunkedSumsAreThePiecesSums) {
   SimState s = initialState(m);
   cutAt(m, s, 0.305);
   const PieceResidualLayout layout =
-      pieceResidualLayout(m, s.damaged, PieceResidual<CpuExecutor>::kChunk);
+      pieceResidualLayout(pieceLayout(m, s.damaged), PieceResidual<CpuExecutor>::kChunk);
   ASSERT_EQ(layout.pieces(), 2);
   EXPECT_GT(layout.chunks(), 4);
   EXPECT_EQ(layout.vertices.size(), static_cast<size_t>(m.numVertices()));
@@ -101,9 +101,9 @@ TEST(PieceResidual, ChunkedSumsAreThePiecesSums) {
   PieceResidual<CpuExecutor> measured;
   const double worst =
       std::max(pieceRatio(m, g, f, fixed, -1.0, 0.305), pieceRatio(m, g, f, fixed, 0.305, 1.0));
-  EXPECT_NEAR(
-      measured.measure(ex, m, s.damaged, g.data(), f.data(), fixed.data(), m.mass.data(), 9.81),
-      worst, 1e-12 * worst);
+  EXPECT_NEAR(measured.measure(ex, pieceLayout(m, s.damaged), s.damaged, g.data(), f.data(),
+                               fixed.data(), m.mass.data(), 9.81),
+              worst, 1e-12 * worst);
 }
 
 // A frame of two halves pressed together while they fall: the frame reports the worst half's
