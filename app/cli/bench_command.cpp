@@ -198,9 +198,9 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
   // mean iterations).
   r["ms_per_newton"] = newton > 0.0 ? msSum / newton : 0.0;
   r["residual_max"] = residualMax;
-  // The worst piece's own residual (more than 10 vertices; the body's when in one piece): what
-  // the body's residual does not show of a body in pieces. Frames whose worst piece is above the
-  // tolerance are counted, not called unconverged: convergence is the body's.
+  // The worst piece's own residual (more than 10 vertices; the body's while fewer than two
+  // are): what the body's residual does not show of a body in pieces. Frames whose worst piece
+  // is above the tolerance are counted, not called unconverged: convergence is the body's.
   r["piece_residual_max"] = *std::max_element(pieceResidual.begin(), pieceResidual.end());
   r["piece_residual_median"] = medianOf(pieceResidual);
   const double tolerance = setting.solver.residualTolerance;  // (as `residual_tolerance`)

@@ -94,7 +94,7 @@ struct StepReport {
   double residual = 0.0;  // |grad E| at the new positions, free DOFs, over the force scale
   // The largest such residual of a piece of more than 10 vertices over its own force scale
   // (piece_residual.h): what the body's norm can hide in a body in pieces. The body's residual
-  // when it is in one piece. Measured only: convergence is the body's residual.
+  // while fewer than two pieces are that large. Measured only: convergence is the body's.
   double pieceResidual = 0.0;
   double elasticEnergy = 0.0;  // J
   int retries = 0;             // step halvings (warnings)
