@@ -214,8 +214,12 @@ class AcceleratedStart {
   void start(const Exec& ex, const SimModel& model, const std::vector<std::uint8_t>& damaged,
              const SubstepInputs& in, const ElementGradient& elementGradient,
              const double* gradientsAtXn, double* x, const PieceLayout* layout = nullptr) {
-    if (layout && (!built_ || builtFor_ != damaged)) rebuild(model, damaged, *layout);
-    if (!built_ || builtFor_ != damaged) rebuild(model, damaged, pieceLayout(model, damaged));
+    if (!built_ || builtFor_ != damaged) {
+      if (layout)
+        rebuild(model, damaged, *layout);
+      else
+        rebuild(model, damaged, pieceLayout(model, damaged));
+    }
     if (pieceCount_ == 1 && in.anyFixed) return;  // a body in one piece, anchored: no launch
     const double g = sqrt(in.gravity[0] * in.gravity[0] + in.gravity[1] * in.gravity[1] +
                           in.gravity[2] * in.gravity[2]);

@@ -763,10 +763,10 @@ class FrameSolver {
   // The pieces of the current damage (host), found once per damage change for both the pieces'
   // start and the residual piece by piece.
   const PieceLayout& pieces() {
-    if (!piecesBuilt_ || piecesFor_ != hostDamaged_) {
+    if (piecesRevision_ == 0 || piecesFor_ != hostDamaged_) {
       pieces_ = pieceLayout(model_, hostDamaged_);
       piecesFor_ = hostDamaged_;
-      piecesBuilt_ = true;
+      ++piecesRevision_;
     }
     return pieces_;
   }
@@ -1189,8 +1189,8 @@ class FrameSolver {
     ex_.read(scalars_.data(), read, kScalars);
     result.residual = relativeResidual(read);
     const double pieceResidual =
-        pieceResidual_.measure(ex_, pieces(), hostDamaged_, g_.data(), tmp_.data(), fixed_.data(),
-                               mass_.data(), model_.gravity.norm());
+        pieceResidual_.measure(ex_, pieces(), piecesRevision_, g_.data(), tmp_.data(),
+                               fixed_.data(), mass_.data(), model_.gravity.norm());
     result.pieceResidual = pieceResidual < 0.0 ? result.residual : pieceResidual;
     result.invertedElements = static_cast<int>(read[kTrialInverted]);  // the accepted trial's
     result.contactForces.assign(poses_.size(), Vec3::Zero());
@@ -1909,7 +1909,7 @@ class FrameSolver {
   PieceResidual<Exec> pieceResidual_;   // the residual piece by piece (endSubstep)
   PieceLayout pieces_;                  // pieces(): of piecesFor_
   std::vector<std::uint8_t> piecesFor_;
-  bool piecesBuilt_ = false;
+  std::uint64_t piecesRevision_ = 0;  // counts the layouts built (0: none yet)
   // Whether elemGrad_ holds every element's gradient at x_ under the current damage, rest shapes
   // and removed debris: true from a Newton iteration's accept until x_ or any of those changes
   // (what the pieces' start reads at x_n instead of evaluating them again).

@@ -54,13 +54,12 @@ class PieceResidual {
   static constexpr int kChunk = 512;
 
   // The largest relative residual over the measured pieces, or -1 when the body has fewer than
-  // two of them (then the body's residual says it all). `pieces`: the pieces of `damaged`
-  // (pieceLayout); `g`: the backward-Euler gradient, `f`: the elastic and contact forces (3n
-  // each); `gravity`: |g| in m/s^2.
-  double measure(const Exec& ex, const PieceLayout& pieces,
-                 const std::vector<std::uint8_t>& damaged, const double* g, const double* f,
-                 const std::uint8_t* fixed, const double* mass, double gravity) {
-    if (!built_ || builtFor_ != damaged) rebuild(pieces, damaged);
+  // two of them (then the body's residual says it all). `pieces`: the body's pieces
+  // (pieceLayout), `revision` changing whenever they do; `g`: the backward-Euler gradient, `f`:
+  // the elastic and contact forces (3n each); `gravity`: |g| in m/s^2.
+  double measure(const Exec& ex, const PieceLayout& pieces, std::uint64_t revision, const double* g,
+                 const double* f, const std::uint8_t* fixed, const double* mass, double gravity) {
+    if (!built_ || builtRevision_ != revision) rebuild(pieces, revision);
     if (pieces_ < 2) return -1.0;
     const int* vertices = vertices_.data();
     const int* chunkBegin = chunkBegin_.data();
@@ -101,8 +100,8 @@ class PieceResidual {
   }
 
  private:
-  void rebuild(const PieceLayout& pieces, const std::vector<std::uint8_t>& damaged) {
-    builtFor_ = damaged;
+  void rebuild(const PieceLayout& pieces, std::uint64_t revision) {
+    builtRevision_ = revision;
     built_ = true;
     const PieceResidualLayout layout = pieceResidualLayout(pieces, kChunk);
     pieces_ = layout.pieces();
@@ -116,7 +115,7 @@ class PieceResidual {
   }
 
   bool built_ = false;
-  std::vector<std::uint8_t> builtFor_;  // the damage the layout is for
+  std::uint64_t builtRevision_ = 0;  // of the pieces the layout is for
   int pieces_ = 0, chunks_ = 0;
   Buffer<int> vertices_, chunkBegin_, pieceChunkStart_;
   Buffer<double> chunkSums_, ratio_, result_;

@@ -47,7 +47,7 @@ TEST(PieceResidual, EachPieceAgainstItsOwnWeight) {
   std::vector<double> g(3 * n, 0.0), f(3 * n, 0.0);
   std::vector<std::uint8_t> fixed(n, 0);
   auto measure = [&] {
-    return measured.measure(ex, pieceLayout(m, s.damaged), s.damaged, g.data(), f.data(),
+    return measured.measure(ex, pieceLayout(m, s.damaged), s.damageRevision, g.data(), f.data(),
                             fixed.data(), m.mass.data(), 9.81);
   };
   EXPECT_EQ(measure(), -1.0) << "one piece: the body's residual says it all";
@@ -101,7 +101,7 @@ TEST(PieceResidual, ChunkedSumsAreThePiecesSums) {
   PieceResidual<CpuExecutor> measured;
   const double worst =
       std::max(pieceRatio(m, g, f, fixed, -1.0, 0.305), pieceRatio(m, g, f, fixed, 0.305, 1.0));
-  EXPECT_NEAR(measured.measure(ex, pieceLayout(m, s.damaged), s.damaged, g.data(), f.data(),
+  EXPECT_NEAR(measured.measure(ex, pieceLayout(m, s.damaged), s.damageRevision, g.data(), f.data(),
                                fixed.data(), m.mass.data(), 9.81),
               worst, 1e-12 * worst);
 }
