@@ -50,6 +50,10 @@ TEST(Scene, CharpyHasAPendulumAndFracture) {
   EXPECT_EQ(s.material.preset, "brittle_steel");
   EXPECT_DOUBLE_EQ(s.fracture.threshold, 2.0e9);
   EXPECT_DOUBLE_EQ(s.fracture.compressiveThreshold, 4.0e9);
+  // The preset's fracture energy on a local stress: a kernel made the peak load mesh-dependent
+  // (docs/physics.md, fracture item 7).
+  EXPECT_DOUBLE_EQ(s.fracture.energy, 1.2e4);
+  EXPECT_EQ(s.fracture.kernelRadius, 0.0);
   ASSERT_EQ(s.colliders.size(), 4u);
   EXPECT_EQ(s.colliders[3].motion.type, MotionDesc::Type::Pendulum);
   // A test machine's radii (ISO 148-1): anvils rounded 1 mm, the 2 mm striker.
@@ -101,12 +105,14 @@ TEST(Scene, SteelPresetsCarryTheirBreakingAndCrushingStresses) {
   EXPECT_EQ(brittle.material.yieldStress, 0.0) << "elastic up to its break";
   EXPECT_DOUBLE_EQ(brittle.fracture.threshold, 2.0e9);
   EXPECT_DOUBLE_EQ(brittle.fracture.compressiveThreshold, 4.0e9);
+  EXPECT_DOUBLE_EQ(brittle.fracture.energy, 1.2e4) << "the preset's fracture energy";
   EXPECT_EQ(brittle.fracture.debris, DebrisRule::Keep) << "the default";
   EXPECT_DOUBLE_EQ(ductile.material.yieldStress, 3.55e8);
   EXPECT_LT(3.0 * ductile.material.yieldStress, ductile.fracture.threshold)
       << "the ductile steel yields long before the triaxial stress under a notch breaks it";
   EXPECT_EQ(ductile.fracture.compressiveThreshold, 0.0) << "the scene's own: never crushes";
   EXPECT_EQ(ductile.fracture.debris, DebrisRule::Remove);
+  EXPECT_EQ(ductile.fracture.energy, 0.0) << "not measured with one (docs/physics.md)";
   EXPECT_EQ(loadScene(kScenes / "charpy.json").material.preset, "brittle_steel");
   EXPECT_EQ(loadScene(kScenes / "charpy_ductile.json").material.preset, "ductile_steel");
   try {
