@@ -112,6 +112,7 @@ inline StepSettings convergedPreset() {
   s.residualTolerance = 1e-2;
   s.reuseStiffness = true;
   s.predictedStart = true;
+  s.convergePieces = true;
   s.stiffnessTolerance = 1e-3;
   s.multigridSettings.pcg = true;
   s.multigridSettings.pcgTolerance = 1e-2;

@@ -104,8 +104,9 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
   const bool interactive = isatty(STDERR_FILENO);
   double msSum = 0.0;
   int warnings = 0;
-  // Frames whose worst piece ended above the tolerance of its own loads: said at the end (the
-  // body's residual, which decides convergence, can hide them; docs/physics.md).
+  // Frames whose worst piece ended above the tolerance of its own loads: said at the end (with
+  // solver.converge_pieces false the body's residual alone decides convergence and can hide
+  // them; with it, such frames are also not converged; docs/physics.md).
   int pieceFrames = 0;
   double worstPiece = 0.0;
   FrameMetrics last;

@@ -170,9 +170,10 @@ void SculptApp::drawOverlay() {
                 metrics_.cgIterations);
     if (!metrics_.converged)
       ImGui::TextColored(ImVec4(1, 0.35f, 0.2f, 1),
-                         "NOT CONVERGED: residual above %.0e of the loads",
+                         "NOT CONVERGED: a residual above %.0e of its loads",
                          scene.solver.residualTolerance);
-    // The body's norm can hide a piece's (docs/physics.md): said, not solved for.
+    // The body's norm can hide a piece's (docs/physics.md): said here; with
+    // solver.converge_pieces (the default) such a frame is also not converged.
     if (metrics_.pieces > 1 && metrics_.pieceResidual > scene.solver.residualTolerance)
       ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "worst piece's residual %.2e of its own loads",
                          metrics_.pieceResidual);

@@ -277,6 +277,7 @@ SolverDesc readSolver(JsonObject o) {
   s.reuseStiffness = o.boolean("reuse_stiffness", s.reuseStiffness);
   s.predictedStart = o.boolean("predicted_start", s.predictedStart);
   s.acceleratedStart = o.boolean("accelerated_start", s.acceleratedStart);
+  s.convergePieces = o.boolean("converge_pieces", s.convergePieces);
   s.energyGuard = readEnum(o, "energy_guard", s.energyGuard, kEnergyGuardNames);
   s.stiffnessTolerance = o.number("stiffness_tolerance", s.stiffnessTolerance, 0.0, 0.1);
   s.backend = readEnum(o, "backend", s.backend, kBackendNames);
@@ -304,6 +305,7 @@ SolverDesc solverPreset(SolverPreset preset) {
     s.reuseStiffness = false;
     s.predictedStart = false;
     s.acceleratedStart = false;
+    s.convergePieces = false;
     s.stiffnessTolerance = 0.0;  // every element's stiffness, every step
   }
   return s;

@@ -163,6 +163,7 @@ struct SolverDesc {
   bool reuseStiffness = true;       // chord steps after a sub-step's first Newton iteration
   bool predictedStart = true;       // Newton starts from x_n + h v_n (StepSettings)
   bool acceleratedStart = true;     // pieces start with their acceleration (StepSettings)
+  bool convergePieces = true;       // every piece solved to the tolerance (StepSettings)
   EnergyGuard energyGuard = EnergyGuard::Body;  // StepSettings::vertexGuard
   double stiffnessTolerance = 1e-3;             // StepSettings::stiffnessTolerance
   BackendRequest backend = BackendRequest::Auto;

@@ -107,6 +107,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   settings_.reuseStiffness = scene.solver.reuseStiffness;
   settings_.predictedStart = scene.solver.predictedStart;
   settings_.acceleratedStart = scene.solver.acceleratedStart;
+  settings_.convergePieces = scene.solver.convergePieces;
   settings_.vertexGuard = scene.solver.energyGuard == EnergyGuard::Vertex;
   settings_.stiffnessTolerance = scene.solver.stiffnessTolerance;
   for (size_t i = 0; i < scene.anchors.size(); ++i) {

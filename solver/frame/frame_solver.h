@@ -606,7 +606,7 @@ class FrameSolver {
       if (s.frameBudgetMs > 0.0 && msSince(frameStart_) > s.frameBudgetMs) break;
       if (s.residualTolerance <= 0.0 && !s.reuseStiffness) continue;  // nothing reads it
       const double residual = residualAt();
-      if (residual <= s.residualTolerance) break;
+      if (residual <= s.residualTolerance && piecesWithinTolerance(residual)) break;
       // Keep the stiffness while it still cuts the residual at least in half. Once a chord step
       // has not, the stiffness moves with the iterate (cracks opening and closing, contacts
       // coming and going): every later iteration of the sub-step takes a fresh one. Alternating
@@ -627,9 +627,12 @@ class FrameSolver {
     }
     endSubstep(h, result);
     // With a residual tolerance, the residual alone says whether the sub-step converged (see
-    // the loop above); without one (the reference), the step test is the criterion.
-    result.converged =
-        s.residualTolerance > 0.0 ? result.residual <= s.residualTolerance : stationary;
+    // the loop above), the body's and, with convergePieces, each piece's; without one (the
+    // reference), the step test is the criterion.
+    result.converged = s.residualTolerance > 0.0
+                           ? result.residual <= s.residualTolerance &&
+                                 (!s.convergePieces || result.pieceResidual <= s.residualTolerance)
+                           : stationary;
     result.cgIterations = pcgIterations_;
     if (result.ok) {
       for (size_t c = 0; c < model_.colliders.size(); ++c)
@@ -639,6 +642,31 @@ class FrameSolver {
       time_ += h;
     }
     return result;
+  }
+
+  // With convergePieces, whether every measured piece (piece_residual.h) is within the
+  // tolerance of its own loads at the accepted positions (g_ and tmp_, from residualAt();
+  // `residual` the body's there). The body's residual is one 2-norm and a small piece's share of
+  // it is small, so a solve to the body's target leaves such a piece where it is: a first
+  // prototype of this criterion iterated to its 40 Newton iterations, null steps nearly all
+  // (docs/benchmarks.md). A piece above its tolerance by a factor R therefore caps PCG's
+  // absolute target (and the null step's) for the rest of the sub-step at 0.5 / R of the body's
+  // residual or of the body's own target, whichever is smaller: an inexact Newton forcing term
+  // set by the worst piece, below the residual so that a solve always has something to do
+  // (capped at the body's target only, a body at rest with its residual already far below it
+  // took null steps to the 40 iterations).
+  bool piecesWithinTolerance(double residual) {
+    const StepSettings& s = *settings_;
+    if (!s.convergePieces) return true;
+    const double worst =
+        pieceResidual_.measure(ex_, pieces(), piecesRevision_, g_.data(), tmp_.data(),
+                               fixed_.data(), mass_.data(), model_.gravity.norm());
+    if (worst <= s.residualTolerance) return true;  // (-1: fewer than two measured pieces)
+    const double share = 0.5 * s.residualTolerance / worst;
+    pieceTargetCap_ =
+        std::min(pieceTargetCap_, share * std::min(residual, 0.5 * s.residualTolerance) *
+                                      std::max(weight(), forceScale_));
+    return false;
   }
 
   // The backward-Euler residual at the accepted positions over the force scale (one read).
@@ -691,6 +719,7 @@ class FrameSolver {
   // x_n, v_n and the inertial target from the state; anchored vertices on their paths.
   void beginSubstep(double h) {
     h_step_ = h;
+    pieceTargetCap_ = std::numeric_limits<double>::infinity();
     pcgIterations_ = 0;
     prepareAnchorsAndColliders(time_ + h, h);
     double* x = x_.data();
@@ -1359,9 +1388,10 @@ class FrameSolver {
   }
 
   // PCG's absolute target: never further than half the residual the sub-step must reach (an
-  // inexact Newton step).
+  // inexact Newton step), less while a piece is above its own (piecesWithinTolerance).
   double pcgTarget() const {
-    return 0.5 * settings_->residualTolerance * std::max(weight(), forceScale_);
+    return std::min(0.5 * settings_->residualTolerance * std::max(weight(), forceScale_),
+                    pieceTargetCap_);
   }
 
   // Force of each collider on the body at y, into slots kForce + 3 c + k; for a rigid
@@ -1906,8 +1936,10 @@ class FrameSolver {
   std::vector<double> hostX_, hostV_, hostFp_, hostStrain_, hostAnchorTargets_;
   std::vector<std::uint8_t> hostDamaged_, hostFixed_, hostRemoved_;
   AcceleratedStart<Exec> accelerated_;  // the pieces' starts (startPiecesAccelerated)
-  PieceResidual<Exec> pieceResidual_;   // the residual piece by piece (endSubstep)
-  PieceLayout pieces_;                  // pieces(): of piecesFor_
+  PieceResidual<Exec> pieceResidual_;   // the residual piece by piece (piecesWithinTolerance)
+  // PCG's absolute target at most this in this sub-step (piecesWithinTolerance).
+  double pieceTargetCap_ = std::numeric_limits<double>::infinity();
+  PieceLayout pieces_;  // pieces(): of piecesFor_
   std::vector<std::uint8_t> piecesFor_;
   std::uint64_t piecesRevision_ = 0;  // counts the layouts built (0: none yet)
   // Whether elemGrad_ holds every element's gradient at x_ under the current damage, rest shapes

@@ -9,18 +9,21 @@
 // scale left the worst piece measured here at 4.9 % of its own (median over the first 20 frames;
 // 12 % at most), and single loose vertices at up to 4.6 times their weight (docs/benchmarks.md).
 //
-// This measures it, and does not change what a frame solves: for each piece of more than
-// kMeasuredPieceVertices vertices (the size below which the issue's own targets stop counting
-// pieces), |g_p| / max(|W_p|, |f_p|) over its free vertices, with W_p its weight (at 1 g at least,
-// as for the body) and f_p the elastic and contact forces on it, and the largest of them. The
-// frame reports it beside its residual (StepReport::pieceResidual).
+// This measures it: for each piece of more than kMeasuredPieceVertices vertices (the size below
+// which the issue's own targets stop counting pieces), |g_p| / max(|W_p|, |f_p|) over its free
+// vertices, with W_p its weight (at 1 g at least, as for the body) and f_p the elastic and
+// contact forces on it, and the largest of them. The frame reports it beside its residual
+// (StepReport::pieceResidual), and with StepSettings::convergePieces (the scenes' default)
+// solves for it: a sub-step has converged when it too is within the tolerance
+// (FrameSolver::piecesWithinTolerance).
 //
 // A piece's vertices are summed in chunks of kChunk (a thread each) and a piece's chunks by one
 // thread, in a fixed order: the same sums for any thread count, on either executor, and no GPU
 // thread walks a whole body. The layout is rebuilt on the host when the damage changes, from
 // the pieces the frame finds once for this and the pieces' start (accelerated_start.h). The
-// largest is read back: one more host read a sub-step, only for a body in two or more measured
-// pieces (on the CPU within the bench's noise after 100 cuts).
+// largest is read back: one more host read a sub-step (and one per Newton iteration that finds
+// the body converged, with convergePieces), only for a body in two or more measured pieces (on
+// the CPU within the bench's noise after 100 cuts).
 #pragma once
 
 #include <cmath>

@@ -72,6 +72,11 @@ struct StepSettings {
   // brush that has just moved or let go of them) still moves the rest of the body, at the cost
   // of the elements around those vertices instead of a full energy pass per halving.
   bool vertexGuard = false;
+  // With residualTolerance: a sub-step has converged only when every piece of more than
+  // kMeasuredPieceVertices vertices is also within the tolerance of its own loads
+  // (piece_residual.h), and Newton iterates on until it is; off, the body's residual alone
+  // decides and the pieces' is only reported.
+  bool convergePieces = false;
   // Milliseconds a frame may spend before its sub-steps stop iterating Newton (0: no limit; the
   // app's interactive budget). A frame stopped by it is reported as not converged.
   double frameBudgetMs = 0.0;
