@@ -176,7 +176,9 @@ TEST(PieceResidual, ConvergedFramesSolveEveryPiece) {
       EXPECT_TRUE(r.converged) << frame;
       EXPECT_LE(r.residual, tolerance) << frame;
       EXPECT_NE(r.pieceResidual, r.residual) << "two pieces measured";
-      if (convergePieces) EXPECT_LE(r.pieceResidual, tolerance) << frame;
+      if (convergePieces) {
+        EXPECT_LE(r.pieceResidual, tolerance) << frame;
+      }
       worst = std::max(worst, r.pieceResidual);
     }
     return worst;
