@@ -244,6 +244,36 @@ TEST(Cli, PlaySolvesEveryPieceOfACutBall) {
   EXPECT_EQ(r.cli.err.find("left a piece above"), std::string::npos) << r.cli.err;
 }
 
+// The reference solves to Newton's step test, with no residual tolerance: its run says nothing
+// of pieces above one (it once counted every frame whose pieces had any residual at all).
+TEST(Cli, ReferencePlayNotesNoPieceAboveATolerance) {
+  test::TempDir dir;
+  const nlohmann::json script = {{"scene", kClayBall.string()},
+                                 {"frames", 4},
+                                 {"events",
+                                  {{{"frame", 1},
+                                    {"tool", "knife"},
+                                    {"duration", 1},
+                                    {"from", {{-0.2, 0.2, 0.02}, {0.2, 0.2, 0.02}}},
+                                    {"to", {{-0.2, -0.2, 0.02}, {0.2, -0.2, 0.02}}}}}}};
+  test::writeText(dir / "cut.json", script.dump());
+  const CliRun r = run({"play", (dir / "cut.json").string(), "--out", (dir / "out").string(),
+                        "--solver", "reference"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  std::ifstream csv(dir / "out" / "metrics.csv");
+  std::string line;
+  std::getline(csv, line);
+  const std::vector<std::string> header = splitCsv(line);
+  const auto at = [&](const std::vector<std::string>& row, const std::string& name) {
+    return std::stod(row[std::find(header.begin(), header.end(), name) - header.begin()]);
+  };
+  std::vector<std::string> row;
+  while (std::getline(csv, line)) row = splitCsv(line);
+  ASSERT_GT(at(row, "pieces"), 1.0) << "the knife cut the ball through";
+  ASSERT_GT(at(row, "piece_residual"), 0.0);
+  EXPECT_EQ(r.err.find("left a piece above"), std::string::npos) << r.err;
+}
+
 // A private assets folder (GALSCULPT_ASSETS, unset by the caller) whose "sphere" scene uses the
 // small committed mesh.
 void useSmallSphereAssets(const test::TempDir& dir) {
