@@ -21,9 +21,9 @@
 // thread, in a fixed order: the same sums for any thread count, on either executor, and no GPU
 // thread walks a whole body. The layout is rebuilt on the host when the damage changes, from
 // the pieces the frame finds once for this and the pieces' start (accelerated_start.h). The
-// largest is read back: one more host read a sub-step (and one per Newton iteration that finds
-// the body converged, with convergePieces), only for a body in two or more measured pieces (on
-// the CPU within the bench's noise after 100 cuts).
+// largest is read back: one more host read a sub-step (and, with convergePieces, one per Newton
+// iteration that finds the body converged or its step null), only for a body in two or more
+// measured pieces (on the CPU within the bench's noise after 100 cuts).
 #pragma once
 
 #include <cmath>
