@@ -115,9 +115,7 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
     csv << metricsCsvRow(last) << '\n';
     msSum += last.msTotal;
     warnings += last.warnings;
-    // (The reference, tolerance 0, solves to its step test: no tolerance to leave a piece above.)
-    const double tolerance = sim.settings().residualTolerance;
-    if (tolerance > 0.0 && last.pieces > 1 && last.pieceResidual > tolerance) {
+    if (pieceAboveTolerance(last, sim.settings().residualTolerance)) {
       ++pieceFrames;
       worstPiece = std::max(worstPiece, last.pieceResidual);
     }

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/session/simulation.h"
+
 namespace galsculpt {
 
 namespace fs = std::filesystem;
@@ -174,7 +176,7 @@ void SculptApp::drawOverlay() {
                          scene.solver.residualTolerance);
     // The body's norm can hide a piece's (docs/physics.md): said here; with
     // solver.converge_pieces (the default) such a frame is also not converged.
-    if (metrics_.pieces > 1 && metrics_.pieceResidual > scene.solver.residualTolerance)
+    if (pieceAboveTolerance(metrics_, scene.solver.residualTolerance))
       ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "worst piece's residual %.2e of its own loads",
                          metrics_.pieceResidual);
     if (metrics_.invertedElements > 0)

@@ -72,6 +72,13 @@ struct FrameMetrics {
   bool converged = true;
 };
 
+// Whether the frame left a piece of the body above `tolerance` of its own loads (the metrics'
+// piece_residual): a body in two or more pieces, under a solver with a tolerance (the
+// reference's is 0: it solves to Newton's step test, and has none to leave a piece above).
+inline bool pieceAboveTolerance(const FrameMetrics& m, double tolerance) {
+  return tolerance > 0.0 && m.pieces > 1 && m.pieceResidual > tolerance;
+}
+
 // CSV header and row, in the column order documented in docs/cli.md.
 std::string metricsCsvHeader();
 std::string metricsCsvRow(const FrameMetrics& m);

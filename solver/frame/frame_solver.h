@@ -909,15 +909,14 @@ class FrameSolver {
     contact(x, grad_.data(), kContact);
     dampedProduct(x, dampedK_.data());
     backwardEulerGradient(x, grad_.data(), dampedK_.data(), g_.data());
-    if (mayBeNull && nullStep()) {
-      // A null step for the body is none for a piece still above its own tolerance: it sets
-      // the cap, and this iteration solves. After 100 random cuts through the hanging sphere the
-      // first iteration of nearly every settled frame was null for the body while a piece spun
-      // at 3 times its own tolerance; the second iteration then solved it.
-      if (piecesWithinTolerance(nullStepResidual_, grad_.data())) {
-        takeNullStep();
-        return;
-      }
+    double bodyResidual = 0.0;
+    // A null step for the body is none for a piece still above its own tolerance: it sets the
+    // cap, and this iteration solves. After 100 random cuts through the hanging sphere the first
+    // iteration of nearly every settled frame was null for the body while a piece spun at 3
+    // times its own tolerance; the second iteration then solved it.
+    if (mayBeNull && nullStep(bodyResidual) && piecesWithinTolerance(bodyResidual, grad_.data())) {
+      takeNullStep();
+      return;
     }
     systemSkipped_ = false;
     if (!reuse) buildSystem(x);
@@ -937,8 +936,9 @@ class FrameSolver {
 
   // Whether PCG would return the null step: |b| = |g| (all 3n entries, as PCG reads them) within
   // its target (solveLinear, MultigridCycle::pcg), which it checks before its first iteration
-  // (but after a V-cycle). One host read, where PCG makes several.
-  bool nullStep() {
+  // (but after a V-cycle). One host read, where PCG makes several. When null, `bodyResidual` is
+  // the body's relative residual there (|g| over the last force scale).
+  bool nullStep(double& bodyResidual) {
     const StepSettings& s = *settings_;
     const double* g = g_.data();
     double* sc = scalars_.data();
@@ -951,7 +951,7 @@ class FrameSolver {
         std::max(s.multigridSettings.pcgTolerance * std::max(bnorm, 1e-300), pcgTarget());
     if (bnorm > target) return false;
     pcgReduction_ = bnorm > 0.0 ? 1.0 : 0.0;  // what PCG returns after no iteration
-    nullStepResidual_ = bnorm / std::max(weight(), forceScale_);
+    bodyResidual = bnorm / std::max(weight(), forceScale_);
     return true;
   }
 
@@ -1886,10 +1886,9 @@ class FrameSolver {
   const std::vector<AnchorConstraint>* anchors_ = nullptr;  // the stepped state's
   int n_ = 0, tets_ = 0, edges_ = 0, blocks_ = 0;
   double time_ = 0.0, h_step_ = 0.0, modelSize_ = 1.0, massNorm_ = 0.0, pcgReduction_ = 0.0;
-  int pcgIterations_ = 0;          // the current sub-step's
-  double forceScale_ = 0.0;        // the last residual's scale (N): the next solves' target
-  double nullStepResidual_ = 0.0;  // the body's relative residual where nullStep() said null
-  double switchedCracks_ = 0.0;    // elements whose open cracks the last accepted step changed
+  int pcgIterations_ = 0;        // the current sub-step's
+  double forceScale_ = 0.0;      // the last residual's scale (N): the next solves' target
+  double switchedCracks_ = 0.0;  // elements whose open cracks the last accepted step changed
   Clock::time_point frameStart_ = Clock::now();
   std::uint64_t mgRevision_ = 0;  // bumped whenever the hierarchy is uploaded again
   bool plastic_ = false, frozenIsK_ = true;

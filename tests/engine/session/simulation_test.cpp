@@ -468,5 +468,18 @@ TEST(Simulation, RemovedDebrisDoesNotPushOnTheBody) {
   }
 }
 
+// A frame left a piece above the tolerance only for a body in pieces, and only under a solver
+// that has a tolerance: the reference's is 0 (run and the overlay both ask this).
+TEST(Simulation, APieceIsAboveTheToleranceOnlyInABodyInPiecesWithATolerance) {
+  FrameMetrics m;
+  m.pieces = 2;
+  m.pieceResidual = 0.02;
+  EXPECT_TRUE(pieceAboveTolerance(m, 0.01));
+  EXPECT_FALSE(pieceAboveTolerance(m, 0.05));
+  EXPECT_FALSE(pieceAboveTolerance(m, 0.0)) << "the reference has no tolerance";
+  m.pieces = 1;
+  EXPECT_FALSE(pieceAboveTolerance(m, 0.01)) << "one piece: the body's residual says it all";
+}
+
 }  // namespace
 }  // namespace galsculpt
