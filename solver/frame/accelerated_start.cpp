@@ -4,7 +4,8 @@
 
 namespace galsculpt {
 
-PieceLayout pieceLayout(const SimModel& model, const std::vector<std::uint8_t>& damaged) {
+PieceLayout pieceLayout(const SimModel& model, const std::vector<std::uint8_t>& damaged,
+                        std::uint64_t revision) {
   const int n = model.numVertices();
   const std::vector<std::uint8_t> undamaged(damaged.empty() ? model.numEdges() : 0, 0);
   const PieceCensus census = censusPieces(model, damaged.empty() ? undamaged : damaged);
@@ -16,6 +17,7 @@ PieceLayout pieceLayout(const SimModel& model, const std::vector<std::uint8_t>& 
   out.pieceVertices.resize(n);
   std::vector<int> next(out.pieceStart.begin(), out.pieceStart.end() - 1);
   for (int v = 0; v < n; ++v) out.pieceVertices[next[pieceOf[v]]++] = v;
+  out.revision = revision;
   out.pieceOf = pieceOf;
   // Elements between pieces, in element order (the same on every executor), and each piece's
   // corners in them.

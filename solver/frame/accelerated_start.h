@@ -67,10 +67,15 @@ struct PieceLayout {
   // where its crack faces meet theirs.
   std::vector<int> crackStart{0}, crackEnds;  // crackEnds: 2 per edge
   std::vector<double> crackRestLengthSq;
+  // Set by whoever keeps the layout, different for different pieces: what the device copies of
+  // it (AcceleratedStart, PieceResidual) compare to know whether they are up to date. (Handed
+  // beside the layout it was once read before the layout was brought up to date.)
+  std::uint64_t revision = 0;
   int pieces() const { return static_cast<int>(pieceStart.size()) - 1; }
 };
 
-PieceLayout pieceLayout(const SimModel& model, const std::vector<std::uint8_t>& damaged);
+PieceLayout pieceLayout(const SimModel& model, const std::vector<std::uint8_t>& damaged,
+                        std::uint64_t revision = 0);
 
 // A piece whose neighbours push on it with more than this many times its weight (at 1 g at
 // least) keeps the straight-line start: a hard contact.
@@ -208,18 +213,13 @@ class AcceleratedStart {
 
   // `gradientsAtXn`: every element's energy gradient at x_n (12 per element) where the frame
   // still has them from its last accepted trial, or null: the elements between pieces are then
-  // evaluated with `elementGradient`, the same kernel, to the same bits. `layout`: the pieces of
-  // `damaged` where the caller has them (pieceLayout), or null.
+  // evaluated with `elementGradient`, the same kernel, to the same bits. `layout`: the body's
+  // pieces (pieceLayout; the device copy is rebuilt when its revision changes).
   template <typename ElementGradient>
-  void start(const Exec& ex, const SimModel& model, const std::vector<std::uint8_t>& damaged,
+  void start(const Exec& ex, const SimModel& model, const PieceLayout& layout,
              const SubstepInputs& in, const ElementGradient& elementGradient,
-             const double* gradientsAtXn, double* x, const PieceLayout* layout = nullptr) {
-    if (!built_ || builtFor_ != damaged) {
-      if (layout)
-        rebuild(model, damaged, *layout);
-      else
-        rebuild(model, damaged, pieceLayout(model, damaged));
-    }
+             const double* gradientsAtXn, double* x) {
+    if (!built_ || builtRevision_ != layout.revision) rebuild(model, layout);
     if (pieceCount_ == 1 && in.anyFixed) return;  // a body in one piece, anchored: no launch
     const double g = sqrt(in.gravity[0] * in.gravity[0] + in.gravity[1] * in.gravity[1] +
                           in.gravity[2] * in.gravity[2]);
@@ -337,9 +337,8 @@ class AcceleratedStart {
   };
   static constexpr int kSpreadRounds = 16;  // then the rest counts as free
 
-  void rebuild(const SimModel& model, const std::vector<std::uint8_t>& damaged,
-               const PieceLayout& layout) {
-    builtFor_ = damaged;
+  void rebuild(const SimModel& model, const PieceLayout& layout) {
+    builtRevision_ = layout.revision;
     built_ = true;
     std::vector<int> small;
     large_.clear();
@@ -376,7 +375,7 @@ class AcceleratedStart {
   }
 
   bool built_ = false;
-  std::vector<std::uint8_t> builtFor_;  // the damage the layout is for
+  std::uint64_t builtRevision_ = 0;  // of the pieces the layout is for
   std::vector<LargePiece> large_;
   int pieceCount_ = 0, smallPieceCount_ = 0, sharedTetCount_ = 0;
   Buffer<int> pieceStart_, pieceVertices_, pieceOf_, sharedTets_, couplingStart_, couplingSlot_,

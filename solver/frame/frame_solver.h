@@ -659,8 +659,8 @@ class FrameSolver {
   bool piecesWithinTolerance(double residual, const double* forces) {
     const StepSettings& s = *settings_;
     if (!s.convergePieces) return true;
-    const double worst = pieceResidual_.measure(ex_, pieces(), piecesRevision_, g_.data(), forces,
-                                                fixed_.data(), mass_.data(), model_.gravity.norm());
+    const double worst = pieceResidual_.measure(ex_, pieces(), g_.data(), forces, fixed_.data(),
+                                                mass_.data(), model_.gravity.norm());
     if (worst <= s.residualTolerance) return true;  // (-1: fewer than two measured pieces)
     const double share = 0.5 * s.residualTolerance / worst;
     pieceTargetCap_ =
@@ -785,17 +785,16 @@ class FrameSolver {
     // the state alone. nvcc contracts them as each kernel's inlining allows, so on the GPU the
     // two could differ in their last bits; there the elements are evaluated, in parallel.
     const bool copy = gradientAtXn && Exec::kHostMemory;
-    accelerated_.start(ex_, model_, hostDamaged_, inputs, elementGradient,
-                       copy ? elemGrad_.data() : nullptr, x_.data(), &pieces());
+    accelerated_.start(ex_, model_, pieces(), inputs, elementGradient,
+                       copy ? elemGrad_.data() : nullptr, x_.data());
   }
 
   // The pieces of the current damage (host), found once per damage change for both the pieces'
   // start and the residual piece by piece.
   const PieceLayout& pieces() {
-    if (piecesRevision_ == 0 || piecesFor_ != hostDamaged_) {
-      pieces_ = pieceLayout(model_, hostDamaged_);
+    if (pieces_.revision == 0 || piecesFor_ != hostDamaged_) {  // (0: none yet)
+      pieces_ = pieceLayout(model_, hostDamaged_, pieces_.revision + 1);
       piecesFor_ = hostDamaged_;
-      ++piecesRevision_;
     }
     return pieces_;
   }
@@ -1224,9 +1223,8 @@ class FrameSolver {
     double read[kScalars];
     ex_.read(scalars_.data(), read, kScalars);
     result.residual = relativeResidual(read);
-    const double pieceResidual =
-        pieceResidual_.measure(ex_, pieces(), piecesRevision_, g_.data(), tmp_.data(),
-                               fixed_.data(), mass_.data(), model_.gravity.norm());
+    const double pieceResidual = pieceResidual_.measure(
+        ex_, pieces(), g_.data(), tmp_.data(), fixed_.data(), mass_.data(), model_.gravity.norm());
     result.pieceResidual = pieceResidual < 0.0 ? result.residual : pieceResidual;
     result.invertedElements = static_cast<int>(read[kTrialInverted]);  // the accepted trial's
     result.contactForces.assign(poses_.size(), Vec3::Zero());
@@ -1948,7 +1946,6 @@ class FrameSolver {
   double pieceTargetCap_ = std::numeric_limits<double>::infinity();
   PieceLayout pieces_;  // pieces(): of piecesFor_
   std::vector<std::uint8_t> piecesFor_;
-  std::uint64_t piecesRevision_ = 0;  // counts the layouts built (0: none yet)
   // Whether elemGrad_ holds every element's gradient at x_ under the current damage, rest shapes
   // and removed debris: true from a Newton iteration's accept until x_ or any of those changes
   // (what the pieces' start reads at x_n instead of evaluating them again).

@@ -58,11 +58,11 @@ class PieceResidual {
 
   // The largest relative residual over the measured pieces, or -1 when the body has fewer than
   // two of them (then the body's residual says it all). `pieces`: the body's pieces
-  // (pieceLayout), `revision` changing whenever they do; `g`: the backward-Euler gradient, `f`:
-  // the elastic and contact forces (3n each); `gravity`: |g| in m/s^2.
-  double measure(const Exec& ex, const PieceLayout& pieces, std::uint64_t revision, const double* g,
-                 const double* f, const std::uint8_t* fixed, const double* mass, double gravity) {
-    if (!built_ || builtRevision_ != revision) rebuild(pieces, revision);
+  // (pieceLayout; the device copy is rebuilt when its revision changes); `g`: the backward-Euler
+  // gradient, `f`: the elastic and contact forces (3n each); `gravity`: |g| in m/s^2.
+  double measure(const Exec& ex, const PieceLayout& pieces, const double* g, const double* f,
+                 const std::uint8_t* fixed, const double* mass, double gravity) {
+    if (!built_ || builtRevision_ != pieces.revision) rebuild(pieces);
     if (pieces_ < 2) return -1.0;
     const int* vertices = vertices_.data();
     const int* chunkBegin = chunkBegin_.data();
@@ -103,8 +103,8 @@ class PieceResidual {
   }
 
  private:
-  void rebuild(const PieceLayout& pieces, std::uint64_t revision) {
-    builtRevision_ = revision;
+  void rebuild(const PieceLayout& pieces) {
+    builtRevision_ = pieces.revision;
     built_ = true;
     const PieceResidualLayout layout = pieceResidualLayout(pieces, kChunk);
     pieces_ = layout.pieces();

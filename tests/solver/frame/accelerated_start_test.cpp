@@ -267,7 +267,7 @@ TEST(AcceleratedStart, OnlyTheElementsBetweenAFreePieceAndOthersAreEvaluated) {
     mark[t] = 1;
     for (int i = 0; i < 12; ++i) g[i] = 0.0;
   };
-  start.start(ex, m, s.damaged, in, gradient, nullptr, x.data());
+  start.start(ex, m, pieceLayout(m, s.damaged, s.damageRevision), in, gradient, nullptr, x.data());
   int betweenHeld = 0, touchingFree = 0;
   for (int t : layout.sharedTets) {
     bool free = false;
@@ -318,9 +318,11 @@ TEST(AcceleratedStart, GradientsTheFrameStillHasAreReadNotEvaluated) {
   CpuExecutor ex;
   AcceleratedStart<CpuExecutor> start;
   std::vector<double> fromEvaluated = xn, fromHeld = xn;
-  start.start(ex, m, s.damaged, in, evaluate, nullptr, fromEvaluated.data());
+  start.start(ex, m, pieceLayout(m, s.damaged, s.damageRevision), in, evaluate, nullptr,
+              fromEvaluated.data());
   const int evaluations = evaluated;
-  start.start(ex, m, s.damaged, in, evaluate, held.data(), fromHeld.data());
+  start.start(ex, m, pieceLayout(m, s.damaged, s.damageRevision), in, evaluate, held.data(),
+              fromHeld.data());
   EXPECT_GT(evaluations, 0);
   EXPECT_EQ(evaluated, evaluations) << "nothing evaluated where the frame has the gradients";
   EXPECT_TRUE(fromHeld == fromEvaluated);
