@@ -129,14 +129,14 @@ class FrameSolver {
     uploadIfChanged(state.v, hostV_, v_);
     // Compared by content too: a backend may step several states (tests, undo snapshots).
     if (state.damageRevision != damageRevision_ || hostDamaged_ != state.damaged) {
+      if (hostDamaged_ != state.damaged) ++hostDamageChanges_;
       hostDamaged_ = state.damaged;
       damaged_.upload(hostDamaged_);
       damageRevision_ = state.damageRevision;
       gradientAtX_ = false;
     }
-    // (The fracture pass changes hostDamaged_ within a frame: compared by content.)
-    if (model_.debrisRemoval > 0.0 && removedFor_ != hostDamaged_) {
-      removedFor_ = hostDamaged_;
+    if (model_.debrisRemoval > 0.0 && removedFor_ != hostDamageChanges_) {
+      removedFor_ = hostDamageChanges_;
       updateRemovedDebris();
       gradientAtX_ = false;
     }
@@ -792,9 +792,9 @@ class FrameSolver {
   // The pieces of the current damage (host), found once per damage change for both the pieces'
   // start and the residual piece by piece.
   const PieceLayout& pieces() {
-    if (pieces_.revision == 0 || piecesFor_ != hostDamaged_) {  // (0: none yet)
+    if (piecesFor_ != hostDamageChanges_) {
       pieces_ = pieceLayout(model_, hostDamaged_, pieces_.revision + 1);
-      piecesFor_ = hostDamaged_;
+      piecesFor_ = hostDamageChanges_;
     }
     return pieces_;
   }
@@ -1546,6 +1546,7 @@ class FrameSolver {
         report.newlyDamaged += static_cast<int>(parted.size());
       }
       ++damageRevision_;
+      ++hostDamageChanges_;
       gradientAtX_ = false;
     }
     return report;
@@ -1944,16 +1945,20 @@ class FrameSolver {
   PieceResidual<Exec> pieceResidual_;   // the residual piece by piece (piecesWithinTolerance)
   // PCG's absolute target at most this in this sub-step (piecesWithinTolerance).
   double pieceTargetCap_ = std::numeric_limits<double>::infinity();
-  PieceLayout pieces_;  // pieces(): of piecesFor_
-  std::vector<std::uint8_t> piecesFor_;
+  // Counts the changes of hostDamaged_'s content (syncIn, the fracture pass), what the host's
+  // structures derived from the damage are keyed on. (damageRevision_ cannot be: a backend may be
+  // handed several states under one revision, and syncIn compares their damage by content.)
+  std::uint64_t hostDamageChanges_ = 0;
+  PieceLayout pieces_;  // pieces(): for the damage change piecesFor_
+  std::uint64_t piecesFor_ = ~std::uint64_t{0};
   // Whether elemGrad_ holds every element's gradient at x_ under the current damage, rest shapes
   // and removed debris: true from a Newton iteration's accept until x_ or any of those changes
   // (what the pieces' start reads at x_n instead of evaluating them again).
   bool gradientAtX_ = false;
-  Buffer<std::uint8_t> removed_;          // (nVerts) 1 on removed debris
-  std::vector<int> removedVertices_;      // ascending
-  std::vector<std::uint8_t> removedFor_;  // the damage removedVertices_ was found for
-  std::vector<double> removedTargets_;    // (3 per removed vertex) where each is held
+  Buffer<std::uint8_t> removed_;        // (nVerts) 1 on removed debris
+  std::vector<int> removedVertices_;    // ascending
+  std::uint64_t removedFor_ = 0;        // the damage change removedVertices_ is for (0: none yet)
+  std::vector<double> removedTargets_;  // (3 per removed vertex) where each is held
   std::vector<int> hostAnchorVertices_;
   std::uint64_t damageRevision_ = ~std::uint64_t{0};
 };
