@@ -128,8 +128,9 @@ class FrameSolver {
     if (uploadIfChanged(state.x, hostX_, x_)) gradientAtX_ = false;
     uploadIfChanged(state.v, hostV_, v_);
     // Compared by content too: a backend may step several states (tests, undo snapshots).
-    if (state.damageRevision != damageRevision_ || hostDamaged_ != state.damaged) {
-      if (hostDamaged_ != state.damaged) ++hostDamageChanges_;
+    const bool damageChanged = hostDamaged_ != state.damaged;
+    if (state.damageRevision != damageRevision_ || damageChanged) {
+      if (damageChanged) ++hostDamageChanges_;
       hostDamaged_ = state.damaged;
       damaged_.upload(hostDamaged_);
       damageRevision_ = state.damageRevision;
