@@ -16,11 +16,14 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
 #include <sstream>
+#include <string>
 
 #include "app/cli/cli.h"
 #include "app/cli/cli_args.h"
+#include "engine/scene/scene.h"
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/simulation.h"
 #include "solver/io/atomic_file.h"
@@ -306,6 +309,22 @@ nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh
   return nlohmann::json::parse(in);
 }
 
+// --preset: every scene read again with that solver preset in place of its own (its other
+// solver keys still override the preset's defaults, as in the scene file).
+std::optional<std::string> presetOption(const CliArgs& args) {
+  const auto v = args.value("--preset");
+  if (!v) return std::nullopt;
+  if (*v != "converged" && *v != "paper")
+    throw UsageError("--preset must be converged or paper, got '" + *v + "'");
+  return *v;
+}
+
+SceneDescription withSolverPreset(const SceneDescription& scene, const std::string& preset) {
+  nlohmann::json root = scene.source;
+  root["solver"]["preset"] = preset;
+  return parseScene(root, scene.file);
+}
+
 // --debris: every run's debris rule instead of the scene's.
 std::optional<DebrisRule> debrisOption(const CliArgs& args) {
   const auto v = args.value("--debris");
@@ -479,14 +498,17 @@ void printWindowSummary(const std::vector<nlohmann::json>& rows, std::ostream& o
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(args, {"--scene", "--json", "--frames", "--settle", "--backend", "--debris"},
-                  {"--quick", "--sweep", "--cracks"});
+  const CliArgs a(
+      args, {"--scene", "--json", "--frames", "--settle", "--backend", "--debris", "--preset"},
+      {"--quick", "--sweep", "--cracks"});
   a.expectPositional(
       0, 0,
       "galsculpt bench [--scene NAME] [--quick] [--sweep] [--cracks] [--frames N] "
-      "[--settle N[,N...]] [--json FILE] [--backend auto|cpu|cuda] [--debris keep|remove]");
+      "[--settle N[,N...]] [--json FILE] [--backend auto|cpu|cuda] [--debris keep|remove] "
+      "[--preset converged|paper]");
   const std::optional<BackendRequest> backend = backendOption(a);
   const std::optional<DebrisRule> debris = debrisOption(a);
+  const std::optional<std::string> preset = presetOption(a);
   const bool quick = a.has("--quick");
   const int frames = a.intValue("--frames", quick ? 20 : 60, 1, 100000);
   const std::vector<int> settles = settleOption(a, frames);
@@ -501,6 +523,7 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
          "      cg  max resid  unconv\n";
   for (const BenchScene& bs : scenes) {
     SceneDescription scene = loadScene(fs::path(assetDirectory()) / "scenes" / bs.file);
+    if (preset) scene = withSolverPreset(scene, *preset);
     if (backend) scene.solver.backend = *backend;
     if (debris) scene.fracture.debris = *debris;
     TetMesh mesh;

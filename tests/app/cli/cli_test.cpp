@@ -412,6 +412,48 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   EXPECT_EQ(run({"bench", "--scene", "moon"}).code, kExitUsage);
 }
 
+TEST(Cli, BenchRunsTheScenesWithTheSolverPresetAsked) {
+  test::TempDir dir;
+  useSmallSphereAssets(dir);
+  // --preset paper: every cut count with the paper's fixed work (one Newton step, no CG).
+  const CliRun paper = run({"bench", "--cracks", "--frames", "2", "--preset", "paper", "--json",
+                            (dir / "p.json").string()});
+  // A scene of the paper's preset whose own solver keys stay: --preset converged keeps its grid.
+  test::writeText(
+      dir / "scenes" / "hanging_sphere.json",
+      std::string(R"({"mesh": {"file": ")") + GALSCULPT_SOURCE_DIR +
+          R"(/assets/meshes/sphere_small.node"}, "anchors": [{"box": {"min": [-1, 0.08, -1]}}],
+                      "solver": {"preset": "paper", "grid": "20/all"}})");
+  const CliRun converged = run({"bench", "--cracks", "--frames", "2", "--preset", "converged",
+                                "--json", (dir / "c.json").string()});
+  const CliRun own =
+      run({"bench", "--cracks", "--frames", "2", "--json", (dir / "o.json").string()});
+  const CliRun bad = run({"bench", "--cracks", "--preset", "fast"});
+  unsetenv("GALSCULPT_ASSETS");
+  ASSERT_EQ(paper.code, kExitOk) << paper.err;
+  ASSERT_EQ(converged.code, kExitOk) << converged.err;
+  ASSERT_EQ(own.code, kExitOk) << own.err;
+  const auto p = nlohmann::json::parse(test::readText(dir / "p.json"));
+  const auto c = nlohmann::json::parse(test::readText(dir / "c.json"));
+  const auto o = nlohmann::json::parse(test::readText(dir / "o.json"));
+  ASSERT_EQ(p["results"].size(), 3u);
+  ASSERT_EQ(c["results"].size(), 3u);
+  ASSERT_EQ(o["results"].size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(p["results"][i]["preset"], "paper") << i;
+    EXPECT_EQ(p["results"][i]["newton_iters"], 1) << i;
+    EXPECT_EQ(p["results"][i]["newton_iters_mean"].get<double>(), 1.0) << i;
+    EXPECT_EQ(p["results"][i]["cg_iters_mean"].get<double>(), 0.0) << i;
+    EXPECT_EQ(o["results"][i]["preset"], "paper") << i << ": the scene's own";
+    EXPECT_EQ(c["results"][i]["preset"], "converged") << i;
+    EXPECT_EQ(c["results"][i]["newton_iters"], 40) << i;
+    EXPECT_EQ(c["results"][i]["grid"], "20/all") << i << ": the scene's key stays";
+  }
+  EXPECT_GT(c["results"][2]["cg_iters_mean"].get<double>(), 0.0);
+  EXPECT_EQ(bad.code, kExitUsage);
+  EXPECT_NE(bad.err.find("--preset must be converged or paper"), std::string::npos) << bad.err;
+}
+
 TEST(Cli, BenchCracksMeasuresSeveralSettledWindowsInOneRun) {
   test::TempDir dir;
   useSmallSphereAssets(dir);
