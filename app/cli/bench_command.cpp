@@ -311,17 +311,17 @@ nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh
 
 // --preset: every scene read again with that solver preset in place of its own (its other
 // solver keys still override the preset's defaults, as in the scene file).
-std::optional<std::string> presetOption(const CliArgs& args) {
+std::optional<SolverPreset> presetOption(const CliArgs& args) {
   const auto v = args.value("--preset");
   if (!v) return std::nullopt;
-  if (*v != "converged" && *v != "paper")
-    throw UsageError("--preset must be converged or paper, got '" + *v + "'");
-  return *v;
+  const std::optional<SolverPreset> preset = solverPresetFromName(*v);
+  if (!preset) throw UsageError("--preset must be converged or paper, got '" + *v + "'");
+  return preset;
 }
 
-SceneDescription withSolverPreset(const SceneDescription& scene, const std::string& preset) {
+SceneDescription withSolverPreset(const SceneDescription& scene, SolverPreset preset) {
   nlohmann::json root = scene.source;
-  root["solver"]["preset"] = preset;
+  root["solver"]["preset"] = solverPresetName(preset);
   return parseScene(root, scene.file);
 }
 
@@ -508,7 +508,7 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
       "[--preset converged|paper]");
   const std::optional<BackendRequest> backend = backendOption(a);
   const std::optional<DebrisRule> debris = debrisOption(a);
-  const std::optional<std::string> preset = presetOption(a);
+  const std::optional<SolverPreset> preset = presetOption(a);
   const bool quick = a.has("--quick");
   const int frames = a.intValue("--frames", quick ? 20 : 60, 1, 100000);
   const std::vector<int> settles = settleOption(a, frames);

@@ -340,6 +340,9 @@ const char* debrisRuleName(DebrisRule rule) {
 std::optional<DebrisRule> debrisRuleFromName(const std::string& name) {
   return valueOf(kDebrisRuleNames, name);
 }
+std::optional<SolverPreset> solverPresetFromName(const std::string& name) {
+  return valueOf(kSolverPresetNames, name);
+}
 
 const std::vector<std::string>& materialPresetNames() {
   return kPresets;

@@ -145,6 +145,8 @@ std::optional<BackendRequest> backendRequestFromName(const std::string& name);
 // "keep", "remove" (fracture.debris); debrisRuleFromName: none for another name.
 const char* debrisRuleName(DebrisRule rule);
 std::optional<DebrisRule> debrisRuleFromName(const std::string& name);
+// The solver preset named `name` ("converged", "paper"), or none for another name.
+std::optional<SolverPreset> solverPresetFromName(const std::string& name);
 
 // Defaults are the converged preset's (solverPreset below).
 struct SolverDesc {

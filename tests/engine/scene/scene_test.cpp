@@ -300,6 +300,10 @@ TEST(Scene, SolverChoicesAreTypedAndKeepTheirNames) {
   EXPECT_STREQ(backendRequestName(s.solver.backend), "cpu");
   EXPECT_EQ(backendRequestFromName("cuda"), BackendRequest::Cuda);
   EXPECT_FALSE(backendRequestFromName("gpu").has_value());
+  EXPECT_EQ(solverPresetFromName("paper"), SolverPreset::Paper);
+  EXPECT_EQ(solverPresetFromName(solverPresetName(SolverPreset::Converged)),
+            SolverPreset::Converged);
+  EXPECT_FALSE(solverPresetFromName("fast").has_value());
 }
 
 TEST(Scene, MissingMeshFileIsReportedWhenLoading) {
