@@ -312,11 +312,7 @@ nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh
 // --preset: every scene read again with that solver preset in place of its own (its other
 // solver keys still override the preset's defaults, as in the scene file).
 std::optional<SolverPreset> presetOption(const CliArgs& args) {
-  const auto v = args.value("--preset");
-  if (!v) return std::nullopt;
-  const std::optional<SolverPreset> preset = solverPresetFromName(*v);
-  if (!preset) throw UsageError("--preset must be converged or paper, got '" + *v + "'");
-  return preset;
+  return namedOption(args, "--preset", solverPresetFromName, "converged or paper");
 }
 
 SceneDescription withSolverPreset(const SceneDescription& scene, SolverPreset preset) {
@@ -327,11 +323,7 @@ SceneDescription withSolverPreset(const SceneDescription& scene, SolverPreset pr
 
 // --debris: every run's debris rule instead of the scene's.
 std::optional<DebrisRule> debrisOption(const CliArgs& args) {
-  const auto v = args.value("--debris");
-  if (!v) return std::nullopt;
-  const std::optional<DebrisRule> rule = debrisRuleFromName(*v);
-  if (!rule) throw UsageError("--debris must be keep or remove, got '" + *v + "'");
-  return rule;
+  return namedOption(args, "--debris", debrisRuleFromName, "keep or remove");
 }
 
 std::string row(const nlohmann::json& r) {

@@ -116,11 +116,7 @@ void CliArgs::expectPositional(size_t min, size_t max, const std::string& usage)
 }
 
 std::optional<BackendRequest> backendOption(const CliArgs& args) {
-  const auto v = args.value("--backend");
-  if (!v) return std::nullopt;
-  const std::optional<BackendRequest> request = backendRequestFromName(*v);
-  if (!request) throw UsageError("--backend must be auto, cpu or cuda, got '" + *v + "'");
-  return request;
+  return namedOption(args, "--backend", backendRequestFromName, "auto, cpu or cuda");
 }
 
 }  // namespace galsculpt

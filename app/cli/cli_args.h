@@ -42,6 +42,19 @@ class CliArgs {
   std::map<std::string, std::string> values_;
 };
 
+// An option whose value is one of an enum's names: empty when absent, the value named, or a
+// UsageError that lists `choices` ("auto, cpu or cuda") for another name.
+template <typename E>
+std::optional<E> namedOption(const CliArgs& args, const std::string& flag,
+                             std::optional<E> (*fromName)(const std::string&),
+                             const std::string& choices) {
+  const auto v = args.value(flag);
+  if (!v) return std::nullopt;
+  const std::optional<E> value = fromName(*v);
+  if (!value) throw UsageError(flag + " must be " + choices + ", got '" + *v + "'");
+  return value;
+}
+
 // --backend auto|cpu|cuda (run, play, bench, open): empty when absent, UsageError otherwise.
 std::optional<BackendRequest> backendOption(const CliArgs& args);
 
