@@ -9,7 +9,7 @@ set -euo pipefail
 # twice as slow as the reference BLAS.
 packages=(
   build-essential cmake pkg-config git
-  libeigen3-dev libsuitesparse-dev nlohmann-json3-dev
+  libeigen3-dev libsuitesparse-dev nlohmann-json3-dev libtbb-dev
   libopenblas0-pthread
   libglfw3-dev libimgui-dev libstb-dev libassimp-dev
   libopengl-dev libegl-dev libgles-dev libegl1-mesa-dev libgl1-mesa-dri mesa-utils xvfb xauth

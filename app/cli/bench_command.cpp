@@ -26,6 +26,7 @@
 #include "engine/scene/scene.h"
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/simulation.h"
+#include "solver/frame/parallel.h"
 #include "solver/io/atomic_file.h"
 #include "solver/io/input_error.h"
 
@@ -178,6 +179,7 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
   r["tets"] = mesh.numTets();
   describeSetting(setting, r);
   r["backend"] = sim.backendName();
+  r["threads"] = threadCount();
   for (const std::string& note : sim.notes()) {
     if (note.find("running on the CPU") != std::string::npos) r["backend_note"] = note;
   }
@@ -349,7 +351,7 @@ std::string row(const nlohmann::json& r) {
     else
       s << std::string(15, ' ');
     s << std::setw(9) << std::setprecision(4) << r["piece_residual_median"].get<double>()
-      << " piece resid";
+      << " piece resid" << std::setw(4) << r.value("threads", 0) << " threads";
     return s.str();
   }
   // The solver: its grid and preset, and what differs from the preset's defaults.
@@ -387,7 +389,8 @@ std::string row(const nlohmann::json& r) {
     << r["ms_p95"].get<double>() << std::setw(8) << std::setprecision(1)
     << r["newton_iters_mean"].get<double>() << std::setw(8) << r["cg_iters_mean"].get<double>()
     << std::setw(11) << std::scientific << std::setprecision(1) << r["residual_max"].get<double>()
-    << std::fixed << std::setw(8) << r["unconverged_frames"].get<int>();
+    << std::fixed << std::setw(8) << r["unconverged_frames"].get<int>() << std::setw(8)
+    << r.value("threads", 0);
   return s.str();
 }
 
@@ -490,14 +493,16 @@ void printWindowSummary(const std::vector<nlohmann::json>& rows, std::ostream& o
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(
-      args, {"--scene", "--json", "--frames", "--settle", "--backend", "--debris", "--preset"},
-      {"--quick", "--sweep", "--cracks"});
+  const CliArgs a(args,
+                  {"--scene", "--json", "--frames", "--settle", "--backend", "--debris", "--preset",
+                   "--threads"},
+                  {"--quick", "--sweep", "--cracks"});
   a.expectPositional(
       0, 0,
       "galsculpt bench [--scene NAME] [--quick] [--sweep] [--cracks] [--frames N] "
       "[--settle N[,N...]] [--json FILE] [--backend auto|cpu|cuda] [--debris keep|remove] "
-      "[--preset converged|paper]");
+      "[--preset converged|paper] [--threads N]");
+  applyThreadsOption(a);
   const std::optional<BackendRequest> backend = backendOption(a);
   const std::optional<DebrisRule> debris = debrisOption(a);
   const std::optional<SolverPreset> preset = presetOption(a);
@@ -512,7 +517,7 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
   nlohmann::json results = nlohmann::json::array();
   out << "scene     tets    solver    grid                     fine coarse  ms/frame      fps  "
          "peak MB  pos err %  vol chg %  surf ms    max  backend  motion err %   p95 ms  newton"
-         "      cg  max resid  unconv\n";
+         "      cg  max resid  unconv threads\n";
   for (const BenchScene& bs : scenes) {
     SceneDescription scene = loadScene(fs::path(assetDirectory()) / "scenes" / bs.file);
     if (preset) scene = withSolverPreset(scene, *preset);

@@ -42,6 +42,9 @@ commands:
                          validate a scene file (and build its mesh)
   help, --help           this text;  version, --version
 
+open, run, play and bench take --threads N: the CPU's threads (default: GALSCULPT_THREADS,
+else OMP_NUM_THREADS, else every core; docs/cli.md, "Threads").
+
 exit codes: 0 ok, 1 failure, 2 usage, 3 bad input, 4 output not written
 )";
 

@@ -1,5 +1,7 @@
 #include "app/cli/cli_args.h"
 
+#include "solver/frame/parallel.h"
+
 #include <charconv>
 #include <cmath>
 #include <string_view>
@@ -117,6 +119,10 @@ void CliArgs::expectPositional(size_t min, size_t max, const std::string& usage)
 
 std::optional<BackendRequest> backendOption(const CliArgs& args) {
   return namedOption(args, "--backend", backendRequestFromName, "auto, cpu or cuda");
+}
+
+void applyThreadsOption(const CliArgs& args) {
+  if (args.has("--threads")) setThreadCount(args.intValue("--threads", 1, 1, 1024));
 }
 
 }  // namespace galsculpt

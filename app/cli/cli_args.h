@@ -58,4 +58,8 @@ std::optional<E> namedOption(const CliArgs& args, const std::string& flag,
 // --backend auto|cpu|cuda (run, play, bench, open): empty when absent, UsageError otherwise.
 std::optional<BackendRequest> backendOption(const CliArgs& args);
 
+// --threads N (run, play, bench, open): the CPU's thread count for this process, when given
+// (solver/frame/parallel.h; otherwise GALSCULPT_THREADS, OMP_NUM_THREADS or the cores).
+void applyThreadsOption(const CliArgs& args);
+
 }  // namespace galsculpt

@@ -175,13 +175,14 @@ TetMesh loadMeshReporting(const SceneDescription& scene, std::ostream& err) {
 int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args,
                   {"--frames", "--solver", "--out", "--metrics", "--export-every",
-                   "--export-format", "--png-every", "--size", "--backend"},
+                   "--export-format", "--png-every", "--size", "--backend", "--threads"},
                   {"--export-tets"});
   a.expectPositional(
       1, 1,
       "galsculpt run SCENE --frames N [--solver reference] --out DIR --metrics FILE.csv "
       "[--export-every K] [--export-format obj|ply|stl|gltf|glb] [--export-tets] "
-      "[--png-every K] [--size WxH] [--backend auto|cpu|cuda]");
+      "[--png-every K] [--size WxH] [--backend auto|cpu|cuda] [--threads N]");
+  applyThreadsOption(a);
   const RunOptions o = readRunOptions(a, "run");
   const int frames = a.intValue("--frames", 0, 1, 10000000);
   if (!a.has("--frames")) throw UsageError("run needs --frames N");
@@ -196,12 +197,14 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
 int playCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args,
                   {"--out", "--metrics", "--export-every", "--solver", "--export-format",
-                   "--png-every", "--size", "--backend"},
+                   "--png-every", "--size", "--backend", "--threads"},
                   {"--export-tets"});
   a.expectPositional(1, 1,
                      "galsculpt play SCRIPT --out DIR [--export-every K] [--metrics FILE.csv] "
                      "[--solver reference] [--export-format obj|ply|stl|gltf|glb] "
-                     "[--export-tets] [--png-every K] [--size WxH] [--backend auto|cpu|cuda]");
+                     "[--export-tets] [--png-every K] [--size WxH] [--backend auto|cpu|cuda] "
+                     "[--threads N]");
+  applyThreadsOption(a);
   const RunOptions o = readRunOptions(a, "play");
   const std::optional<BackendRequest> backend = backendOption(a);
   PlaybackScript script = loadPlaybackScript(a.positional()[0]);

@@ -122,12 +122,14 @@ int renderCommand(const std::vector<std::string>& args, std::ostream& out, std::
 int openCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args,
                   {"--out", "--size", "--input-script", "--save-project", "--save-recording",
-                   "--autosave", "--backend"},
+                   "--autosave", "--backend", "--threads"},
                   {"--headless", "--paused", "--no-recovery"});
   a.expectPositional(1, 1,
                      "galsculpt open FILE [--headless] [--out DIR] [--size WxH] [--paused] "
                      "[--input-script FILE] [--save-project FILE] [--save-recording FILE] "
-                     "[--autosave SECONDS] [--no-recovery] [--backend auto|cpu|cuda]");
+                     "[--autosave SECONDS] [--no-recovery] [--backend auto|cpu|cuda] "
+                     "[--threads N]");
+  applyThreadsOption(a);
   const std::optional<BackendRequest> backend = backendOption(a);
   const fs::path file = a.positional()[0];
   if (!fs::exists(file)) throw InputError(file.string() + ": no such file");

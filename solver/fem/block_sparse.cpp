@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "solver/frame/parallel.h"
+
 namespace galsculpt {
 
 int BlockPattern::find(int row, int column) const {
@@ -54,13 +56,15 @@ void BlockSparseMatrix::setZero() {
 void BlockSparseMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   const BlockPattern& p = *pattern;
   y.resize(3 * p.rows);
-#pragma omp parallel for schedule(static)
-  for (int r = 0; r < p.rows; ++r) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (int k = p.rowStart[r]; k < p.rowStart[r + 1]; ++k)
-      sum.noalias() += blocks[k] * x.segment<3>(3 * p.columns[k]);
-    y.segment<3>(3 * r) = sum;
-  }
+  parallelFor(
+      p.rows,
+      [&](int r) {
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        for (int k = p.rowStart[r]; k < p.rowStart[r + 1]; ++k)
+          sum.noalias() += blocks[k] * x.segment<3>(3 * p.columns[k]);
+        y.segment<3>(3 * r) = sum;
+      },
+      150);
 }
 
 Eigen::SparseMatrix<double> BlockSparseMatrix::toEigen() const {

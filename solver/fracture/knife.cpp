@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "solver/frame/parallel.h"
 #include "solver/mesh/exact_predicates.h"
 
 namespace galsculpt {
@@ -66,21 +67,23 @@ std::vector<EdgeCrossing> edgesCrossingSurface(const std::vector<Vec3>& x,
   }
   std::vector<float> crossing(edges.size(), -1.0f);
   const int n = static_cast<int>(edges.size());
-#pragma omp parallel for schedule(static)
-  for (int e = 0; e < n; ++e) {
-    const Vec3& p = x[edges[e][0]];
-    const Vec3& q = x[edges[e][1]];
-    const Vec3 lo = p.cwiseMin(q), hi = p.cwiseMax(q);
-    if ((hi.array() < all.lo.array()).any() || (lo.array() > all.hi.array()).any()) continue;
-    for (size_t i = 0; i < surface.size(); ++i) {
-      if ((hi.array() < boxes[i].lo.array()).any() || (lo.array() > boxes[i].hi.array()).any())
-        continue;
-      if (segmentCrossesTriangle(p, q, surface[i])) {
-        crossing[e] = static_cast<float>(crossingFraction(p, q, surface[i]));
-        break;
-      }
-    }
-  }
+  parallelFor(
+      n,
+      [&](int e) {
+        const Vec3& p = x[edges[e][0]];
+        const Vec3& q = x[edges[e][1]];
+        const Vec3 lo = p.cwiseMin(q), hi = p.cwiseMax(q);
+        if ((hi.array() < all.lo.array()).any() || (lo.array() > all.hi.array()).any()) return;
+        for (size_t i = 0; i < surface.size(); ++i) {
+          if ((hi.array() < boxes[i].lo.array()).any() || (lo.array() > boxes[i].hi.array()).any())
+            continue;
+          if (segmentCrossesTriangle(p, q, surface[i])) {
+            crossing[e] = static_cast<float>(crossingFraction(p, q, surface[i]));
+            break;
+          }
+        }
+      },
+      8 + static_cast<long>(surface.size()));
   std::vector<EdgeCrossing> out;
   for (int e = 0; e < n; ++e) {
     if (crossing[e] >= 0.0f) out.push_back({e, crossing[e]});

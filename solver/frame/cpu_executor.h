@@ -1,7 +1,8 @@
-// The CPU executor: buffers are vectors, a launch is an OpenMP loop over independent items (each
-// writes only its own outputs), so the frame (frame_solver.h) gives bit-identical results for
-// any thread count. Reductions add fixed blocks of 256 items and then the block sums in order,
-// as the CUDA executor does. The CPU backend is the frame on this executor.
+// The CPU executor: buffers are vectors, a launch is a parallel loop (parallel.h: oneTBB's
+// work stealing) over independent items (each writes only its own outputs), so the frame
+// (frame_solver.h) gives bit-identical results for any thread count. Reductions add fixed blocks of
+// 256 items and then the block sums in order, as the CUDA executor does. The CPU backend is the
+// frame on this executor.
 #pragma once
 
 #include <Eigen/Dense>
@@ -11,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "solver/frame/parallel.h"
 
 namespace galsculpt {
 
@@ -28,9 +31,6 @@ class CpuExecutor {
   static constexpr const char* kName = "cpu";
   // Buffers live in host memory: the frame may hand them to host libraries (CHOLMOD).
   static constexpr bool kHostMemory = true;
-  // Below this much work (items x cost) a launch runs on one thread: waking the others costs more.
-  static constexpr long kParallelWork = 4096;
-
   template <typename T>
   class Buffer {
    public:
@@ -97,8 +97,7 @@ class CpuExecutor {
   template <typename F>
   void forEach(int n, const F& f, long cost = 1) const {
     ++counters_.launches;
-#pragma omp parallel for schedule(static) if (n > 1 && n * cost > kParallelWork)
-    for (int i = 0; i < n; ++i) f(i);
+    parallelFor(n, f, cost);
   }
   // *out = sum of f(i) over i < n.
   template <typename F>
@@ -160,13 +159,15 @@ class CpuExecutor {
     constexpr int kBlock = 256;
     const int blocks = (n + kBlock - 1) / kBlock;
     std::vector<double> partial(blocks, identity);
-#pragma omp parallel for schedule(static) if (n > 4096)
-    for (int b = 0; b < blocks; ++b) {
-      double acc = identity;
-      const int end = std::min(n, (b + 1) * kBlock);
-      for (int i = b * kBlock; i < end; ++i) acc = op(acc, f(i));
-      partial[b] = acc;
-    }
+    parallelFor(
+        blocks,
+        [&](int b) {
+          double acc = identity;
+          const int end = std::min(n, (b + 1) * kBlock);
+          for (int i = b * kBlock; i < end; ++i) acc = op(acc, f(i));
+          partial[b] = acc;
+        },
+        kBlock);
     double total = identity;
     for (double p : partial) total = op(total, p);
     *out = total;

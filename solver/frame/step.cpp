@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "solver/fem/tet_element.h"
+#include "solver/frame/parallel.h"
 
 namespace galsculpt {
 
@@ -45,21 +46,26 @@ double assembleElastic(const SimModel& model, const std::vector<Vec3>& x, const 
   std::vector<double> energies(model.numTets(), 0.0);
   const HessianMode mode = hessian ? HessianMode::ProjectedSpd : HessianMode::None;
   for (const std::vector<int>& color : model.colors) {
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < color.size(); ++i) {
-      const int t = color[i];
-      const Tet& tet = model.mesh.tets[t];
-      ElementEval ev;
-      evaluateTetAt(model, x, state, t, mode, ev);
-      energies[t] = ev.energy;
-      for (int a = 0; a < 4; ++a) gradient.segment<3>(3 * tet[a]) += ev.gradient.segment<3>(3 * a);
-      if (hessian) {
-        for (int a = 0; a < 4; ++a) {
-          for (int b = 0; b < 4; ++b)
-            hessian->blocks[model.scatter[t][4 * a + b]] += ev.hessian.block<3, 3>(3 * a, 3 * b);
-        }
-      }
-    }
+    // A colour's tets share no vertex: each adds into its own vertices' entries.
+    parallelFor(
+        static_cast<int>(color.size()),
+        [&](int i) {
+          const int t = color[i];
+          const Tet& tet = model.mesh.tets[t];
+          ElementEval ev;
+          evaluateTetAt(model, x, state, t, mode, ev);
+          energies[t] = ev.energy;
+          for (int a = 0; a < 4; ++a)
+            gradient.segment<3>(3 * tet[a]) += ev.gradient.segment<3>(3 * a);
+          if (hessian) {
+            for (int a = 0; a < 4; ++a) {
+              for (int b = 0; b < 4; ++b)
+                hessian->blocks[model.scatter[t][4 * a + b]] +=
+                    ev.hessian.block<3, 3>(3 * a, 3 * b);
+            }
+          }
+        },
+        400);
   }
   double total = 0.0;
   for (double e : energies) total += e;

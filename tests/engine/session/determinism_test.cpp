@@ -4,7 +4,6 @@
 // purpose updates the literals knowingly (and says so in its commit); one that alters them by
 // accident fails here.
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <cstdint>
 #include <cstdio>
@@ -12,6 +11,7 @@
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/playback.h"
 #include "engine/session/simulation.h"
+#include "solver/frame/parallel.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -114,15 +114,15 @@ constexpr std::uint64_t kHangingBall = 0x60dc9ab88d791610;
 constexpr std::uint64_t kSphereCut = 0x85df3dbaf515e998;
 
 TEST(Determinism, PinnedHashesAtOneAndTwoThreads) {
-  const int threads = omp_get_max_threads();
+  const int threads = threadCount();
   for (int n : {1, 2}) {
-    omp_set_num_threads(n);
+    setThreadCount(n);
     const std::uint64_t hanging = hangingBall();
     const std::uint64_t cut = sphereCut();
     EXPECT_EQ(hex(hanging), hex(kHangingBall)) << "hanging ball, " << n << " thread(s)";
     EXPECT_EQ(hex(cut), hex(kSphereCut)) << "sphere cut, " << n << " thread(s)";
   }
-  omp_set_num_threads(threads);
+  setThreadCount(threads);
 }
 
 }  // namespace

@@ -5,7 +5,6 @@
 #include "solver/frame/frame_solver.h"
 
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <cmath>
 #include <cstdio>
@@ -23,15 +22,15 @@ void expectSameAtOneAndTwoThreads(const Simulation& sim, int frames, StepSetting
   if (!settings.multigrid && settings.gridHandles == StepSettings{}.gridHandles)
     settings = sim.settings();
   std::vector<SimState> results;
-  const int threads = omp_get_max_threads();
+  const int threads = threadCount();
   for (int t : {1, 2}) {
-    omp_set_num_threads(t);
+    setThreadCount(t);
     CpuStepBackend cpu(sim.model());
     SimState state = sim.state();
     for (int f = 0; f < frames; ++f) cpu.step(state, settings);
     results.push_back(state);
   }
-  omp_set_num_threads(threads);
+  setThreadCount(threads);
   const SimState &a = results[0], &b = results[1];
   double moved = 0.0;
   for (size_t v = 0; v < a.x.size(); ++v)

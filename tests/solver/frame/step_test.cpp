@@ -1,8 +1,8 @@
 #include "solver/frame/step.h"
 
 #include <gtest/gtest.h>
-#include <omp.h>
 
+#include "solver/frame/parallel.h"
 #include "solver/mesh/shape_generators.h"
 #include "tests/test_util.h"
 
@@ -160,7 +160,7 @@ TEST(Step, DeterministicAcrossThreadCounts) {
   const SimModel m = buildSimModel(bar(), rubber());
   const StepSettings settings;
   auto run = [&](int threads) {
-    omp_set_num_threads(threads);
+    setThreadCount(threads);
     SimState s = initialState(m);
     s.anchors = {topAnchor(m)};
     for (int f = 0; f < 5; ++f) step(m, s, settings);
@@ -168,7 +168,7 @@ TEST(Step, DeterministicAcrossThreadCounts) {
   };
   const auto one = run(1);
   const auto two = run(2);
-  omp_set_num_threads(omp_get_num_procs());
+  setThreadCount(0);
   for (size_t v = 0; v < one.size(); ++v) EXPECT_EQ(one[v], two[v]);
 }
 

@@ -2,7 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <omp.h>
 #include <Eigen/SparseCholesky>
 
 #include "solver/frame/cpu_executor.h"
@@ -430,18 +429,18 @@ TEST(Multigrid, FragmentCorrectionsDoNotDependOnTheThreadCount) {
   const std::vector<std::uint8_t> damaged = slicedTop(s);
   ASSERT_TRUE(mg.updateDamage(s.model.edges, damaged, 1));
   ASSERT_GE(mg.fragmentStart().size(), 80u) << "many fragments, more than a thread's chunk";
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
+  const int threads = threadCount();
+  setThreadCount(1);
   Cycle c(s, mg);
   Eigen::VectorXd serial;
   c.solve(serial, Cycle::settings());
-  omp_set_num_threads(2);
+  setThreadCount(2);
   for (int run = 0; run < 20; ++run) {
     Eigen::VectorXd parallel;
     c.solve(parallel, Cycle::settings());
     EXPECT_TRUE(parallel == serial) << "run " << run << ": " << (parallel - serial).norm();
   }
-  omp_set_num_threads(threads);
+  setThreadCount(threads);
 }
 
 }  // namespace
