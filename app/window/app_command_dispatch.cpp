@@ -18,7 +18,15 @@ void SculptApp::execute(const Command& command) {
     return;
   }
   if (applyAtOnce(command)) return;
-  finishStep();  // the rest acts between frames
+  if (stepInFlight()) {
+    // The rest acts between frames: it waits with the input for the frame in flight, in order,
+    // and the window keeps drawing meanwhile.
+    InputEvent e;
+    e.kind = InputEvent::Kind::Command;
+    e.command = command;
+    enqueue(e);
+    return;
+  }
   try {
     if (!applyToTools(command)) applyToSession(command);
   } catch (const std::exception& e) {
@@ -73,6 +81,9 @@ bool SculptApp::applyAtOnce(const Command& command) {
     case AppCommand::ToggleSymmetry:
       toolSettings_.symmetry = !toolSettings_.symmetry;
       return true;
+    case AppCommand::Screenshot:
+      pendingScreenshot_ = argument;  // what this window frame draws, panels included
+      return true;
     default:
       return false;
   }
@@ -91,9 +102,6 @@ bool SculptApp::applyToTools(const Command& command) {
       startLoading(orphans.front());
       return true;
     }
-    case AppCommand::Screenshot:
-      pendingScreenshot_ = argument;  // taken once this frame is drawn, panels included
-      return true;
     case AppCommand::View:
       style_.view = argument == "damage"   ? SurfaceView::Damage
                     : argument == "stress" ? SurfaceView::Stress
@@ -194,7 +202,6 @@ void SculptApp::frameHoveredPiece() {
 }
 
 void SculptApp::applySceneSettings() {
-  finishStep();
   try {
     SceneSettings s = editing_;
     s.solver.grid = grid_;

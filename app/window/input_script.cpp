@@ -47,6 +47,11 @@ InputScript loadInputScript(const std::filesystem::path& file) {
     if (o.has("wait")) {
       s.kind = InputStep::Kind::Wait;
       s.frames = o.integer("wait", 1, 0, 1000000);
+    } else if (o.has("wait_frames")) {
+      // Real time: until this many more simulation frames are on the screen (the file is
+      // loaded and playing); in a synchronous script the same as "wait".
+      s.kind = InputStep::Kind::WaitFrames;
+      s.frames = o.integer("wait_frames", 1, 0, 1000000);
     } else if (o.has("move")) {
       s.kind = InputStep::Kind::Move;
       const nlohmann::json& m = o.raw("move");
@@ -76,7 +81,7 @@ InputScript loadInputScript(const std::filesystem::path& file) {
       s.command = *scriptCommandNamed(o.string("command", "", scriptCommandNames()));
       s.argument = o.string("argument", "");
     } else {
-      o.fail("", "needs one of wait, move, press, release, scroll, key or command");
+      o.fail("", "needs one of wait, wait_frames, move, press, release, scroll, key or command");
     }
     o.rejectUnknownKeys();
     steps.push_back(std::move(s));

@@ -15,9 +15,9 @@
 namespace galsculpt {
 
 struct InputStep {
-  enum class Kind { Wait, Move, Press, Release, Scroll, Key, Command };
+  enum class Kind { Wait, WaitFrames, Move, Press, Release, Scroll, Key, Command };
   Kind kind = Kind::Wait;
-  int frames = 1;                                 // Wait: frames to let pass
+  int frames = 1;  // Wait: window frames to let pass; WaitFrames: simulation frames to see drawn
   std::vector<std::pair<double, double>> points;  // Move: cursor samples within one frame
   MouseButton button = MouseButton::Left;
   bool shift = false, ctrl = false;

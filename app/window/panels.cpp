@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "engine/session/simulation.h"
+#include "solver/frame/parallel.h"
+#include "solver/frame/timing.h"
 
 namespace galsculpt {
 
@@ -151,46 +153,51 @@ void SculptApp::drawOverlay() {
   ImGui::Begin("Simulation", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   // Long lines (a scene's name, a backend fallback's reason) wrap instead of widening it.
   ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kOverlayTextWidth);
-  ImGui::Text("%.1f fps (window)", static_cast<double>(ImGui::GetIO().Framerate));
+  const Clock::time_point now = Clock::now();
+  ImGui::Text("window %.0f fps (%.1f ms a frame on its thread)   simulation %.1f fps",
+              windowRate_.rate(now), windowCpuMs_.median(), simulationRate_.rate(now));
+  if (!latencyMs_.empty())
+    ImGui::Text("input to screen %.0f ms (median; last %.0f ms)", latencyMs_.median(),
+                latencyMs_.last());
   if (session_) {
+    // While a frame is in flight only what stays fixed is read from the session; the rest is
+    // the drawn frame's (shown_).
     const Simulation& sim = session_->simulation();
     const SceneDescription& scene = session_->scene();
+    const FrameMetrics& m = shown_.metrics;
     ImGui::Text("%s: %d vertices, %d tets", scene.name.c_str(), sim.model().numVertices(),
                 sim.model().numTets());
     ImGui::Text("material: %s (%s)", scene.material.preset.c_str(),
                 materialModelName(scene.material.model));
-    ImGui::Text("solver: %s (%s) %s on the %s backend", solverTypeName(scene.solver.type),
-                solverPresetName(scene.solver.preset), scene.solver.grid.c_str(),
-                (stepInFlight() ? backendName_ : sim.backendName()).c_str());
+    ImGui::Text("solver: %s (%s) %s on the %s backend, %d threads",
+                solverTypeName(scene.solver.type), solverPresetName(scene.solver.preset),
+                scene.solver.grid.c_str(), shown_.backendName.c_str(), threadCount());
     ImGui::Separator();
-    ImGui::Text("frame %d  (%s)", metrics_.frame, playing_ ? "playing" : "paused");
-    ImGui::Text("ms: total %.1f  elements %.1f  solve %.1f", metrics_.msTotal, metrics_.msElements,
-                metrics_.msSolve);
-    ImGui::Text("    fracture %.1f  plastic %.1f  surface %.1f", metrics_.msFracture,
-                metrics_.msPlastic, msSurface_);
-    ImGui::Text("residual %.2e   Newton %d   CG %d", metrics_.residual, metrics_.newtonIterations,
-                metrics_.cgIterations);
-    if (!metrics_.converged)
+    ImGui::Text("frame %d  (%s)", m.frame, playing_ ? "playing" : "paused");
+    ImGui::Text("ms: total %.1f  elements %.1f  solve %.1f", m.msTotal, m.msElements, m.msSolve);
+    ImGui::Text("    fracture %.1f  plastic %.1f  surface %.1f", m.msFracture, m.msPlastic,
+                shown_.msSurface);
+    ImGui::Text("residual %.2e   Newton %d   CG %d", m.residual, m.newtonIterations,
+                m.cgIterations);
+    if (!m.converged)
       ImGui::TextColored(ImVec4(1, 0.35f, 0.2f, 1),
                          "NOT CONVERGED: a residual above %.0e of its loads",
                          scene.solver.residualTolerance);
     // The body's norm can hide a piece's (docs/physics.md): said here; with
     // solver.converge_pieces (the default) such a frame is also not converged.
-    if (pieceAboveTolerance(metrics_, scene.solver.residualTolerance))
+    if (pieceAboveTolerance(m, scene.solver.residualTolerance))
       ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "worst piece's residual %.2e of its own loads",
-                         metrics_.pieceResidual);
-    if (metrics_.invertedElements > 0)
-      ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "%d elements inside out",
-                         metrics_.invertedElements);
-    ImGui::Text("volume change %+.3f %%", metrics_.volumeChangePct);
-    ImGui::Text("pieces %d   damaged edges %d   anchored %zu", metrics_.pieces,
-                metrics_.damagedEdges, anchored_.size());
-    if (metrics_.warnings > 0)
-      ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "warnings this frame: %d", metrics_.warnings);
-    ImGui::Text("history %.1f MB, %zu recorded events", session_->historyBytes() / 1048576.0,
-                session_->recording().size());
-    for (const std::string& note : stepInFlight() ? notes_ : sim.notes())
-      ImGui::TextDisabled("%s", note.c_str());
+                         m.pieceResidual);
+    if (m.invertedElements > 0)
+      ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "%d elements inside out", m.invertedElements);
+    ImGui::Text("volume change %+.3f %%", m.volumeChangePct);
+    ImGui::Text("pieces %d   damaged edges %d   anchored %zu", m.pieces, m.damagedEdges,
+                shown_.anchors.size());
+    if (m.warnings > 0)
+      ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "warnings this frame: %d", m.warnings);
+    ImGui::Text("history %.1f MB, %zu recorded events", shown_.historyBytes / 1048576.0,
+                shown_.recordedEvents);
+    for (const std::string& note : shown_.notes) ImGui::TextDisabled("%s", note.c_str());
   }
   if (!status_.empty()) ImGui::TextDisabled("%s", status_.c_str());
   ImGui::PopTextWrapPos();
@@ -235,7 +242,7 @@ void SculptApp::drawScenePanel() {
            energyGuardName);
   pickEnum("backend", v.backend, {BackendRequest::Auto, BackendRequest::Cpu, BackendRequest::Cuda},
            backendRequestName);
-  if (ImGui::Button("Apply (restarts the simulation)")) applySceneSettings();
+  if (ImGui::Button("Apply (restarts the simulation)")) applySettings_ = true;  // between frames
   ImGui::SameLine();
   if (ImGui::Button("Revert")) {
     editing_ = sceneSettings(session_->scene());
@@ -244,19 +251,23 @@ void SculptApp::drawScenePanel() {
   ImGui::End();
 }
 
+// The tool's preview, at the newest cursor sample and against the drawn surface, so that it
+// follows the cursor at the window's rate however long a frame takes.
 void SculptApp::drawCursor() {
   if (!controller_ || (ImGui::GetIO().WantCaptureMouse && !scripted_)) return;
   int width = 1, height = 1;
   glfwGetWindowSize(window_, &width, &height);
   ImDrawList* draw = ImGui::GetForegroundDrawList();
-  const double x = controller_->cursorX(), y = controller_->cursorY();
+  const float x = static_cast<float>(cursorX_), y = static_cast<float>(cursorY_);
   if (toolSettings_.tool == Tool::Knife) {
-    draw->AddLine(ImVec2(float(x) - 8, float(y) + 8), ImVec2(float(x) + 8, float(y) - 8),
-                  IM_COL32(255, 80, 60, 255), 2.0f);
+    // The stroke so far (the blade's path on the screen), then the knife at the cursor.
+    for (size_t k = 1; k < trail_.size(); ++k)
+      draw->AddLine(ImVec2(trail_[k - 1].first, trail_[k - 1].second),
+                    ImVec2(trail_[k].first, trail_[k].second), IM_COL32(255, 80, 60, 200), 2.0f);
+    draw->AddLine(ImVec2(x - 8, y + 8), ImVec2(x + 8, y - 8), IM_COL32(255, 80, 60, 255), 2.0f);
     return;
   }
-  if (stepInFlight()) return;  // no pick while the surface is being recomputed
-  const std::optional<RayHit> hit = controller_->hover();
+  const std::optional<RayHit> hit = hoverShown();
   if (!hit) return;
   // The brush radius on screen: project a point one radius away on the plane facing the camera.
   const Vec3 side = camera_.forward().cross(Vec3::UnitY()).normalized();
@@ -274,6 +285,25 @@ void SculptApp::drawCursor() {
     draw->AddCircle(ImVec2(float(m.x()), float(m.y())), pixels, IM_COL32(255, 255, 255, 110), 48,
                     1.0f);
   }
+}
+
+// The drawn surface's point under the cursor (none for the knife and navigation).
+std::optional<RayHit> SculptApp::hoverShown() {
+  if (!shown_.valid || toolSettings_.tool == Tool::Navigate || toolSettings_.tool == Tool::Knife)
+    return std::nullopt;
+  if (shown_.damageRevision != bvhDamage_ || shown_.surface.numFaces() != bvhFaces_) {
+    shownBvh_.build(shown_.surface);
+  } else if (shown_.generation != bvhGeneration_) {
+    shownBvh_.refit(shown_.surface);
+  }
+  bvhDamage_ = shown_.damageRevision;
+  bvhFaces_ = shown_.surface.numFaces();
+  bvhGeneration_ = shown_.generation;
+  int width = 1, height = 1;
+  glfwGetWindowSize(window_, &width, &height);
+  Vec3 origin, direction;
+  camera_.ray(cursorX_, cursorY_, width, height, origin, direction);
+  return shownBvh_.intersect(shown_.surface, origin, direction);
 }
 
 void SculptApp::drawDialogs() {

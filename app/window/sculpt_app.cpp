@@ -12,11 +12,23 @@
 #include "app/render/render_mesh.h"
 #include "engine/session/project_file.h"
 #include "engine/surface/surface_io.h"
+#include "solver/frame/parallel.h"
 #include "solver/frame/timing.h"
+
+#include <time.h>
 
 namespace galsculpt {
 
 namespace fs = std::filesystem;
+
+namespace {
+// This thread's CPU time (ms): what a drawn frame costs the window's thread, waits excluded.
+double threadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+}  // namespace
 
 void SculptApp::takeScreenshot(int width, int height) {
   if (pendingScreenshot_.empty()) return;
@@ -70,8 +82,8 @@ void SculptApp::startLoading(const fs::path& file) {
 }
 
 void SculptApp::finishLoading() {
-  if (!opener_.ready()) return;
-  finishStep();  // the old session's frame ends before the new session replaces it
+  // The old session's frame ends before the new session replaces it: until then, keep drawing.
+  if (!opener_.ready() || stepInFlight()) return;
   try {
     adopt(opener_.take(), opener_.file());
   } catch (const std::exception& e) {
@@ -92,8 +104,8 @@ void SculptApp::adopt(OpenedSession opened, const fs::path& file) {
   const double size = boundingBox(session_->simulation().state().x).size().norm();
   toolSettings_.radius = 0.1 * size;
   toolSettings_.strength = 0.5 * size;
-  shownGeneration_ = ~0ull;
-  metrics_ = FrameMetrics{};
+  shown_ = FrameView{};  // the new body is drawn at once (updateScene)
+  frameInput_.reset();
   editing_ = sceneSettings(session_->scene());
   std::snprintf(grid_, sizeof grid_, "%s", editing_.solver.grid.c_str());
   const std::string title = "Galsculpt - " + session_->scene().name;
@@ -121,7 +133,26 @@ void SculptApp::handleEvent(const InputEvent& e) {
         if (const auto c = keyCommand(e.key, e.ctrl, e.shift, projectFile_.string())) execute(*c);
       }
       break;
+    case InputEvent::Kind::Command:
+      execute(e.command);
+      break;
   }
+}
+
+void SculptApp::enqueue(InputEvent e) {
+  e.at = Clock::now();
+  ++wakeups_;
+  if (e.kind == InputEvent::Kind::Move) {
+    cursorX_ = e.x;
+    cursorY_ = e.y;
+    if (trailing_) trail_.emplace_back(static_cast<float>(e.x), static_cast<float>(e.y));
+  } else if (e.kind == InputEvent::Kind::Button && e.button == MouseButton::Left) {
+    const bool overPanel = ImGui::GetIO().WantCaptureMouse && !scripted_;
+    trailing_ = e.pressed && toolSettings_.tool == Tool::Knife && !overPanel && session_;
+    trail_.clear();
+    if (trailing_) trail_.emplace_back(static_cast<float>(cursorX_), static_cast<float>(cursorY_));
+  }
+  queue_.push_back(e);
 }
 
 void SculptApp::runScriptStep() {
@@ -130,8 +161,12 @@ void SculptApp::runScriptStep() {
     --scriptWait_;
     return;
   }
+  if (scriptWaitViews_ >= 0) {
+    if (viewsShown_ < scriptWaitViews_) return;
+    scriptWaitViews_ = -1;
+  }
   if (scriptNext_ >= script_.size()) {
-    glfwSetWindowShouldClose(window_, 1);
+    if (queue_.empty() && pendingScreenshot_.empty()) glfwSetWindowShouldClose(window_, 1);
     return;
   }
   const InputStep& s = script_[scriptNext_++];
@@ -144,12 +179,18 @@ void SculptApp::runScriptStep() {
     case InputStep::Kind::Wait:
       scriptWait_ = s.frames;
       break;
+    case InputStep::Kind::WaitFrames:
+      if (realtime_)
+        scriptWaitViews_ = viewsShown_ + s.frames;
+      else
+        scriptWait_ = s.frames;
+      break;
     case InputStep::Kind::Move:
       e.kind = InputEvent::Kind::Move;
       for (const auto& [fx, fy] : s.points) {
         e.x = fx * width;
         e.y = fy * height;
-        queue_.push_back(e);
+        enqueue(e);
       }
       break;
     case InputStep::Kind::Press:
@@ -157,17 +198,17 @@ void SculptApp::runScriptStep() {
       e.kind = InputEvent::Kind::Button;
       e.button = s.button;
       e.pressed = s.kind == InputStep::Kind::Press;
-      queue_.push_back(e);
+      enqueue(e);
       break;
     case InputStep::Kind::Scroll:
       e.kind = InputEvent::Kind::Scroll;
       e.y = s.scroll;
-      queue_.push_back(e);
+      enqueue(e);
       break;
     case InputStep::Kind::Key:
       e.kind = InputEvent::Kind::Key;
       e.key = s.key;
-      queue_.push_back(e);
+      enqueue(e);
       break;
     case InputStep::Kind::Command:
       // A script names its paths: without one it fails as a command would, no dialog.
@@ -189,6 +230,7 @@ bool SculptApp::navigationOnly(const InputEvent& e) const {
       return e.pressed ? e.button != MouseButton::Left || toolSettings_.tool == Tool::Navigate
                        : controller_->navigating();
     case InputEvent::Kind::Key:
+    case InputEvent::Kind::Command:
       return false;
   }
   return false;
@@ -202,72 +244,71 @@ void SculptApp::processInput() {
   // touch the session waits, with everything after it, for the frame to finish (so tools act
   // between frames, exactly as recorded).
   for (; i < events.size(); ++i) {
-    if (stepInFlight() && (!controller_ || !navigationOnly(events[i]))) break;
-    handleEvent(events[i]);
+    const InputEvent& e = events[i];
+    if (stepInFlight() && (!controller_ || !navigationOnly(e))) break;
+    // What acts on the session shows in the next view: the latency runs from its arrival.
+    if (controller_ && !navigationOnly(e) && !pendingInput_) pendingInput_ = e.at;
+    handleEvent(e);
   }
   queue_.assign(events.begin() + static_cast<long>(i), events.end());
 }
 
 void SculptApp::finishStep() {
-  if (frames_.inFlight()) metrics_ = frames_.wait();
-  // Read between frames: a frame in flight may change the backend (a device failure) and notes.
-  if (session_) {
-    backendName_ = session_->simulation().backendName();
-    notes_ = session_->simulation().notes();
-  }
+  if (!frames_.inFlight()) return;
+  FrameView view = frames_.wait();
+  simulationRate_.tick(Clock::now());
+  ++viewsShown_;
+  ++runFrames_;
+  runFrameMs_.add(view.metrics.msTotal);
+  show(std::move(view));
 }
 
 void SculptApp::collectStep() {
   if (frames_.ready()) finishStep();
 }
 
+// A finished frame's view goes on the screen (uploaded now, drawn this window frame).
+void SculptApp::show(FrameView view) {
+  renderer_.setMesh(view.mesh);
+  renderer_.setPoints(view.anchors, kAnchorColor);
+  shown_ = std::move(view);
+  shown_.mesh = RenderMesh{};  // uploaded: the window keeps only what it reads
+
+  if (frameInput_ && (!drawnInput_ || *frameInput_ < *drawnInput_)) drawnInput_ = frameInput_;
+  frameInput_.reset();
+}
+
 void SculptApp::advanceSimulation() {
   // Launch only: a finished frame is collected at the top of the loop, before input, so input
   // that waited for it goes through before the next frame starts.
-  if (stepInFlight() || !session_ || busy()) return;
+  if (!frameShouldStart()) return;
   session_->setCamera(camera_.pose());
-  if (playing_ || stepOnce_) {
-    stepOnce_ = false;
-    // The frame runs on a worker thread: the window keeps drawing and navigating meanwhile.
-    frames_.start(*session_);
-    if (scripted_ && !realtime_) finishStep();  // scripted input counts frames exactly
-  }
+  stepOnce_ = false;
+  frameInput_ = pendingInput_;
+  pendingInput_.reset();
+  // The frame and its view run on a worker thread: the window keeps drawing and navigating
+  // meanwhile, and wakes when they are done.
+  frames_.start(*session_, style_, [] { glfwPostEmptyEvent(); });
+  if (scripted_ && !realtime_) finishStep();  // scripted input counts frames exactly
 }
 
+bool SculptApp::frameShouldStart() const {
+  return session_ && !stepInFlight() && !busy() && (playing_ || stepOnce_);
+}
+
+// Between frames, when what is on the screen is not the session's state: at once after opening
+// a file, and while paused (tools, undo, a view change). While playing, the next frame's view
+// brings the tools' effect, built on the worker.
 void SculptApp::updateScene() {
-  if (!session_ || stepInFlight()) return;  // the last frame's surface stays on screen
-  const Simulation& sim = session_->simulation();
-  const bool moved =
-      sim.generation() != shownGeneration_ || sim.state().damageRevision != shownDamage_;
-  const bool restyled = style_.view != shownStyle_.view ||
-                        style_.tintCracks != shownStyle_.tintCracks ||
-                        style_.scaleMax != shownStyle_.scaleMax;
-  if (!moved && !restyled) return;
-  SurfaceUpdateStats stats;
-  const auto start = Clock::now();
-  const VisualSurface& surface = sim.surface(&stats);
-  msSurface_ = msSince(start);
-  std::vector<double> values;
-  if (style_.view == SurfaceView::Damage) {
-    values = sim.vertexDamage();
-    style_.scaleMax = 1.0;
-  } else if (style_.view == SurfaceView::Stress) {
-    values = sim.vertexStress();
-    // The hottest colour at the 98th percentile: a few peaks do not wash the rest out.
-    std::vector<double> sorted = values;
-    const size_t k = sorted.size() * 98 / 100;
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(k), sorted.end());
-    style_.scaleMax = std::max(sorted[k], 1e-9);
-  }
-  renderer_.setMesh(makeRenderMesh(surface, style_, values));
-  anchored_ = sim.anchoredVertices();
-  std::vector<Vec3> points;
-  points.reserve(anchored_.size());
-  for (int v : anchored_) points.push_back(sim.state().x[v]);
-  renderer_.setPoints(points, kAnchorColor);
-  shownGeneration_ = sim.generation();
-  shownDamage_ = sim.state().damageRevision;
-  shownStyle_ = style_;
+  if (!session_ || stepInFlight() || busy()) return;
+  const bool restyled =
+      shown_.style.view != style_.view || shown_.style.tintCracks != style_.tintCracks;
+  if (shown_.valid && !restyled && frameShouldStart()) return;
+  if (viewIsCurrent(shown_, *session_, style_)) return;
+  const FrameMetrics metrics = shown_.metrics;
+  show(makeFrameView(*session_, style_, metrics));
+  if (pendingInput_ && (!drawnInput_ || *pendingInput_ < *drawnInput_)) drawnInput_ = pendingInput_;
+  pendingInput_.reset();
 }
 
 void SculptApp::autosave() {
@@ -291,23 +332,30 @@ void SculptApp::finish() {
       execute(Command{AppCommand::SaveRecording, options_.saveRecordingOnExit->string()});
   }
   recovery_->remove(recovery_->ownFile());  // a normal exit leaves nothing to recover
+  // What the run cost, measured (docs/benchmarks.md, "The window"): the window's draws, the
+  // simulation's frames in the window, and input to screen.
+  const double seconds = std::chrono::duration<double>(Clock::now() - runStart_).count();
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "window: %d draws, %.1f a second, median %.1f ms between draws, %.2f ms of its "
+                "thread a draw; simulation: %d frames, median %.1f ms a frame; input to screen: "
+                "median %.0f ms over %zu samples; %d threads",
+                runDraws_, runDraws_ / std::max(seconds, 1e-9), runWindowMs_.median(),
+                runWindowCpuMs_.median(), runFrames_, runFrameMs_.median(), runLatencyMs_.median(),
+                runLatencyMs_.size(), threadCount());
+  log_ << line << '\n';
 }
 
 void SculptApp::run() {
   while (!glfwWindowShouldClose(window_)) {
-    glfwPollEvents();
-    collectStep();
-    finishLoading();
+    waitForWork();
+    drawStart_ = Clock::now();  // the next draw is due a period after this one began
+    const double cpuAtStart = threadCpuMs();
     runScriptStep();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    int width = 1, height = 1;
-    glfwGetWindowSize(window_, &width, &height);
-    if (controller_) controller_->setViewport(width, height);
-    processInput();
-    advanceSimulation();
-    updateScene();
+    betweenFrames();
     drawUi();
     ImGui::Render();
     int fbWidth = 0, fbHeight = 0;
@@ -317,11 +365,93 @@ void SculptApp::run() {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     takeScreenshot(fbWidth, fbHeight);
     glfwSwapBuffers(window_);
+    afterSwap(cpuAtStart);
     autosave();
   }
   opener_.wait();
+  while (frames_.inFlight()) finishStep();
   finishLoading();
   finish();
+}
+
+// A finished frame is taken, the input that waited for it acts, the screen's view catches up
+// and the next frame starts: in the window's loop, and also while the window waits for its
+// next draw, so that the simulation never waits for the window's rate.
+void SculptApp::betweenFrames() {
+  collectStep();
+  finishLoading();
+  int width = 1, height = 1;
+  glfwGetWindowSize(window_, &width, &height);
+  if (controller_) controller_->setViewport(width, height);
+  processInput();
+  if (applySettings_ && !stepInFlight()) {
+    applySettings_ = false;
+    applySceneSettings();
+  }
+  updateScene();
+  advanceSimulation();
+}
+
+void SculptApp::afterSwap(double cpuAtStart) {
+  const Clock::time_point now = Clock::now();
+  const double cpu = threadCpuMs() - cpuAtStart;
+  windowCpuMs_.add(cpu);
+  runWindowCpuMs_.add(cpu);
+  if (lastDraw_ != Clock::time_point{}) {
+    const double ms = std::chrono::duration<double, std::milli>(now - lastDraw_).count();
+    windowMs_.add(ms);
+    runWindowMs_.add(ms);
+  }
+  lastDraw_ = now;
+  windowRate_.tick(now);
+  ++runDraws_;
+  if (drawnInput_) {
+    const double ms = std::chrono::duration<double, std::milli>(now - *drawnInput_).count();
+    latencyMs_.add(ms);
+    runLatencyMs_.add(ms);
+  }
+  drawnInput_.reset();
+}
+
+// The window draws at 60 Hz (30 on a software rasterizer) while something moves on it (input in the
+// last moments, a stroke, loading, a script) and otherwise only when a frame's view arrives or an
+// event comes: paused and untouched, it sleeps in glfwWaitEvents.
+bool SculptApp::wantsSteadyDraws() const {
+  if (scripted_ || busy() || redraw_ > 0 || stepOnce_) return true;
+  if (controller_ && !controller_->navigating()) return true;
+  return Clock::now() - lastInput_ < std::chrono::milliseconds(500);
+}
+
+void SculptApp::waitForWork() {
+  if (scripted_ && !realtime_) {  // synchronous scripts run as fast as they can
+    glfwPollEvents();
+    return;
+  }
+  const double windowHz = softwareRenderer_ ? 30.0 : 60.0;
+  const Clock::time_point next = drawStart_ + std::chrono::duration_cast<Clock::duration>(
+                                                  std::chrono::duration<double>(1.0 / windowHz));
+  if (redraw_ > 0) --redraw_;
+  for (;;) {
+    if (glfwWindowShouldClose(window_)) break;
+    const bool steady = wantsSteadyDraws();
+    if (frames_.ready() && steady) {
+      betweenFrames();  // drawn at the next tick
+      continue;
+    }
+    if (frames_.ready() || frameShouldStart()) break;
+    if (!queue_.empty() && !stepInFlight()) break;  // input that waited for a frame
+    const double left = steady ? std::chrono::duration<double>(next - Clock::now()).count() : 1.0;
+    if (left <= 0.0) break;
+    const std::size_t before = wakeups_;
+    glfwWaitEventsTimeout(left);
+    if (wakeups_ != before) {
+      lastInput_ = Clock::now();
+      redraw_ = 2;  // ImGui settles its hover and its layout over a frame or two
+    } else if (!steady) {
+      autosave();  // idle: its clock still runs
+    }
+  }
+  glfwPollEvents();
 }
 
 }  // namespace galsculpt

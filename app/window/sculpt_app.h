@@ -12,6 +12,7 @@
 #include <chrono>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -19,24 +20,30 @@
 #include "app/render/renderer.h"
 #include "app/window/app_command.h"
 #include "app/window/camera.h"
+#include "app/window/frame_view.h"
 #include "app/window/input_script.h"
+#include "app/window/rate_meter.h"
 #include "app/window/sculpt_window.h"
 #include "app/window/simulation_worker.h"
 #include "app/window/tool_controller.h"
 #include "engine/scene/scene_edit.h"
 #include "engine/session/recovery.h"
 #include "engine/session/session_loader.h"
+#include "engine/surface/surface_bvh.h"
 
 namespace galsculpt {
 
-// One input event, from GLFW or from an input script.
+// One input event, from GLFW or from an input script, or a command from a menu or a panel that
+// must wait for the frame in flight (queued with the input, so that everything acts in order).
 struct InputEvent {
-  enum class Kind { Move, Button, Scroll, Key };
+  enum class Kind { Move, Button, Scroll, Key, Command };
   Kind kind = Kind::Move;
   double x = 0.0, y = 0.0;  // Move: window pixels; Scroll: y steps
   MouseButton button = MouseButton::Left;
   bool pressed = false, shift = false, ctrl = false;
   int key = 0;
+  Command command{AppCommand::Play, ""};
+  std::chrono::steady_clock::time_point at{};  // when it arrived (set by enqueue)
 };
 
 class SculptApp {
@@ -46,7 +53,13 @@ class SculptApp {
 
   bool init(std::string* error);
   void run();
-  std::vector<InputEvent>& queue() { return queue_; }
+  // An event as it arrives (GLFW's callbacks, scripted input): the cursor and the knife's trail
+  // follow it at once; what it does waits its turn (processInput).
+  void enqueue(InputEvent e);
+  // Something other than input needs the window drawn (it was resized or exposed).
+  void requestRedraw() { ++wakeups_; }
+  // On a software rasterizer the window draws at most 30 times a second instead of 60.
+  void setSoftwareRenderer(bool software) { softwareRenderer_ = software; }
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -60,6 +73,13 @@ class SculptApp {
   void runScriptStep();
   void advanceSimulation();
   void updateScene();
+  void show(FrameView view);
+  void betweenFrames();
+  void waitForWork();
+  bool wantsSteadyDraws() const;
+  bool frameShouldStart() const;
+  void afterSwap(double cpuMsAtStart);
+  std::optional<RayHit> hoverShown();
   void autosave();
   void takeScreenshot(int width, int height);
   void fail(const std::string& message);
@@ -112,15 +132,31 @@ class SculptApp {
   char grid_[64] = {};
   bool playing_ = true;
   bool stepOnce_ = false;
-  std::uint64_t shownGeneration_ = ~0ull, shownDamage_ = ~0ull;
-  SurfaceStyle shownStyle_;
-  std::vector<int> anchored_;
+  bool applySettings_ = false;  // the Scene panel's Apply, done between frames
+  FrameView shown_;             // what is on the screen, and what the overlay reports
+  SurfaceBvh shownBvh_;         // over shown_.surface, for the brush cursor
+  std::uint64_t bvhDamage_ = ~0ull, bvhGeneration_ = ~0ull;
+  int bvhFaces_ = -1;
+  double cursorX_ = 0.0, cursorY_ = 0.0;        // the newest cursor sample (window pixels)
+  std::vector<std::pair<float, float>> trail_;  // a knife stroke's samples so far
+  bool trailing_ = false;
 
-  // Overlay figures.
-  FrameMetrics metrics_;
-  std::string backendName_;         // as of the last finished frame
-  std::vector<std::string> notes_;  // the simulation's notes, as of the last finished frame
-  double msSurface_ = 0.0;
+  // Pacing and the overlay's live figures.
+  std::size_t wakeups_ = 0;  // input events and redraw requests so far
+  Clock::time_point drawStart_{}, lastDraw_{}, lastInput_{};
+  int redraw_ = 0;  // frames still to draw after an event (ImGui settles over a few)
+  bool softwareRenderer_ = false;
+  RateMeter windowRate_, simulationRate_;
+  RecentMedian latencyMs_, windowCpuMs_, windowMs_;
+  // The same over the whole run, for the line the window logs when it closes (benchmarks).
+  RecentMedian runLatencyMs_{1u << 20}, runWindowCpuMs_{1u << 20}, runWindowMs_{1u << 20},
+      runFrameMs_{1u << 20};
+  int runDraws_ = 0, runFrames_ = 0;
+  Clock::time_point runStart_ = Clock::now();
+  // The earliest input that acted on the session and is not yet on the screen: waiting for a
+  // frame to start, in the frame in flight, and in the view drawn this window frame.
+  std::optional<Clock::time_point> pendingInput_, frameInput_, drawnInput_;
+  int viewsShown_ = 0;  // views of finished frames drawn (scripts' "wait_frames")
 
   // Dialogs and messages.
   std::optional<AppCommand> askingPath_;  // the command the path dialog is for
@@ -138,6 +174,7 @@ class SculptApp {
   std::vector<InputStep> script_;
   size_t scriptNext_ = 0;
   int scriptWait_ = 0;
+  int scriptWaitViews_ = -1;  // "wait_frames": wait until viewsShown_ reaches it
   bool scripted_ = false;
   bool realtime_ = false;  // a script that lets frames run on the worker as a user would
   std::string pendingScreenshot_;

@@ -6,6 +6,10 @@
 
 #include "app/window/sculpt_app.h"
 
+#include <cstring>
+
+#include "app/render/gl.h"
+
 namespace galsculpt {
 
 namespace {
@@ -19,7 +23,7 @@ void onCursor(GLFWwindow* w, double x, double y) {
   e.kind = InputEvent::Kind::Move;
   e.x = x;
   e.y = y;
-  appOf(w)->queue().push_back(e);
+  appOf(w)->enqueue(e);
 }
 
 void onButton(GLFWwindow* w, int button, int action, int mods) {
@@ -31,14 +35,14 @@ void onButton(GLFWwindow* w, int button, int action, int mods) {
   e.pressed = action == GLFW_PRESS;
   e.shift = mods & GLFW_MOD_SHIFT;
   e.ctrl = mods & GLFW_MOD_CONTROL;
-  appOf(w)->queue().push_back(e);
+  appOf(w)->enqueue(e);
 }
 
 void onScroll(GLFWwindow* w, double, double dy) {
   InputEvent e;
   e.kind = InputEvent::Kind::Scroll;
   e.y = dy;
-  appOf(w)->queue().push_back(e);
+  appOf(w)->enqueue(e);
 }
 
 void onKey(GLFWwindow* w, int key, int, int action, int mods) {
@@ -49,7 +53,32 @@ void onKey(GLFWwindow* w, int key, int, int action, int mods) {
   e.key = key == GLFW_KEY_ESCAPE ? kKeyEscape : key;
   e.shift = mods & GLFW_MOD_SHIFT;
   e.ctrl = mods & GLFW_MOD_CONTROL;
-  appOf(w)->queue().push_back(e);
+  appOf(w)->enqueue(e);
+}
+
+void onRefresh(GLFWwindow* w) {
+  appOf(w)->requestRedraw();
+}
+
+void onResize(GLFWwindow* w, int, int) {
+  appOf(w)->requestRedraw();
+}
+
+// Whether OpenGL here is a software rasterizer: asked of a hidden window's context, before the
+// real window's framebuffer (multisampled or not) is chosen.
+bool softwareRenderer() {
+  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  GLFWwindow* probe = glfwCreateWindow(16, 16, "", nullptr, nullptr);
+  glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
+  if (!probe) return false;
+  glfwMakeContextCurrent(probe);
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  bool software = false;
+  for (const char* name : {"llvmpipe", "softpipe", "Software Rasterizer", "SWR"})
+    software = software || (renderer && std::strstr(renderer, name));
+  glfwMakeContextCurrent(nullptr);
+  glfwDestroyWindow(probe);
+  return software;
 }
 
 }  // namespace
@@ -65,7 +94,11 @@ bool runSculptWindow(const SculptWindowOptions& options, std::ostream& log, std:
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  glfwWindowHint(GLFW_SAMPLES, 4);
+  // On a software rasterizer (llvmpipe under Xvfb or without a GPU driver) a drawn frame costs
+  // the CPU the simulation runs on: no multisampling there (it quadruples the pixels' work),
+  // and the window draws at most 30 times a second (sculpt_app.cpp).
+  const bool software = softwareRenderer();
+  glfwWindowHint(GLFW_SAMPLES, software ? 0 : 4);
   GLFWwindow* window =
       glfwCreateWindow(options.width, options.height, "Galsculpt", nullptr, nullptr);
   if (!window) {
@@ -79,12 +112,15 @@ bool runSculptWindow(const SculptWindowOptions& options, std::ostream& log, std:
   bool ok = true;
   {
     SculptApp app(window, options, log);
+    app.setSoftwareRenderer(software);
     glfwSetWindowUserPointer(window, &app);
     // Ours first: ImGui's backend chains to callbacks installed before it.
     glfwSetCursorPosCallback(window, onCursor);
     glfwSetMouseButtonCallback(window, onButton);
     glfwSetScrollCallback(window, onScroll);
     glfwSetKeyCallback(window, onKey);
+    glfwSetWindowRefreshCallback(window, onRefresh);
+    glfwSetFramebufferSizeCallback(window, onResize);
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;

@@ -15,12 +15,17 @@ bool FrameWorker::ready() const {
   return finished(frame_);
 }
 
-void FrameWorker::start(SculptSession& session) {
+void FrameWorker::start(SculptSession& session, const SurfaceStyle& style,
+                        std::function<void()> done) {
   SculptSession* s = &session;
-  frame_ = std::async(std::launch::async, [s] { return s->step(); });
+  frame_ = std::async(std::launch::async, [s, style, done = std::move(done)] {
+    FrameView view = makeFrameView(*s, style, s->step());
+    if (done) done();
+    return view;
+  });
 }
 
-FrameMetrics FrameWorker::wait() {
+FrameView FrameWorker::wait() {
   return frame_.get();
 }
 

@@ -1,15 +1,18 @@
 // The window's background work, so that it keeps drawing and navigating: a frame of the
-// simulation, and opening a file (a scene may need meshing first). Each runs on its own thread;
-// the window collects the result between its frames, and tools act only between simulation
-// frames, exactly as recorded.
+// simulation (and the view of it that the window will draw: frame_view.h), and opening a file (a
+// scene may need meshing first). Each runs on its own thread; the window collects the result
+// between its frames without waiting for it, and tools act only between simulation frames,
+// exactly as recorded.
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <future>
 #include <mutex>
 #include <optional>
 #include <string>
 
+#include "app/window/frame_view.h"
 #include "engine/scene/scene.h"
 #include "engine/session/session_loader.h"
 
@@ -19,11 +22,13 @@ class FrameWorker {
  public:
   bool inFlight() const { return frame_.valid(); }
   bool ready() const;  // in flight and finished
-  void start(SculptSession& session);
-  FrameMetrics wait();  // the frame's metrics (in flight only)
+  // One frame of `session`, then its view in `style`; `done` runs on the worker when both are
+  // (the window wakes on it).
+  void start(SculptSession& session, const SurfaceStyle& style, std::function<void()> done);
+  FrameView wait();  // the frame's view (in flight only)
 
  private:
-  std::future<FrameMetrics> frame_;
+  std::future<FrameView> frame_;
 };
 
 class OpenWorker {

@@ -1,6 +1,6 @@
 // The application under Xvfb: the real window, driven by synthetic input through the same
-// handlers as the mouse and keys (app/window/input_script.h). Each test starts `galsculpt open` on the
-// default clay ball, applies a tool, lets the app save the project when it closes and checks
+// handlers as the mouse and keys (app/window/input_script.h). Each test starts `galsculpt open` on
+// the default clay ball, applies a tool, lets the app save the project when it closes and checks
 // the effect on the mesh.
 #include <gtest/gtest.h>
 
@@ -10,6 +10,7 @@
 #include <signal.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 
 #include "engine/scene/scene_mesh.h"
@@ -38,18 +39,19 @@ struct UiRun {
 
 // Runs the app with `steps` (the "steps" list of an input script) and reads what it saved.
 UiRun runApp(const test::TempDir& dir, const std::string& steps,
-             const fs::path& scene = kDefaultScene, bool realtime = false) {
+             const fs::path& scene = kDefaultScene, bool realtime = false, bool paused = true) {
   test::writeText(dir / "steps.json", std::string("{\"realtime\": ") +
                                           (realtime ? "true" : "false") + ", \"steps\": [" + steps +
                                           "]}");
   const fs::path log = dir / "log.txt";
-  const std::string command =
-      "GALSCULPT_RECOVERY_DIR='" + (dir / "recovery").string() +
-      "' xvfb-run -a -s '-screen 0 1280x800x24' '" + std::string(GALSCULPT_BINARY) + "' open '" +
-      scene.string() + "' --paused --no-recovery --autosave 0 --size 1280x800 --input-script '" +
-      (dir / "steps.json").string() + "' --save-project '" + (dir / "out.gsproj").string() +
-      "' --save-recording '" + (dir / "recording.json").string() + "' > '" + log.string() +
-      "' 2>&1";
+  const std::string command = "GALSCULPT_RECOVERY_DIR='" + (dir / "recovery").string() +
+                              "' xvfb-run -a -s '-screen 0 1280x800x24' '" +
+                              std::string(GALSCULPT_BINARY) + "' open '" + scene.string() + "' " +
+                              (paused ? "--paused " : "") +
+                              "--no-recovery --autosave 0 --size 1280x800 --input-script '" +
+                              (dir / "steps.json").string() + "' --save-project '" +
+                              (dir / "out.gsproj").string() + "' --save-recording '" +
+                              (dir / "recording.json").string() + "' > '" + log.string() + "' 2>&1";
   UiRun run;
   const int status = std::system(command.c_str());
   run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -396,6 +398,137 @@ TEST(AppUi, TheOverlayStaysOnTheScreen) {
   }
   EXPECT_GT(overlayRows, 15) << "the overlay is drawn at the top right";
   stbi_image_free(pixels);
+}
+
+// --- The real-time path, as a user runs it: the app opens playing, frames run on the worker
+// and the window draws what they give; screenshots are the window's own pixels.
+
+struct Shot {
+  int w = 0, h = 0;
+  std::vector<unsigned char> rgb;
+  std::array<int, 3> at(int x, int y) const {
+    const unsigned char* p = rgb.data() + 3 * (static_cast<size_t>(y) * w + x);
+    return {p[0], p[1], p[2]};
+  }
+};
+
+Shot loadShot(const fs::path& file) {
+  Shot s;
+  int channels = 0;
+  unsigned char* pixels = stbi_load(file.c_str(), &s.w, &s.h, &channels, 3);
+  if (!pixels) return s;
+  s.rgb.assign(pixels, pixels + 3 * static_cast<size_t>(s.w) * s.h);
+  stbi_image_free(pixels);
+  return s;
+}
+
+// The viewport between the panels: the empty background is a vertical gradient, the same
+// along each row, so a drawn body is what makes a row uneven.
+constexpr double kLeft = 0.33, kRight = 0.70, kTop = 0.08, kBottom = 0.95;
+
+double bodyRows(const Shot& s) {
+  int busy = 0, rows = 0;
+  for (int y = static_cast<int>(kTop * s.h); y < kBottom * s.h; y += 2, ++rows) {
+    int lo = 1 << 30, hi = -1;
+    for (int x = static_cast<int>(kLeft * s.w); x < kRight * s.w; x += 2) {
+      const std::array<int, 3> p = s.at(x, y);
+      lo = std::min(lo, p[0] + p[1] + p[2]);
+      hi = std::max(hi, p[0] + p[1] + p[2]);
+    }
+    busy += hi - lo > 45;
+  }
+  return rows ? static_cast<double>(busy) / rows : 0.0;
+}
+
+// The share of the viewport's pixels that differ between two shots.
+double changed(const Shot& a, const Shot& b) {
+  if (a.w != b.w || a.h != b.h || a.rgb.empty()) return 1.0;
+  int n = 0, total = 0;
+  for (int y = static_cast<int>(kTop * a.h); y < kBottom * a.h; y += 2) {
+    for (int x = static_cast<int>(kLeft * a.w); x < kRight * a.w; x += 2, ++total) {
+      const std::array<int, 3> p = a.at(x, y), q = b.at(x, y);
+      n += std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]) > 30;
+    }
+  }
+  return static_cast<double>(n) / total;
+}
+
+// Pixels of the crack faces' tint (red, kCrackColor shaded) in the viewport.
+int crackPixels(const Shot& s) {
+  int n = 0;
+  for (int y = static_cast<int>(kTop * s.h); y < kBottom * s.h; ++y) {
+    for (int x = static_cast<int>(kLeft * s.w); x < kRight * s.w; ++x) {
+      const std::array<int, 3> p = s.at(x, y);
+      n += p[0] > 60 && p[0] > 2 * p[1] && p[0] > 2 * p[2];
+    }
+  }
+  return n;
+}
+
+std::string shot(const fs::path& file) {
+  // The cursor off the body first (its brush circle is drawn where it is).
+  return R"({"move": [0.5, 0.985]}, {"wait": 2}, {"command": "screenshot", "argument": ")" +
+         file.string() + R"("}, {"wait": 1})";
+}
+
+UiRun runLive(const test::TempDir& dir, const std::string& steps,
+              const fs::path& scene = kDefaultScene) {
+  return runApp(dir, steps, scene, true, false);
+}
+
+TEST(AppUiRealtime, TheBodyIsOnTheScreenAfterOpening) {
+  for (const fs::path& scene :
+       {kDefaultScene, kDefaultScene.parent_path() / "hanging_sphere.json"}) {
+    test::TempDir dir;
+    const UiRun run = runLive(dir, R"({"wait_frames": 3}, )" + shot(dir / "a.png"), scene);
+    ASSERT_EQ(run.exitCode, 0) << run.log;
+    const Shot a = loadShot(dir / "a.png");
+    ASSERT_FALSE(a.rgb.empty()) << run.log;
+    EXPECT_GT(bodyRows(a), 0.3) << scene << ": the body fills the middle of the viewport";
+    EXPECT_GE(run.project.state.frame, 3) << "the simulation played";
+    EXPECT_NE(run.log.find("window: "), std::string::npos) << run.log;
+  }
+}
+
+TEST(AppUiRealtime, AGrabDragMovesTheBodysPixelsAndUndoPutsThemBack) {
+  test::TempDir dir;
+  const UiRun run =
+      runLive(dir, R"({"wait_frames": 5}, )" + shot(dir / "a.png") + R"(,
+      {"key": "G"}, {"move": [0.5, 0.4]}, {"press": "left"}, {"move": [0.53, 0.33]},
+      {"wait_frames": 2}, {"move": [0.58, 0.25]}, {"wait_frames": 6}, )" +
+                       shot(dir / "b.png") + R"(, {"release": "left"}, {"command": "pause"},
+      {"wait": 3}, {"key": "Z", "ctrl": true}, {"wait": 3}, )" +
+                       shot(dir / "c.png"));
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  const Shot a = loadShot(dir / "a.png"), b = loadShot(dir / "b.png"), c = loadShot(dir / "c.png");
+  EXPECT_GT(changed(a, b), 0.01) << "the grab moved the ball on the screen";
+  EXPECT_LT(changed(a, c), 0.2 * changed(a, b)) << "undo put the pixels back";
+  // The latency from the grab's input to the first drawn frame that shows it was measured.
+  const size_t at = run.log.find("input to screen: median ");
+  ASSERT_NE(at, std::string::npos) << run.log;
+  double ms = -1.0;
+  int samples = 0;
+  ASSERT_EQ(std::sscanf(run.log.c_str() + at, "input to screen: median %lf ms over %d samples", &ms,
+                        &samples),
+            2);
+  EXPECT_GT(samples, 0);
+  EXPECT_GT(ms, 0.0);
+}
+
+TEST(AppUiRealtime, AKnifeStrokeLeavesAVisibleCut) {
+  test::TempDir dir;
+  const UiRun run = runLive(dir, R"({"wait_frames": 3}, )" + shot(dir / "a.png") + R"(,
+      {"key": "K"}, {"move": [0.3, 0.45]}, {"press": "left"},
+      {"move": [[0.4, 0.45], [0.5, 0.45], [0.6, 0.45], [0.7, 0.45]]}, {"release": "left"},
+      {"wait_frames": 2}, {"key": "G"}, {"move": [0.5, 0.32]}, {"press": "left"},
+      {"move": [0.52, 0.25]}, {"wait_frames": 3}, {"move": [0.56, 0.15]}, {"wait_frames": 15}, )" +
+                                     shot(dir / "b.png") + R"(, {"release": "left"})");
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  const Shot a = loadShot(dir / "a.png"), b = loadShot(dir / "b.png");
+  EXPECT_GT(damagedEdges(run.project), 50);
+  EXPECT_EQ(pieces(run.project), 2);
+  EXPECT_GT(changed(a, b), 0.02) << "the cap, cut off and pulled, moved on the screen";
+  EXPECT_GT(crackPixels(b), crackPixels(a) + 2000) << "its crack faces are on the screen";
 }
 
 }  // namespace
