@@ -283,8 +283,8 @@ nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh
   std::error_code ec;
   fs::remove(resultFile, ec);
   // Output still buffered in the parent would be written a second time by the child. The parent
-  // must not have entered an OpenMP region before forking: libgomp's thread pool does not
-  // survive fork, and the child's first parallel region would wait for it forever.
+  // must not have run a parallel loop before forking: oneTBB's worker threads do not survive
+  // fork, and the child's first parallel loop could wait for them forever.
   std::cout.flush();
   std::cerr.flush();
   std::fflush(nullptr);

@@ -1,5 +1,5 @@
 // The frame, written once: backward Euler's sub-step as launches of an executor, run by the CPU
-// executor (cpu_executor.h: OpenMP, the CPU backend and the reference) and by the CUDA one
+// executor (cpu_executor.h: oneTBB loops, the CPU backend and the reference) and by the CUDA one
 // (gpu/cuda_executor.cuh). Nothing above the element math exists anywhere else.
 //
 // Per sub-step: the element pass (one item per tet: the shared element kernels, damage from
