@@ -61,11 +61,6 @@ std::optional<RayHit> ToolController::pick(double x, double y) {
   return bvh_.intersect(surface.mesh, origin, direction);
 }
 
-std::optional<RayHit> ToolController::hover() {
-  if (settings_.tool == Tool::Navigate || settings_.tool == Tool::Knife) return std::nullopt;
-  return pick(x_, y_);
-}
-
 void ToolController::cutTo(double x, double y) {
   Vec3 origin, direction;
   camera_.ray(x, y, width_, height_, origin, direction);

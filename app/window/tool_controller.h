@@ -56,9 +56,6 @@ class ToolController {
   double cursorX() const { return x_; }
   double cursorY() const { return y_; }
 
-  // The surface point under the cursor (for the brush cursor), picked against the current
-  // surface through a BVH kept in step with it.
-  std::optional<RayHit> hover();
   // The surface point under pixel (x, y).
   std::optional<RayHit> pick(double x, double y);
 
