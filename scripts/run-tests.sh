@@ -8,8 +8,9 @@ bash scripts/build.sh
 cd build
 # Generated meshes are cached inside the build tree, never in the user's cache.
 export GALSCULPT_CACHE_DIR="$PWD/test-cache"
-# ctest already runs tests side by side; OpenMP threads on top of that oversubscribe the cores
-# and spin. Tests that check threading set their thread counts themselves.
+# ctest already runs tests side by side; the solver's threads on top of that oversubscribe the
+# cores (its default count honours OMP_NUM_THREADS, docs/cli.md "Threads"). Tests that check
+# threading set their thread counts themselves.
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
 # The same for OpenBLAS's own threads (CHOLMOD's BLAS): they spin while waiting.
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}

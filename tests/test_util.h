@@ -22,7 +22,9 @@ class TempDir {
         (std::filesystem::temp_directory_path() / "galsculpt-test-XXXXXX").string();
     path_ = mkdtemp(pattern.data());
   }
+  // GALSCULPT_KEEP_TEST_DIRS keeps them, to look at what a failing test wrote.
   ~TempDir() {
+    if (std::getenv("GALSCULPT_KEEP_TEST_DIRS")) return;
     std::error_code ec;
     std::filesystem::remove_all(path_, ec);
   }

@@ -169,6 +169,11 @@ void SculptApp::runScriptStep() {
     if (queue_.empty() && pendingScreenshot_.empty()) glfwSetWindowShouldClose(window_, 1);
     return;
   }
+  // A screenshot shows what the steps before it did: it waits until their input has acted
+  // and the view that holds it is on the screen (input waits for the frame in flight).
+  if (script_[scriptNext_].kind == InputStep::Kind::Command &&
+      script_[scriptNext_].command == AppCommand::Screenshot && inputNotYetShown())
+    return;
   const InputStep& s = script_[scriptNext_++];
   int width = 1, height = 1;
   glfwGetWindowSize(window_, &width, &height);
@@ -218,6 +223,12 @@ void SculptApp::runScriptStep() {
         execute(Command{s.command, s.argument});
       break;
   }
+}
+
+bool SculptApp::inputNotYetShown() const {
+  const bool restyled = session_ && (shown_.style.view != style_.view ||
+                                     shown_.style.tintCracks != style_.tintCracks);
+  return !queue_.empty() || pendingInput_ || frameInput_ || restyled;
 }
 
 bool SculptApp::navigationOnly(const InputEvent& e) const {
@@ -304,9 +315,10 @@ void SculptApp::updateScene() {
   const bool restyled =
       shown_.style.view != style_.view || shown_.style.tintCracks != style_.tintCracks;
   if (shown_.valid && !restyled && frameShouldStart()) return;
-  if (viewIsCurrent(shown_, *session_, style_)) return;
-  const FrameMetrics metrics = shown_.metrics;
-  show(makeFrameView(*session_, style_, metrics));
+  if (!viewIsCurrent(shown_, *session_, style_))
+    show(makeFrameView(*session_, style_, shown_.metrics));
+  // What acted between frames is on the screen from this draw, whether it changed the body
+  // (a tool, undo) or only the panels (a tool chosen).
   if (pendingInput_ && (!drawnInput_ || *pendingInput_ < *drawnInput_)) drawnInput_ = pendingInput_;
   pendingInput_.reset();
 }

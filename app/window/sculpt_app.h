@@ -87,6 +87,8 @@ class SculptApp {
   bool busy() const { return opener_.busy(); }
   bool stepInFlight() const { return frames_.inFlight(); }
   bool navigationOnly(const InputEvent& e) const;
+  // Input queued, acted on but not drawn, or riding in the frame in flight.
+  bool inputNotYetShown() const;
   void finishStep();
   void collectStep();
   void finish();

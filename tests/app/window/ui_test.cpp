@@ -471,6 +471,11 @@ std::string shot(const fs::path& file) {
          file.string() + R"("}, {"wait": 1})";
 }
 
+// A screenshot while a stroke is held: moving the cursor away would drag the stroke with it.
+std::string heldShot(const fs::path& file) {
+  return R"({"command": "screenshot", "argument": ")" + file.string() + R"("})";
+}
+
 UiRun runLive(const test::TempDir& dir, const std::string& steps,
               const fs::path& scene = kDefaultScene) {
   return runApp(dir, steps, scene, true, false);
@@ -496,12 +501,14 @@ TEST(AppUiRealtime, AGrabDragMovesTheBodysPixelsAndUndoPutsThemBack) {
       runLive(dir, R"({"wait_frames": 5}, )" + shot(dir / "a.png") + R"(,
       {"key": "G"}, {"move": [0.5, 0.4]}, {"press": "left"}, {"move": [0.53, 0.33]},
       {"wait_frames": 2}, {"move": [0.58, 0.25]}, {"wait_frames": 6}, )" +
-                       shot(dir / "b.png") + R"(, {"release": "left"}, {"command": "pause"},
-      {"wait": 3}, {"key": "Z", "ctrl": true}, {"wait": 3}, )" +
-                       shot(dir / "c.png"));
+                       heldShot(dir / "b.png") + R"(, {"release": "left"}, {"command": "pause"},
+      {"key": "Z", "ctrl": true}, )" +
+                       heldShot(dir / "c.png"));
   ASSERT_EQ(run.exitCode, 0) << run.log;
   const Shot a = loadShot(dir / "a.png"), b = loadShot(dir / "b.png"), c = loadShot(dir / "c.png");
   EXPECT_GT(changed(a, b), 0.01) << "the grab moved the ball on the screen";
+  // The screenshot comes straight after undo: it waits for the undo, which waited for the
+  // frame in flight.
   EXPECT_LT(changed(a, c), 0.2 * changed(a, b)) << "undo put the pixels back";
   // The latency from the grab's input to the first drawn frame that shows it was measured.
   const size_t at = run.log.find("input to screen: median ");
@@ -515,6 +522,20 @@ TEST(AppUiRealtime, AGrabDragMovesTheBodysPixelsAndUndoPutsThemBack) {
   EXPECT_GT(ms, 0.0);
 }
 
+TEST(AppUiRealtime, AScreenshotShowsWhatTheStepsBeforeItDid) {
+  // The hanging sphere's frames are slow: the view command waits for the frame in flight, and
+  // the screenshot straight after it waits too, instead of showing the old view.
+  test::TempDir dir;
+  const UiRun run = runLive(dir,
+                            R"({"wait_frames": 2}, )" + shot(dir / "a.png") + R"(,
+      {"command": "view", "argument": "stress"}, )" +
+                                heldShot(dir / "b.png"),
+                            kDefaultScene.parent_path() / "hanging_sphere.json");
+  ASSERT_EQ(run.exitCode, 0) << run.log;
+  const Shot a = loadShot(dir / "a.png"), b = loadShot(dir / "b.png");
+  EXPECT_GT(changed(a, b), 0.1) << "the stress colours are on the body";
+}
+
 TEST(AppUiRealtime, AKnifeStrokeLeavesAVisibleCut) {
   test::TempDir dir;
   const UiRun run = runLive(dir, R"({"wait_frames": 3}, )" + shot(dir / "a.png") + R"(,
@@ -522,7 +543,7 @@ TEST(AppUiRealtime, AKnifeStrokeLeavesAVisibleCut) {
       {"move": [[0.4, 0.45], [0.5, 0.45], [0.6, 0.45], [0.7, 0.45]]}, {"release": "left"},
       {"wait_frames": 2}, {"key": "G"}, {"move": [0.5, 0.32]}, {"press": "left"},
       {"move": [0.52, 0.25]}, {"wait_frames": 3}, {"move": [0.56, 0.15]}, {"wait_frames": 15}, )" +
-                                     shot(dir / "b.png") + R"(, {"release": "left"})");
+                                     heldShot(dir / "b.png") + R"(, {"release": "left"})");
   ASSERT_EQ(run.exitCode, 0) << run.log;
   const Shot a = loadShot(dir / "a.png"), b = loadShot(dir / "b.png");
   EXPECT_GT(damagedEdges(run.project), 50);
