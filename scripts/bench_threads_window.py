@@ -8,15 +8,18 @@
 2. The window (under xvfb-run, software GL) on the default scene, the face demo's clay head and
    the hanging sphere, playing, with a grab dragged across the body: the line the window logs
    when it closes (draws a second, ms between draws, the window thread's CPU a draw, the
-   simulation's median frame, input to screen), beside `galsculpt run`'s median frame.
+   simulation's median frame, input to screen), beside the median frame of the same session
+   (its recording, so the same frames, grab included) played headless by `galsculpt play`.
 3. The window paused and untouched for 10 s: the process's CPU, in % of one core.
 Prints Markdown. Nothing else of yours should run meanwhile."""
-import argparse, os, re, statistics, subprocess, tempfile, time
+import argparse, csv, os, re, statistics, subprocess, tempfile, time
 
 ap = argparse.ArgumentParser()
 ap.add_argument("--build", default="build")
 ap.add_argument("--reps", type=int, default=5)
 ap.add_argument("--frames", type=int, default=20)
+ap.add_argument("--window-only", action="store_true", help="only part 2")
+ap.add_argument("--scenes", default="default.json,clay_head.json,hanging_sphere.json")
 a = ap.parse_args()
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 binary = os.path.join(root, a.build, "app", "galsculpt")
@@ -42,9 +45,10 @@ def hogs(n):
 
 sphere = os.path.join(scenes, "hanging_sphere.json")
 run_ms(sphere, 1, 1)  # the mesh into the cache
-print("| machine state | one thread (ms/frame) | default threads (ms/frame) | default / one |")
-print("| --- | --- | --- | --- |")
-for busy in (0, 1):
+if not a.window_only:
+    print("| machine state | one thread (ms/frame) | default threads (ms/frame) | default / one |")
+    print("| --- | --- | --- | --- |")
+for busy in ((0, 1) if not a.window_only else ()):
     procs = hogs(busy)
     one, dflt = [], []
     try:
@@ -65,28 +69,49 @@ script = os.path.join(tmp, "grab.json")
 with open(script, "w") as f:
     import json; json.dump(grab, f)
 print()
+def played_ms(recording):
+    # The same frames headless: the session's recording through `galsculpt play`.
+    out = os.path.join(tmp, "play")
+    metrics = os.path.join(tmp, "play.csv")
+    subprocess.run([binary, "play", recording, "--out", out, "--metrics", metrics], env=env(),
+                   capture_output=True, check=True)
+    with open(metrics) as f:
+        rows = list(csv.DictReader(f))
+    return statistics.median(float(r["ms_total"]) for r in rows)
+
+print(f"Each figure the median of {a.reps} sessions; the ratio is each session's own.")
+print()
 print("| scene | window draws/s | ms between draws | window thread ms/draw | "
-      "simulation ms/frame in the window | `run` ms/frame | input to screen (ms) |")
-print("| --- | --- | --- | --- | --- | --- | --- |")
-for name in ("default.json", "clay_head.json", "hanging_sphere.json"):
+      "simulation ms/frame in the window | the same frames played headless (ms/frame) | "
+      "window / headless | input to screen (ms) |")
+print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+summary = re.compile(r"window: (\d+) draws, ([0-9.]+) a second, median ([0-9.]+) ms between "
+                     r"draws, ([0-9.]+) ms of its thread a draw; simulation: (\d+) frames, median "
+                     r"([0-9.]+) ms a frame; input to screen: median ([0-9.]+) ms")
+for name in a.scenes.split(","):
     scene = os.path.join(scenes, name)
     run_ms(scene, None, 1)
-    out = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", binary, "open", scene,
-                          "--no-recovery", "--autosave", "0", "--size", "1280x800",
-                          "--input-script", script], env=env(), capture_output=True,
-                         text=True).stdout
-    m = re.search(r"window: (\d+) draws, ([0-9.]+) a second, median ([0-9.]+) ms between draws, "
-                  r"([0-9.]+) ms of its thread a draw; simulation: (\d+) frames, median ([0-9.]+)"
-                  r" ms a frame; input to screen: median ([0-9.]+) ms", out)
-    frames = max(int(m.group(5)), 1) if m else 20
-    ms_run = run_ms(scene, None, frames)
-    if m:
-        print(f"| {name} | {m.group(2)} | {m.group(3)} | {m.group(4)} | {m.group(6)} | "
-              f"{ms_run:.1f} | {m.group(7)} |")
-    else:
-        print(f"| {name} | no summary line: {out[-200:]!r} |")
+    rows = []
+    for _ in range(a.reps):
+        recording = os.path.join(tmp, "session.json")
+        out = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", binary, "open",
+                              scene, "--no-recovery", "--autosave", "0", "--size", "1280x800",
+                              "--input-script", script, "--save-recording", recording],
+                             env=env(), capture_output=True, text=True).stdout
+        m = summary.search(out)
+        if not m:
+            print(f"| {name} | no summary line: {out[-200:]!r} |")
+            break
+        window, played = float(m.group(6)), played_ms(recording)
+        rows.append((float(m.group(2)), float(m.group(3)), float(m.group(4)), window, played,
+                     window / played, float(m.group(7))))
+    if rows:
+        med = [statistics.median(r[k] for r in rows) for k in range(7)]
+        print(f"| {name} | {med[0]:.1f} | {med[1]:.1f} | {med[2]:.2f} | {med[3]:.1f} | "
+              f"{med[4]:.1f} | {med[5]:.2f} | {med[6]:.0f} |")
 
 # Paused and untouched: the process's CPU over 10 s.
+if a.window_only: raise SystemExit
 proc = subprocess.Popen(["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", binary, "open",
                          os.path.join(scenes, "default.json"), "--paused", "--no-recovery",
                          "--autosave", "0"], env=env(), stdout=subprocess.DEVNULL,

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Renders the pictures of docs/user-guide.md and the README from the shipped scripts:
-#   - the window itself (panels, cursor, views) under Xvfb, driven by docs/images/guide_overview_input.json;
+#   - the window itself (panels, cursor, views) under Xvfb, in real time as a user runs it, driven
+#     by docs/images/guide_overview_input.json;
 #   - the sculpted face (assets/scripts/sculpted_face.json) through `galsculpt play`;
 #   - the knife cuts of docs/surface.md and the README (docs/images/knife_cut_apart.json,
 #     assets/scripts/sphere_cut.json): the "after" pictures (the "before" ones were rendered by

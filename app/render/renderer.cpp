@@ -57,22 +57,27 @@ Renderer::~Renderer() {
   // Only release when a context was ever used (init succeeded).
   if (meshProgram_) {
     glDeleteProgram(meshProgram_);
-    glDeleteProgram(backgroundProgram_);
     glDeleteBuffers(4, buffers_);
     glDeleteVertexArrays(1, &vao_);
-    glDeleteVertexArrays(1, &emptyVao_);
     glDeleteBuffers(1, &pointBuffer_);
     glDeleteVertexArrays(1, &pointVao_);
+    releaseTarget();
   }
+}
+
+void Renderer::releaseTarget() {
+  if (!framebuffer_) return;
+  glDeleteFramebuffers(1, &framebuffer_);
+  glDeleteTextures(1, &colorTexture_);
+  glDeleteRenderbuffers(1, &depthBuffer_);
+  framebuffer_ = colorTexture_ = depthBuffer_ = 0;
+  targetWidth_ = targetHeight_ = 0;
 }
 
 bool Renderer::init(std::string* error) {
   meshProgram_ = link(shaders::kMeshVert, shaders::kMeshFrag, error);
   if (!meshProgram_) return false;
-  backgroundProgram_ = link(shaders::kBackgroundVert, shaders::kBackgroundFrag, error);
-  if (!backgroundProgram_) return false;
   glGenVertexArrays(1, &vao_);
-  glGenVertexArrays(1, &emptyVao_);
   glGenBuffers(4, buffers_);
   glGenVertexArrays(1, &pointVao_);
   glGenBuffers(1, &pointBuffer_);
@@ -95,6 +100,7 @@ void Renderer::setMesh(const RenderMesh& mesh) {
                GL_DYNAMIC_DRAW);
   glBindVertexArray(0);
   indexCount_ = static_cast<int>(mesh.indices.size());
+  sceneChanged_ = true;
 }
 
 void Renderer::setPoints(const std::vector<Vec3>& points, const Vec3& color) {
@@ -111,24 +117,111 @@ void Renderer::setPoints(const std::vector<Vec3>& points, const Vec3& color) {
   glBindVertexArray(0);
   pointCount_ = static_cast<int>(points.size());
   pointColor_ = color;
+  sceneChanged_ = true;
+}
+
+void Renderer::setCached(bool cached) {
+  cached_ = cached;
+  sceneChanged_ = true;
+  if (!cached_ && meshProgram_) releaseTarget();
+}
+
+bool Renderer::ensureTarget(int width, int height) {
+  if (framebuffer_ && width == targetWidth_ && height == targetHeight_) return true;
+  releaseTarget();
+  glGenFramebuffers(1, &framebuffer_);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  glGenTextures(1, &colorTexture_);
+  glBindTexture(GL_TEXTURE_2D, colorTexture_);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colorTexture_, 0);
+  glGenRenderbuffers(1, &depthBuffer_);
+  glBindRenderbuffer(GL_RENDERBUFFER, depthBuffer_);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  glBindRenderbuffer(GL_RENDERBUFFER, 0);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer_);
+  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (!complete) {
+    releaseTarget();
+    return false;
+  }
+  targetWidth_ = width;
+  targetHeight_ = height;
+  return true;
 }
 
 void Renderer::draw(const OrbitCamera& camera, int width, int height,
                     const RenderOptions& options) {
+  if (!cached_) {
+    drawScene(camera, width, height, options);
+    return;
+  }
+  GLint screen = 0;  // where the caller draws: the window's framebuffer, or a test's
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &screen);
+  // The scene is drawn into its own target when it changed (a new surface or anchors, the
+  // camera, the size, the options) and copied to the screen at every draw: the window redraws
+  // for its panels and cursor far more often than the scene changes.
+  const Eigen::Matrix4f view = camera.view();
+  const Eigen::Matrix4f projection =
+      camera.projection(static_cast<double>(width) / std::max(height, 1));
+  const bool same = !sceneChanged_ && framebuffer_ && width == targetWidth_ &&
+                    height == targetHeight_ && view == cachedView_ &&
+                    projection == cachedProjection_ &&
+                    options.wireframe == cachedOptions_.wireframe &&
+                    options.pointSize == cachedOptions_.pointSize;
+  if (!same) {
+    if (!ensureTarget(width, height)) {  // no target here: draw straight to the screen
+      cached_ = false;
+      glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(screen));
+      drawScene(camera, width, height, options);
+      return;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    drawScene(camera, width, height, options);
+    ++sceneRenders_;
+    sceneChanged_ = false;
+    cachedView_ = view;
+    cachedProjection_ = projection;
+    cachedOptions_ = options;
+  }
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(screen));
+  glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(screen));
+}
+
+void Renderer::drawBackground(int width, int height) {
+  // A vertical gradient as horizontal bands of cleared colour, about one band per 8-bit level
+  // of the gradient: a clear costs a software rasterizer a fraction of a shaded full-screen
+  // pass, and on a GPU nothing.
+  const Eigen::Vector3f top(0.32f, 0.36f, 0.42f), bottom(0.09f, 0.10f, 0.12f);
+  const int bands = std::clamp(height / 4, 1, 96);
+  glEnable(GL_SCISSOR_TEST);
+  for (int b = 0; b < bands; ++b) {
+    const int y0 = b * height / bands, y1 = (b + 1) * height / bands;
+    const float t = (b + 0.5f) / bands;  // 0 at the bottom row, as GL counts rows
+    const Eigen::Vector3f c = bottom + t * (top - bottom);
+    glScissor(0, y0, width, y1 - y0);
+    glClearColor(c.x(), c.y(), c.z(), 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+  }
+  glDisable(GL_SCISSOR_TEST);
+}
+
+void Renderer::drawScene(const OrbitCamera& camera, int width, int height,
+                         const RenderOptions& options) {
   glViewport(0, 0, width, height);
-  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_SCISSOR_TEST);
+  glDepthMask(GL_TRUE);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  drawBackground(width, height);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
   glDisable(GL_CULL_FACE);
-
-  glUseProgram(backgroundProgram_);
-  glUniform3f(glGetUniformLocation(backgroundProgram_, "uTop"), 0.32f, 0.36f, 0.42f);
-  glUniform3f(glGetUniformLocation(backgroundProgram_, "uBottom"), 0.09f, 0.10f, 0.12f);
-  glBindVertexArray(emptyVao_);
-  glDepthMask(GL_FALSE);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glDepthMask(GL_TRUE);
 
   if (indexCount_ == 0) return;
   glUseProgram(meshProgram_);

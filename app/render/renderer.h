@@ -1,5 +1,10 @@
 // Draws a surface with a background gradient. One renderer serves the GLFW window and the
 // offscreen EGL context: it needs only a current OpenGL 3.3 core context.
+//
+// Cached (setCached), the scene is drawn into a texture of its own only when it changed and
+// copied to the screen at every draw: for a software rasterizer, where shading the scene is
+// most of what a window draw costs and the window redraws for its panels and cursor far more
+// often than the simulation delivers a new surface.
 #pragma once
 
 #include <string>
@@ -27,14 +32,31 @@ class Renderer {
   void setMesh(const RenderMesh& mesh);
   // Marked vertices (anchors: blue, as in the paper), drawn as dots over the surface.
   void setPoints(const std::vector<Vec3>& points, const Vec3& color);
+  // Into the framebuffer bound now.
   void draw(const OrbitCamera& camera, int width, int height, const RenderOptions& options = {});
+  void setCached(bool cached);
+  bool cached() const { return cached_; }
+  // How many times the scene was drawn into the cache (cached draws that only copied it do not
+  // count).
+  int sceneRenders() const { return sceneRenders_; }
 
  private:
-  unsigned meshProgram_ = 0, backgroundProgram_ = 0;
-  unsigned vao_ = 0, emptyVao_ = 0, buffers_[4] = {0, 0, 0, 0};
+  void drawScene(const OrbitCamera& camera, int width, int height, const RenderOptions& options);
+  void drawBackground(int width, int height);
+  bool ensureTarget(int width, int height);
+  void releaseTarget();
+
+  unsigned meshProgram_ = 0;
+  unsigned vao_ = 0, buffers_[4] = {0, 0, 0, 0};
   unsigned pointVao_ = 0, pointBuffer_ = 0;
   int indexCount_ = 0, pointCount_ = 0;
   Vec3 pointColor_ = Vec3::Zero();
+
+  bool cached_ = false, sceneChanged_ = true;
+  unsigned framebuffer_ = 0, colorTexture_ = 0, depthBuffer_ = 0;
+  int targetWidth_ = 0, targetHeight_ = 0, sceneRenders_ = 0;
+  Eigen::Matrix4f cachedView_ = Eigen::Matrix4f::Zero(), cachedProjection_ = cachedView_;
+  RenderOptions cachedOptions_;
 };
 
 }  // namespace galsculpt

@@ -4,6 +4,4 @@
 namespace galsculpt::shaders {
 extern const char* const kMeshVert;
 extern const char* const kMeshFrag;
-extern const char* const kBackgroundVert;
-extern const char* const kBackgroundFrag;
 }  // namespace galsculpt::shaders

@@ -5,6 +5,7 @@
 // never touches the session, and what the overlay says is what is on the screen.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,6 +26,8 @@ struct FrameView {
   std::size_t historyBytes = 0, recordedEvents = 0;
   double msSurface = 0.0;  // rebuilding the surface (ms)
   double msView = 0.0;     // the whole view, surface included (ms)
+  // When the worker finished the frame and its view: the next frame could start from then.
+  std::chrono::steady_clock::time_point readyAt{};
   std::uint64_t generation = 0, damageRevision = 0;
   SurfaceStyle style;  // as drawn (the stress view's hottest value filled in)
 };

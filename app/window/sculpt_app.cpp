@@ -50,6 +50,7 @@ void SculptApp::takeScreenshot(int width, int height) {
 
 bool SculptApp::init(std::string* error) {
   if (!renderer_.init(error)) return false;
+  renderer_.setCached(softwareRenderer_);
   playing_ = options_.startPlaying;
   recovery_ = std::make_unique<RecoveryStore>();
   if (options_.offerRecovery) {
@@ -271,6 +272,8 @@ void SculptApp::finishStep() {
   ++viewsShown_;
   ++runFrames_;
   runFrameMs_.add(view.metrics.msTotal);
+  runViewMs_.add(view.msView);
+  if (playing_) lastReadyAt_ = view.readyAt;
   show(std::move(view));
 }
 
@@ -297,6 +300,9 @@ void SculptApp::advanceSimulation() {
   stepOnce_ = false;
   frameInput_ = pendingInput_;
   pendingInput_.reset();
+  if (playing_ && lastReadyAt_)
+    runIdleMs_.add(std::chrono::duration<double, std::milli>(Clock::now() - *lastReadyAt_).count());
+  lastReadyAt_.reset();
   // The frame and its view run on a worker thread: the window keeps drawing and navigating
   // meanwhile, and wakes when they are done.
   frames_.start(*session_, style_, [] { glfwPostEmptyEvent(); });
@@ -347,21 +353,25 @@ void SculptApp::finish() {
   // What the run cost, measured (docs/benchmarks.md, "The window"): the window's draws, the
   // simulation's frames in the window, and input to screen.
   const double seconds = std::chrono::duration<double>(Clock::now() - runStart_).count();
-  char line[400];
+  char line[512];
   std::snprintf(line, sizeof line,
                 "window: %d draws, %.1f a second, median %.1f ms between draws, %.2f ms of its "
                 "thread a draw; simulation: %d frames, median %.1f ms a frame; input to screen: "
-                "median %.0f ms over %zu samples; %d threads",
+                "median %.0f ms over %zu samples; %d threads; between frames: median %.1f ms "
+                "building the view, %.1f ms waiting for the window",
                 runDraws_, runDraws_ / std::max(seconds, 1e-9), runWindowMs_.median(),
                 runWindowCpuMs_.median(), runFrames_, runFrameMs_.median(), runLatencyMs_.median(),
-                runLatencyMs_.size(), threadCount());
+                runLatencyMs_.size(), threadCount(), runViewMs_.median(), runIdleMs_.median());
   log_ << line << '\n';
 }
 
 void SculptApp::run() {
   while (!glfwWindowShouldClose(window_)) {
     waitForWork();
-    drawStart_ = Clock::now();  // the next draw is due a period after this one began
+    // Draws keep to a grid of the period: a late one brings the next forward, so the rate holds
+    // (one more than a period late, the grid starts again from now).
+    const Clock::time_point now = Clock::now();
+    nextDraw_ = std::max(nextDraw_, now - drawPeriod()) + drawPeriod();
     const double cpuAtStart = threadCpuMs();
     runScriptStep();
     ImGui_ImplOpenGL3_NewFrame();
@@ -434,14 +444,17 @@ bool SculptApp::wantsSteadyDraws() const {
   return Clock::now() - lastInput_ < std::chrono::milliseconds(500);
 }
 
+Clock::duration SculptApp::drawPeriod() const {
+  const double windowHz = softwareRenderer_ ? 30.0 : 60.0;
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / windowHz));
+}
+
 void SculptApp::waitForWork() {
   if (scripted_ && !realtime_) {  // synchronous scripts run as fast as they can
     glfwPollEvents();
     return;
   }
-  const double windowHz = softwareRenderer_ ? 30.0 : 60.0;
-  const Clock::time_point next = drawStart_ + std::chrono::duration_cast<Clock::duration>(
-                                                  std::chrono::duration<double>(1.0 / windowHz));
+  const Clock::time_point next = nextDraw_;
   if (redraw_ > 0) --redraw_;
   for (;;) {
     if (glfwWindowShouldClose(window_)) break;

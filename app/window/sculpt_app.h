@@ -87,6 +87,7 @@ class SculptApp {
   bool busy() const { return opener_.busy(); }
   bool stepInFlight() const { return frames_.inFlight(); }
   bool navigationOnly(const InputEvent& e) const;
+  Clock::duration drawPeriod() const;  // 1/60 s, or 1/30 s on a software rasterizer
   // Input queued, acted on but not drawn, or riding in the frame in flight.
   bool inputNotYetShown() const;
   void finishStep();
@@ -145,14 +146,17 @@ class SculptApp {
 
   // Pacing and the overlay's live figures.
   std::size_t wakeups_ = 0;  // input events and redraw requests so far
-  Clock::time_point drawStart_{}, lastDraw_{}, lastInput_{};
+  Clock::time_point nextDraw_{}, lastDraw_{}, lastInput_{};
   int redraw_ = 0;  // frames still to draw after an event (ImGui settles over a few)
   bool softwareRenderer_ = false;
   RateMeter windowRate_, simulationRate_;
   RecentMedian latencyMs_, windowCpuMs_, windowMs_;
   // The same over the whole run, for the line the window logs when it closes (benchmarks).
   RecentMedian runLatencyMs_{1u << 20}, runWindowCpuMs_{1u << 20}, runWindowMs_{1u << 20},
-      runFrameMs_{1u << 20};
+      runFrameMs_{1u << 20}, runViewMs_{1u << 20}, runIdleMs_{1u << 20};
+  // When the last frame played was ready: the time until the next one starts is the
+  // simulation's wait for the window.
+  std::optional<Clock::time_point> lastReadyAt_;
   int runDraws_ = 0, runFrames_ = 0;
   Clock::time_point runStart_ = Clock::now();
   // The earliest input that acted on the session and is not yet on the screen: waiting for a

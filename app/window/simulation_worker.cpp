@@ -20,6 +20,7 @@ void FrameWorker::start(SculptSession& session, const SurfaceStyle& style,
   SculptSession* s = &session;
   frame_ = std::async(std::launch::async, [s, style, done = std::move(done)] {
     FrameView view = makeFrameView(*s, style, s->step());
+    view.readyAt = std::chrono::steady_clock::now();
     if (done) done();
     return view;
   });

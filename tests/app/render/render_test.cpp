@@ -1,6 +1,7 @@
 // Offscreen (EGL, surfaceless Mesa) rendering: what a person would see, checked by pixels.
 #include <gtest/gtest.h>
 
+#include "app/render/gl.h"
 #include "app/render/offscreen_context.h"
 #include "app/render/render_mesh.h"
 #include "app/render/renderer.h"
@@ -142,6 +143,83 @@ TEST_F(RenderTest, CrackFacesAreTintedWhereACutOpens) {
     if (model.mesh.vertices[v].x() > 0.31) state.x[v] += Vec3(0.25, 0, 0);
   }
   EXPECT_GT(crackPixels(), 40) << "the opened cut shows its crack faces";
+}
+
+// A plain (single-sample) framebuffer standing in for a window's: the cached renderer copies its
+// scene into whatever framebuffer is bound when it draws.
+class PlainTarget {
+ public:
+  PlainTarget(int width, int height) : width_(width), height_(height) {
+    glGenFramebuffers(1, &fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glGenTextures(1, &color_);
+    glBindTexture(GL_TEXTURE_2D, color_);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_, 0);
+    glGenRenderbuffers(1, &depth_);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth_);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+  }
+  ~PlainTarget() {
+    glDeleteFramebuffers(1, &fbo_);
+    glDeleteTextures(1, &color_);
+    glDeleteRenderbuffers(1, &depth_);
+  }
+  Image draw(Renderer& r, const OrbitCamera& camera, const RenderOptions& options = {}) {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    r.draw(camera, width_, height_, options);
+    Image img{width_, height_,
+              std::vector<std::uint8_t>(4 * static_cast<size_t>(width_) * height_)};
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
+    return img;
+  }
+
+ private:
+  int width_, height_;
+  unsigned fbo_ = 0, color_ = 0, depth_ = 0;
+};
+
+int differingPixels(const Image& a, const Image& b) {
+  int n = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) n += (a.at(x, y) - b.at(x, y)).cwiseAbs().maxCoeff() > 1;
+  return n;
+}
+
+TEST_F(RenderTest, TheCachedSceneIsTheSceneAndFollowsEveryChange) {
+  PlainTarget target(ctx_->width(), ctx_->height());
+  OrbitCamera camera;
+  camera.distance = 4.0;
+  renderer_.setMesh(makeRenderMesh(makeIcosphere(1.0, 3), Vec3(0.8, 0.55, 0.42)));
+  const Image direct = target.draw(renderer_, camera);
+  renderer_.setCached(true);
+  const Image cached = target.draw(renderer_, camera);
+  EXPECT_EQ(differingPixels(direct, cached), 0) << "the cache holds what a direct draw shows";
+  EXPECT_EQ(renderer_.sceneRenders(), 1);
+  EXPECT_EQ(differingPixels(cached, target.draw(renderer_, camera)), 0);
+  EXPECT_EQ(renderer_.sceneRenders(), 1) << "nothing changed: the cache is only copied";
+
+  // Each change draws the scene again: the camera, the surface, the anchors, the options.
+  camera.yaw += 0.3;
+  camera.target.x() += 0.4;
+  const Image moved = target.draw(renderer_, camera);
+  EXPECT_EQ(renderer_.sceneRenders(), 2);
+  EXPECT_GT(differingPixels(cached, moved), 100) << "the camera moved";
+  renderer_.setMesh(makeRenderMesh(makeIcosphere(0.6, 3), Vec3(0.8, 0.55, 0.42)));
+  const Image smaller = target.draw(renderer_, camera);
+  EXPECT_GT(differingPixels(moved, smaller), 100) << "the surface changed";
+  renderer_.setPoints({Vec3(0.0, 0.0, 0.6), Vec3(0.1, 0.1, 0.58)}, Vec3(0.0, 0.0, 1.0));
+  const Image dotted = target.draw(renderer_, camera);
+  EXPECT_GT(differingPixels(smaller, dotted), 0) << "the anchors appeared";
+  EXPECT_EQ(renderer_.sceneRenders(), 4);
+  const Image wire = target.draw(renderer_, camera, RenderOptions{true, 6.0f});
+  EXPECT_GT(differingPixels(dotted, wire), 100) << "the wireframe on";
+  EXPECT_EQ(renderer_.sceneRenders(), 5);
+
+  renderer_.setCached(false);
+  EXPECT_EQ(differingPixels(dotted, target.draw(renderer_, camera)), 0) << "drawn directly again";
 }
 
 }  // namespace
