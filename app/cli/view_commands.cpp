@@ -16,6 +16,7 @@
 #include "engine/session/session_loader.h"
 #include "engine/session/simulation.h"
 #include "engine/surface/surface_io.h"
+#include "solver/io/atomic_file.h"
 #include "solver/io/input_error.h"
 
 namespace galsculpt {
@@ -132,7 +133,10 @@ int openCommand(const std::vector<std::string>& args, std::ostream& out, std::os
   applyThreadsOption(a);
   const std::optional<BackendRequest> backend = backendOption(a);
   const fs::path file = a.positional()[0];
-  if (!fs::exists(file)) throw InputError(file.string() + ": no such file");
+  std::error_code ec;
+  const bool exists = fs::exists(file, ec);
+  if (ec) requireRegularFile(file);  // says why: a loop of symbolic links, no permission
+  if (!exists) throw InputError(file.string() + ": no such file");
   bool headless = a.has("--headless");
   if (!headless && !haveDisplay()) {
     out << "no display found (DISPLAY and WAYLAND_DISPLAY are unset): running headless\n";

@@ -152,6 +152,7 @@ std::unique_ptr<SculptSession> sessionFromProject(const Project& project, const 
 }
 
 bool looksLikeProject(const fs::path& file) {
+  if (!isRegularFile(file)) return false;  // a pipe would block here; its reader refuses it
   std::ifstream in(file, std::ios::binary);
   char buffer[sizeof(kMagic) - 1] = {};
   in.read(buffer, sizeof(buffer));

@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "engine/session/project_file.h"
+#include "solver/io/atomic_file.h"
 #include "solver/io/input_error.h"
 
 namespace galsculpt {
@@ -54,6 +55,8 @@ std::vector<fs::path> RecoveryStore::orphans() const {
   std::vector<fs::path> out;
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(folder_, ec)) {
+    // Only regular files are ours: a pipe or a device put there would block the offer's read.
+    if (!isRegularFile(e.path())) continue;
     const long pid = pidOf(e.path());
     if (pid > 0 && e.path() != own_ && !running(pid)) out.push_back(e.path());
   }

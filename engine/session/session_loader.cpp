@@ -2,6 +2,7 @@
 
 #include "engine/meshing/mesh_files.h"
 #include "engine/session/project_file.h"
+#include "solver/io/atomic_file.h"
 #include "solver/io/input_error.h"
 
 namespace galsculpt {
@@ -24,7 +25,10 @@ SceneDescription sceneForMesh(const fs::path& mesh, int importTets) {
 
 OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int importTets,
                           std::optional<BackendRequest> backend) {
-  if (!fs::exists(file)) throw InputError(file.string() + ": no such file");
+  std::error_code ec;
+  const bool exists = fs::exists(file, ec);
+  if (ec) requireRegularFile(file);  // says why: a loop of symbolic links, no permission
+  if (!exists) throw InputError(file.string() + ": no such file");
   OpenedSession opened;
   // By content, or by name: a .gsproj whose magic is broken is a broken project, not an
   // unknown mesh format.

@@ -18,6 +18,7 @@
 
 #include "engine/meshing/off_ply_reader.h"
 #include "engine/scene/json_reader.h"
+#include "engine/surface/checked_export_io.h"
 #include "solver/io/atomic_file.h"
 #include "solver/io/input_error.h"
 
@@ -198,8 +199,7 @@ bool isSurfaceFile(const fs::path& path) {
 }
 
 TriMesh readSurface(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw InputError(path.string(), 0, "file not found");
+  requireRegularFile(path);
   std::vector<Vec3> positions;
   std::vector<Tri> faces;
   const std::string ext = lowerExtension(path);
@@ -330,9 +330,12 @@ void exportWithAssimp(const fs::path& path, const char* format,
   const fs::path tmpDir = pattern;
   std::error_code ec;
   Assimp::Exporter exporter;
+  auto* io = new CheckedExportIO;  // the exporter owns and deletes it
+  exporter.SetIOHandler(io);
   const aiReturn status = exporter.Export(scene.get(), format, (tmpDir / path.filename()).string());
-  if (status != aiReturn_SUCCESS) {
-    const std::string reason = exporter.GetErrorString();
+  if (status != aiReturn_SUCCESS || !io->failure().empty()) {
+    // The system's error (a full disk) over assimp's summary of it.
+    const std::string reason = io->failure().empty() ? exporter.GetErrorString() : io->failure();
     fs::remove_all(tmpDir, ec);
     throw OutputError("cannot write " + path.string() + ": " + reason);
   }

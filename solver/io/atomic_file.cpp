@@ -63,8 +63,9 @@ fs::path writeTemporary(const fs::path& path, const std::function<void(std::ostr
       throw;
     }
     out.flush();
+    if (out) out.close();  // the last of the data may only fail here
     if (!out) {
-      const std::string reason = std::strerror(errno);
+      const std::string reason = std::strerror(errno != 0 ? errno : EIO);
       out.close();
       fs::remove(tmp, ec);
       throw OutputError("cannot write " + path.string() + ": " + reason);
@@ -135,16 +136,34 @@ std::string findSetStamp(const std::string& text) {
   return text.substr(begin, end - begin);
 }
 
+void requireRegularFile(const fs::path& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec && ec == std::errc::too_many_symbolic_link_levels)
+    throw InputError(path.string(), 0, "is a loop of symbolic links");
+  if (ec && ec != std::errc::no_such_file_or_directory)
+    throw InputError(path.string(), 0, "cannot be read: " + ec.message());
+  if (!fs::exists(status)) throw InputError(path.string(), 0, "file not found");
+  if (fs::is_regular_file(status)) return;
+  const char* what = fs::is_directory(status)        ? "is a folder"
+                     : fs::is_fifo(status)           ? "is a named pipe (FIFO)"
+                     : fs::is_socket(status)         ? "is a socket"
+                     : fs::is_block_file(status)     ? "is a block device"
+                     : fs::is_character_file(status) ? "is a character device"
+                                                     : "is a special file";
+  throw InputError(path.string(), 0, std::string(what) + ", not a regular file");
+}
+
+bool isRegularFile(const fs::path& path) {
+  std::error_code ec;
+  return fs::is_regular_file(fs::status(path, ec)) && !ec;
+}
+
 std::string readWholeFile(const fs::path& path) {
   // Only regular files, and their size known before anything is allocated: a device such as
   // /dev/zero or a pipe would otherwise be read until memory runs out.
+  requireRegularFile(path);
   std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status)) throw InputError(path.string(), 0, "file not found");
-  if (!fs::is_regular_file(status))
-    throw InputError(
-        path.string(), 0,
-        fs::is_directory(status) ? "is a folder, not a file" : "is not a regular file");
   const std::uintmax_t size = fs::file_size(path, ec);
   if (ec) throw InputError(path.string(), 0, "cannot read its size: " + ec.message());
   if (size > kMaxInputFileBytes)

@@ -57,8 +57,15 @@ std::string findSetStamp(const std::string& text);
 // mesh, scene or project the app handles on a 24 GiB machine).
 inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{4} << 30;
 
+// Throws InputError naming the path and the reason unless it is a regular file (after
+// symbolic links): missing, a loop of symbolic links, a folder, a named pipe, a socket, a
+// device. Checked before a file is opened for reading, so nothing waits on a pipe's writer.
+void requireRegularFile(const std::filesystem::path& path);
+// The same as a question: whether `path` is a regular file (after symbolic links).
+bool isRegularFile(const std::filesystem::path& path);
+
 // Reads a whole regular file into memory; throws InputError when it is missing, not a regular
-// file (a folder, a device, a pipe), larger than kMaxInputFileBytes or cannot be read.
+// file (requireRegularFile), larger than kMaxInputFileBytes or cannot be read.
 std::string readWholeFile(const std::filesystem::path& path);
 
 }  // namespace galsculpt

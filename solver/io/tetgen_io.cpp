@@ -219,9 +219,8 @@ TetMesh readTetGen(const fs::path& path, MeshReadReport* reportOut) {
   const fs::path nodePath = fs::path(stem).concat(".node");
   const fs::path elePath = fs::path(stem).concat(".ele");
   const fs::path facePath = fs::path(stem).concat(".face");
-  std::error_code ec;
-  if (!fs::exists(nodePath, ec)) throw InputError(nodePath.string(), 0, "file not found");
-  if (!fs::exists(elePath, ec)) throw InputError(elePath.string(), 0, "file not found");
+  requireRegularFile(nodePath);
+  requireRegularFile(elePath);
 
   MeshReadReport report;
   TetMesh mesh;
@@ -230,6 +229,7 @@ TetMesh readTetGen(const fs::path& path, MeshReadReport* reportOut) {
   const std::vector<int> tetLines = readElements(elePath, report.indexBase, mesh, report, eleStamp);
   checkSameSet(nodePath, report.setStamp, elePath, eleStamp);
   validateTets(mesh, elePath.string(), tetLines, report);
+  std::error_code ec;
   if (fs::exists(facePath, ec)) {
     std::string faceStamp;
     readFaces(facePath, report.indexBase, mesh, faceStamp);

@@ -4,6 +4,8 @@
 // message naming the file and the place; none may crash, hang or be accepted.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -122,7 +124,8 @@ TEST(HostileInput, GeneratedCasesAreRefused) {
   fs::create_symlink("/dev/zero", dir / "zero.ele");
   r = run({"mesh", "info", (dir / "zero.node").string()});
   EXPECT_EQ(r.code, kExitBadInput);
-  EXPECT_NE(r.err.find("zero.node: is not a regular file"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("zero.node: is a character device, not a regular file"), std::string::npos)
+      << r.err;
   fs::create_directories(dir / "folder.node");
   test::writeText(dir / "folder.ele", "1 4 0\n0 0 1 2 3\n");
   r = run({"mesh", "info", (dir / "folder.node").string()});
@@ -289,6 +292,106 @@ TEST(HostileInput, KilledWritersNeverLeaveASetThatReadsAsOneMesh) {
     EXPECT_EQ(e.path().filename().string().find(".out."), std::string::npos)
         << e.path() << ": a temporary of a killed writer was left behind";
   EXPECT_EQ(run({"mesh", "info", (dir / "out.node").string()}).code, kExitOk);
+}
+
+// The binary, given `seconds` at most: its exit code and standard error, or -1 when it had to be
+// killed (it hung).
+struct Bounded {
+  int code = -1;
+  std::string err;
+};
+Bounded runBinaryWithin(const std::vector<std::string>& args, const fs::path& errFile,
+                        double seconds) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::vector<char*> argv{const_cast<char*>(GALSCULPT_BINARY)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    if (!freopen(errFile.c_str(), "w", stderr) || !freopen("/dev/null", "w", stdout)) _exit(126);
+    execv(GALSCULPT_BINARY, argv.data());
+    _exit(127);
+  }
+  Bounded r;
+  int status = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (waitpid(pid, &status, WNOHANG) == 0) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      return r;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -2;
+  r.err = test::readText(errFile);
+  return r;
+}
+
+// A disk that fills while a file is written: a file size limit (RLIMIT_FSIZE) makes every
+// write past it fail (EFBIG) as a full disk's would (ENOSPC), with no root and no mount needed.
+TEST(HostileInput, AFullDiskLeavesNoFileUnderItsFinalNameInAnyFormat) {
+  test::TempDir dir;
+  const fs::path mesh = kAssets / "meshes" / "sphere_small.node";  // every output > 16 KiB
+  for (const std::string ext : {"obj", "stl", "ply", "gltf", "glb", "msh", "vtk", "node"}) {
+    const fs::path out = dir / ("out." + ext), err = dir / "err.txt";
+    const pid_t pid = fork();
+    if (pid == 0) {
+      const rlimit limit{16384, 16384};
+      if (setrlimit(RLIMIT_FSIZE, &limit) != 0) _exit(125);
+      if (!freopen(err.c_str(), "w", stderr) || !freopen("/dev/null", "w", stdout)) _exit(126);
+      execl(GALSCULPT_BINARY, GALSCULPT_BINARY, "mesh", "convert", mesh.c_str(), out.c_str(),
+            static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status)) << ext << ": ended by signal " << WTERMSIG(status);
+    const std::string message = test::readText(err);
+    EXPECT_EQ(WEXITSTATUS(status), kExitOutput) << ext << ": " << message;
+    EXPECT_NE(message.find("cannot write"), std::string::npos) << ext << ": " << message;
+    EXPECT_NE(message.find("File too large"), std::string::npos)
+        << ext << ": the system's error, not a summary: " << message;
+    for (const auto& e : fs::directory_iterator(dir.path())) {
+      const std::string name = e.path().filename().string();
+      EXPECT_TRUE(name == "err.txt") << ext << ": " << name << " left behind";
+    }
+  }
+}
+
+TEST(HostileInput, SpecialFilesAreRefusedBeforeAnythingWaitsOnThem) {
+  // A named pipe with no writer blocks whoever opens it for reading; `render` and `open` did.
+  test::TempDir dir;
+  const std::vector<std::string> names = {"pipe",      "pipe.json",   "pipe.obj",
+                                          "pipe.node", "pipe.gsproj", "pipe.stl"};
+  for (const std::string& name : names) ASSERT_EQ(mkfifo((dir / name).c_str(), 0600), 0) << name;
+  fs::create_symlink(dir / "loop_b.obj", dir / "loop_a.obj");
+  fs::create_symlink(dir / "loop_a.obj", dir / "loop_b.obj");
+  const fs::path out = dir / "out", err = dir / "err.txt";
+  struct Case {
+    std::string file, says;
+  };
+  std::vector<Case> cases;
+  for (const std::string& name : names)
+    cases.push_back({name, (name == "pipe" ? "pipe.node" : name) + ": is a named pipe (FIFO)"});
+  cases.push_back({"loop_a.obj", "loop_a.obj: is a loop of symbolic links"});
+  for (const Case& c : cases) {
+    const std::string file = (dir / c.file).string();
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"render", file, "--out", out.string()},
+          {"open", file, "--headless", "--out", out.string()},
+          {"mesh", "info", file},
+          {"run", file, "--frames", "1", "--out", out.string()},
+          {"scene", "check", file}}) {
+      const Bounded r = runBinaryWithin(args, err, 20.0);
+      ASSERT_NE(r.code, -1) << args[0] << " " << c.file << ": hung on a special file";
+      EXPECT_EQ(r.code, kExitBadInput) << args[0] << " " << c.file << ": " << r.err;
+      // What names the file's kind where the command reads it as what it is; the rest refuse
+      // it by its name (a scene check or `run` on a mesh name).
+      if (args[0] == "render" || args[0] == "open") {
+        EXPECT_NE(r.err.find(c.says), std::string::npos) << args[0] << ": " << r.err;
+      }
+    }
+  }
 }
 
 }  // namespace

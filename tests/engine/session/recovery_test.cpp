@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/project_file.h"
@@ -39,6 +40,20 @@ TEST(RecoveryStore, OffersOnlyFilesOfProcessesThatAreGone) {
   store.remove(crashed);
   store.remove(store.ownFile());
   EXPECT_FALSE(fs::exists(store.ownFile()));
+  EXPECT_TRUE(store.orphans().empty());
+}
+
+// Something not a regular file under a recovery file's name (a pipe blocked the window's start
+// when the offer read it) is not offered.
+TEST(RecoveryStore, OffersNoSpecialFiles) {
+  test::TempDir dir;
+  fs::create_directories(dir / "recovery");
+  long dead = 4000000;
+  while (kill(static_cast<pid_t>(dead), 0) == 0 || errno == EPERM) ++dead;
+  const std::string name = "recovery-" + std::to_string(dead) + ".gsproj";
+  ASSERT_EQ(mkfifo((dir / "recovery" / name).c_str(), 0600), 0);
+  fs::create_directories(dir / "recovery" / ("recovery-" + std::to_string(dead + 1) + ".gsproj"));
+  RecoveryStore store(dir / "recovery");
   EXPECT_TRUE(store.orphans().empty());
 }
 

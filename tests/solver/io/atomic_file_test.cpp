@@ -1,6 +1,7 @@
 #include "solver/io/atomic_file.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include "solver/io/input_error.h"
 #include "tests/test_util.h"
@@ -61,8 +62,31 @@ TEST(AtomicFile, ReadingAMissingFileNamesIt) {
 // pipe is refused before anything is read.
 TEST(AtomicFile, OnlyRegularFilesAreRead) {
   test::TempDir dir;
-  EXPECT_THROW_WITH(readWholeFile("/dev/zero"), InputError, "/dev/zero: is not a regular file");
-  EXPECT_THROW_WITH(readWholeFile(dir.path()), InputError, "is a folder, not a file");
+  EXPECT_THROW_WITH(readWholeFile("/dev/zero"), InputError,
+                    "/dev/zero: is a character device, not a regular file");
+  EXPECT_THROW_WITH(readWholeFile(dir.path()), InputError, "is a folder, not a regular file");
+}
+
+// Each kind is named, before anything opens it: a pipe with no writer would block the reader.
+TEST(AtomicFile, RequireRegularFileNamesWhatThePathIs) {
+  test::TempDir dir;
+  test::writeText(dir / "plain.txt", "x");
+  EXPECT_NO_THROW(requireRegularFile(dir / "plain.txt"));
+  EXPECT_TRUE(isRegularFile(dir / "plain.txt"));
+  fs::create_symlink(dir / "plain.txt", dir / "link.txt");
+  EXPECT_NO_THROW(requireRegularFile(dir / "link.txt")) << "a link to a file is that file";
+  ASSERT_EQ(mkfifo((dir / "pipe").c_str(), 0600), 0);
+  EXPECT_THROW_WITH(requireRegularFile(dir / "pipe"), InputError,
+                    "pipe: is a named pipe (FIFO), not a regular file");
+  EXPECT_FALSE(isRegularFile(dir / "pipe"));
+  fs::create_symlink(dir / "b", dir / "a");
+  fs::create_symlink(dir / "a", dir / "b");
+  EXPECT_THROW_WITH(requireRegularFile(dir / "a"), InputError, "a: is a loop of symbolic links");
+  EXPECT_FALSE(isRegularFile(dir / "a"));
+  EXPECT_THROW_WITH(requireRegularFile(dir / "missing"), InputError, "missing: file not found");
+  EXPECT_THROW_WITH(requireRegularFile(dir.path()), InputError, "is a folder, not a regular file");
+  EXPECT_THROW_WITH(requireRegularFile("/dev/null"), InputError,
+                    "/dev/null: is a character device, not a regular file");
 }
 
 // A set is written whole: a failing member leaves the previous set untouched and no temporary;
