@@ -166,7 +166,7 @@ class TetgenRuns {
         << ")";
     if (bestCount_ > options_.targetTets)
       msg << "; the surface is finer than " << options_.targetTets << " tets allow";
-    throw std::runtime_error(msg.str());
+    throw TetCountUnreachable(msg.str(), bestCount_);
   }
 
  private:

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -45,8 +46,16 @@ struct TetrahedralizeResult {
   int attempts = 0;
 };
 
-// Throws InputError for a bad surface, std::runtime_error when TetGen fails, crashes, times out
-// or no bound reaches the target.
+// No volume bound made TetGen reach the requested count within the tolerance: the count, not
+// TetGen, is what to change. `closest` is the nearest count it reached.
+struct TetCountUnreachable : std::runtime_error {
+  TetCountUnreachable(const std::string& what, int closest)
+      : std::runtime_error(what), closest(closest) {}
+  int closest;
+};
+
+// Throws InputError for a bad surface, TetCountUnreachable when no bound reaches the target,
+// std::runtime_error when TetGen fails, crashes or times out.
 TetrahedralizeResult tetrahedralize(const TriMesh& surface, const TetrahedralizeOptions& options);
 
 // Throws InputError naming the first problem of a surface that TetGen cannot mesh.

@@ -91,7 +91,7 @@ MeshSource readMesh(JsonObject o, const fs::path& sceneDir) {
   } else if (o.has("generate")) {
     m.kind = MeshSource::Kind::Generate;
     m.generator = readEnum(o, "generate", Generator::Sphere, kGeneratorNames);
-    m.tets = o.integer("tets", 0, 100, 5000000);
+    m.tets = o.integer("tets", 0, kMinSceneTets, 5000000);
     if (m.tets == 0) o.fail("tets", "is required with 'generate'");
     m.radius = o.number("radius", 0.1, 1e-6, 1e3);
   } else {
@@ -104,7 +104,7 @@ MeshSource readMesh(JsonObject o, const fs::path& sceneDir) {
       if (source.empty()) o.fail("import", "must not be empty");
       m.path = fs::absolute(sceneDir / source).lexically_normal();
     }
-    m.tets = o.integer("tets", 0, 100, 5000000);
+    m.tets = o.integer("tets", 0, kMinSceneTets, 5000000);
     if (m.tets == 0) o.fail("tets", "is required with 'import'");
   }
   m.scale = o.number("scale", 1.0, 1e-12, 1e12);

@@ -22,6 +22,9 @@ enum class Generator { Sphere, Charpy, Steak };
 const char* generatorName(Generator g);
 std::optional<Generator> generatorFromName(const std::string& name);
 
+// The fewest tets a scene may ask a generated or imported mesh for ($.mesh.tets).
+inline constexpr int kMinSceneTets = 100;
+
 struct MeshSource {
   enum class Kind { File, Generate, Import };
   Kind kind = Kind::File;

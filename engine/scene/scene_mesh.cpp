@@ -1,12 +1,14 @@
 #include "engine/scene/scene_mesh.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <sstream>
 
 #include "engine/meshing/mesh_files.h"
 #include "engine/meshing/tetrahedralize.h"
 #include "engine/surface/surface_io.h"
+#include "solver/io/atomic_file.h"
 #include "solver/io/input_error.h"
 #include "solver/io/tetgen_io.h"
 #include "solver/mesh/shape_generators.h"
@@ -63,7 +65,15 @@ TetMesh cachedTetrahedralization(const TriMesh& surface, const std::string& key,
   std::error_code ec;
   if (fs::exists(fs::path(stem).concat(".node"), ec) &&
       fs::exists(fs::path(stem).concat(".ele"), ec)) {
-    return readTetGen(stem);
+    try {
+      return readTetGen(stem);
+    } catch (const InputError& e) {
+      // A damaged entry (a disk that filled, a copy cut short) is made again, and said.
+      if (progress)
+        progress("the cached mesh is damaged (" + std::string(e.what()) + "): remeshing");
+      for (const char* ext : {".node", ".ele", ".face", ".damage"})
+        fs::remove(fs::path(stem).concat(ext), ec);
+    }
   }
   fs::create_directories(dir, ec);
   if (ec) throw OutputError("cannot create the mesh cache " + dir.string() + ": " + ec.message());
@@ -76,6 +86,35 @@ TetMesh cachedTetrahedralization(const TriMesh& surface, const std::string& key,
   TetrahedralizeResult result = tetrahedralize(surface, options);
   writeTetGen(stem, result.mesh);
   return std::move(result.mesh);
+}
+
+// A count TetGen cannot reach is the scene's error: it names the file, the key and a count
+// that works.
+TetMesh sceneTetrahedralization(const SceneDescription& scene, const TriMesh& surface,
+                                const std::string& key, const std::string& name,
+                                const ProgressFn& progress) {
+  try {
+    return cachedTetrahedralization(surface, key, name, scene.mesh.tets, progress);
+  } catch (const TetCountUnreachable& e) {
+    // The closest count was reached, so it works, unless it is below what a scene may ask for.
+    const std::string advice =
+        e.closest >= kMinSceneTets
+            ? std::to_string(e.closest) + " tets is a count that works"
+            : "ask for more tets (the closest count is below the least a scene may ask, " +
+                  std::to_string(kMinSceneTets) + ")";
+    throw InputError(scene.file.string(), 0,
+                     "$.mesh.tets: " + std::string(e.what()) + "; " + advice);
+  }
+}
+
+// FNV-1a over the file's bytes: a cache key, not a checksum against tampering.
+std::uint64_t contentHash(const fs::path& file) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (const char c : readWholeFile(file)) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ull;
+  }
+  return h;
 }
 
 void transformSurface(TriMesh& surface, const MeshSource& m) {
@@ -107,7 +146,7 @@ TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress)
       std::string k = key.str();
       for (char& c : k)
         if (c == ' ') c = '_';
-      return cachedTetrahedralization(surface, k, generatorName(m.generator), m.tets, progress);
+      return sceneTetrahedralization(scene, surface, k, generatorName(m.generator), progress);
     }
     case MeshSource::Kind::Import: {
       fs::path source = m.path;
@@ -129,9 +168,15 @@ TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress)
                          "$.mesh.import: " + source.string() + " does not exist");
       TriMesh surface = readSurface(source);
       transformSurface(surface, m);
+      // Everything that decides the mesh: the source's content (two files of one name differ),
+      // the transform and the count.
       std::ostringstream key;
-      key << "import-" << fs::path(name).stem().string() << "-" << m.tets << "-s" << m.scale;
-      return cachedTetrahedralization(surface, key.str(), name, m.tets, progress);
+      key << "import-" << fs::path(name).stem().string() << "-" << m.tets << "-s" << m.scale << "-t"
+          << m.translate.transpose() << "-h" << std::hex << contentHash(source);
+      std::string k = key.str();
+      for (char& c : k)
+        if (c == ' ') c = '_';
+      return sceneTetrahedralization(scene, surface, k, name, progress);
     }
   }
   throw std::logic_error("unhandled mesh source");

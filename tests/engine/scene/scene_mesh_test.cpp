@@ -4,8 +4,10 @@
 
 #include <cstdlib>
 
+#include "engine/surface/surface_io.h"
 #include "solver/io/input_error.h"
 #include "solver/io/tetgen_io.h"
+#include "solver/mesh/shape_generators.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -50,6 +52,96 @@ TEST(SceneMesh, GeneratedMeshesAreCachedAndFileMeshesTransformed) {
   ASSERT_EQ(moved.numVertices(), bar.numVertices());
   for (int v = 0; v < bar.numVertices(); ++v)
     EXPECT_LT((moved.vertices[v] - (2.0 * bar.vertices[v] + Vec3(1, 0, 0))).norm(), 1e-12);
+}
+
+// The cache's key covers what decides the mesh: two surfaces of one file name, and one surface
+// moved, are three meshes; a damaged entry is meshed again, and said.
+TEST(SceneMesh, TheCacheKeyHoldsTheSourcesContentAndTransformAndADamagedEntryIsRebuilt) {
+  test::TempDir dir;
+  const char* old = std::getenv("GALSCULPT_CACHE_DIR");
+  const std::string saved = old ? old : "";
+  setenv("GALSCULPT_CACHE_DIR", (dir / "cache").c_str(), 1);
+  fs::create_directories(dir / "a");
+  fs::create_directories(dir / "b");
+  writeSurface(dir / "a" / "ball.obj", makeIcosphere(0.05, 2));
+  writeSurface(dir / "b" / "ball.obj", makeIcosphere(0.08, 2));
+  auto scene = [&](const std::string& folder, const std::string& translate) {
+    const fs::path file = dir / folder / ("scene" + translate.substr(1, 1) + ".json");
+    test::writeText(
+        file, R"({"mesh": {"import": "ball.obj", "tets": 3000, "translate": )" + translate + "}}");
+    return loadScene(file);
+  };
+  auto extent = [](const TetMesh& m) {
+    double x = -1e9;
+    for (const Vec3& v : m.vertices) x = std::max(x, v.x());
+    return x;
+  };
+  const TetMesh small = loadSceneMesh(scene("a", "[0, 0, 0]"));
+  const TetMesh large = loadSceneMesh(scene("b", "[0, 0, 0]"));
+  EXPECT_NEAR(extent(small), 0.05, 0.005);
+  EXPECT_NEAR(extent(large), 0.08, 0.005) << "not the other ball.obj's cached mesh";
+  const TetMesh moved = loadSceneMesh(scene("a", "[1, 0, 0]"));
+  EXPECT_NEAR(extent(moved), 1.05, 0.005) << "translate is part of the key";
+
+  // Cut every cached .ele short, as a full disk would have left it.
+  int damaged = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir / "cache")) {
+    if (e.path().extension() != ".ele") continue;
+    fs::resize_file(e.path(), fs::file_size(e.path()) / 2);
+    ++damaged;
+  }
+  EXPECT_EQ(damaged, 3);
+  std::vector<std::string> progress;
+  const TetMesh again =
+      loadSceneMesh(scene("b", "[0, 0, 0]"), [&](const std::string& l) { progress.push_back(l); });
+  EXPECT_EQ(again.tets, large.tets) << "meshed again, the same";
+  ASSERT_FALSE(progress.empty());
+  EXPECT_NE(progress[0].find("the cached mesh is damaged"), std::string::npos) << progress[0];
+  if (old)
+    setenv("GALSCULPT_CACHE_DIR", saved.c_str(), 1);
+  else
+    unsetenv("GALSCULPT_CACHE_DIR");
+}
+
+// A count TetGen cannot reach for a generated surface is the scene's error: the file, the key,
+// the closest count, and a count that works (or that a larger one is needed).
+TEST(SceneMesh, AnUnreachableTetCountNamesTheSceneTheKeyAndACountThatWorks) {
+  test::TempDir dir;
+  const char* old = std::getenv("GALSCULPT_CACHE_DIR");
+  const std::string saved = old ? old : "";
+  setenv("GALSCULPT_CACHE_DIR", (dir / "cache").c_str(), 1);
+  std::string works;
+  for (const int tets : {100, 700}) {
+    const fs::path scene = dir / ("sphere" + std::to_string(tets) + ".json");
+    test::writeText(scene, R"({"mesh": {"generate": "sphere", "tets": )" + std::to_string(tets) +
+                               R"(, "radius": 0.1}})");
+    try {
+      loadSceneMesh(loadScene(scene));
+      ADD_FAILURE() << tets << " tets: TetGen reached it after all; pick another count";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(scene.string() + ": $.mesh.tets: could not reach " +
+                          std::to_string(tets) + " tets"),
+                std::string::npos)
+          << what;
+      const size_t at = what.find("; ");
+      const bool suggests = what.find(" tets is a count that works") != std::string::npos ||
+                            what.find("ask for more tets") != std::string::npos;
+      EXPECT_TRUE(at != std::string::npos && suggests) << what;
+      const size_t count = what.rfind("; ");
+      if (what.find(" tets is a count that works") != std::string::npos)
+        works = what.substr(count + 2, what.find(' ', count + 2) - count - 2);
+    }
+  }
+  ASSERT_FALSE(works.empty()) << "700 tets suggests a count";
+  const fs::path scene = dir / "suggested.json";
+  test::writeText(scene,
+                  R"({"mesh": {"generate": "sphere", "tets": )" + works + R"(, "radius": 0.1}})");
+  EXPECT_NO_THROW(loadSceneMesh(loadScene(scene))) << "the suggested " << works << " tets work";
+  if (old)
+    setenv("GALSCULPT_CACHE_DIR", saved.c_str(), 1);
+  else
+    unsetenv("GALSCULPT_CACHE_DIR");
 }
 
 }  // namespace
