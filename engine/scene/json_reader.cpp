@@ -197,7 +197,8 @@ std::string JsonObject::string(const std::string& key, const std::string& fallba
   return s;
 }
 
-Eigen::Vector3d JsonObject::vec3(const std::string& key, const Eigen::Vector3d& fallback) {
+Eigen::Vector3d JsonObject::vec3(const std::string& key, const Eigen::Vector3d& fallback,
+                                 double maxAbs) {
   if (!has(key)) return fallback;
   const nlohmann::json& v = raw(key);
   if (!v.is_array() || v.size() != 3) fail(key, "expected an array of 3 numbers");
@@ -206,6 +207,8 @@ Eigen::Vector3d JsonObject::vec3(const std::string& key, const Eigen::Vector3d& 
     if (!v[i].is_number()) fail(key, "expected an array of 3 numbers");
     out[i] = v[i].get<double>();
     if (!std::isfinite(out[i])) fail(key, "must be finite");
+    if (std::abs(out[i]) > maxAbs)
+      fail(key, "components must be within +-" + show(maxAbs) + ", got " + show(out[i]));
   }
   return out;
 }

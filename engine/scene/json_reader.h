@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -14,6 +15,12 @@
 #include <vector>
 
 namespace galsculpt {
+
+// Bounds on what scenes and scripts may say, far beyond any sculpting or lab scene and far below
+// where the arithmetic overflows (a coordinate of 1e300 squared is infinite).
+inline constexpr double kMaxCoordinate = 1e6;    // m: positions, offsets, blade ends
+inline constexpr double kMaxSpeed = 1e4;         // m/s
+inline constexpr double kMaxAcceleration = 1e5;  // m/s^2: about 10,000 g
 
 // [x, y, z], every digit kept (what the readers' vec3 reads back exactly).
 nlohmann::json vec3Json(const Eigen::Vector3d& v);
@@ -44,7 +51,9 @@ class JsonObject {
   bool boolean(const std::string& key, bool fallback);
   std::string string(const std::string& key, const std::string& fallback,
                      const std::vector<std::string>& allowed = {});
-  Eigen::Vector3d vec3(const std::string& key, const Eigen::Vector3d& fallback);
+  // Each component finite and within +-maxAbs (an error naming the key and the bound).
+  Eigen::Vector3d vec3(const std::string& key, const Eigen::Vector3d& fallback,
+                       double maxAbs = std::numeric_limits<double>::infinity());
   JsonObject object(const std::string& key);
   // Elements of an array member (empty when absent).
   std::vector<nlohmann::json> array(const std::string& key);

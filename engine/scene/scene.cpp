@@ -1,5 +1,6 @@
 #include "engine/scene/scene.h"
 
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -12,6 +13,19 @@ namespace galsculpt {
 namespace fs = std::filesystem;
 
 namespace {
+
+// A stress threshold: 0 (none, or the preset's) or a stress a squared comparison can hold. A
+// threshold of 1e-300 Pa squares to zero and broke nothing while 1e-100 broke everything.
+constexpr double kMinStressThreshold = 1e-6;  // Pa
+double stressThreshold(JsonObject& o, const std::string& key, double fallback) {
+  const double v = o.number(key, fallback, 0.0, 1e13);
+  if (v > 0.0 && v < kMinStressThreshold) {
+    char got[32];
+    std::snprintf(got, sizeof got, "%g", v);
+    o.fail(key, std::string("must be 0 or at least 1e-06 Pa, got ") + got);
+  }
+  return v;
+}
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -108,7 +122,7 @@ MeshSource readMesh(JsonObject o, const fs::path& sceneDir) {
     if (m.tets == 0) o.fail("tets", "is required with 'import'");
   }
   m.scale = o.number("scale", 1.0, 1e-12, 1e12);
-  m.translate = o.vec3("translate", Eigen::Vector3d::Zero());
+  m.translate = o.vec3("translate", Eigen::Vector3d::Zero(), kMaxCoordinate);
   o.rejectUnknownKeys();
   return m;
 }
@@ -122,8 +136,8 @@ MaterialDesc readMaterial(JsonObject o) {
   m.density = o.number("density", m.density, 1e-3, 1e6);
   m.yieldStress = o.number("yield_stress", m.yieldStress, 0.0, 1e13);
   m.hardening = o.number("hardening", m.hardening, 0.0, 1e13);
-  m.fractureThreshold = o.number("fracture_threshold", m.fractureThreshold, 0.0, 1e13);
-  m.compressiveThreshold = o.number("compressive_threshold", m.compressiveThreshold, 0.0, 1e13);
+  m.fractureThreshold = stressThreshold(o, "fracture_threshold", m.fractureThreshold);
+  m.compressiveThreshold = stressThreshold(o, "compressive_threshold", m.compressiveThreshold);
   m.fractureEnergy = o.number("fracture_energy", m.fractureEnergy, 0.0, 1e9);
   m.fractureStrain = o.number("fracture_strain", m.fractureStrain, 0.0, 1e3);
   o.rejectUnknownKeys();
@@ -137,7 +151,7 @@ std::vector<PathKey> readPath(JsonObject& o, const std::string& key) {
     JsonObject k(items[i], o.childPath(key) + "[" + std::to_string(i) + "]", o.file());
     PathKey p;
     p.time = k.requiredNumber("t", 0.0, 1e9);
-    p.offset = k.vec3("offset", Eigen::Vector3d::Zero());
+    p.offset = k.vec3("offset", Eigen::Vector3d::Zero(), kMaxCoordinate);
     if (!keys.empty() && p.time <= keys.back().time) k.fail("t", "path times must increase");
     k.rejectUnknownKeys();
     keys.push_back(p);
@@ -162,7 +176,7 @@ AnchorDesc readAnchorDesc(JsonObject o) {
   } else if (o.has("sphere")) {
     a.shape = AnchorDesc::Shape::Sphere;
     JsonObject s = o.object("sphere");
-    a.center = s.vec3("center", Eigen::Vector3d::Zero());
+    a.center = s.vec3("center", Eigen::Vector3d::Zero(), kMaxCoordinate);
     a.radius = s.requiredNumber("radius", 0.0, kInf);
     s.rejectUnknownKeys();
   } else {
@@ -189,10 +203,10 @@ MotionDesc readMotion(JsonObject o) {
   const std::string type = o.string("type", "static", {"static", "linear", "pendulum"});
   if (type == "linear") {
     m.type = MotionDesc::Type::Linear;
-    m.velocity = o.vec3("velocity", Eigen::Vector3d::Zero());
+    m.velocity = o.vec3("velocity", Eigen::Vector3d::Zero(), kMaxSpeed);
   } else if (type == "pendulum") {
     m.type = MotionDesc::Type::Pendulum;
-    m.pivot = o.vec3("pivot", Eigen::Vector3d::Zero());
+    m.pivot = o.vec3("pivot", Eigen::Vector3d::Zero(), kMaxCoordinate);
     m.axis = o.vec3("axis", Eigen::Vector3d::UnitZ());
     if (m.axis.norm() < 1e-12) o.fail("axis", "must not be zero");
     m.axis.normalize();
@@ -209,19 +223,19 @@ ColliderDesc readCollider(JsonObject o) {
   if (type.empty()) o.fail("type", "is required (plane, sphere or box)");
   if (type == "plane") {
     c.type = ColliderDesc::Type::Plane;
-    c.point = o.vec3("point", Eigen::Vector3d::Zero());
+    c.point = o.vec3("point", Eigen::Vector3d::Zero(), kMaxCoordinate);
     c.normal = o.vec3("normal", Eigen::Vector3d::UnitY());
     if (c.normal.norm() < 1e-12) o.fail("normal", "must not be zero");
     c.normal.normalize();
   } else if (type == "sphere") {
     c.type = ColliderDesc::Type::Sphere;
-    c.center = o.vec3("center", Eigen::Vector3d::Zero());
+    c.center = o.vec3("center", Eigen::Vector3d::Zero(), kMaxCoordinate);
     c.radius = o.requiredNumber("radius", 1e-9, kInf);
   } else {
     c.type = ColliderDesc::Type::Box;
-    c.center = o.vec3("center", Eigen::Vector3d::Zero());
+    c.center = o.vec3("center", Eigen::Vector3d::Zero(), kMaxCoordinate);
     if (!o.has("half_extents")) o.fail("half_extents", "is required for a box");
-    c.halfExtents = o.vec3("half_extents", Eigen::Vector3d::Zero());
+    c.halfExtents = o.vec3("half_extents", Eigen::Vector3d::Zero(), kMaxCoordinate);
     if ((c.halfExtents.array() <= 0.0).any()) o.fail("half_extents", "must be positive");
     c.cornerRadius = o.number("corner_radius", 0.0, 0.0, kInf);
     if (c.cornerRadius > c.halfExtents.minCoeff())
@@ -243,14 +257,14 @@ FractureDesc readFracture(JsonObject o) {
   FractureDesc f;
   f.enabled = o.boolean("enabled", true);
   f.criterion = readEnum(o, "criterion", f.criterion, kCriterionNames);
-  f.threshold = o.number("threshold", 0.0, 0.0, 1e13);  // 0: the material preset's
-  f.strain = o.number("strain", 0.0, 0.0, 1e3);         // 0: the material preset's
+  f.threshold = stressThreshold(o, "threshold", 0.0);  // 0: the material preset's
+  f.strain = o.number("strain", 0.0, 0.0, 1e3);        // 0: the material preset's
   f.kernelRadius = o.number("kernel_radius", 0.0, 0.0, 1e6);
   f.thresholdJitter = o.number("threshold_jitter", 0.0, 0.0, 0.99);
   f.seed = static_cast<unsigned>(o.integer("seed", 1, 0, std::numeric_limits<int>::max()));
   f.compressionResists = o.boolean("compression_resists", true);
   f.iterations = o.integer("iterations", 1, 1, 100);
-  f.compressiveThreshold = o.number("compressive_threshold", 0.0, 0.0, 1e13);
+  f.compressiveThreshold = stressThreshold(o, "compressive_threshold", 0.0);
   f.criticalFraction = o.number("critical_fraction", 0.0, 0.0, 1.0);
   f.energy = o.number("energy", 0.0, 0.0, 1e9);
   f.partCrackedSections = o.boolean("part_cracked_sections", f.partCrackedSections);
@@ -426,7 +440,7 @@ SceneDescription parseScene(const nlohmann::json& root, const fs::path& file) {
     s.material = readMaterial(o.object("material"));
   else
     s.material = materialPreset("rubber");
-  s.gravity = o.vec3("gravity", s.gravity);
+  s.gravity = o.vec3("gravity", s.gravity, kMaxAcceleration);
   s.timeStep = o.number("time_step", s.timeStep, 1e-7, 1.0);
   s.substeps = o.integer("substeps", s.substeps, 1, 1000);
   if (o.has("damping")) {

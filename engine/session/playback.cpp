@@ -16,7 +16,10 @@ Vec3 readPoint(JsonObject& o, const std::string& key, const nlohmann::json& valu
   if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
       !value[2].is_number())
     o.fail(key, "must be a point [x, y, z]");
-  return Vec3(value[0].get<double>(), value[1].get<double>(), value[2].get<double>());
+  const Vec3 p(value[0].get<double>(), value[1].get<double>(), value[2].get<double>());
+  if (!(p.cwiseAbs().maxCoeff() <= kMaxCoordinate))  // NaN fails too
+    o.fail(key, "points must be within +-1e+06 m in each coordinate");
+  return p;
 }
 
 // A blade: [[x, y, z], [x, y, z]].
@@ -49,7 +52,7 @@ Vec3 readUnit(JsonObject& o, const std::string& key) {
 
 void readStroke(JsonObject& o, ToolEvent& e) {
   if (!o.has("center")) o.fail("center", "is required for a brush stroke");
-  e.center = o.vec3("center", Vec3::Zero());
+  e.center = o.vec3("center", Vec3::Zero(), kMaxCoordinate);
   e.normal = readUnit(o, "normal");
   e.radius = o.requiredNumber("radius", 1e-9, 1e9);
   e.strength = o.number("strength", 0.0, 0.0, 1e9);
@@ -68,7 +71,7 @@ void readStroke(JsonObject& o, ToolEvent& e) {
                           ")");
     last = k.frame;
     if (!m.has("center")) m.fail("center", "is required");
-    k.center = m.vec3("center", Vec3::Zero());
+    k.center = m.vec3("center", Vec3::Zero(), kMaxCoordinate);
     k.normal = readUnit(m, "normal");
     m.rejectUnknownKeys();
     e.moves.push_back(k);
@@ -95,9 +98,9 @@ ToolEvent readEvent(JsonObject o) {
   } else if (tool == "brush") {
     e.tool = ToolEvent::Tool::Brush;
     if (!o.has("center")) o.fail("center", "is required for a brush");
-    e.center = o.vec3("center", Vec3::Zero());
+    e.center = o.vec3("center", Vec3::Zero(), kMaxCoordinate);
     e.radius = o.requiredNumber("radius", 1e-9, 1e9);
-    e.offset = o.vec3("offset", Vec3::Zero());
+    e.offset = o.vec3("offset", Vec3::Zero(), kMaxCoordinate);
     e.hold = o.boolean("hold", false);
   } else if (tool == "anchor") {
     e.tool = ToolEvent::Tool::Anchor;
@@ -116,7 +119,7 @@ ToolEvent readEvent(JsonObject o) {
     e.tool = ToolEvent::Tool::Paint;
     e.erase = tool == "anchor_erase";
     if (!o.has("center")) o.fail("center", "is required for anchor paint");
-    e.center = o.vec3("center", Vec3::Zero());
+    e.center = o.vec3("center", Vec3::Zero(), kMaxCoordinate);
     e.radius = o.requiredNumber("radius", 1e-9, 1e9);
     e.seed = o.integer("seed", -1, 0, 2000000000);
     e.symmetry = readSymmetry(o);
@@ -190,7 +193,7 @@ PlaybackScript parsePlaybackScript(const nlohmann::json& root, const fs::path& f
 
 CameraPose readCameraPose(JsonObject& o) {
   CameraPose pose;
-  pose.target = o.vec3("target", Vec3::Zero());
+  pose.target = o.vec3("target", Vec3::Zero(), kMaxCoordinate);
   pose.distance = o.requiredNumber("distance", 1e-9, 1e12);
   pose.yaw = o.number("yaw", 0.0, -1e6, 1e6);
   pose.pitch = o.number("pitch", 0.0, -1.6, 1.6);
