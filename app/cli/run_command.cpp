@@ -22,6 +22,7 @@
 #include "engine/session/simulation.h"
 #include "engine/surface/surface_io.h"
 #include "solver/io/atomic_file.h"
+#include "solver/io/folder_lock.h"
 #include "solver/io/input_error.h"
 
 namespace galsculpt {
@@ -98,6 +99,7 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
   std::error_code ec;
   fs::create_directories(outDir, ec);
   if (ec) throw OutputError("cannot create " + outDir.string() + ": " + ec.message());
+  const FolderLock lock(outDir);  // one writer at a time
 
   std::ostringstream csv;
   csv << metricsCsvHeader() << '\n';

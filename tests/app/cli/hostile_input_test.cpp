@@ -21,6 +21,7 @@
 #include "app/cli/cli.h"
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/project_file.h"
+#include "solver/io/folder_lock.h"
 #include "solver/io/tetgen_io.h"
 #include "tests/app/cli/cli_run.h"
 #include "tests/project_bytes.h"
@@ -356,6 +357,38 @@ TEST(HostileInput, AFullDiskLeavesNoFileUnderItsFinalNameInAnyFormat) {
       EXPECT_TRUE(name == "err.txt") << ext << ": " << name << " left behind";
     }
   }
+}
+
+// Two commands given one output folder: the second is refused, naming the first, instead of both
+// writing frames into it; when the first dies (kill -9), the folder is free again.
+TEST(HostileInput, OneOutputFolderHasOneWriterAtATime) {
+  test::TempDir dir;
+  const fs::path out = dir / "out", scene = kAssets / "scenes" / "default.json";
+  const pid_t first = fork();
+  if (first == 0) {
+    if (!freopen("/dev/null", "w", stderr) || !freopen("/dev/null", "w", stdout)) _exit(126);
+    execl(GALSCULPT_BINARY, GALSCULPT_BINARY, "run", scene.c_str(), "--frames", "100000", "--out",
+          out.c_str(), "--threads", "1", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const fs::path lock = out / FolderLock::kFileName;
+  const std::string pid = std::to_string(first);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!(fs::exists(lock) && test::readText(lock) == pid) &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_EQ(test::readText(lock), pid) << "the first run holds the folder";
+  const CliRun second = run({"run", scene.string(), "--frames", "1", "--out", out.string()});
+  EXPECT_EQ(second.code, kExitOutput) << second.err;
+  EXPECT_NE(second.err.find("another galsculpt (pid " + pid + ") is writing there"),
+            std::string::npos)
+      << second.err;
+  kill(first, SIGKILL);
+  int status = 0;
+  waitpid(first, &status, 0);
+  const CliRun third = run({"run", scene.string(), "--frames", "1", "--out", out.string()});
+  EXPECT_EQ(third.code, kExitOk) << "the lock died with its holder: " << third.err;
+  EXPECT_FALSE(fs::exists(lock)) << "a finished writer leaves no lock file";
 }
 
 TEST(HostileInput, SpecialFilesAreRefusedBeforeAnythingWaitsOnThem) {
