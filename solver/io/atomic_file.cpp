@@ -19,13 +19,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Temporaries are ".NAME.tmpPID": those of `path` left behind by processes that are gone (a
-// kill -9 mid-write) are removed; a live writer's are left alone.
+// Temporaries of `path` left behind by processes that are gone (a kill -9 mid-write) are
+// removed; a live writer's are left alone.
 void removeStaleTemporaries(const fs::path& dir, const std::string& name) {
-  const std::string prefix = "." + name + ".tmp";
+  // ".NAME.tmpPID": a member being written; ".NAME.oldPID": the one it replaces, moved aside
+  // while a set is committed.
+  const std::string tmpPrefix = "." + name + ".tmp", oldPrefix = "." + name + ".old";
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string entry = it->path().filename().string();
+    const std::string& prefix =
+        entry.compare(0, oldPrefix.size(), oldPrefix) == 0 ? oldPrefix : tmpPrefix;
     if (entry.size() <= prefix.size() || entry.compare(0, prefix.size(), prefix) != 0) continue;
     const std::string pid = entry.substr(prefix.size());
     if (pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
@@ -78,9 +82,19 @@ void commitTemporary(const fs::path& tmp, const fs::path& path) {
   std::error_code ec;
   fs::rename(tmp, path, ec);
   if (ec) {
+    const std::string reason = ec.message();  // before the clean-up overwrites ec
     fs::remove(tmp, ec);
-    throw OutputError("cannot write " + path.string() + ": " + ec.message());
+    throw OutputError("cannot write " + path.string() + ": " + reason);
   }
+}
+
+FileSet::RenameFn renameForTesting = nullptr;
+
+void renameFile(const fs::path& from, const fs::path& to, std::error_code& ec) {
+  if (renameForTesting)
+    renameForTesting(from, to, ec);
+  else
+    fs::rename(from, to, ec);
 }
 
 constexpr char kStampPrefix[] = "# galsculpt set ";
@@ -117,8 +131,53 @@ void FileSet::remove(const fs::path& path) {
   removed_.push_back(path);
 }
 
+void FileSet::setRenameForTesting(RenameFn rename) {
+  renameForTesting = rename;
+}
+
 void FileSet::commit() {
-  for (const auto& [tmp, target] : written_) commitTemporary(tmp, target);
+  std::error_code ec;
+  for (const auto& [tmp, target] : written_) {
+    if (fs::is_directory(fs::symlink_status(target, ec)))
+      throw OutputError("cannot write " + target.string() + ": a folder is in its place");
+  }
+  // Members already in place move aside (".NAME.oldPID"), then the new ones take their places;
+  // a failure puts every moved member back.
+  std::vector<std::pair<fs::path, fs::path>> aside;  // where it went, where it was
+  std::vector<fs::path> placed;
+  auto putBack = [&] {
+    std::error_code ignored;
+    for (const fs::path& p : placed) fs::remove(p, ignored);
+    for (auto it = aside.rbegin(); it != aside.rend(); ++it)
+      renameFile(it->first, it->second, ignored);
+    for (const auto& [tmp, target] : written_) fs::remove(tmp, ignored);
+    written_.clear();
+  };
+  for (const auto& [tmp, target] : written_) {
+    if (fs::exists(fs::symlink_status(target, ec))) {
+      std::string name = ".";
+      name.append(target.filename().string()).append(".old").append(std::to_string(getpid()));
+      const fs::path old = target.parent_path() / name;
+      renameFile(target, old, ec);
+      if (ec) {
+        const std::string message = "cannot write " + target.string() +
+                                    ": cannot move the old one aside: " + ec.message() +
+                                    "; the old set is unchanged";
+        putBack();  // clears written_, which `target` refers into
+        throw OutputError(message);
+      }
+      aside.emplace_back(old, target);
+    }
+    renameFile(tmp, target, ec);
+    if (ec) {
+      const std::string message =
+          "cannot write " + target.string() + ": " + ec.message() + "; the old set is unchanged";
+      putBack();  // clears written_, which `target` refers into
+      throw OutputError(message);
+    }
+    placed.push_back(target);
+  }
+  for (const auto& [old, target] : aside) fs::remove(old, ec);
   written_.clear();
   for (const fs::path& p : removed_) {
     std::error_code ec;

@@ -40,8 +40,16 @@ class FileSet {
   // Writes the member to its temporary now (throws OutputError, the set then unchanged).
   void add(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
   void remove(const std::filesystem::path& path);
-  // Renames every member into place and deletes the removed ones.
+  // Renames every member into place and deletes the removed ones, as a whole: the members
+  // already there are moved aside first, and when one cannot be renamed into place every one is
+  // put back (the folder holds the old set, never a mix) and OutputError says why. A member
+  // whose place is taken by a folder fails before anything moves.
   void commit();
+
+  // Tests: the rename the commit uses, to make one fail (nullptr: std::filesystem::rename).
+  using RenameFn = void (*)(const std::filesystem::path& from, const std::filesystem::path& to,
+                            std::error_code& ec);
+  static void setRenameForTesting(RenameFn rename);
 
  private:
   std::string stamp_;

@@ -123,5 +123,41 @@ TEST(AtomicFile, FileSetsAreCommittedWholeAndStamped) {
   EXPECT_NE(other.stamp(), set.stamp());
 }
 
+// The last member of a set cannot be renamed into place (a full disk, a folder gone): the members
+// already placed go back, so the folder holds the old set, and the message has the real error.
+TEST(AtomicFile, AFailedRenameMidSetPutsTheOldSetBack) {
+  test::TempDir dir;
+  for (const char* m : {"m.a", "m.b", "m.c"}) test::writeText(dir / m, std::string("old ") + m);
+  FileSet::setRenameForTesting([](const fs::path& from, const fs::path& to, std::error_code& ec) {
+    if (to.filename() == "m.c" && from.filename().string().find(".tmp") != std::string::npos)
+      ec = std::make_error_code(std::errc::no_space_on_device);
+    else
+      fs::rename(from, to, ec);
+  });
+  {
+    FileSet set;
+    for (const char* m : {"m.a", "m.b", "m.c"})
+      set.add(dir / m, [&](std::ostream& out) { out << "new\n" << set.stampLine(); });
+    EXPECT_THROW_WITH(set.commit(), OutputError,
+                      "m.c: No space left on device; the old set is unchanged");
+  }
+  FileSet::setRenameForTesting(nullptr);
+  for (const char* m : {"m.a", "m.b", "m.c"})
+    EXPECT_EQ(test::readText(dir / m), std::string("old ") + m) << m;
+  size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path())) ++entries;
+  EXPECT_EQ(entries, 3u) << "no temporary and no member moved aside is left";
+
+  // A folder in a member's place: refused before anything moves.
+  fs::create_directories(dir / "m.b.folder" / "x");
+  fs::remove(dir / "m.b");
+  fs::rename(dir / "m.b.folder", dir / "m.b");
+  FileSet set;
+  for (const char* m : {"m.a", "m.b"})
+    set.add(dir / m, [&](std::ostream& out) { out << "new\n" << set.stampLine(); });
+  EXPECT_THROW_WITH(set.commit(), OutputError, "m.b: a folder is in its place");
+  EXPECT_EQ(test::readText(dir / "m.a"), "old m.a");
+}
+
 }  // namespace
 }  // namespace galsculpt
