@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -48,10 +49,15 @@ SubprocessResult runSubprocess(const std::vector<std::string>& argv, double time
   args.push_back(nullptr);
   const auto start = std::chrono::steady_clock::now();
 
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) return result;
   if (pid == 0) {
     setpgid(0, 0);
+    // The child ends with galsculpt, however galsculpt ends (Ctrl-C, SIGTERM, kill -9): TetGen
+    // ran on for seconds after its parent was gone. If the parent is already gone, stop now.
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(kExecFailed);
     const int fd = open(logFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
       dup2(fd, STDOUT_FILENO);

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <random>
 #include <set>
 #include <sstream>
@@ -21,8 +22,10 @@
 #include "app/cli/cli.h"
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/project_file.h"
+#include "engine/surface/surface_io.h"
 #include "solver/io/folder_lock.h"
 #include "solver/io/tetgen_io.h"
+#include "solver/mesh/shape_generators.h"
 #include "tests/app/cli/cli_run.h"
 #include "tests/project_bytes.h"
 #include "tests/test_util.h"
@@ -389,6 +392,64 @@ TEST(HostileInput, OneOutputFolderHasOneWriterAtATime) {
   const CliRun third = run({"run", scene.string(), "--frames", "1", "--out", out.string()});
   EXPECT_EQ(third.code, kExitOk) << "the lock died with its holder: " << third.err;
   EXPECT_FALSE(fs::exists(lock)) << "a finished writer leaves no lock file";
+}
+
+// The pids of a process's children (every thread's).
+std::vector<pid_t> childrenOf(pid_t parent) {
+  std::vector<pid_t> out;
+  std::error_code ec;
+  for (const auto& task : fs::directory_iterator("/proc/" + std::to_string(parent) + "/task", ec)) {
+    std::ifstream in(task.path() / "children");
+    for (pid_t c; in >> c;) out.push_back(c);
+  }
+  return out;
+}
+
+// Whether a process has ended (gone, or a zombie nobody has reaped yet).
+bool ended(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(in, line)) return true;
+  const size_t close = line.rfind(')');
+  return close != std::string::npos && close + 2 < line.size() && line[close + 2] == 'Z';
+}
+
+// TetGen ran on for 11-13 s after a Ctrl-C or SIGTERM ended `mesh import`; it ends with it now.
+TEST(HostileInput, TetGenEndsWithGalsculpt) {
+  test::TempDir dir;
+  writeSurface(dir / "ball.obj", makeIcosphere(0.1, 4));
+  for (const int sig : {SIGTERM, SIGINT, SIGKILL}) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+      if (!freopen("/dev/null", "w", stderr) || !freopen("/dev/null", "w", stdout)) _exit(126);
+      execl(GALSCULPT_BINARY, GALSCULPT_BINARY, "mesh", "import", (dir / "ball.obj").c_str(),
+            (dir / "out.node").c_str(), "--tets", "3000000", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    // Signalled while a TetGen run has been at work for a while (the first, unbounded runs are
+    // short).
+    pid_t tetgen = 0;
+    std::map<pid_t, std::chrono::steady_clock::time_point> seen;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (tetgen == 0 && std::chrono::steady_clock::now() < deadline) {
+      const auto now = std::chrono::steady_clock::now();
+      for (const pid_t c : childrenOf(pid)) {
+        seen.emplace(c, now);
+        if (now - seen[c] > std::chrono::milliseconds(500)) tetgen = c;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_NE(tetgen, 0) << "no TetGen run lasted half a second";
+    kill(pid, sig);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    const auto gone = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+    while (!ended(tetgen) && std::chrono::steady_clock::now() < gone)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    EXPECT_TRUE(ended(tetgen)) << "TetGen (pid " << tetgen << ") outlived galsculpt's signal "
+                               << sig;
+    if (!ended(tetgen)) kill(tetgen, SIGKILL);
+  }
 }
 
 TEST(HostileInput, SpecialFilesAreRefusedBeforeAnythingWaitsOnThem) {
