@@ -371,7 +371,7 @@ void SculptApp::run() {
     // Draws keep to a grid of the period: a late one brings the next forward, so the rate holds
     // (one more than a period late, the grid starts again from now).
     const Clock::time_point now = Clock::now();
-    nextDraw_ = std::max(nextDraw_, now - drawPeriod()) + drawPeriod();
+    nextDraw_ = (now - nextDraw_ > drawPeriod() ? now : nextDraw_) + drawPeriod();
     const double cpuAtStart = threadCpuMs();
     runScriptStep();
     ImGui_ImplOpenGL3_NewFrame();
