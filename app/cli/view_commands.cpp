@@ -17,6 +17,7 @@
 #include "engine/session/simulation.h"
 #include "engine/surface/surface_io.h"
 #include "solver/io/atomic_file.h"
+#include "solver/io/folder_lock.h"
 #include "solver/io/input_error.h"
 
 namespace galsculpt {
@@ -86,6 +87,7 @@ std::vector<std::string> renderViewsOffscreen(const ViewContent& content, const 
   std::error_code ec;
   fs::create_directories(outDir, ec);
   if (ec) throw OutputError("cannot create " + outDir.string() + ": " + ec.message());
+  const FolderLock lock(outDir);  // one writer at a time
 
   OrbitCamera camera;
   camera.frame(boundingBox(content.surface.vertices));

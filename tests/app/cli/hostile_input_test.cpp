@@ -392,6 +392,17 @@ TEST(HostileInput, OneOutputFolderHasOneWriterAtATime) {
   const CliRun third = run({"run", scene.string(), "--frames", "1", "--out", out.string()});
   EXPECT_EQ(third.code, kExitOk) << "the lock died with its holder: " << third.err;
   EXPECT_FALSE(fs::exists(lock)) << "a finished writer leaves no lock file";
+
+  // render and open --headless write their pictures under the same rule.
+  const FolderLock held(out);
+  const fs::path mesh = kAssets / "meshes" / "sphere_small.node";
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"render", mesh.string(), "--out", out.string()},
+        {"open", mesh.string(), "--headless", "--out", out.string()}}) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.code, kExitOutput) << args[0] << ": " << r.err;
+    EXPECT_NE(r.err.find("is writing there"), std::string::npos) << args[0] << ": " << r.err;
+  }
 }
 
 // The pids of a process's children (every thread's).
