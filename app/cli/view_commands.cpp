@@ -135,10 +135,7 @@ int openCommand(const std::vector<std::string>& args, std::ostream& out, std::os
   applyThreadsOption(a);
   const std::optional<BackendRequest> backend = backendOption(a);
   const fs::path file = a.positional()[0];
-  std::error_code ec;
-  const bool exists = fs::exists(file, ec);
-  if (ec) requireRegularFile(file);  // says why: a loop of symbolic links, no permission
-  if (!exists) throw InputError(file.string() + ": no such file");
+  requirePathExists(file);
   bool headless = a.has("--headless");
   if (!headless && !haveDisplay()) {
     out << "no display found (DISPLAY and WAYLAND_DISPLAY are unset): running headless\n";

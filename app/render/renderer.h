@@ -35,7 +35,6 @@ class Renderer {
   // Into the framebuffer bound now.
   void draw(const OrbitCamera& camera, int width, int height, const RenderOptions& options = {});
   void setCached(bool cached);
-  bool cached() const { return cached_; }
   // How many times the scene was drawn into the cache (cached draws that only copied it do not
   // count).
   int sceneRenders() const { return sceneRenders_; }

@@ -226,10 +226,12 @@ void SculptApp::runScriptStep() {
   }
 }
 
+bool SculptApp::restyled() const {
+  return shown_.style.view != style_.view || shown_.style.tintCracks != style_.tintCracks;
+}
+
 bool SculptApp::inputNotYetShown() const {
-  const bool restyled = session_ && (shown_.style.view != style_.view ||
-                                     shown_.style.tintCracks != style_.tintCracks);
-  return !queue_.empty() || pendingInput_ || frameInput_ || restyled;
+  return !queue_.empty() || pendingInput_ || frameInput_ || (session_ && restyled());
 }
 
 bool SculptApp::navigationOnly(const InputEvent& e) const {
@@ -318,9 +320,7 @@ bool SculptApp::frameShouldStart() const {
 // brings the tools' effect, built on the worker.
 void SculptApp::updateScene() {
   if (!session_ || stepInFlight() || busy()) return;
-  const bool restyled =
-      shown_.style.view != style_.view || shown_.style.tintCracks != style_.tintCracks;
-  if (shown_.valid && !restyled && frameShouldStart()) return;
+  if (shown_.valid && !restyled() && frameShouldStart()) return;
   if (!viewIsCurrent(shown_, *session_, style_))
     show(makeFrameView(*session_, style_, shown_.metrics));
   // What acted between frames is on the screen from this draw, whether it changed the body

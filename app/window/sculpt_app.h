@@ -90,6 +90,7 @@ class SculptApp {
   Clock::duration drawPeriod() const;  // 1/60 s, or 1/30 s on a software rasterizer
   // Input queued, acted on but not drawn, or riding in the frame in flight.
   bool inputNotYetShown() const;
+  bool restyled() const;  // the drawn view's colours are not the chosen ones
   void finishStep();
   void collectStep();
   void finish();

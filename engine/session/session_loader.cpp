@@ -25,10 +25,7 @@ SceneDescription sceneForMesh(const fs::path& mesh, int importTets) {
 
 OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int importTets,
                           std::optional<BackendRequest> backend) {
-  std::error_code ec;
-  const bool exists = fs::exists(file, ec);
-  if (ec) requireRegularFile(file);  // says why: a loop of symbolic links, no permission
-  if (!exists) throw InputError(file.string() + ": no such file");
+  requirePathExists(file);
   OpenedSession opened;
   // By content, or by name: a .gsproj whose magic is broken is a broken project, not an
   // unknown mesh format.

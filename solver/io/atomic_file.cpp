@@ -213,6 +213,13 @@ void requireRegularFile(const fs::path& path) {
   throw InputError(path.string(), 0, std::string(what) + ", not a regular file");
 }
 
+void requirePathExists(const fs::path& path) {
+  std::error_code ec;
+  const bool exists = fs::exists(path, ec);
+  if (ec) requireRegularFile(path);  // says why
+  if (!exists) throw InputError(path.string() + ": no such file");
+}
+
 bool isRegularFile(const fs::path& path) {
   std::error_code ec;
   return fs::is_regular_file(fs::status(path, ec)) && !ec;

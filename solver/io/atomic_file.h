@@ -69,6 +69,9 @@ inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{4} << 30;
 // symbolic links): missing, a loop of symbolic links, a folder, a named pipe, a socket, a
 // device. Checked before a file is opened for reading, so nothing waits on a pipe's writer.
 void requireRegularFile(const std::filesystem::path& path);
+// Throws InputError "PATH: no such file" when nothing is there, or why it cannot be told
+// (requireRegularFile's reasons: a loop of symbolic links, no permission).
+void requirePathExists(const std::filesystem::path& path);
 // The same as a question: whether `path` is a regular file (after symbolic links).
 bool isRegularFile(const std::filesystem::path& path);
 

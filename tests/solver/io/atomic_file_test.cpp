@@ -87,6 +87,11 @@ TEST(AtomicFile, RequireRegularFileNamesWhatThePathIs) {
   EXPECT_THROW_WITH(requireRegularFile(dir.path()), InputError, "is a folder, not a regular file");
   EXPECT_THROW_WITH(requireRegularFile("/dev/null"), InputError,
                     "/dev/null: is a character device, not a regular file");
+  // Only that something is there: any kind, or why it cannot be told.
+  EXPECT_NO_THROW(requirePathExists(dir / "pipe"));
+  EXPECT_NO_THROW(requirePathExists(dir.path()));
+  EXPECT_THROW_WITH(requirePathExists(dir / "missing"), InputError, "missing: no such file");
+  EXPECT_THROW_WITH(requirePathExists(dir / "a"), InputError, "a: is a loop of symbolic links");
 }
 
 // A set is written whole: a failing member leaves the previous set untouched and no temporary;
