@@ -3,11 +3,13 @@
 // Every measurement runs in a child process (fork) so that its peak memory is its own and a
 // crash cannot take the benchmark down. The reference run (Newton + direct solve) of a scene
 // writes its final positions; each multigrid run is compared with them.
+#include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +22,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "app/cli/cli.h"
 #include "app/cli/cli_args.h"
@@ -29,6 +32,7 @@
 #include "solver/frame/parallel.h"
 #include "solver/io/atomic_file.h"
 #include "solver/io/input_error.h"
+#include "solver/io/stop_request.h"
 
 namespace galsculpt {
 
@@ -151,6 +155,7 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
   const int atMotion = motionFrame(frames);
   const fs::path motionPositions = fs::path(referencePositions).concat(".motion");
   for (int f = 0; f < frames; ++f) {
+    throwIfStopRequested();
     last = sim.advance();
     ms.push_back(last.msTotal);
     msSum += last.msTotal;
@@ -265,7 +270,10 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   nlohmann::json windows = nlohmann::json::array();
   int done = 0;
   for (const int settle : settles) {
-    for (; done < settle; ++done) sim.advance();
+    for (; done < settle; ++done) {
+      throwIfStopRequested();
+      sim.advance();
+    }
     if (settle > 0) sim.surface();
     nlohmann::json r = measureWindow(sim, mesh, setting, frames, settle, msCut, referencePositions);
     r["debris"] = debrisRuleName(baseScene.fracture.debris);
@@ -303,7 +311,17 @@ nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh
     _exit(code);
   }
   int status = 0;
-  waitpid(pid, &status, 0);
+  // A stop asked of bench (Ctrl-C reaches both, SIGTERM may reach this process alone) is
+  // passed on to the measurement, which ends between two frames.
+  bool forwarded = false;
+  while (waitpid(pid, &status, WNOHANG) == 0) {
+    if (stopRequested() && !forwarded) {
+      kill(pid, stopSignal());
+      forwarded = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  throwIfStopRequested();
   std::ifstream in(resultFile);
   if (!in)
     return nlohmann::json::array({nlohmann::json{

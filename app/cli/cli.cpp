@@ -6,6 +6,7 @@
 
 #include "app/cli/cli_args.h"
 #include "solver/io/input_error.h"
+#include "solver/io/stop_request.h"
 
 namespace galsculpt {
 
@@ -80,6 +81,9 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     if (command == "play") return playCommand(rest, out, err);
     if (command == "bench") return benchCommand(rest, out, err);
     throw UsageError("unknown command '" + command + "'");
+  } catch (const Interrupted& e) {
+    err << "galsculpt: " << e.what() << '\n';
+    return 128 + e.signal();
   } catch (const UsageError& e) {
     err << "galsculpt: " << e.what() << "\n(run 'galsculpt --help' for usage)\n";
     return kExitUsage;

@@ -21,9 +21,10 @@
 #include "engine/session/playback.h"
 #include "engine/session/simulation.h"
 #include "engine/surface/surface_io.h"
-#include "solver/io/atomic_file.h"
+#include "solver/io/appending_file.h"
 #include "solver/io/folder_lock.h"
 #include "solver/io/input_error.h"
+#include "solver/io/stop_request.h"
 
 namespace galsculpt {
 
@@ -101,8 +102,9 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
   if (ec) throw OutputError("cannot create " + outDir.string() + ": " + ec.message());
   const FolderLock lock(outDir);  // one writer at a time
 
-  std::ostringstream csv;
-  csv << metricsCsvHeader() << '\n';
+  // Rows reach the file frame by frame: a run stopped by a signal or killed keeps its metrics.
+  AppendingFile csv(metricsPath);
+  csv.append(metricsCsvHeader() + '\n');
   const bool interactive = isatty(STDERR_FILENO);
   double msSum = 0.0;
   int warnings = 0;
@@ -113,8 +115,14 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
   double worstPiece = 0.0;
   FrameMetrics last;
   for (int f = 1; f <= frames; ++f) {
+    if (stopRequested()) {
+      if (interactive) err << '\n';
+      err << "stopped after " << f - 1 << " of " << frames << " frames; " << metricsPath.string()
+          << " holds their rows\n";
+      throwIfStopRequested();
+    }
     last = advance();
-    csv << metricsCsvRow(last) << '\n';
+    csv.append(metricsCsvRow(last) + '\n');
     msSum += last.msTotal;
     warnings += last.warnings;
     if (pieceAboveTolerance(last, sim.settings().residualTolerance)) {
@@ -134,7 +142,7 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
     sim.writeTetsWithDamage(outDir / "final");
     out << "wrote " << (outDir / "final").string() << ".node/.ele/.face/.damage/.vtk\n";
   }
-  writeFileAtomically(metricsPath, [&](std::ostream& o) { o << csv.str(); });
+  csv.close();
   out << name << ": " << frames << " frames, " << std::fixed << std::setprecision(2)
       << msSum / frames << " ms/frame, volume change " << std::setprecision(3)
       << sim.volumeChangePercent() << " %, " << last.damagedEdges << " damaged edges, "

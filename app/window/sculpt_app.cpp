@@ -14,6 +14,7 @@
 #include "engine/surface/surface_io.h"
 #include "solver/frame/parallel.h"
 #include "solver/frame/timing.h"
+#include "solver/io/stop_request.h"
 
 #include <time.h>
 
@@ -349,7 +350,20 @@ void SculptApp::finish() {
     if (options_.saveRecordingOnExit)
       execute(Command{AppCommand::SaveRecording, options_.saveRecordingOnExit->string()});
   }
-  recovery_->remove(recovery_->ownFile());  // a normal exit leaves nothing to recover
+  if (stopRequested() && session_ && session_->dirty() && options_.autosaveSeconds > 0.0) {
+    // Ended by Ctrl-C or SIGTERM (a logout, a shutdown): the work is kept for the next start's
+    // recovery offer, as after a crash, instead of being lost.
+    try {
+      recovery_->save(*session_, camera_.pose());
+      log_ << "stopped by " << signalName(stopSignal()) << "; the session is kept for recovery: "
+           << recovery_->ownFile().string() << '\n';
+    } catch (const std::exception& e) {
+      log_ << "stopped by " << signalName(stopSignal()) << "; the session could not be kept: "
+           << e.what() << '\n';
+    }
+  } else {
+    recovery_->remove(recovery_->ownFile());  // a normal exit leaves nothing to recover
+  }
   // What the run cost, measured (docs/benchmarks.md, "The window"): the window's draws, the
   // simulation's frames in the window, and input to screen.
   const double seconds = std::chrono::duration<double>(Clock::now() - runStart_).count();
@@ -366,7 +380,8 @@ void SculptApp::finish() {
 }
 
 void SculptApp::run() {
-  while (!glfwWindowShouldClose(window_)) {
+  // Ctrl-C or SIGTERM closes the window as its close button does (stop_request.h).
+  while (!glfwWindowShouldClose(window_) && !stopRequested()) {
     waitForWork();
     // Draws keep to a grid of the period: a late one brings the next forward, so the rate holds
     // (one more than a period late, the grid starts again from now).
@@ -457,7 +472,7 @@ void SculptApp::waitForWork() {
   const Clock::time_point next = nextDraw_;
   if (redraw_ > 0) --redraw_;
   for (;;) {
-    if (glfwWindowShouldClose(window_)) break;
+    if (glfwWindowShouldClose(window_) || stopRequested()) break;
     const bool steady = wantsSteadyDraws();
     if (frames_.ready() && steady) {
       betweenFrames();  // drawn at the next tick

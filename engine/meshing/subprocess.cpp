@@ -12,6 +12,8 @@
 #include <sstream>
 #include <thread>
 
+#include "solver/io/stop_request.h"
+
 namespace galsculpt {
 
 namespace {
@@ -81,6 +83,12 @@ SubprocessResult runSubprocess(const std::vector<std::string>& argv, double time
       break;
     }
     if (done < 0 && errno != EINTR) break;
+    if (stopRequested()) {  // Ctrl-C or SIGTERM: the child ends first, then the caller unwinds
+      kill(-pid, SIGKILL);
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      throwIfStopRequested();
+    }
     if (elapsed > timeoutSeconds) {
       kill(-pid, SIGKILL);
       kill(pid, SIGKILL);

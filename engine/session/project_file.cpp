@@ -120,7 +120,7 @@ void writeProject(const fs::path& file, const SceneDescription& scene, const Sim
   std::vector<double> plastic;
   for (const Eigen::Matrix3d& m : state.plasticInverse)
     plastic.insert(plastic.end(), m.data(), m.data() + 9);
-  writeFileAtomically(file, [&](std::ostream& out) {
+  writeFileDurably(file, [&](std::ostream& out) {
     out << kMagic << ' ' << kProjectVersion << '\n' << header.size() << '\n' << header;
     writeArray(out, flat(model.mesh.vertices));
     writeArray(out, tets);

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "solver/io/atomic_file.h"
+#include "solver/io/stop_request.h"
 
 namespace galsculpt {
 
@@ -210,6 +211,7 @@ void SculptSession::replay(const PlaybackScript& script,
   tools_ = std::make_unique<ToolApplier>(*sim_, script.file.string());
   checkScriptAnchors(script, *sim_);
   while (sim_->frame() < script.frames) {
+    throwIfStopRequested();  // Ctrl-C or SIGTERM during `open --headless`
     tools_->prepareFrame(script.events, sim_->frame());  // as Playback::advance
     sim_->advance();
     if (progress) progress(sim_->frame(), script.frames);

@@ -1,5 +1,6 @@
 #include "solver/io/atomic_file.h"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -78,6 +79,15 @@ fs::path writeTemporary(const fs::path& path, const std::function<void(std::ostr
   return tmp;
 }
 
+// fsync of a file or a folder (opened read-only, which Linux allows); errno on failure, else 0.
+int syncPath(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return errno;
+  const int error = fsync(fd) == 0 ? 0 : errno;
+  ::close(fd);
+  return error;
+}
+
 void commitTemporary(const fs::path& tmp, const fs::path& path) {
   std::error_code ec;
   fs::rename(tmp, path, ec);
@@ -103,6 +113,19 @@ constexpr char kStampPrefix[] = "# galsculpt set ";
 
 void writeFileAtomically(const fs::path& path, const std::function<void(std::ostream&)>& write) {
   commitTemporary(writeTemporary(path, write), path);
+}
+
+void writeFileDurably(const fs::path& path, const std::function<void(std::ostream&)>& write) {
+  const fs::path tmp = writeTemporary(path, write);
+  if (const int error = syncPath(tmp)) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw OutputError("cannot write " + path.string() + ": " + std::strerror(error));
+  }
+  commitTemporary(tmp, path);
+  // The rename itself is on disk once the folder is: a crash later cannot bring the old back.
+  if (const int error = syncPath(tmp.parent_path()))
+    throw OutputError("cannot write " + path.string() + ": " + std::strerror(error));
 }
 
 FileSet::FileSet() {

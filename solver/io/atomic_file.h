@@ -18,6 +18,10 @@ namespace galsculpt {
 // Calls write(stream) on a temporary file in the target's directory and renames it to `path`.
 void writeFileAtomically(const std::filesystem::path& path,
                          const std::function<void(std::ostream&)>& write);
+// The same, for files that promise to survive a crash of the machine (projects, autosaves):
+// the data reaches the disk (fsync) before the rename, and the rename before it returns.
+void writeFileDurably(const std::filesystem::path& path,
+                      const std::function<void(std::ostream&)>& write);
 
 // Files that belong together (a TetGen mesh, its .face and its .damage) committed as a whole:
 // every member is written to a temporary beside its target first, and only once all of them

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <fstream>
@@ -405,6 +406,57 @@ TEST(HostileInput, OneOutputFolderHasOneWriterAtATime) {
   }
 }
 
+// Ctrl-C or SIGTERM during `run` ends it between two frames, by that signal: metrics.csv keeps
+// a whole row for every frame done (it was written only at the end, and lost), and the folder
+// holds no temporary and no lock.
+TEST(HostileInput, ASignalledRunKeepsItsMetricsRowsAndLeavesNothingElse) {
+  test::TempDir dir;
+  const fs::path scene = kAssets / "scenes" / "default.json";
+  for (const int sig : {SIGTERM, SIGINT}) {
+    const fs::path out = dir / ("out" + std::to_string(sig)), err = dir / "err.txt";
+    const pid_t pid = fork();
+    if (pid == 0) {
+      if (!freopen(err.c_str(), "w", stderr) || !freopen("/dev/null", "w", stdout)) _exit(126);
+      execl(GALSCULPT_BINARY, GALSCULPT_BINARY, "run", scene.c_str(), "--frames", "100000",
+            "--out", out.c_str(), "--threads", "1", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    const fs::path metrics = out / "metrics.csv";
+    auto rows = [&] {
+      const std::string text = test::readText(metrics);
+      return std::count(text.begin(), text.end(), '\n');
+    };
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (rows() < 4 && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ASSERT_GE(rows(), 4) << "rows reach the file as frames end";
+    kill(pid, sig);
+    const auto signalled = std::chrono::steady_clock::now();
+    int status = 0;
+    waitpid(pid, &status, 0);
+    EXPECT_LT(std::chrono::steady_clock::now() - signalled, std::chrono::seconds(10));
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig)
+        << "ended by its signal " << sig << ", status " << status;
+    const std::string message = test::readText(err);
+    EXPECT_NE(message.find("stopped after"), std::string::npos) << message;
+    EXPECT_NE(message.find(sig == SIGINT ? "stopped by SIGINT" : "stopped by SIGTERM"),
+              std::string::npos)
+        << message;
+    std::istringstream text(test::readText(metrics));
+    std::string header, line;
+    ASSERT_TRUE(std::getline(text, header));
+    const auto columns = std::count(header.begin(), header.end(), ',');
+    int frame = 0;
+    while (std::getline(text, line)) {
+      EXPECT_EQ(std::count(line.begin(), line.end(), ','), columns) << "a whole row: " << line;
+      EXPECT_EQ(line.substr(0, line.find(',')), std::to_string(++frame)) << line;
+    }
+    EXPECT_EQ(test::readText(metrics).back(), '\n');
+    for (const auto& e : fs::directory_iterator(out))
+      EXPECT_EQ(e.path().filename(), "metrics.csv") << e.path() << " left behind";
+  }
+}
+
 // The pids of a process's children (every thread's).
 std::vector<pid_t> childrenOf(pid_t parent) {
   std::vector<pid_t> out;
@@ -425,14 +477,19 @@ bool ended(pid_t pid) {
   return close != std::string::npos && close + 2 < line.size() && line[close + 2] == 'Z';
 }
 
-// TetGen ran on for 11-13 s after a Ctrl-C or SIGTERM ended `mesh import`; it ends with it now.
+// TetGen ran on for 11-13 s after a Ctrl-C or SIGTERM ended `mesh import`, and its temporary
+// folder stayed behind; it ends with galsculpt now, and a Ctrl-C or SIGTERM also removes the
+// folder and ends galsculpt by that signal (a kill -9 leaves the folder: nothing can run then).
 TEST(HostileInput, TetGenEndsWithGalsculpt) {
   test::TempDir dir;
   writeSurface(dir / "ball.obj", makeIcosphere(0.1, 4));
+  const fs::path tmp = dir / "tmp";
+  fs::create_directory(tmp);
   for (const int sig : {SIGTERM, SIGINT, SIGKILL}) {
     const pid_t pid = fork();
     if (pid == 0) {
       if (!freopen("/dev/null", "w", stderr) || !freopen("/dev/null", "w", stdout)) _exit(126);
+      setenv("TMPDIR", tmp.c_str(), 1);
       execl(GALSCULPT_BINARY, GALSCULPT_BINARY, "mesh", "import", (dir / "ball.obj").c_str(),
             (dir / "out.node").c_str(), "--tets", "3000000", static_cast<char*>(nullptr));
       _exit(127);
@@ -454,6 +511,12 @@ TEST(HostileInput, TetGenEndsWithGalsculpt) {
     kill(pid, sig);
     int status = 0;
     waitpid(pid, &status, 0);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig)
+        << "galsculpt ended by its signal " << sig << ", status " << status;
+    if (sig != SIGKILL) {
+      for (const auto& e : fs::directory_iterator(tmp))
+        ADD_FAILURE() << e.path() << " left behind after signal " << sig;
+    }
     const auto gone = std::chrono::steady_clock::now() + std::chrono::seconds(2);
     while (!ended(tetgen) && std::chrono::steady_clock::now() < gone)
       std::this_thread::sleep_for(std::chrono::milliseconds(10));

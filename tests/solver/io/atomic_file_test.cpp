@@ -47,6 +47,28 @@ TEST(AtomicFile, RenameFailureIsReportedAndCleanedUp) {
   EXPECT_EQ(filesIn(dir.path()), 1u);
 }
 
+// Projects and autosaves also reach the disk before the rename (fsync, which a test cannot
+// observe without a crash); the promises of the atomic write hold for them the same.
+TEST(AtomicFile, DurableWritesKeepTheAtomicPromises) {
+  test::TempDir dir;
+  writeFileDurably(dir / "a.txt", [](std::ostream& out) { out << "first"; });
+  writeFileDurably(dir / "a.txt", [](std::ostream& out) { out << "second"; });
+  EXPECT_EQ(readWholeFile(dir / "a.txt"), "second");
+  EXPECT_THROW(writeFileDurably(dir / "a.txt",
+                                [](std::ostream& out) {
+                                  out << "half";
+                                  throw std::runtime_error("disk on fire");
+                                }),
+               std::runtime_error);
+  EXPECT_EQ(readWholeFile(dir / "a.txt"), "second");
+  fs::create_directories(dir / "occupied" / "child");
+  EXPECT_THROW_WITH(writeFileDurably(dir / "occupied", [](std::ostream& out) { out << "x"; }),
+                    OutputError, "cannot write");
+  EXPECT_EQ(filesIn(dir.path()), 2u) << "no temporary file is left behind";
+  EXPECT_THROW_WITH(writeFileDurably(dir / "nope" / "a.txt", [](std::ostream&) {}), OutputError,
+                    "does not exist");
+}
+
 TEST(AtomicFile, MissingFolderIsAClearError) {
   test::TempDir dir;
   EXPECT_THROW_WITH(writeFileAtomically(dir / "nope" / "a.txt", [](std::ostream&) {}), OutputError,
