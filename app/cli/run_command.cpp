@@ -121,8 +121,11 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
           << " holds their rows\n";
       throwIfStopRequested();
     }
+    const std::size_t notesBefore = sim.notes().size();
     last = advance();
     csv.append(metricsCsvRow(last) + '\n');
+    for (std::size_t n = notesBefore; n < sim.notes().size(); ++n)
+      err << "note: " << sim.notes()[n] << '\n';
     msSum += last.msTotal;
     warnings += last.warnings;
     if (pieceAboveTolerance(last, sim.settings().residualTolerance)) {

@@ -512,8 +512,21 @@ void Simulation::removeAnchor(int id) {
   throw std::out_of_range("no anchor with id " + std::to_string(id));
 }
 
+namespace {
+
+bool allFinite(const std::vector<Vec3>& values) {
+  for (const Vec3& p : values)
+    if (!p.allFinite()) return false;
+  return true;
+}
+
+}  // namespace
+
 FrameMetrics Simulation::advance() {
   const auto start = std::chrono::steady_clock::now();
+  // Kept to undo a frame that diverges: no NaN reaches the window, an export or the metrics.
+  lastFinite_.first.assign(state_.x.begin(), state_.x.end());
+  lastFinite_.second.assign(state_.v.begin(), state_.v.end());
   StepReport r;
   try {
     r = backend_->step(state_, settings_);
@@ -526,6 +539,21 @@ FrameMetrics Simulation::advance() {
     backend_ = std::make_unique<CpuStepBackend>(model_);
     r = backend_->step(state_, settings_);
   }
+  const bool diverged = !allFinite(state_.x) || !allFinite(state_.v);
+  if (diverged) {
+    // The body stays where the last finite frame left it, at rest; the frame is reported as
+    // not converged, with a warning and a note.
+    std::copy(lastFinite_.first.begin(), lastFinite_.first.end(), state_.x.begin());
+    std::fill(state_.v.begin(), state_.v.end(), Vec3::Zero());
+    r.converged = false;
+    if (++divergedFrames_ <= kDivergenceNotes)
+      notes_.push_back("frame " + std::to_string(frame_ + 1) +
+                     " diverged (positions not finite): the body was kept where frame " +
+                     std::to_string(frame_) + " left it, at rest");
+  }
+  if (!std::isfinite(r.residual)) r.residual = -1.0;
+  if (!std::isfinite(r.pieceResidual)) r.pieceResidual = -1.0;
+  if (!std::isfinite(r.elasticEnergy)) r.elasticEnergy = -1.0;
   ++frame_;
   ++generation_;
   FrameMetrics m;
@@ -540,7 +568,8 @@ FrameMetrics Simulation::advance() {
   m.converged = r.converged;
   m.retries = r.retries;
   m.invertedElements = r.invertedElements;
-  m.warnings = r.retries + (r.converged ? 0 : 1) + (r.invertedElements > 0 ? 1 : 0);
+  m.warnings =
+      r.retries + (r.converged ? 0 : 1) + (r.invertedElements > 0 ? 1 : 0) + (diverged ? 1 : 0);
   m.newtonIterations = r.newtonIterations;
   m.cgIterations = r.cgIterations;
   m.backtracks = r.backtracks;

@@ -186,6 +186,9 @@ class Simulation {
   StepSettings settings_;
   std::unique_ptr<StepBackend> backend_;
   std::vector<std::string> notes_;
+  std::pair<std::vector<Vec3>, std::vector<Vec3>> lastFinite_;  // x and v before the frame
+  int divergedFrames_ = 0;  // each has a note, up to kDivergenceNotes (its warning counts all)
+  static constexpr int kDivergenceNotes = 5;
   mutable SurfaceBuilder surfaceBuilder_;
   mutable int surfaceFrame_ = -1;  // the state the surface was last brought up to
   mutable std::uint64_t surfaceRevision_ = 0;

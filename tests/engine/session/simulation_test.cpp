@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include <sstream>
 
 #include "engine/scene/scene_mesh.h"
@@ -270,6 +273,53 @@ TEST(Simulation, ADeviceFailureFallsBackToTheCpuAndSaysSo) {
   EXPECT_TRUE(noted);
   EXPECT_EQ(sim.frame(), 1);
   EXPECT_EQ(sim.state().x, reference.state().x) << "the failed frame was computed in full";
+}
+
+// A frame that ends with positions that are not finite (a solver that diverged; none of the
+// scenes the hostile suite tries does, so a backend poisons one vertex).
+class DivergingBackend final : public StepBackend {
+ public:
+  explicit DivergingBackend(const SimModel& model) : cpu_(model) {}
+  std::string name() const override { return "cpu"; }
+  bool offloads() const override { return false; }
+  StepReport step(SimState& state, const StepSettings& settings) override {
+    StepReport r = cpu_.step(state, settings);
+    if (++frames_ == 2) {
+      state.x[3].x() = std::numeric_limits<double>::quiet_NaN();
+      state.v[5].y() = std::numeric_limits<double>::infinity();
+      r.residual = std::numeric_limits<double>::quiet_NaN();
+    }
+    return r;
+  }
+
+ private:
+  CpuStepBackend cpu_;
+  int frames_ = 0;
+};
+
+// No NaN reaches a view, an export or the metrics: the diverged frame keeps the body where the
+// last finite frame left it, at rest, and says so (not converged, a warning, a note).
+TEST(Simulation, ADivergedFrameKeepsTheLastFinitePositionsAndSaysSo) {
+  test::TempDir dir;
+  const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + "}");
+  Simulation sim(scene, loadSceneMesh(scene));
+  sim.setBackend(std::make_unique<DivergingBackend>(sim.model()));
+  sim.advance();
+  const std::vector<Vec3> before = sim.state().x;
+  const FrameMetrics m = sim.advance();
+  EXPECT_EQ(sim.state().x, before);
+  for (const Vec3& v : sim.state().v) EXPECT_EQ(v, Vec3::Zero());
+  EXPECT_FALSE(m.converged);
+  EXPECT_GE(m.warnings, 1);
+  EXPECT_EQ(m.residual, -1.0) << "not computed, and not NaN";
+  EXPECT_EQ(metricsCsvRow(m).find("nan"), std::string::npos) << metricsCsvRow(m);
+  ASSERT_FALSE(sim.notes().empty());
+  EXPECT_EQ(sim.notes().back(),
+            "frame 2 diverged (positions not finite): the body was kept where frame 1 left it, "
+            "at rest");
+  const FrameMetrics next = sim.advance();
+  EXPECT_TRUE(std::isfinite(next.residual));
+  for (const Vec3& p : sim.state().x) ASSERT_TRUE(p.allFinite());
 }
 
 // A clay ball cut in two, one half pulled straight away: the other half stays as it is. Plastic
