@@ -140,8 +140,8 @@ int infoSurface(const fs::path& file, bool json, std::ostream& out) {
   return kExitOk;
 }
 
-TetMesh meshSurface(const TriMesh& surface, const std::string& name, const CliArgs& a,
-                    std::ostream& err) {
+TetMesh meshSurface(const std::vector<TriMesh>& surfaces, const std::string& name,
+                    const CliArgs& a, std::ostream& err) {
   TetrahedralizeOptions options;
   options.targetTets = a.intValue("--tets", 0, 1, 50000000);
   options.timeoutSeconds = a.doubleValue("--timeout", 300.0, 1.0, 86400.0);
@@ -149,7 +149,7 @@ TetMesh meshSurface(const TriMesh& surface, const std::string& name, const CliAr
   options.radiusEdgeRatio = a.doubleValue("--quality", 1.414, 1.05, 10.0);
   options.surfaceName = name;
   options.progress = [&err](const std::string& line) { err << line << '\n'; };
-  return tetrahedralize(surface, options).mesh;
+  return tetrahedralizeAny(surfaces, options).mesh;
 }
 
 void writeAny(const fs::path& path, const TetMesh& mesh, std::ostream& out) {
@@ -209,7 +209,7 @@ int meshConvert(const std::vector<std::string>& rest, std::ostream& out, std::os
       return kExitOk;
     }
     if (!a.has("--tets")) throw UsageError("converting a surface to a tet mesh needs --tets N");
-    writeAny(outPath, meshSurface(surface, in.filename().string(), a, err), out);
+    writeAny(outPath, meshSurface({surface}, in.filename().string(), a, err), out);
     return kExitOk;
   }
   MeshReadReport report;
@@ -233,7 +233,7 @@ int meshImport(const std::vector<std::string>& rest, std::ostream& out, std::ost
                      "not a surface mesh (expected .obj, .ply, .stl, .off, .gltf or .glb)");
   }
   const TriMesh surface = readSurface(in);
-  writeAny(outPath, meshSurface(surface, in.string(), a, err), out);
+  writeAny(outPath, meshSurface({surface}, in.string(), a, err), out);
   return kExitOk;
 }
 
@@ -249,8 +249,9 @@ int meshGenerate(const std::vector<std::string>& rest, std::ostream& out, std::o
   // A surface alone (no --tets) gets the resolution of the paper's scene.
   const int tets =
       a.intValue("--tets", *generator == Generator::Steak ? 186000 : 35000, 1, 50000000);
-  const TriMesh surface =
-      generatorSurface(*generator, a.doubleValue("--radius", 0.1, 1e-6, 1e6), tets);
+  const std::vector<TriMesh> surfaces =
+      generatorSurfaces(*generator, a.doubleValue("--radius", 0.1, 1e-6, 1e6), tets);
+  const TriMesh& surface = surfaces.front();
   if (meshFileKind(outPath) == MeshFileKind::Surface) {
     writeSurface(outPath, surface);
     out << "wrote " << outPath.string() << " (" << surface.numVertices() << " vertices, "
@@ -258,7 +259,7 @@ int meshGenerate(const std::vector<std::string>& rest, std::ostream& out, std::o
     return kExitOk;
   }
   if (!a.has("--tets")) throw UsageError("a tet mesh output needs --tets N");
-  writeAny(outPath, meshSurface(surface, name, a, err), out);
+  writeAny(outPath, meshSurface(surfaces, name, a, err), out);
   return kExitOk;
 }
 

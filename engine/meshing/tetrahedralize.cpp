@@ -282,4 +282,22 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
   runs.fail();
 }
 
+TetrahedralizeResult tetrahedralizeAny(const std::vector<TriMesh>& surfaces,
+                                       const TetrahedralizeOptions& options) {
+  if (surfaces.empty()) throw std::invalid_argument("no surface to tetrahedralize");
+  std::optional<TetCountUnreachable> nearest;
+  for (const TriMesh& surface : surfaces) {
+    try {
+      return tetrahedralize(surface, options);
+    } catch (const TetCountUnreachable& e) {
+      if (!nearest || std::abs(e.closest - options.targetTets) <
+                          std::abs(nearest->closest - options.targetTets))
+        nearest = e;
+      if (options.progress && &surface != &surfaces.back())
+        options.progress("trying a finer surface of " + options.surfaceName);
+    }
+  }
+  throw *nearest;
+}
+
 }  // namespace galsculpt

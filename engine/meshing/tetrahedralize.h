@@ -58,6 +58,13 @@ struct TetCountUnreachable : std::runtime_error {
 // std::runtime_error when TetGen fails, crashes or times out.
 TetrahedralizeResult tetrahedralize(const TriMesh& surface, const TetrahedralizeOptions& options);
 
+// The first of `surfaces` (resolutions of one shape, the preferred one first) whose
+// tetrahedralization reaches the count: TetGen's refinement jumps over some counts on one
+// surface and reaches them on a finer one. Throws the TetCountUnreachable whose closest count
+// is nearest the target when none does.
+TetrahedralizeResult tetrahedralizeAny(const std::vector<TriMesh>& surfaces,
+                                       const TetrahedralizeOptions& options);
+
 // Throws InputError naming the first problem of a surface that TetGen cannot mesh.
 void checkMeshableSurface(const TriMesh& surface, const std::string& name);
 

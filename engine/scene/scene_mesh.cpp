@@ -39,10 +39,13 @@ int subdivisionsFor(int targetTets, double tetsPerFace, int minLevel, int maxLev
 }
 }  // namespace
 
-TriMesh generatorSurface(Generator generator, double radius, int targetTets) {
+namespace {
+
+// The charpy bar and the steak slab: one surface each.
+TriMesh solidSurface(Generator generator, int targetTets) {
   switch (generator) {
-    case Generator::Sphere:  // 1280 faces for the paper's 35k-tet sphere
-      return makeIcosphere(radius, subdivisionsFor(targetTets, 20.0, 1, 5));
+    case Generator::Sphere:
+      break;
     case Generator::Charpy:
       return makeCharpyBar();
     case Generator::Steak: {
@@ -56,9 +59,25 @@ TriMesh generatorSurface(Generator generator, double radius, int targetTets) {
   throw std::logic_error("unhandled generator");
 }
 
+}  // namespace
+
+TriMesh generatorSurface(Generator generator, double radius, int targetTets) {
+  return generatorSurfaces(generator, radius, targetTets).front();
+}
+
+std::vector<TriMesh> generatorSurfaces(Generator generator, double radius, int targetTets) {
+  if (generator != Generator::Sphere) return {solidSurface(generator, targetTets)};
+  // 1280 faces for the paper's 35k-tet sphere; then the next two finer spheres, since TetGen's
+  // refinement jumps over some small counts on one of them and reaches them on another.
+  const int level = subdivisionsFor(targetTets, 20.0, 1, 5);
+  std::vector<TriMesh> out;
+  for (int l = level; l <= std::min(level + 2, 5); ++l) out.push_back(makeIcosphere(radius, l));
+  return out;
+}
+
 namespace {
 
-TetMesh cachedTetrahedralization(const TriMesh& surface, const std::string& key,
+TetMesh cachedTetrahedralization(const std::vector<TriMesh>& surfaces, const std::string& key,
                                  const std::string& name, int tets, const ProgressFn& progress) {
   const fs::path dir = cacheDirectory() / "meshes";
   const fs::path stem = dir / key;
@@ -83,18 +102,18 @@ TetMesh cachedTetrahedralization(const TriMesh& surface, const std::string& key,
   options.targetTets = tets;
   options.surfaceName = name;
   options.progress = progress;
-  TetrahedralizeResult result = tetrahedralize(surface, options);
+  TetrahedralizeResult result = tetrahedralizeAny(surfaces, options);
   writeTetGen(stem, result.mesh);
   return std::move(result.mesh);
 }
 
 // A count TetGen cannot reach is the scene's error: it names the file, the key and a count
 // that works.
-TetMesh sceneTetrahedralization(const SceneDescription& scene, const TriMesh& surface,
+TetMesh sceneTetrahedralization(const SceneDescription& scene, const std::vector<TriMesh>& surfaces,
                                 const std::string& key, const std::string& name,
                                 const ProgressFn& progress) {
   try {
-    return cachedTetrahedralization(surface, key, name, scene.mesh.tets, progress);
+    return cachedTetrahedralization(surfaces, key, name, scene.mesh.tets, progress);
   } catch (const TetCountUnreachable& e) {
     // The closest count was reached, so it works, unless it is below what a scene may ask for.
     const std::string advice =
@@ -136,8 +155,8 @@ TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress)
       return mesh;
     }
     case MeshSource::Kind::Generate: {
-      TriMesh surface = generatorSurface(m.generator, m.radius, m.tets);
-      transformSurface(surface, m);
+      std::vector<TriMesh> surfaces = generatorSurfaces(m.generator, m.radius, m.tets);
+      for (TriMesh& surface : surfaces) transformSurface(surface, m);
       std::ostringstream key;
       key << generatorName(m.generator) << "-" << m.tets;
       if (m.generator == Generator::Sphere) key << "-r" << m.radius;
@@ -146,7 +165,7 @@ TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress)
       std::string k = key.str();
       for (char& c : k)
         if (c == ' ') c = '_';
-      return sceneTetrahedralization(scene, surface, k, generatorName(m.generator), progress);
+      return sceneTetrahedralization(scene, surfaces, k, generatorName(m.generator), progress);
     }
     case MeshSource::Kind::Import: {
       fs::path source = m.path;
@@ -176,7 +195,7 @@ TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress)
       std::string k = key.str();
       for (char& c : k)
         if (c == ' ') c = '_';
-      return sceneTetrahedralization(scene, surface, k, name, progress);
+      return sceneTetrahedralization(scene, {surface}, k, name, progress);
     }
   }
   throw std::logic_error("unhandled mesh source");

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "engine/scene/scene.h"
 #include "solver/mesh/tet_mesh.h"
@@ -22,6 +23,9 @@ std::filesystem::path cgalMeshPath(const std::string& name);
 // The closed surface a generator makes, resolved for about
 // `targetTets` tets: a surface finer than the volume mesh needs would force extra tets.
 TriMesh generatorSurface(Generator generator, double radius, int targetTets);
+// The surfaces to tetrahedralize for that count, the one above first and finer ones after it to
+// try when TetGen cannot reach the count on it (tetrahedralizeAny).
+std::vector<TriMesh> generatorSurfaces(Generator generator, double radius, int targetTets);
 
 using ProgressFn = std::function<void(const std::string&)>;
 
