@@ -426,6 +426,9 @@ void SculptApp::betweenFrames() {
     applySceneSettings();
   }
   updateScene();
+  // Here, between two frames, is where a playing simulation can be saved at all: elsewhere a
+  // frame is in flight almost always.
+  autosave();
   advanceSimulation();
 }
 

@@ -11,7 +11,9 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <chrono>
 #include <cstdlib>
+#include <thread>
 
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/playback.h"
@@ -550,6 +552,59 @@ TEST(AppUiRealtime, AKnifeStrokeLeavesAVisibleCut) {
   EXPECT_EQ(pieces(run.project), 2);
   EXPECT_GT(changed(a, b), 0.02) << "the cap, cut off and pulled, moved on the screen";
   EXPECT_GT(crackPixels(b), crackPixels(a) + 2000) << "its crack faces are on the screen";
+}
+
+}  // namespace
+}  // namespace galsculpt
+
+namespace galsculpt {
+namespace {
+
+// SIGTERM (a logout, a shutdown, a Ctrl-C in the terminal) closes the window as the close button
+// does, but a session with changes is kept in the recovery folder, freshly saved, instead of
+// being lost; the process then ends by the signal.
+TEST(AppUiRealtime, SigtermClosesTheWindowAndKeepsTheSessionForRecovery) {
+  test::TempDir dir;
+  test::writeText(dir / "steps.json", R"({"realtime": true, "steps": [
+      {"wait_frames": 2}, {"key": "G"}, {"move": [0.5, 0.4]}, {"press": "left"},
+      {"move": [0.52, 0.36]}, {"wait_frames": 2}, {"release": "left"}, {"wait": 3000}]})");
+  const fs::path recovery = dir / "recovery", log = dir / "log.txt";
+  const std::string command = "GALSCULPT_RECOVERY_DIR='" + recovery.string() +
+                              "' xvfb-run -a -s '-screen 0 1280x800x24' '" +
+                              std::string(GALSCULPT_BINARY) + "' open '" + kDefaultScene.string() +
+                              "' --no-recovery --autosave 1 --size 1280x800 --input-script '" +
+                              (dir / "steps.json").string() + "' > '" + log.string() + "' 2>&1";
+  FILE* app = popen(command.c_str(), "r");
+  ASSERT_NE(app, nullptr);
+  // The first autosave names the app's pid (recovery-PID.gsproj) and says the grab made changes.
+  pid_t pid = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(90);
+  while (pid == 0 && std::chrono::steady_clock::now() < deadline) {
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(recovery, ec)) {
+      const std::string name = e.path().filename().string();
+      if (name.rfind("recovery-", 0) == 0 && e.path().extension() == ".gsproj")
+        pid = static_cast<pid_t>(std::stol(name.substr(9)));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_NE(pid, 0) << "no autosave: " << test::readText(log);
+  const fs::path kept = recovery / ("recovery-" + std::to_string(pid) + ".gsproj");
+  const int autosaved = readProject(kept).state.frame;
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_EQ(kill(pid, SIGTERM), 0);
+  const auto signalled = std::chrono::steady_clock::now();
+  const int status = pclose(app);
+  EXPECT_LT(std::chrono::steady_clock::now() - signalled, std::chrono::seconds(10));
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM)
+      << "xvfb-run passes on the app's end by SIGTERM: status " << status;
+  const std::string text = test::readText(log);
+  EXPECT_NE(text.find("stopped by SIGTERM; the session is kept for recovery: " + kept.string()),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("window: "), std::string::npos) << "it closed as a window does: " << text;
+  ASSERT_TRUE(fs::exists(kept));
+  EXPECT_GT(readProject(kept).state.frame, autosaved) << "saved again as it closed";
 }
 
 }  // namespace
