@@ -367,15 +367,17 @@ void SculptApp::finish() {
   // What the run cost, measured (docs/benchmarks.md, "The window"): the window's draws, the
   // simulation's frames in the window, and input to screen.
   const double seconds = std::chrono::duration<double>(Clock::now() - runStart_).count();
-  char line[512];
+  char line[768];
   std::snprintf(line, sizeof line,
                 "window: %d draws, %.1f a second, median %.1f ms between draws, %.2f ms of its "
                 "thread a draw; simulation: %d frames, median %.1f ms a frame; input to screen: "
                 "median %.0f ms over %zu samples; %d threads; between frames: median %.1f ms "
-                "building the view, %.1f ms waiting for the window",
+                "building the view, %.1f ms waiting for the window; during strokes: %.1f draws "
+                "a second over %.1f s",
                 runDraws_, runDraws_ / std::max(seconds, 1e-9), runWindowMs_.median(),
                 runWindowCpuMs_.median(), runFrames_, runFrameMs_.median(), runLatencyMs_.median(),
-                runLatencyMs_.size(), threadCount(), runViewMs_.median(), runIdleMs_.median());
+                runLatencyMs_.size(), threadCount(), runViewMs_.median(), runIdleMs_.median(),
+                strokeIntervals_ / std::max(strokeSeconds_, 1e-9), strokeSeconds_);
   log_ << line << '\n';
 }
 
@@ -437,11 +439,17 @@ void SculptApp::afterSwap(double cpuAtStart) {
   const double cpu = threadCpuMs() - cpuAtStart;
   windowCpuMs_.add(cpu);
   runWindowCpuMs_.add(cpu);
+  const bool inStroke = controller_ && controller_->strokeActive();
   if (lastDraw_ != Clock::time_point{}) {
     const double ms = std::chrono::duration<double, std::milli>(now - lastDraw_).count();
     windowMs_.add(ms);
     runWindowMs_.add(ms);
+    if (inStroke && lastDrawInStroke_) {
+      ++strokeIntervals_;
+      strokeSeconds_ += ms / 1000.0;
+    }
   }
+  lastDrawInStroke_ = inStroke;
   lastDraw_ = now;
   windowRate_.tick(now);
   ++runDraws_;

@@ -159,6 +159,11 @@ class SculptApp {
   // simulation's wait for the window.
   std::optional<Clock::time_point> lastReadyAt_;
   int runDraws_ = 0, runFrames_ = 0;
+  // Draws while a stroke is held, the rate a user sees while sculpting: the intervals between
+  // two draws that both fell within a stroke, and their time.
+  int strokeIntervals_ = 0;
+  double strokeSeconds_ = 0.0;
+  bool lastDrawInStroke_ = false;
   Clock::time_point runStart_ = Clock::now();
   // The earliest input that acted on the session and is not yet on the screen: waiting for a
   // frame to start, in the frame in flight, and in the view drawn this window frame.

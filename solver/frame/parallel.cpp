@@ -4,6 +4,7 @@
 #include <oneapi/tbb/global_control.h>
 #include <oneapi/tbb/info.h>
 #include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -48,13 +49,25 @@ const Default& defaults() {
 
 std::mutex controlMutex;
 std::unique_ptr<tbb::global_control> control;  // the limit in force, once set
-std::atomic<int> current{0};                   // 0: not set yet
+// Every loop runs in this one arena, whoever calls it. Without it each calling thread gets an
+// implicit arena of its own, and when that thread ends (the window runs each frame on a thread
+// of its own) oneTBB tears the worker threads down with it: every frame started new ones.
+std::unique_ptr<tbb::task_arena> arena;
+std::atomic<int> current{0};  // 0: not set yet
 
 void setLocked(int n) {
+  arena.reset();
   control.reset();
   control = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                   static_cast<size_t>(n));
   current.store(n, std::memory_order_release);
+}
+
+// Made at the first loop, not before: a process that forks (bench) must not hold workers then.
+tbb::task_arena& loopArena() {
+  std::lock_guard<std::mutex> lock(controlMutex);
+  if (!arena) arena = std::make_unique<tbb::task_arena>(current.load());
+  return *arena;
 }
 
 }  // namespace
@@ -90,10 +103,12 @@ void parallelRanges(int n, long cost, RangeBody body, const void* closure) {
   // about kMinChunkWork operations, where taking one would cost as much as running it.
   constexpr long kMinChunkWork = 1024;
   const long grain = std::clamp(kMinChunkWork / cost, 1L, static_cast<long>(n));
-  tbb::parallel_for(
-      tbb::blocked_range<int>(0, n, static_cast<size_t>(grain)),
-      [&](const tbb::blocked_range<int>& r) { body(closure, r.begin(), r.end()); },
-      tbb::auto_partitioner());
+  loopArena().execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, n, static_cast<size_t>(grain)),
+        [&](const tbb::blocked_range<int>& r) { body(closure, r.begin(), r.end()); },
+        tbb::auto_partitioner());
+  });
 }
 
 }  // namespace detail
