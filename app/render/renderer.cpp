@@ -1,6 +1,7 @@
 #include "app/render/renderer.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "app/render/gl.h"
 #include "app/render/shader_sources.h"
@@ -100,6 +101,9 @@ void Renderer::setMesh(const RenderMesh& mesh) {
                GL_DYNAMIC_DRAW);
   glBindVertexArray(0);
   indexCount_ = static_cast<int>(mesh.indices.size());
+  meshBox_.setEmpty();
+  for (size_t i = 0; i + 2 < mesh.positions.size(); i += 3)
+    meshBox_.extend(Eigen::Vector3f(mesh.positions[i], mesh.positions[i + 1], mesh.positions[i + 2]));
   sceneChanged_ = true;
 }
 
@@ -117,6 +121,8 @@ void Renderer::setPoints(const std::vector<Vec3>& points, const Vec3& color) {
   glBindVertexArray(0);
   pointCount_ = static_cast<int>(points.size());
   pointColor_ = color;
+  pointBox_.setEmpty();
+  for (const Vec3& p : points) pointBox_.extend(p.cast<float>());
   sceneChanged_ = true;
 }
 
@@ -157,9 +163,16 @@ bool Renderer::ensureTarget(int width, int height) {
 void Renderer::draw(const OrbitCamera& camera, int width, int height,
                     const RenderOptions& options) {
   if (!cached_) {
-    drawScene(camera, width, height, options);
+    drawScene(camera, width, height, options, PixelRect{0, 0, width, height});
     return;
   }
+  PixelRect changed;
+  if (update(camera, width, height, options, &changed)) present({PixelRect{0, 0, width, height}});
+}
+
+bool Renderer::update(const OrbitCamera& camera, int width, int height,
+                      const RenderOptions& options, PixelRect* changed) {
+  *changed = {};
   GLint screen = 0;  // where the caller draws: the window's framebuffer, or a test's
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &screen);
   // The scene is drawn into its own target when it changed (a new surface or anchors, the
@@ -168,33 +181,76 @@ void Renderer::draw(const OrbitCamera& camera, int width, int height,
   const Eigen::Matrix4f view = camera.view();
   const Eigen::Matrix4f projection =
       camera.projection(static_cast<double>(width) / std::max(height, 1));
-  const bool same = !sceneChanged_ && framebuffer_ && width == targetWidth_ &&
-                    height == targetHeight_ && view == cachedView_ &&
-                    projection == cachedProjection_ &&
-                    options.wireframe == cachedOptions_.wireframe &&
-                    options.pointSize == cachedOptions_.pointSize;
-  if (!same) {
-    if (!ensureTarget(width, height)) {  // no target here: draw straight to the screen
-      cached_ = false;
-      glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(screen));
-      drawScene(camera, width, height, options);
-      return;
-    }
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
-    drawScene(camera, width, height, options);
-    ++sceneRenders_;
-    sceneChanged_ = false;
-    cachedView_ = view;
-    cachedProjection_ = projection;
-    cachedOptions_ = options;
+  const bool sameView = framebuffer_ && width == targetWidth_ && height == targetHeight_ &&
+                        view == cachedView_ && projection == cachedProjection_ &&
+                        options.wireframe == cachedOptions_.wireframe &&
+                        options.pointSize == cachedOptions_.pointSize;
+  if (sameView && !sceneChanged_) return true;
+  if (!ensureTarget(width, height)) {  // no target here: draw straight to the screen
+    cached_ = false;
+    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(screen));
+    drawScene(camera, width, height, options, PixelRect{0, 0, width, height});
+    return false;
   }
+  // Only the surface or the points changed: the rest of the picture is the same background,
+  // so only where they were and where they are now is drawn again.
+  const PixelRect extent = screenExtent(projection * view, width, height, options.pointSize);
+  const PixelRect part = sameView ? cachedExtent_.united(extent).clipped(width, height)
+                                  : PixelRect{0, 0, width, height};
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  drawScene(camera, width, height, options, part);
+  glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(screen));
+  ++sceneRenders_;
+  sceneChanged_ = false;
+  cachedView_ = view;
+  cachedProjection_ = projection;
+  cachedOptions_ = options;
+  cachedExtent_ = extent;
+  *changed = part;
+  return true;
+}
+
+void Renderer::present(const std::vector<PixelRect>& parts) {
+  GLint screen = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &screen);
+  glDisable(GL_SCISSOR_TEST);  // it would clip the copy
   glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(screen));
-  glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  for (const PixelRect& r : parts) {
+    const PixelRect p = r.clipped(targetWidth_, targetHeight_);
+    if (!p.empty())
+      glBlitFramebuffer(p.x0, p.y0, p.x1, p.y1, p.x0, p.y0, p.x1, p.y1, GL_COLOR_BUFFER_BIT,
+                        GL_NEAREST);
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(screen));
 }
 
-void Renderer::drawBackground(int width, int height) {
+PixelRect Renderer::screenExtent(const Eigen::Matrix4f& viewProjection, int width, int height,
+                                 float pointSize) const {
+  Eigen::AlignedBox3f box = meshBox_;
+  if (pointCount_ > 0) box.extend(pointBox_);
+  if (box.isEmpty() || indexCount_ + pointCount_ == 0) return {};
+  const PixelRect full{0, 0, width, height};
+  float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector4f p =
+        viewProjection * box.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)).homogeneous();
+    if (p.w() < 1e-6f) return full;  // a corner behind the eye: it may cover anything
+    const float x = (p.x() / p.w() * 0.5f + 0.5f) * width;
+    const float y = (p.y() / p.w() * 0.5f + 0.5f) * height;
+    x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+  }
+  if (x1 < 0.0f || y1 < 0.0f || x0 > width || y0 > height) return {};
+  // Grown by a point's radius and two pixels of rasterization slack.
+  const int margin = static_cast<int>(std::ceil(pointSize)) + 2;
+  const auto clampInt = [](float v) { return static_cast<int>(std::clamp(v, -1e6f, 1e6f)); };
+  return PixelRect{clampInt(std::floor(x0)), clampInt(std::floor(y0)), clampInt(std::ceil(x1)),
+                   clampInt(std::ceil(y1))}
+      .grown(margin)
+      .clipped(width, height);
+}
+
+void Renderer::drawBackground(int height, const PixelRect& part) {
   // A vertical gradient as horizontal bands of cleared colour, about one band per 8-bit level
   // of the gradient: a clear costs a software rasterizer a fraction of a shaded full-screen
   // pass, and on a GPU nothing.
@@ -202,28 +258,35 @@ void Renderer::drawBackground(int width, int height) {
   const int bands = std::clamp(height / 4, 1, 96);
   glEnable(GL_SCISSOR_TEST);
   for (int b = 0; b < bands; ++b) {
-    const int y0 = b * height / bands, y1 = (b + 1) * height / bands;
+    const PixelRect band{part.x0, std::max(part.y0, b * height / bands), part.x1,
+                         std::min(part.y1, (b + 1) * height / bands)};
+    if (band.empty()) continue;
     const float t = (b + 0.5f) / bands;  // 0 at the bottom row, as GL counts rows
     const Eigen::Vector3f c = bottom + t * (top - bottom);
-    glScissor(0, y0, width, y1 - y0);
+    glScissor(band.x0, band.y0, band.x1 - band.x0, band.y1 - band.y0);
     glClearColor(c.x(), c.y(), c.z(), 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
   }
-  glDisable(GL_SCISSOR_TEST);
+  glScissor(part.x0, part.y0, part.x1 - part.x0, part.y1 - part.y0);
 }
 
 void Renderer::drawScene(const OrbitCamera& camera, int width, int height,
-                         const RenderOptions& options) {
+                         const RenderOptions& options, const PixelRect& part) {
   glViewport(0, 0, width, height);
-  glDisable(GL_SCISSOR_TEST);
+  // Everything below stays within `part` (the scissor drawBackground leaves set).
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(part.x0, part.y0, part.x1 - part.x0, part.y1 - part.y0);
   glDepthMask(GL_TRUE);
   glClear(GL_DEPTH_BUFFER_BIT);
-  drawBackground(width, height);
+  drawBackground(height, part);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
   glDisable(GL_CULL_FACE);
 
-  if (indexCount_ == 0) return;
+  if (indexCount_ == 0) {
+    glDisable(GL_SCISSOR_TEST);
+    return;
+  }
   glUseProgram(meshProgram_);
   const Eigen::Matrix4f view = camera.view();
   const Eigen::Matrix4f projection =
@@ -259,6 +322,7 @@ void Renderer::drawScene(const OrbitCamera& camera, int width, int height,
     glDisable(GL_PROGRAM_POINT_SIZE);
   }
   glBindVertexArray(0);
+  glDisable(GL_SCISSOR_TEST);
 }
 
 }  // namespace galsculpt

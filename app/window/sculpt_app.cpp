@@ -10,6 +10,7 @@
 #include "app/render/gl.h"
 #include "app/render/offscreen_context.h"
 #include "app/render/render_mesh.h"
+#include "app/window/sub_buffer_present.h"
 #include "engine/session/project_file.h"
 #include "engine/surface/surface_io.h"
 #include "solver/frame/parallel.h"
@@ -52,6 +53,10 @@ void SculptApp::takeScreenshot(int width, int height) {
 bool SculptApp::init(std::string* error) {
   if (!renderer_.init(error)) return false;
   renderer_.setCached(softwareRenderer_);
+  if (softwareRenderer_ && partialRedraws_) {
+    present_ = std::make_unique<SubBufferPresent>(window_);
+    if (!present_->supported()) present_.reset();
+  }
   playing_ = options_.startPlaying;
   recovery_ = std::make_unique<RecoveryStore>();
   if (options_.offerRecovery) {
@@ -399,11 +404,12 @@ void SculptApp::run() {
     ImGui::Render();
     int fbWidth = 0, fbHeight = 0;
     glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    renderer_.draw(camera_, fbWidth, fbHeight, RenderOptions{wireframe_, 7.0f});
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    const std::optional<std::vector<PixelRect>> changed = drawScreen(fbWidth, fbHeight);
     takeScreenshot(fbWidth, fbHeight);
-    glfwSwapBuffers(window_);
+    if (changed)
+      present_->present(*changed);
+    else
+      glfwSwapBuffers(window_);
     afterSwap(cpuAtStart);
     autosave();
   }
@@ -411,6 +417,37 @@ void SculptApp::run() {
   while (frames_.inFlight()) finishStep();
   finishLoading();
   finish();
+}
+
+// The scene and the panels into the back buffer. With the scene cached (a software rasterizer)
+// and the window shown by copying parts of a back buffer that is never swapped, only what
+// changed is drawn again (partial_redraw.h), and the parts to copy are returned; otherwise
+// everything is drawn, for a swap.
+std::optional<std::vector<PixelRect>> SculptApp::drawScreen(int width, int height) {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const RenderOptions options{wireframe_, 7.0f};
+  ImDrawData* ui = ImGui::GetDrawData();
+  PixelRect sceneChanged;
+  if (!renderer_.cached()) {
+    renderer_.draw(camera_, width, height, options);
+    ImGui_ImplOpenGL3_RenderDrawData(ui);
+    return std::nullopt;
+  }
+  if (!renderer_.update(camera_, width, height, options, &sceneChanged)) {
+    ImGui_ImplOpenGL3_RenderDrawData(ui);  // drawn straight to the screen: no cache here
+    return std::nullopt;
+  }
+  // Everything is drawn and shown after a resize or an expose, and without partial presents.
+  const bool full = !present_ || presentAll_ || width != drawnWidth_ || height != drawnHeight_;
+  presentAll_ = false;
+  drawnWidth_ = width;
+  drawnHeight_ = height;
+  RedrawPlan plan = panelRedraws_.plan(*ui, sceneChanged, width, height, full);
+  renderer_.present(plan.restore);
+  DrawDataSubset subset(*ui, plan.lists);
+  ImGui_ImplOpenGL3_RenderDrawData(subset.get());
+  if (!present_) return std::nullopt;
+  return std::move(plan.restore);
 }
 
 // A finished frame is taken, the input that waited for it acts, the screen's view catches up

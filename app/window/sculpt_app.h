@@ -10,6 +10,7 @@
 #include <GLFW/glfw3.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -22,6 +23,8 @@
 #include "app/window/camera.h"
 #include "app/window/frame_view.h"
 #include "app/window/input_script.h"
+#include "app/window/partial_redraw.h"
+#include "app/window/sub_buffer_present.h"
 #include "app/window/rate_meter.h"
 #include "app/window/sculpt_window.h"
 #include "app/window/simulation_worker.h"
@@ -57,7 +60,11 @@ class SculptApp {
   // follow it at once; what it does waits its turn (processInput).
   void enqueue(InputEvent e);
   // Something other than input needs the window drawn (it was resized or exposed).
-  void requestRedraw() { ++wakeups_; }
+  // An expose or a refresh: the next draw also shows everything again.
+  void requestRedraw() {
+    ++wakeups_;
+    presentAll_ = true;
+  }
   // On a software rasterizer the window draws at most 30 times a second instead of 60.
   void setSoftwareRenderer(bool software) { softwareRenderer_ = software; }
 
@@ -79,6 +86,7 @@ class SculptApp {
   bool wantsSteadyDraws() const;
   bool frameShouldStart() const;
   void afterSwap(double cpuMsAtStart);
+  std::optional<std::vector<PixelRect>> drawScreen(int width, int height);
   std::optional<RayHit> hoverShown();
   void autosave();
   void takeScreenshot(int width, int height);
@@ -150,6 +158,13 @@ class SculptApp {
   Clock::time_point nextDraw_{}, lastDraw_{}, lastInput_{};
   int redraw_ = 0;  // frames still to draw after an event (ImGui settles over a few)
   bool softwareRenderer_ = false;
+  // Partial redraws on a software rasterizer (GALSCULPT_FULL_REDRAWS=1 turns them off, to
+  // compare): the parts that changed are drawn and shown, the back buffer never swapped.
+  bool partialRedraws_ = std::getenv("GALSCULPT_FULL_REDRAWS") == nullptr;
+  std::unique_ptr<SubBufferPresent> present_;
+  bool presentAll_ = true;
+  PanelRedraws panelRedraws_;
+  int drawnWidth_ = 0, drawnHeight_ = 0;
   RateMeter windowRate_, simulationRate_;
   RecentMedian latencyMs_, windowCpuMs_, windowMs_;
   // The same over the whole run, for the line the window logs when it closes (benchmarks).

@@ -169,6 +169,17 @@ class PlainTarget {
   Image draw(Renderer& r, const OrbitCamera& camera, const RenderOptions& options = {}) {
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
     r.draw(camera, width_, height_, options);
+    return read();
+  }
+  // As the window draws on a software rasterizer: the cache brought up to date, and only the
+  // part that changed copied over what the target already shows.
+  Image update(Renderer& r, const OrbitCamera& camera, PixelRect* changed) {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    EXPECT_TRUE(r.update(camera, width_, height_, RenderOptions{}, changed));
+    r.present({*changed});
+    return read();
+  }
+  Image read() {
     Image img{width_, height_,
               std::vector<std::uint8_t>(4 * static_cast<size_t>(width_) * height_)};
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
@@ -220,6 +231,49 @@ TEST_F(RenderTest, TheCachedSceneIsTheSceneAndFollowsEveryChange) {
 
   renderer_.setCached(false);
   EXPECT_EQ(differingPixels(dotted, target.draw(renderer_, camera)), 0) << "drawn directly again";
+}
+
+// When only the surface or the points change, only their old and new extent on the screen is
+// drawn again, and only that part is copied over the previous picture: the result is the
+// picture a full draw of the new state gives, pixel for pixel.
+TEST_F(RenderTest, APartialRedrawIsTheFullPictureOfTheNewState) {
+  PlainTarget target(ctx_->width(), ctx_->height());
+  OrbitCamera camera;
+  camera.distance = 4.0;
+  Renderer fresh;
+  std::string error;
+  ASSERT_TRUE(fresh.init(&error)) << error;
+  const auto ball = [](double r, const Vec3& at) {
+    TriMesh m = makeIcosphere(r, 3);
+    for (Vec3& v : m.vertices) v += at;
+    return makeRenderMesh(m, Vec3(0.8, 0.55, 0.42));
+  };
+  renderer_.setCached(true);
+  renderer_.setMesh(ball(0.5, Vec3(-0.6, 0.0, 0.0)));
+  PixelRect changed;
+  target.update(renderer_, camera, &changed);
+  EXPECT_EQ(changed, (PixelRect{0, 0, ctx_->width(), ctx_->height()})) << "the first: everything";
+  EXPECT_TRUE(renderer_.update(camera, ctx_->width(), ctx_->height(), {}, &changed));
+  EXPECT_TRUE(changed.empty()) << "nothing changed";
+  struct Step {
+    RenderMesh mesh;
+    std::vector<Vec3> points;
+  };
+  const std::vector<Step> steps = {{ball(0.4, Vec3(-0.5, 0.1, 0.0)), {}},
+                                   {ball(0.4, Vec3(-0.5, 0.1, 0.0)), {Vec3(-0.5, 0.1, 0.4)}},
+                                   {ball(0.3, Vec3(0.6, -0.2, 0.0)), {Vec3(0.6, -0.2, 0.3)}},
+                                   {RenderMesh{}, {}}};
+  for (size_t i = 0; i < steps.size(); ++i) {
+    renderer_.setMesh(steps[i].mesh);
+    renderer_.setPoints(steps[i].points, Vec3(0.0, 0.0, 1.0));
+    const Image partial = target.update(renderer_, camera, &changed);
+    EXPECT_FALSE(changed.empty()) << "step " << i;
+    EXPECT_LT(changed.area(), static_cast<long>(ctx_->width()) * ctx_->height())
+        << "step " << i << ": only part of the picture";
+    fresh.setMesh(steps[i].mesh);
+    fresh.setPoints(steps[i].points, Vec3(0.0, 0.0, 1.0));
+    EXPECT_EQ(differingPixels(partial, target.draw(fresh, camera)), 0) << "step " << i;
+  }
 }
 
 }  // namespace
