@@ -81,13 +81,14 @@ def played_ms(recording):
 
 print(f"Each figure the median of {a.reps} sessions; the ratio is each session's own.")
 print()
-print("| scene | window draws/s | ms between draws | window thread ms/draw | "
-      "simulation ms/frame in the window | the same frames played headless (ms/frame) | "
-      "window / headless | input to screen (ms) |")
-print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+print("| scene | draws/s during the grab | draws/s over the session | ms between draws | "
+      "window thread ms/draw | simulation ms/frame in the window | "
+      "the same frames played headless (ms/frame) | window / headless | input to screen (ms) |")
+print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
 summary = re.compile(r"window: (\d+) draws, ([0-9.]+) a second, median ([0-9.]+) ms between "
                      r"draws, ([0-9.]+) ms of its thread a draw; simulation: (\d+) frames, median "
                      r"([0-9.]+) ms a frame; input to screen: median ([0-9.]+) ms")
+strokes = re.compile(r"during strokes: ([0-9.]+) draws a second")
 for name in a.scenes.split(","):
     scene = os.path.join(scenes, name)
     run_ms(scene, None, 1)
@@ -103,12 +104,13 @@ for name in a.scenes.split(","):
             print(f"| {name} | no summary line: {out[-200:]!r} |")
             break
         window, played = float(m.group(6)), played_ms(recording)
+        grab = strokes.search(out)
         rows.append((float(m.group(2)), float(m.group(3)), float(m.group(4)), window, played,
-                     window / played, float(m.group(7))))
+                     window / played, float(m.group(7)), float(grab.group(1)) if grab else -1))
     if rows:
-        med = [statistics.median(r[k] for r in rows) for k in range(7)]
-        print(f"| {name} | {med[0]:.1f} | {med[1]:.1f} | {med[2]:.2f} | {med[3]:.1f} | "
-              f"{med[4]:.1f} | {med[5]:.2f} | {med[6]:.0f} |")
+        med = [statistics.median(r[k] for r in rows) for k in range(8)]
+        print(f"| {name} | {med[7]:.1f} | {med[0]:.1f} | {med[1]:.1f} | {med[2]:.2f} | "
+              f"{med[3]:.1f} | {med[4]:.1f} | {med[5]:.2f} | {med[6]:.0f} |")
 
 # Paused and untouched: the process's CPU over 10 s.
 if a.window_only: raise SystemExit
