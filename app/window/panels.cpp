@@ -153,12 +153,25 @@ void SculptApp::drawOverlay() {
   ImGui::Begin("Simulation", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   // Long lines (a scene's name, a backend fallback's reason) wrap instead of widening it.
   ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kOverlayTextWidth);
+  // The rates are read four times a second, not at every draw: figures that change at every
+  // draw cannot be read, and would make the window redraw the panel every time (on a software
+  // rasterizer a panel that did not change is not drawn again). The frame's own figures below
+  // are the drawn frame's.
   const Clock::time_point now = Clock::now();
+  if (now - overlayRates_.at > std::chrono::milliseconds(250)) {
+    overlayRates_ = {now,
+                     windowRate_.rate(now),
+                     windowCpuMs_.median(),
+                     simulationRate_.rate(now),
+                     latencyMs_.empty() ? -1.0 : latencyMs_.median(),
+                     latencyMs_.empty() ? -1.0 : latencyMs_.last()};
+  }
+  const OverlayRates& r = overlayRates_;
   ImGui::Text("window %.0f fps (%.1f ms a frame on its thread)   simulation %.1f fps",
-              windowRate_.rate(now), windowCpuMs_.median(), simulationRate_.rate(now));
-  if (!latencyMs_.empty())
-    ImGui::Text("input to screen %.0f ms (median; last %.0f ms)", latencyMs_.median(),
-                latencyMs_.last());
+              r.windowFps, r.windowCpuMs, r.simulationFps);
+  if (r.latencyMedianMs >= 0.0)
+    ImGui::Text("input to screen %.0f ms (median; last %.0f ms)", r.latencyMedianMs,
+                r.latencyLastMs);
   if (session_) {
     // While a frame is in flight only what stays fixed is read from the session; the rest is
     // the drawn frame's (shown_).

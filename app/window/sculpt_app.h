@@ -166,6 +166,11 @@ class SculptApp {
   PanelRedraws panelRedraws_;
   int drawnWidth_ = 0, drawnHeight_ = 0;
   RateMeter windowRate_, simulationRate_;
+  struct OverlayRates {  // what the overlay shows of the rates, refreshed 4 times a second
+    Clock::time_point at{};
+    double windowFps = 0.0, windowCpuMs = 0.0, simulationFps = 0.0;
+    double latencyMedianMs = -1.0, latencyLastMs = -1.0;
+  } overlayRates_;
   RecentMedian latencyMs_, windowCpuMs_, windowMs_;
   // The same over the whole run, for the line the window logs when it closes (benchmarks).
   RecentMedian runLatencyMs_{1u << 20}, runWindowCpuMs_{1u << 20}, runWindowMs_{1u << 20},
