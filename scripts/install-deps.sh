@@ -11,7 +11,7 @@ packages=(
   build-essential cmake pkg-config git
   libeigen3-dev libsuitesparse-dev nlohmann-json3-dev libtbb-dev
   libopenblas0-pthread
-  libglfw3-dev libimgui-dev libstb-dev libassimp-dev
+  libglfw3-dev libx11-dev libimgui-dev libstb-dev libassimp-dev
   libopengl-dev libegl-dev libgles-dev libegl1-mesa-dev libgl1-mesa-dri mesa-utils xvfb xauth
   libgtest-dev libgmock-dev libbenchmark-dev
   tetgen gnuplot-nox python3

@@ -50,6 +50,25 @@ void SculptApp::takeScreenshot(int width, int height) {
   pendingScreenshot_.clear();
 }
 
+// What the window shows (its front buffer, read back from the X server by Mesa's software
+// rasterizer) against the whole back buffer, the picture it should show: a partial present that
+// left a stale part would differ (GALSCULPT_CHECK_PRESENT=1; the UI tests use it).
+void SculptApp::checkPresent(int width, int height) {
+  const size_t size = static_cast<size_t>(width) * height * 4;
+  std::vector<std::uint8_t> back(size);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadBuffer(GL_BACK);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, back.data());
+  const std::vector<std::uint8_t> screen = present_->readScreen(width, height);
+  long differing = screen.size() == size ? 0 : width * static_cast<long>(height);
+  for (size_t i = 0; screen.size() == size && i < size; i += 4) {
+    if (back[i] != screen[i] || back[i + 1] != screen[i + 1] || back[i + 2] != screen[i + 2])
+      ++differing;
+  }
+  ++presentChecks_;
+  presentDiffering_ += differing;
+}
+
 bool SculptApp::init(std::string* error) {
   if (!renderer_.init(error)) return false;
   renderer_.setCached(softwareRenderer_);
@@ -384,6 +403,9 @@ void SculptApp::finish() {
                 runLatencyMs_.size(), threadCount(), runViewMs_.median(), runIdleMs_.median(),
                 strokeIntervals_ / std::max(strokeSeconds_, 1e-9), strokeSeconds_);
   log_ << line << '\n';
+  if (checkPresent_)
+    log_ << "present check: " << presentChecks_ << " partial draws, " << presentDiffering_
+         << " pixels on the screen unlike the picture\n";
 }
 
 void SculptApp::run() {
@@ -406,10 +428,12 @@ void SculptApp::run() {
     glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
     const std::optional<std::vector<PixelRect>> changed = drawScreen(fbWidth, fbHeight);
     takeScreenshot(fbWidth, fbHeight);
-    if (changed)
+    if (changed) {
       present_->present(*changed);
-    else
+      if (checkPresent_) checkPresent(fbWidth, fbHeight);
+    } else {
       glfwSwapBuffers(window_);
+    }
     afterSwap(cpuAtStart);
     autosave();
   }

@@ -87,6 +87,7 @@ class SculptApp {
   bool frameShouldStart() const;
   void afterSwap(double cpuMsAtStart);
   std::optional<std::vector<PixelRect>> drawScreen(int width, int height);
+  void checkPresent(int width, int height);
   std::optional<RayHit> hoverShown();
   void autosave();
   void takeScreenshot(int width, int height);
@@ -162,6 +163,9 @@ class SculptApp {
   // compare): the parts that changed are drawn and shown, the back buffer never swapped.
   bool partialRedraws_ = std::getenv("GALSCULPT_FULL_REDRAWS") == nullptr;
   std::unique_ptr<SubBufferPresent> present_;
+  bool checkPresent_ = std::getenv("GALSCULPT_CHECK_PRESENT") != nullptr;
+  int presentChecks_ = 0;
+  long presentDiffering_ = 0;
   bool presentAll_ = true;
   PanelRedraws panelRedraws_;
   int drawnWidth_ = 0, drawnHeight_ = 0;

@@ -4,6 +4,7 @@
 // the screen.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "app/render/pixel_rect.h"
@@ -19,6 +20,9 @@ class SubBufferPresent {
   bool supported() const { return copy_ != nullptr; }
   // Copies the parts to the screen (each an implicit glFlush).
   void present(const std::vector<PixelRect>& parts) const;
+  // What the X server shows in the window: RGBA rows from the bottom, as glReadPixels gives the
+  // back buffer (empty when it cannot be read).
+  std::vector<std::uint8_t> readScreen(int width, int height) const;
 
  private:
   using CopySubBuffer = void (*)(void* display, unsigned long drawable, int x, int y, int width,

@@ -609,3 +609,44 @@ TEST(AppUiRealtime, SigtermClosesTheWindowAndKeepsTheSessionForRecovery) {
 
 }  // namespace
 }  // namespace galsculpt
+
+namespace galsculpt {
+namespace {
+
+// On a software rasterizer the window redraws and shows only what changed. What the X server
+// shows must still be the whole picture after every draw: a grab across the body, the brush
+// circle over a panel's edge, a tool switch, the stress view, a camera orbit, undo.
+TEST(AppUiRealtime, WhatTheWindowShowsIsTheWholePictureAfterEveryPartialDraw) {
+  test::TempDir dir;
+  test::writeText(dir / "steps.json", R"({"realtime": true, "steps": [
+      {"wait_frames": 2}, {"key": "G"}, {"move": [0.5, 0.4]}, {"press": "left"},
+      {"move": [0.55, 0.35]}, {"wait_frames": 2}, {"move": [0.7, 0.3]}, {"wait_frames": 2},
+      {"move": [0.36, 0.5]}, {"wait_frames": 2}, {"release": "left"},
+      {"key": "B"}, {"move": [0.5, 0.5]}, {"wait": 3},
+      {"command": "view", "argument": "stress"}, {"wait_frames": 2},
+      {"move": [0.5, 0.5]}, {"press": "right"}, {"move": [0.6, 0.5]}, {"wait": 2},
+      {"release": "right"}, {"wait_frames": 1}, {"key": "Z", "ctrl": true}, {"wait_frames": 2}]})");
+  const fs::path log = dir / "log.txt";
+  const std::string command = "GALSCULPT_CHECK_PRESENT=1 GALSCULPT_RECOVERY_DIR='" +
+                              (dir / "recovery").string() +
+                              "' xvfb-run -a -s '-screen 0 1280x800x24' '" +
+                              std::string(GALSCULPT_BINARY) + "' open '" + kDefaultScene.string() +
+                              "' --no-recovery --autosave 0 --size 1280x800 --input-script '" +
+                              (dir / "steps.json").string() + "' > '" + log.string() + "' 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << test::readText(log);
+  const std::string text = test::readText(log);
+  int draws = -1;
+  long differing = -1;
+  const size_t at = text.find("present check: ");
+  ASSERT_NE(at, std::string::npos) << "no partial presents here: " << text;
+  ASSERT_EQ(std::sscanf(text.c_str() + at, "present check: %d partial draws, %ld pixels", &draws,
+                        &differing),
+            2)
+      << text;
+  EXPECT_GT(draws, 20);
+  EXPECT_EQ(differing, 0) << "pixels on the screen unlike the picture, over " << draws
+                          << " draws";
+}
+
+}  // namespace
+}  // namespace galsculpt
