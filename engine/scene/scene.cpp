@@ -198,14 +198,14 @@ AnchorDesc readAnchorDesc(JsonObject o) {
 
 namespace {
 
-MotionDesc readMotion(JsonObject o) {
-  MotionDesc m;
+ColliderMotion readMotion(JsonObject o) {
+  ColliderMotion m;
   const std::string type = o.string("type", "static", {"static", "linear", "pendulum"});
   if (type == "linear") {
-    m.type = MotionDesc::Type::Linear;
+    m.type = ColliderMotion::Type::Linear;
     m.velocity = o.vec3("velocity", Eigen::Vector3d::Zero(), kMaxSpeed);
   } else if (type == "pendulum") {
-    m.type = MotionDesc::Type::Pendulum;
+    m.type = ColliderMotion::Type::Pendulum;
     m.pivot = o.vec3("pivot", Eigen::Vector3d::Zero(), kMaxCoordinate);
     m.axis = o.vec3("axis", Eigen::Vector3d::UnitZ());
     if (m.axis.norm() < 1e-12) o.fail("axis", "must not be zero");
@@ -222,17 +222,17 @@ ColliderDesc readCollider(JsonObject o) {
   const std::string type = o.string("type", "", {"plane", "sphere", "box"});
   if (type.empty()) o.fail("type", "is required (plane, sphere or box)");
   if (type == "plane") {
-    c.type = ColliderDesc::Type::Plane;
+    c.type = Collider::Type::Plane;
     c.point = o.vec3("point", Eigen::Vector3d::Zero(), kMaxCoordinate);
     c.normal = o.vec3("normal", Eigen::Vector3d::UnitY());
     if (c.normal.norm() < 1e-12) o.fail("normal", "must not be zero");
     c.normal.normalize();
   } else if (type == "sphere") {
-    c.type = ColliderDesc::Type::Sphere;
+    c.type = Collider::Type::Sphere;
     c.center = o.vec3("center", Eigen::Vector3d::Zero(), kMaxCoordinate);
     c.radius = o.requiredNumber("radius", 1e-9, kInf);
   } else {
-    c.type = ColliderDesc::Type::Box;
+    c.type = Collider::Type::Box;
     c.center = o.vec3("center", Eigen::Vector3d::Zero(), kMaxCoordinate);
     if (!o.has("half_extents")) o.fail("half_extents", "is required for a box");
     c.halfExtents = o.vec3("half_extents", Eigen::Vector3d::Zero(), kMaxCoordinate);
@@ -244,7 +244,7 @@ ColliderDesc readCollider(JsonObject o) {
   c.friction = o.number("friction", 0.0, 0.0, 10.0);
   if (o.has("motion")) c.motion = readMotion(o.object("motion"));
   if (c.motion.mass > 0.0) {
-    if (c.type == ColliderDesc::Type::Plane) o.fail("motion", "a plane cannot be a rigid pendulum");
+    if (c.type == Collider::Type::Plane) o.fail("motion", "a plane cannot be a rigid pendulum");
     const Eigen::Vector3d arm = c.center - c.motion.pivot;
     if ((arm - c.motion.axis * c.motion.axis.dot(arm)).norm() < 1e-9)
       o.fail("motion", "a rigid pendulum's centre must lie off its axis (it has no inertia)");

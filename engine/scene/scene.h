@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/scene/json_reader.h"
+#include "solver/fem/colliders.h"
 #include "solver/fem/material_types.h"
 
 namespace galsculpt {
@@ -71,27 +72,10 @@ struct AnchorDesc {
   std::vector<PathKey> path;  // empty: fixed; else offsets, linearly interpolated in time
 };
 
-struct MotionDesc {
-  enum class Type { Static, Linear, Pendulum };
-  Type type = Type::Static;
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // Linear, m/s
-  Eigen::Vector3d pivot = Eigen::Vector3d::Zero();     // Pendulum
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
-  double angularVelocity = 0.0;  // rad/s (at time 0 for a rigid pendulum)
-  double mass = 0.0;             // Pendulum: kg, > 0 a rigid pendulum (ColliderMotion::mass)
-};
-
-struct ColliderDesc {
-  enum class Type { Plane, Sphere, Box };
-  Type type = Type::Plane;
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // Plane
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();  // Sphere, Box
-  double radius = 0.0;
-  Eigen::Vector3d halfExtents = Eigen::Vector3d::Zero();
-  double cornerRadius = 0.0;  // Box
-  double friction = 0.0;
-  MotionDesc motion;
+// A collider as the scene gives it: the model's own type (solver/fem/colliders.h: shape,
+// pose, motion), and what the scene may say that the solver does not model yet.
+struct ColliderDesc : Collider {
+  double friction = 0.0;  // read and reported as not modelled: contacts are frictionless
 };
 
 // What becomes of pieces under debris_fraction (solver/fracture/debris.h).

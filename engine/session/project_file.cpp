@@ -326,7 +326,7 @@ Project readProject(const fs::path& file) {
     o.fail("colliders", "holds " + std::to_string(colliders.size()) + " states; the scene has " +
                             std::to_string(p.scene.colliders.size()) + " colliders");
   for (size_t i = 0; i < p.scene.colliders.size(); ++i) {
-    ColliderState c = initialColliderState(colliderFromScene(p.scene.colliders[i]));
+    ColliderState c = initialColliderState(p.scene.colliders[i]);
     if (i < colliders.size()) {
       JsonObject j(colliders[i], o.childPath("colliders") + "[" + std::to_string(i) + "]", name);
       c.angle = j.number("angle", 0.0, -1e9, 1e9);

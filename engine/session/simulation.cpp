@@ -53,28 +53,6 @@ std::vector<int> selectAnchorVertices(const AnchorDesc& a, const TetMesh& mesh,
 
 }  // namespace
 
-Collider colliderFromScene(const ColliderDesc& d) {
-  Collider c;
-  c.type = d.type == ColliderDesc::Type::Plane    ? Collider::Type::Plane
-           : d.type == ColliderDesc::Type::Sphere ? Collider::Type::Sphere
-                                                  : Collider::Type::Box;
-  c.point = d.point;
-  c.normal = d.normal;
-  c.center = d.center;
-  c.radius = d.radius;
-  c.halfExtents = d.halfExtents;
-  c.cornerRadius = d.cornerRadius;
-  c.motion.type = d.motion.type == MotionDesc::Type::Static   ? ColliderMotion::Type::Static
-                  : d.motion.type == MotionDesc::Type::Linear ? ColliderMotion::Type::Linear
-                                                              : ColliderMotion::Type::Pendulum;
-  c.motion.velocity = d.motion.velocity;
-  c.motion.pivot = d.motion.pivot;
-  c.motion.axis = d.motion.axis;
-  c.motion.angularVelocity = d.motion.angularVelocity;
-  c.motion.mass = d.motion.mass;
-  return c;
-}
-
 void checkSceneAnchors(const SceneDescription& scene, const TetMesh& mesh) {
   for (size_t i = 0; i < scene.anchors.size(); ++i)
     selectAnchorVertices(scene.anchors[i], mesh, scene.file.string(),
@@ -119,7 +97,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     state_.anchors.push_back(std::move(a));
   }
   for (const ColliderDesc& c : scene.colliders) {
-    model_.colliders.push_back(colliderFromScene(c));
+    model_.colliders.push_back(c);  // the scene's collider is the model's, less its friction
     state_.colliders.push_back(initialColliderState(model_.colliders.back()));
     if (c.friction > 0.0 && notes_.empty())
       notes_.push_back("collider friction is not modelled yet: contacts are frictionless");

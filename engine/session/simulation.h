@@ -87,9 +87,6 @@ std::string metricsCsvRow(const FrameMetrics& m);
 // least one vertex and names only vertices that exist (InputError with the JSON path otherwise).
 void checkSceneAnchors(const SceneDescription& scene, const TetMesh& mesh);
 
-// Solver-side collider (and its motion) from a scene collider.
-Collider colliderFromScene(const ColliderDesc& d);
-
 // Solver-side material from a scene material; throws InputError for an unknown model.
 MaterialParams materialFromScene(const MaterialDesc& m, bool compressionResists = true);
 

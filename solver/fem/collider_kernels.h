@@ -7,10 +7,18 @@
 
 #include "solver/fem/element_kernels.h"
 
+namespace galsculpt {
+
+// A collider's shape: the one type the scene, the model (Collider) and both backends' kernels
+// share.
+enum class ColliderShape { Plane, Sphere, Box };
+
+}  // namespace galsculpt
+
 namespace galsculpt::kernels {
 
 struct ColliderPose {
-  int type = 0;  // 0 plane, 1 sphere, 2 box (Collider::Type order)
+  ColliderShape type = ColliderShape::Plane;
   double point[3] = {0, 0, 0}, normal[3] = {0, 1, 0};  // plane; normal unit
   double center[3] = {0, 0, 0};                        // sphere, box (body frame)
   double radius = 0.0;
@@ -29,13 +37,13 @@ GALSCULPT_HD double colliderDistance(const ColliderPose& c, const double p[3], d
     for (int k = 0; k < 3; ++k) local[i] += c.rotation(k, i) * (p[k] - c.translation[k]);
   }
   double n[3] = {0.0, 1.0, 0.0}, distance = 0.0;
-  if (c.type == 0) {
+  if (c.type == ColliderShape::Plane) {
     distance = 0.0;
     for (int i = 0; i < 3; ++i) {
       distance += (local[i] - c.point[i]) * c.normal[i];
       n[i] = c.normal[i];
     }
-  } else if (c.type == 1) {
+  } else if (c.type == ColliderShape::Sphere) {
     double d[3], len2 = 0.0;
     for (int i = 0; i < 3; ++i) {
       d[i] = local[i] - c.center[i];

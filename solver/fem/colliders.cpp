@@ -45,7 +45,7 @@ Vec3 colliderTranslation(const Collider& c, double time) {
 
 kernels::ColliderPose colliderPose(const Collider& c, double time, const ColliderState* state) {
   kernels::ColliderPose pose;
-  pose.type = static_cast<int>(c.type);
+  pose.type = c.type;
   const Vec3 n = c.normal.normalized();
   for (int i = 0; i < 3; ++i) {
     pose.point[i] = c.point[i];

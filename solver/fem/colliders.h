@@ -28,7 +28,7 @@ struct ColliderMotion {
 };
 
 struct Collider {
-  enum class Type { Plane, Sphere, Box };
+  using Type = ColliderShape;
   Type type = Type::Plane;
   Vec3 point = Vec3::Zero(), normal = Vec3::UnitY();  // Plane
   Vec3 center = Vec3::Zero();                         // Sphere, Box: position at time 0

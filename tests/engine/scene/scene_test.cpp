@@ -55,7 +55,7 @@ TEST(Scene, CharpyHasAPendulumAndFracture) {
   EXPECT_DOUBLE_EQ(s.fracture.energy, 1.2e4);
   EXPECT_EQ(s.fracture.kernelRadius, 0.0);
   ASSERT_EQ(s.colliders.size(), 4u);
-  EXPECT_EQ(s.colliders[3].motion.type, MotionDesc::Type::Pendulum);
+  EXPECT_EQ(s.colliders[3].motion.type, ColliderMotion::Type::Pendulum);
   // A test machine's radii (ISO 148-1): anvils rounded 1 mm, the 2 mm striker.
   EXPECT_DOUBLE_EQ(s.colliders[1].cornerRadius, 0.001);
   EXPECT_DOUBLE_EQ(s.colliders[2].cornerRadius, 0.001);
