@@ -49,9 +49,9 @@ namespace galsculpt {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Why a frame with these settings cannot run on the CUDA executor ("" when it can).
-inline std::string cudaUnsupportedReason(const SimModel& model, const StepSettings& s) {
+inline std::string cudaUnsupportedReason([[maybe_unused]] const SimModel& model,
+                                         const StepSettings& s) {
   if (!s.multigrid) return "the reference solver (direct sparse Cholesky) runs on the CPU only";
-  if (model.colliders.size() > 16) return "more than 16 colliders run on the CPU only";
   return "";
 }
 
@@ -112,6 +112,10 @@ class FrameSolver {
     elemHess_.resize(kPackedHessian * static_cast<size_t>(tets_));
     for (Buffer<double>* b : {&k_, &h_}) b->resize(9 * static_cast<size_t>(blocks_));
     scalars_.resize(kScalars);
+    // Each collider's force on the body (3) and a rigid pendulum's moment (1): a buffer of its
+    // own, sized by the model, so that the scalar slots have no collider limit.
+    contactSums_.resize(4 * model.colliders.size());
+    contactRead_.resize(4 * model.colliders.size());
     contactPerVertex_.resize(n_);
     const auto box = boundingBox(model.mesh.vertices);
     modelSize_ = std::max(box.size().norm(), 1e-12);
@@ -1228,12 +1232,15 @@ class FrameSolver {
         ex_, pieces(), g_.data(), tmp_.data(), fixed_.data(), mass_.data(), model_.gravity.norm());
     result.pieceResidual = pieceResidual < 0.0 ? result.residual : pieceResidual;
     result.invertedElements = static_cast<int>(read[kTrialInverted]);  // the accepted trial's
-    result.contactForces.assign(poses_.size(), Vec3::Zero());
-    contactMoments_.assign(poses_.size(), 0.0);
-    for (size_t c = 0; c < poses_.size(); ++c) {
-      result.contactForces[c] =
-          Vec3(read[kForce + 3 * c], read[kForce + 3 * c + 1], read[kForce + 3 * c + 2]);
-      if (model_.colliders[c].motion.rigidPendulum()) contactMoments_[c] = read[kMoment + c];
+    const size_t colliders = poses_.size();
+    result.contactForces.assign(colliders, Vec3::Zero());
+    contactMoments_.assign(colliders, 0.0);
+    if (colliders > 0) ex_.read(contactSums_.data(), contactRead_.data(), 4 * colliders);
+    for (size_t c = 0; c < colliders; ++c) {
+      const double* f = &contactRead_[3 * c];
+      result.contactForces[c] = Vec3(f[0], f[1], f[2]);
+      if (model_.colliders[c].motion.rigidPendulum())
+        contactMoments_[c] = contactRead_[3 * colliders + c];
     }
     // Otherwise the caller restores x and v.
     if (read[kBad] > 0.0 || !std::isfinite(result.energy)) result.ok = false;
@@ -1400,15 +1407,16 @@ class FrameSolver {
                     pieceTargetCap_);
   }
 
-  // Force of each collider on the body at y, into slots kForce + 3 c + k; for a rigid
-  // pendulum also the moment of the body's reaction about its axis (slot kMoment + c), what
-  // turns it.
+  // Force of each collider c on the body at y, into contactSums_[3 c + k]; for a rigid
+  // pendulum also the moment of the body's reaction about its axis (contactSums_[3 N + c] of N
+  // colliders), what turns it.
   void contactForces(const double* y) {
     const kernels::ColliderPose* poses = poseBuffer_.data();
     const std::uint8_t* fixed = fixed_.data();
     const double* mass = mass_.data();
     const double h = h_step_;
-    double* sc = scalars_.data();
+    double* sums = contactSums_.data();
+    const int colliders = static_cast<int>(poses_.size());
     for (size_t c = 0; c < poses_.size(); ++c) {
       const int ci = static_cast<int>(c);
       for (int k = 0; k < 3; ++k) {
@@ -1420,7 +1428,7 @@ class FrameSolver {
                 return 0.0;
               return f[k];
             },
-            sc + kForce + 3 * ci + k);
+            sums + 3 * ci + k);
       }
       const ColliderMotion& motion = model_.colliders[c].motion;
       if (!motion.rigidPendulum()) continue;
@@ -1439,7 +1447,7 @@ class FrameSolver {
             const double m2 = r0 * f[1] - r1 * f[0];
             return -(m0 * a0 + m1 * a1 + m2 * a2);
           },
-          sc + kMoment + ci);
+          sums + 3 * colliders + ci);
     }
   }
 
@@ -1870,9 +1878,7 @@ class FrameSolver {
     kSwitched,
     kGuardLevel,
     kForceScale = kGuardLevel + kGuardLevels + 1,
-    kForce,
-    kMoment = kForce + 3 * 16,
-    kScalars = kMoment + 16
+    kScalars
   };
 
  private:
@@ -1931,6 +1937,8 @@ class FrameSolver {
   std::vector<kernels::ColliderPose> poses_;
   std::vector<ColliderState> colliderStates_;  // the stepped state's, advanced per sub-step
   std::vector<double> contactMoments_;         // (nColliders) the last sub-step's, N m
+  Buffer<double> contactSums_;                 // (4 nColliders) contactForces' sums
+  std::vector<double> contactRead_;            // the same, read to the host
   Buffer<kernels::ColliderPose> poseBuffer_;
   // Fracture (the model's field; scratch for the pass).
   Mirror<int> edgeSlotStart_, edgeSlots_, cellBegin_, cellEnd_, cellEdges_, edgeCell_,

@@ -322,6 +322,37 @@ TEST(Simulation, ADivergedFrameKeepsTheLastFinitePositionsAndSaysSo) {
   for (const Vec3& p : sim.state().x) ASSERT_TRUE(p.allFinite());
 }
 
+// Colliders had 16 slots in the frame's scalar array: a 17th wrote past its end (with 41, the
+// contact force read NaN and the floor's load 9.81 N). Any number now: a ball on a floor that
+// comes after 40 colliders out of reach
+// moves as the ball on that floor alone does, and the floor's force is reported as its own.
+TEST(Simulation, ManyCollidersAreAsFewWhenOnlyOneIsTouched) {
+  test::TempDir dir;
+  const std::string floor = R"({"type": "plane", "point": [0, -0.1, 0], "normal": [0, 1, 0]})";
+  std::string far;
+  for (int i = 0; i < 40; ++i)
+    far += R"({"type": "sphere", "center": [)" + std::to_string(10 + i) +
+           R"(, 10, 10], "radius": 0.1}, )";
+  const std::string common = std::string("{") + kSmallSphere + R"(, "material": {"preset": "clay"},
+    "solver": {"type": "multigrid", "grid": "50/all", "backend": "cpu"}, )";
+  const SceneDescription one = sceneFrom(
+      dir, common + R"("measure": {"load_collider": 0}, "colliders": [)" + floor + "]}");
+  const SceneDescription many = sceneFrom(
+      dir, common + R"("measure": {"load_collider": 40}, "colliders": [)" + far + floor + "]}");
+  ASSERT_EQ(many.colliders.size(), 41u);
+  Simulation a(one, loadSceneMesh(one)), b(many, loadSceneMesh(many));
+  FrameMetrics ma, mb;
+  for (int f = 0; f < 15; ++f) {
+    ma = a.advance();
+    mb = b.advance();
+  }
+  EXPECT_EQ(a.state().x, b.state().x) << "the far colliders change nothing";
+  EXPECT_EQ(a.state().v, b.state().v);
+  EXPECT_GT(ma.loadN, 0.0) << "the floor holds the ball up";
+  EXPECT_EQ(ma.loadN, mb.loadN) << "the floor's force is reported as its own";
+  EXPECT_EQ(ma.contactForceN, mb.contactForceN) << "the far colliders push nothing";
+}
+
 // A clay ball cut in two, one half pulled straight away: the other half stays as it is. Plastic
 // flow once used the whole deformation gradient of the cut elements, whose far corners left with
 // the other half: their rest shapes stretched across the cut and then pulled the near half out
