@@ -140,8 +140,8 @@ int infoSurface(const fs::path& file, bool json, std::ostream& out) {
   return kExitOk;
 }
 
-TetMesh meshSurface(const std::vector<TriMesh>& surfaces, const std::string& name,
-                    const CliArgs& a, std::ostream& err) {
+TetMesh meshSurface(const std::vector<TriMesh>& surfaces, const std::string& name, const CliArgs& a,
+                    std::ostream& err) {
   TetrahedralizeOptions options;
   options.targetTets = a.intValue("--tets", 0, 1, 50000000);
   options.timeoutSeconds = a.doubleValue("--timeout", 300.0, 1.0, 86400.0);

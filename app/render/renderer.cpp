@@ -103,7 +103,8 @@ void Renderer::setMesh(const RenderMesh& mesh) {
   indexCount_ = static_cast<int>(mesh.indices.size());
   meshBox_.setEmpty();
   for (size_t i = 0; i + 2 < mesh.positions.size(); i += 3)
-    meshBox_.extend(Eigen::Vector3f(mesh.positions[i], mesh.positions[i + 1], mesh.positions[i + 2]));
+    meshBox_.extend(
+        Eigen::Vector3f(mesh.positions[i], mesh.positions[i + 1], mesh.positions[i + 2]));
   sceneChanged_ = true;
 }
 

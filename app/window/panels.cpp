@@ -167,8 +167,8 @@ void SculptApp::drawOverlay() {
                      latencyMs_.empty() ? -1.0 : latencyMs_.last()};
   }
   const OverlayRates& r = overlayRates_;
-  ImGui::Text("window %.0f fps (%.1f ms a frame on its thread)   simulation %.1f fps",
-              r.windowFps, r.windowCpuMs, r.simulationFps);
+  ImGui::Text("window %.0f fps (%.1f ms a frame on its thread)   simulation %.1f fps", r.windowFps,
+              r.windowCpuMs, r.simulationFps);
   if (r.latencyMedianMs >= 0.0)
     ImGui::Text("input to screen %.0f ms (median; last %.0f ms)", r.latencyMedianMs,
                 r.latencyLastMs);

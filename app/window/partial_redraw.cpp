@@ -99,8 +99,8 @@ RedrawPlan PanelRedraws::plan(const ImDrawData& data, const PixelRect& sceneChan
     if (before != last_.end()) restore.push_back(before->rect);
   }
   for (const Drawn& d : last_) {
-    const bool gone = std::none_of(now.begin(), now.end(),
-                                   [&](const Drawn& x) { return x.list == d.list; });
+    const bool gone =
+        std::none_of(now.begin(), now.end(), [&](const Drawn& x) { return x.list == d.list; });
     if (gone) restore.push_back(d.rect);
   }
   // Whatever overlaps a restored part is drawn again, and restored first itself: until nothing

@@ -379,11 +379,11 @@ void SculptApp::finish() {
     // recovery offer, as after a crash, instead of being lost.
     try {
       recovery_->save(*session_, camera_.pose());
-      log_ << "stopped by " << signalName(stopSignal()) << "; the session is kept for recovery: "
-           << recovery_->ownFile().string() << '\n';
+      log_ << "stopped by " << signalName(stopSignal())
+           << "; the session is kept for recovery: " << recovery_->ownFile().string() << '\n';
     } catch (const std::exception& e) {
-      log_ << "stopped by " << signalName(stopSignal()) << "; the session could not be kept: "
-           << e.what() << '\n';
+      log_ << "stopped by " << signalName(stopSignal())
+           << "; the session could not be kept: " << e.what() << '\n';
     }
   } else {
     recovery_->remove(recovery_->ownFile());  // a normal exit leaves nothing to recover

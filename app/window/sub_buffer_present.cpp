@@ -37,9 +37,8 @@ SubBufferPresent::SubBufferPresent(GLFWwindow* window) : window_(window) {
 std::vector<std::uint8_t> SubBufferPresent::readScreen(int width, int height) const {
   Display* display = static_cast<Display*>(display_);
   XSync(display, False);
-  XImage* image = XGetImage(display, glfwGetX11Window(window_), 0, 0,
-                            static_cast<unsigned>(width), static_cast<unsigned>(height), AllPlanes,
-                            ZPixmap);
+  XImage* image = XGetImage(display, glfwGetX11Window(window_), 0, 0, static_cast<unsigned>(width),
+                            static_cast<unsigned>(height), AllPlanes, ZPixmap);
   if (!image) return {};
   const int rs = shiftOf(image->red_mask), gs = shiftOf(image->green_mask),
             bs = shiftOf(image->blue_mask);

@@ -6,6 +6,8 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <type_traits>
+#include <variant>
 
 #include "engine/session/backend_select.h"
 #include "solver/fracture/debris.h"
@@ -526,8 +528,8 @@ FrameMetrics Simulation::advance() {
     r.converged = false;
     if (++divergedFrames_ <= kDivergenceNotes)
       notes_.push_back("frame " + std::to_string(frame_ + 1) +
-                     " diverged (positions not finite): the body was kept where frame " +
-                     std::to_string(frame_) + " left it, at rest");
+                       " diverged (positions not finite): the body was kept where frame " +
+                       std::to_string(frame_) + " left it, at rest");
   }
   if (!std::isfinite(r.residual)) r.residual = -1.0;
   if (!std::isfinite(r.pieceResidual)) r.pieceResidual = -1.0;
@@ -593,25 +595,68 @@ FrameMetrics Simulation::advance() {
   return m;
 }
 
+const std::vector<MetricsColumn>& metricsColumns() {
+  using M = FrameMetrics;
+  static const std::vector<MetricsColumn> columns = {
+      {"frame", &M::frame},
+      {"time_s", &M::timeS},
+      {"ms_total", &M::msTotal},
+      {"ms_elements", &M::msElements},
+      {"ms_solve", &M::msSolve},
+      {"ms_plastic", &M::msPlastic},
+      {"ms_other", &M::msOther},
+      {"volume", &M::volume},
+      {"volume_change_pct", &M::volumeChangePct},
+      {"kinetic_energy", &M::kineticEnergy},
+      {"elastic_energy", &M::elasticEnergy},
+      {"residual", &M::residual},
+      {"max_displacement", &M::maxDisplacement},
+      {"damaged_edges", &M::damagedEdges},
+      {"pieces", &M::pieces},
+      {"warnings", &M::warnings},
+      {"newton_iterations", &M::newtonIterations},
+      {"contact_force_n", &M::contactForceN},
+      {"ms_fracture", &M::msFracture},
+      {"opening_m", &M::openingM},
+      {"load_n", &M::loadN},
+      {"backtracks", &M::backtracks},
+      {"cg_iterations", &M::cgIterations},
+      {"converged", &M::converged},
+      {"energy_passes", &M::energyPasses},
+      {"debris_pieces", &M::debrisPieces},
+      {"debris_volume_pct", &M::debrisVolumePct},
+      {"inverted_pieces", &M::invertedPieces},
+      {"striker_displacement_m", &M::strikerDisplacementM},
+      {"absorbed_energy_j", &M::absorbedEnergyJ},
+      {"debris_mass_kg", &M::debrisMassKg},
+      {"piece_residual", &M::pieceResidual},
+  };
+  return columns;
+}
+
 std::string metricsCsvHeader() {
-  return "frame,time_s,ms_total,ms_elements,ms_solve,ms_plastic,ms_other,volume,volume_change_pct,"
-         "kinetic_energy,elastic_energy,residual,max_displacement,damaged_edges,pieces,warnings,"
-         "newton_iterations,contact_force_n,ms_fracture,opening_m,load_n,backtracks,cg_iterations,"
-         "converged,energy_passes,debris_pieces,debris_volume_pct,inverted_pieces,"
-         "striker_displacement_m,absorbed_energy_j,debris_mass_kg,piece_residual";
+  std::string header;
+  for (const MetricsColumn& c : metricsColumns())
+    header.append(header.empty() ? "" : ",").append(c.name);
+  return header;
 }
 
 std::string metricsCsvRow(const FrameMetrics& m) {
   std::ostringstream s;
-  s << std::setprecision(9) << m.frame << ',' << m.timeS << ',' << m.msTotal << ',' << m.msElements
-    << ',' << m.msSolve << ',' << m.msPlastic << ',' << m.msOther << ',' << m.volume << ','
-    << m.volumeChangePct << ',' << m.kineticEnergy << ',' << m.elasticEnergy << ',' << m.residual
-    << ',' << m.maxDisplacement << ',' << m.damagedEdges << ',' << m.pieces << ',' << m.warnings
-    << ',' << m.newtonIterations << ',' << m.contactForceN << ',' << m.msFracture << ','
-    << m.openingM << ',' << m.loadN << ',' << m.backtracks << ',' << m.cgIterations << ','
-    << (m.converged ? 1 : 0) << ',' << m.energyPasses << ',' << m.debrisPieces << ','
-    << m.debrisVolumePct << ',' << m.invertedPieces << ',' << m.strikerDisplacementM << ','
-    << m.absorbedEnergyJ << ',' << m.debrisMassKg << ',' << m.pieceResidual;
+  s << std::setprecision(9);
+  bool first = true;
+  for (const MetricsColumn& c : metricsColumns()) {
+    if (!first) s << ',';
+    first = false;
+    std::visit(
+        [&](auto field) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(m.*field)>, bool>)
+            s << (m.*field ? 1 : 0);
+          else
+            s << m.*field;
+        },
+        c.field);
+  }
   return s.str();
 }
 

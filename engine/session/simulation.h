@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "engine/scene/scene.h"
@@ -78,6 +79,14 @@ struct FrameMetrics {
 inline bool pieceAboveTolerance(const FrameMetrics& m, double tolerance) {
   return tolerance > 0.0 && m.pieces > 1 && m.pieceResidual > tolerance;
 }
+
+// The metrics CSV's columns in order (docs/cli.md), each a name and the FrameMetrics field it
+// prints: one table feeds the header, the rows and whatever reads the metrics by name.
+struct MetricsColumn {
+  const char* name;
+  std::variant<int FrameMetrics::*, double FrameMetrics::*, bool FrameMetrics::*> field;
+};
+const std::vector<MetricsColumn>& metricsColumns();
 
 // CSV header and row, in the column order documented in docs/cli.md.
 std::string metricsCsvHeader();

@@ -23,7 +23,9 @@ class Interrupted : public std::runtime_error {
 void installStopHandlers();
 // The signal of the stop asked for, or 0.
 int stopSignal();
-inline bool stopRequested() { return stopSignal() != 0; }
+inline bool stopRequested() {
+  return stopSignal() != 0;
+}
 // Throws Interrupted when a stop was asked for.
 void throwIfStopRequested();
 // "SIGINT", "SIGTERM" or "signal N".

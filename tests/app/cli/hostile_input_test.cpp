@@ -417,8 +417,8 @@ TEST(HostileInput, ASignalledRunKeepsItsMetricsRowsAndLeavesNothingElse) {
     const pid_t pid = fork();
     if (pid == 0) {
       if (!freopen(err.c_str(), "w", stderr) || !freopen("/dev/null", "w", stdout)) _exit(126);
-      execl(GALSCULPT_BINARY, GALSCULPT_BINARY, "run", scene.c_str(), "--frames", "100000",
-            "--out", out.c_str(), "--threads", "1", static_cast<char*>(nullptr));
+      execl(GALSCULPT_BINARY, GALSCULPT_BINARY, "run", scene.c_str(), "--frames", "100000", "--out",
+            out.c_str(), "--threads", "1", static_cast<char*>(nullptr));
       _exit(127);
     }
     const fs::path metrics = out / "metrics.csv";

@@ -10,8 +10,8 @@
 #include <signal.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <thread>
 
@@ -627,12 +627,11 @@ TEST(AppUiRealtime, WhatTheWindowShowsIsTheWholePictureAfterEveryPartialDraw) {
       {"move": [0.5, 0.5]}, {"press": "right"}, {"move": [0.6, 0.5]}, {"wait": 2},
       {"release": "right"}, {"wait_frames": 1}, {"key": "Z", "ctrl": true}, {"wait_frames": 2}]})");
   const fs::path log = dir / "log.txt";
-  const std::string command = "GALSCULPT_CHECK_PRESENT=1 GALSCULPT_RECOVERY_DIR='" +
-                              (dir / "recovery").string() +
-                              "' xvfb-run -a -s '-screen 0 1280x800x24' '" +
-                              std::string(GALSCULPT_BINARY) + "' open '" + kDefaultScene.string() +
-                              "' --no-recovery --autosave 0 --size 1280x800 --input-script '" +
-                              (dir / "steps.json").string() + "' > '" + log.string() + "' 2>&1";
+  const std::string command =
+      "GALSCULPT_CHECK_PRESENT=1 GALSCULPT_RECOVERY_DIR='" + (dir / "recovery").string() +
+      "' xvfb-run -a -s '-screen 0 1280x800x24' '" + std::string(GALSCULPT_BINARY) + "' open '" +
+      kDefaultScene.string() + "' --no-recovery --autosave 0 --size 1280x800 --input-script '" +
+      (dir / "steps.json").string() + "' > '" + log.string() + "' 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << test::readText(log);
   const std::string text = test::readText(log);
   int draws = -1;
@@ -644,8 +643,7 @@ TEST(AppUiRealtime, WhatTheWindowShowsIsTheWholePictureAfterEveryPartialDraw) {
             2)
       << text;
   EXPECT_GT(draws, 20);
-  EXPECT_EQ(differing, 0) << "pixels on the screen unlike the picture, over " << draws
-                          << " draws";
+  EXPECT_EQ(differing, 0) << "pixels on the screen unlike the picture, over " << draws << " draws";
 }
 
 }  // namespace

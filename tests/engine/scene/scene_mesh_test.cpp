@@ -130,8 +130,8 @@ TEST(SceneMesh, AnUnreachableTetCountNamesTheSceneTheKeyAndACountThatWorks) {
       works = what.substr(count + 2, what.find(' ', count + 2) - count - 2);
     }
     const fs::path suggested = dir / (shape + "_suggested.json");
-    test::writeText(suggested, R"({"mesh": {"generate": ")" + shape + R"(", "tets": )" + works +
-                                   "}}");
+    test::writeText(suggested,
+                    R"({"mesh": {"generate": ")" + shape + R"(", "tets": )" + works + "}}");
     EXPECT_NO_THROW(loadSceneMesh(loadScene(suggested)))
         << "the suggested " << works << " tets work for " << shape;
   }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include <sstream>
 
@@ -166,11 +167,33 @@ TEST(Simulation, MetricsCsvHasTheContractColumns) {
     EXPECT_NE(("," + header + ",").find(std::string(",") + column + ","), std::string::npos)
         << column;
   }
-  EXPECT_EQ(header.rfind("frame,time_s,ms_total,", 0), 0u);
+  // The columns and their order are a contract (docs/cli.md): exactly these.
+  EXPECT_EQ(header,
+            "frame,time_s,ms_total,ms_elements,ms_solve,ms_plastic,ms_other,volume,"
+            "volume_change_pct,kinetic_energy,elastic_energy,residual,max_displacement,"
+            "damaged_edges,pieces,warnings,newton_iterations,contact_force_n,ms_fracture,opening_m,"
+            "load_n,backtracks,cg_iterations,converged,energy_passes,debris_pieces,"
+            "debris_volume_pct,inverted_pieces,striker_displacement_m,absorbed_energy_j,"
+            "debris_mass_kg,piece_residual");
   FrameMetrics m;
   m.frame = 3;
+  m.timeS = 0.05;
+  m.residual = 1.25e-7;
+  m.converged = false;
+  m.loadN = 1234.56789012;
   const std::string row = metricsCsvRow(m);
   EXPECT_EQ(std::count(row.begin(), row.end(), ','), std::count(header.begin(), header.end(), ','));
+  // Each value under its own column, ints as ints, doubles to 9 digits, booleans as 0 and 1.
+  std::map<std::string, std::string> byName;
+  std::istringstream names(header), values(row);
+  for (std::string n, v; std::getline(names, n, ',') && std::getline(values, v, ',');)
+    byName[n] = v;
+  EXPECT_EQ(byName["frame"], "3");
+  EXPECT_EQ(byName["time_s"], "0.05");
+  EXPECT_EQ(byName["residual"], "1.25e-07");
+  EXPECT_EQ(byName["converged"], "0");
+  EXPECT_EQ(byName["load_n"], "1234.56789");
+  EXPECT_EQ(byName["pieces"], "0");
 }
 
 }  // namespace
@@ -335,8 +358,8 @@ TEST(Simulation, ManyCollidersAreAsFewWhenOnlyOneIsTouched) {
            R"(, 10, 10], "radius": 0.1}, )";
   const std::string common = std::string("{") + kSmallSphere + R"(, "material": {"preset": "clay"},
     "solver": {"type": "multigrid", "grid": "50/all", "backend": "cpu"}, )";
-  const SceneDescription one = sceneFrom(
-      dir, common + R"("measure": {"load_collider": 0}, "colliders": [)" + floor + "]}");
+  const SceneDescription one =
+      sceneFrom(dir, common + R"("measure": {"load_collider": 0}, "colliders": [)" + floor + "]}");
   const SceneDescription many = sceneFrom(
       dir, common + R"("measure": {"load_collider": 40}, "colliders": [)" + far + floor + "]}");
   ASSERT_EQ(many.colliders.size(), 41u);
