@@ -560,6 +560,16 @@ TEST(AppUiRealtime, AKnifeStrokeLeavesAVisibleCut) {
 namespace galsculpt {
 namespace {
 
+// The shell command that opens the default scene's window under Xvfb driven by DIR/steps.json,
+// its output in `log`: `env` goes before it (VAR=value ...), `flags` after `open SCENE`.
+std::string windowCommand(const test::TempDir& dir, const fs::path& log, const std::string& env,
+                          const std::string& flags) {
+  return env + " GALSCULPT_RECOVERY_DIR='" + (dir / "recovery").string() +
+         "' xvfb-run -a -s '-screen 0 1280x800x24' '" + std::string(GALSCULPT_BINARY) + "' open '" +
+         kDefaultScene.string() + "' --no-recovery --size 1280x800 " + flags + " --input-script '" +
+         (dir / "steps.json").string() + "' > '" + log.string() + "' 2>&1";
+}
+
 // SIGTERM (a logout, a shutdown, a Ctrl-C in the terminal) closes the window as the close button
 // does, but a session with changes is kept in the recovery folder, freshly saved, instead of
 // being lost; the process then ends by the signal.
@@ -569,11 +579,7 @@ TEST(AppUiRealtime, SigtermClosesTheWindowAndKeepsTheSessionForRecovery) {
       {"wait_frames": 2}, {"key": "G"}, {"move": [0.5, 0.4]}, {"press": "left"},
       {"move": [0.52, 0.36]}, {"wait_frames": 2}, {"release": "left"}, {"wait": 3000}]})");
   const fs::path recovery = dir / "recovery", log = dir / "log.txt";
-  const std::string command = "GALSCULPT_RECOVERY_DIR='" + recovery.string() +
-                              "' xvfb-run -a -s '-screen 0 1280x800x24' '" +
-                              std::string(GALSCULPT_BINARY) + "' open '" + kDefaultScene.string() +
-                              "' --no-recovery --autosave 1 --size 1280x800 --input-script '" +
-                              (dir / "steps.json").string() + "' > '" + log.string() + "' 2>&1";
+  const std::string command = windowCommand(dir, log, "", "--autosave 1");
   FILE* app = popen(command.c_str(), "r");
   ASSERT_NE(app, nullptr);
   // The first autosave names the app's pid (recovery-PID.gsproj) and says the grab made changes.
@@ -627,11 +633,7 @@ TEST(AppUiRealtime, WhatTheWindowShowsIsTheWholePictureAfterEveryPartialDraw) {
       {"move": [0.5, 0.5]}, {"press": "right"}, {"move": [0.6, 0.5]}, {"wait": 2},
       {"release": "right"}, {"wait_frames": 1}, {"key": "Z", "ctrl": true}, {"wait_frames": 2}]})");
   const fs::path log = dir / "log.txt";
-  const std::string command =
-      "GALSCULPT_CHECK_PRESENT=1 GALSCULPT_RECOVERY_DIR='" + (dir / "recovery").string() +
-      "' xvfb-run -a -s '-screen 0 1280x800x24' '" + std::string(GALSCULPT_BINARY) + "' open '" +
-      kDefaultScene.string() + "' --no-recovery --autosave 0 --size 1280x800 --input-script '" +
-      (dir / "steps.json").string() + "' > '" + log.string() + "' 2>&1";
+  const std::string command = windowCommand(dir, log, "GALSCULPT_CHECK_PRESENT=1", "--autosave 0");
   ASSERT_EQ(std::system(command.c_str()), 0) << test::readText(log);
   const std::string text = test::readText(log);
   int draws = -1;
