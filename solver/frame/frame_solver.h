@@ -599,9 +599,7 @@ class FrameSolver {
       }
       // Newton's step test ends the iterations only where no residual tolerance is set. A short
       // step is no proof of a solution where the Newton matrix is not the Hessian (projected,
-      // or a chord's): Charpy's first frame stopped on it at 22 times the residual tolerance
-      // (four more iterations solved it), and with the compressed cracks' curvature kept
-      // unprojected the whipped bar's frames stopped at up to 850 times, all called converged.
+      // or a chord's): only the residual decides that a frame has converged.
       if (n == NewtonOutcome::Converged && s.residualTolerance <= 0.0) {
         stationary = true;
         break;
@@ -614,18 +612,15 @@ class FrameSolver {
       if (residual <= s.residualTolerance && piecesWithinTolerance(residual, tmp_.data())) break;
       // Keep the stiffness while it still cuts the residual at least in half. Once a chord step
       // has not, the stiffness moves with the iterate (cracks opening and closing, contacts
-      // coming and going): every later iteration of the sub-step takes a fresh one. Alternating
-      // fresh and chord steps instead wasted every other iteration there, and the chords' poor
-      // steps cost more backtracks: Charpy's broken halves took 827 Newton iterations over
-      // frames 41-75 and 7 of frames 1-75 ended unconverged, against 358 and none without chords.
+      // coming and going): every later iteration of the sub-step takes a fresh one, since
+      // alternating fresh and chord steps there wastes every other iteration and the chords'
+      // poor steps cost backtracks (docs/benchmarks.md has the measurements).
       chordFailed = chordFailed || (reuse && !(residual < 0.5 * lastResidual));
       // Nor is a chord taken after a step that opened or closed cracks in more than
       // kChordSwitchedElements elements: each such element's stiffness is another matrix (a
       // closed crack's edge carries the faces' contact, an open one nothing), and the chord steps
-      // with the wrong one. After 100 random cuts through the hanging sphere (1,000-2,500
-      // elements switch a step), chords took 2.5 Newton iterations a frame at rest where fresh
-      // stiffnesses took 1.6-1.7. Where fewer switch (slices thrown off a bar: 10-50), chords still
-      // pay as often as not (docs/benchmarks.md).
+      // with the wrong one. Where only a few elements switch, chords still pay as often as not
+      // (docs/benchmarks.md).
       reuse = s.reuseStiffness && !chordFailed && switchedCracks_ <= kChordSwitchedElements &&
               !systemSkipped_;
       lastResidual = residual;
@@ -745,8 +740,8 @@ class FrameSolver {
       if (settings_->acceleratedStart) startPiecesAccelerated(h, gradientAtXn);
     }
     // Stiffnesses are kept within a sub-step only: a frame's result must follow from the state
-    // alone (a project reopened at any frame runs on identically; kept across frames, the
-    // clay head's frames were 20 % cheaper but a reopened session took another path). This also
+    // alone, so that a project reopened at any frame runs on identically (stiffnesses kept across
+    // frames are not part of the saved state). This also
     // covers everything that changes a rest shape (plastic flow, a rolled-back or uploaded
     // plastic state): it happens between sub-steps.
     if (settings_->stiffnessTolerance > 0.0) {
@@ -915,9 +910,7 @@ class FrameSolver {
     backwardEulerGradient(x, grad_.data(), dampedK_.data(), g_.data());
     double bodyResidual = 0.0;
     // A null step for the body is none for a piece still above its own tolerance: it sets the
-    // cap, and this iteration solves. After 100 random cuts through the hanging sphere the first
-    // iteration of nearly every settled frame was null for the body while a piece spun at 3
-    // times its own tolerance; the second iteration then solved it.
+    // cap, and this iteration solves (a settled body can hide a piece that still spins).
     if (mayBeNull && nullStep(bodyResidual) && piecesWithinTolerance(bodyResidual, grad_.data())) {
       takeNullStep();
       return;
@@ -1096,9 +1089,9 @@ class FrameSolver {
   // through their share at x, their slope and their share at the trial, kept within a tenth and a
   // half of their length. Only the elements around them are evaluated again. (A vertex's share may
   // rise in a good step, its neighbours' falling more: shortening every vertex whose share rose
-  // held back half the clay head.) True when a trial descends (Armijo on the shortened step's
-  // slope) without turning more elements over: trial_ and its scalars (`read`) are then the
-  // accepted step. False leaves the caller to back off the whole step.
+  // would hold back large parts of a body that moves well.) True when a trial descends (Armijo on
+  // the shortened step's slope) without turning more elements over: trial_ and its scalars (`read`)
+  // are then the accepted step. False leaves the caller to back off the whole step.
   bool vertexGuard(SubstepOutcome& result, double* read) {
     const double sufficient = settings_->lineSearch ? 1e-4 : 0.0;
     double* length = guardLength_.data();
