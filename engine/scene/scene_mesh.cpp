@@ -77,7 +77,10 @@ std::vector<TriMesh> generatorSurfaces(Generator generator, double radius, int t
 
 namespace {
 
-TetMesh cachedTetrahedralization(const std::vector<TriMesh>& surfaces, const std::string& key,
+// `surfaces` makes the surfaces to mesh, only when the cache has no entry for `key`.
+using SurfaceMaker = std::function<std::vector<TriMesh>()>;
+
+TetMesh cachedTetrahedralization(const SurfaceMaker& surfaces, const std::string& key,
                                  const std::string& name, int tets, const ProgressFn& progress) {
   const fs::path dir = cacheDirectory() / "meshes";
   const fs::path stem = dir / key;
@@ -102,14 +105,14 @@ TetMesh cachedTetrahedralization(const std::vector<TriMesh>& surfaces, const std
   options.targetTets = tets;
   options.surfaceName = name;
   options.progress = progress;
-  TetrahedralizeResult result = tetrahedralizeAny(surfaces, options);
+  TetrahedralizeResult result = tetrahedralizeAny(surfaces(), options);
   writeTetGen(stem, result.mesh);
   return std::move(result.mesh);
 }
 
 // A count TetGen cannot reach is the scene's error: it names the file, the key and a count
 // that works.
-TetMesh sceneTetrahedralization(const SceneDescription& scene, const std::vector<TriMesh>& surfaces,
+TetMesh sceneTetrahedralization(const SceneDescription& scene, const SurfaceMaker& surfaces,
                                 const std::string& key, const std::string& name,
                                 const ProgressFn& progress) {
   try {
@@ -155,8 +158,11 @@ TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress)
       return mesh;
     }
     case MeshSource::Kind::Generate: {
-      std::vector<TriMesh> surfaces = generatorSurfaces(m.generator, m.radius, m.tets);
-      for (TriMesh& surface : surfaces) transformSurface(surface, m);
+      const SurfaceMaker surfaces = [&m] {
+        std::vector<TriMesh> out = generatorSurfaces(m.generator, m.radius, m.tets);
+        for (TriMesh& surface : out) transformSurface(surface, m);
+        return out;
+      };
       std::ostringstream key;
       key << generatorName(m.generator) << "-" << m.tets;
       if (m.generator == Generator::Sphere) key << "-r" << m.radius;
@@ -185,8 +191,11 @@ TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress)
       if (!fs::exists(source, ec))
         throw InputError(scene.file.string(), 0,
                          "$.mesh.import: " + source.string() + " does not exist");
-      TriMesh surface = readSurface(source);
-      transformSurface(surface, m);
+      const SurfaceMaker surfaces = [&m, &source] {
+        TriMesh surface = readSurface(source);
+        transformSurface(surface, m);
+        return std::vector<TriMesh>{std::move(surface)};
+      };
       // Everything that decides the mesh: the source's content (two files of one name differ),
       // the transform and the count.
       std::ostringstream key;
@@ -195,7 +204,7 @@ TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress)
       std::string k = key.str();
       for (char& c : k)
         if (c == ' ') c = '_';
-      return sceneTetrahedralization(scene, {surface}, k, name, progress);
+      return sceneTetrahedralization(scene, surfaces, k, name, progress);
     }
   }
   throw std::logic_error("unhandled mesh source");
