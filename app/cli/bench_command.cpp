@@ -508,18 +508,81 @@ void printWindowSummary(const std::vector<nlohmann::json>& rows, std::ostream& o
   }
 }
 
+// What a scene's reference run depends on: the scene as read and as modified by the options
+// (its solver keys, debris rule), the mesh, and the frames measured. FNV-1a, as the mesh cache.
+std::uint64_t referenceKey(const SceneDescription& scene, const TetMesh& mesh, int frames,
+                           const std::vector<int>& settles) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](const void* data, size_t bytes) {
+    for (size_t i = 0; i < bytes; ++i) {
+      h ^= static_cast<const unsigned char*>(data)[i];
+      h *= 1099511628211ull;
+    }
+  };
+  const std::string text = scene.source.dump() + "|" + solverPresetName(scene.solver.preset) + "|" +
+                           debrisRuleName(scene.fracture.debris);
+  mix(text.data(), text.size());
+  mix(mesh.vertices.data(), mesh.vertices.size() * sizeof(Vec3));
+  mix(mesh.tets.data(), mesh.tets.size() * sizeof(mesh.tets[0]));
+  mix(&frames, sizeof frames);
+  mix(settles.data(), settles.size() * sizeof(int));
+  return h;
+}
+
+// --reference-dir: a scene's reference rows and positions kept between runs (the reference takes
+// seconds a frame, the multigrid milliseconds; on a GPU machine, minutes of its time). The rows
+// (JSON) are written last, so a set missing a part is computed again.
+class ReferenceCache {
+ public:
+  ReferenceCache(const fs::path& dir, const std::string& scene, std::uint64_t key) {
+    std::ostringstream name;
+    name << scene << '-' << std::hex << key;
+    base_ = dir / name.str();
+  }
+  bool load(const fs::path& refFile, nlohmann::json& rows) const {
+    std::error_code ec;
+    if (!fs::exists(file(".json"), ec) || !fs::exists(file(".ref"), ec) ||
+        !fs::exists(file(".ref.motion"), ec))
+      return false;
+    std::ifstream in(file(".json"));
+    rows = nlohmann::json::parse(in, nullptr, false);
+    if (rows.is_discarded() || !rows.is_array()) return false;
+    fs::copy_file(file(".ref"), refFile, fs::copy_options::overwrite_existing);
+    fs::copy_file(file(".ref.motion"), fs::path(refFile).concat(".motion"),
+                  fs::copy_options::overwrite_existing);
+    return true;
+  }
+  void store(const fs::path& refFile, const nlohmann::json& rows) const {
+    for (const nlohmann::json& r : rows)
+      if (r.contains("error")) return;
+    for (const char* ext : {".ref", ".ref.motion"}) {
+      const fs::path from =
+          ext == std::string(".ref") ? refFile : fs::path(refFile).concat(".motion");
+      std::ifstream in(from, std::ios::binary);
+      const std::string bytes((std::istreambuf_iterator<char>(in)),
+                              std::istreambuf_iterator<char>());
+      writeFileAtomically(file(ext), [&](std::ostream& o) { o << bytes; });
+    }
+    writeFileAtomically(file(".json"), [&](std::ostream& o) { o << rows.dump(2) << '\n'; });
+  }
+
+ private:
+  fs::path file(const char* ext) const { return fs::path(base_).concat(ext); }
+  fs::path base_;
+};
+
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args,
                   {"--scene", "--json", "--frames", "--settle", "--backend", "--debris", "--preset",
-                   "--threads"},
+                   "--threads", "--reference-dir"},
                   {"--quick", "--sweep", "--cracks"});
   a.expectPositional(
       0, 0,
       "galsculpt bench [--scene NAME] [--quick] [--sweep] [--cracks] [--frames N] "
       "[--settle N[,N...]] [--json FILE] [--backend auto|cpu|cuda] [--debris keep|remove] "
-      "[--preset converged|paper] [--threads N]");
+      "[--preset converged|paper] [--threads N] [--reference-dir DIR]");
   applyThreadsOption(a);
   const std::optional<BackendRequest> backend = backendOption(a);
   const std::optional<DebrisRule> debris = debrisOption(a);
@@ -528,6 +591,8 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
   const int frames = a.intValue("--frames", quick ? 20 : 60, 1, 100000);
   const std::vector<int> settles = settleOption(a, frames);
   const std::vector<BenchScene> scenes = benchScenes(a);
+  const std::optional<std::string> referenceDir = a.value("--reference-dir");
+  if (referenceDir) fs::create_directories(*referenceDir);
   std::string pattern = (fs::temp_directory_path() / "galsculpt-bench-XXXXXX").string();
   if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder");
   const fs::path scratch = pattern;
@@ -553,8 +618,19 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
     const fs::path refFile = scratch / (std::string(bs.name) + ".ref");
     std::map<int, double> uncutMs;  // per window start: the uncut frame (--cracks)
     const size_t sceneFirst = results.size();
+    const std::optional<ReferenceCache> cache =
+        referenceDir ? std::optional<ReferenceCache>(ReferenceCache(
+                           *referenceDir, bs.name, referenceKey(scene, mesh, frames, settles)))
+                     : std::nullopt;
     for (const Setting& s : settings) {
-      for (nlohmann::json r : measureInChild(scene, mesh, s, frames, settles, refFile, scratch)) {
+      nlohmann::json rows;
+      if (s.reference && cache && cache->load(refFile, rows)) {
+        for (nlohmann::json& r : rows) r["reference_cached"] = true;
+      } else {
+        rows = measureInChild(scene, mesh, s, frames, settles, refFile, scratch);
+        if (s.reference && cache) cache->store(refFile, rows);
+      }
+      for (nlohmann::json r : rows) {
         r["scene"] = bs.name;
         if (s.cuts >= 0 && !r.contains("error")) {
           const int at = r["settle_frames"].get<int>();

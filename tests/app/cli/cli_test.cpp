@@ -286,6 +286,42 @@ void useSmallSphereAssets(const test::TempDir& dir) {
   setenv("GALSCULPT_ASSETS", dir.path().c_str(), 1);
 }
 
+// --reference-dir: the first run computes the reference and keeps it, the second reads it (the
+// same errors, the row marked cached); other frames are another reference.
+TEST(Cli, BenchKeepsItsReferencesInAFolder) {
+  test::TempDir dir;
+  useSmallSphereAssets(dir);
+  const std::string refs = (dir / "refs").string();
+  auto bench = [&](const char* frames, const char* json) {
+    return run({"bench", "--scene", "sphere", "--frames", frames, "--reference-dir", refs, "--json",
+                (dir / json).string()});
+  };
+  const CliRun first = bench("2", "a.json");
+  const CliRun second = bench("2", "b.json");
+  const CliRun other = bench("3", "c.json");
+  unsetenv("GALSCULPT_ASSETS");
+  ASSERT_EQ(first.code, kExitOk) << first.err;
+  ASSERT_EQ(second.code, kExitOk) << second.err;
+  ASSERT_EQ(other.code, kExitOk) << other.err;
+  const auto a = nlohmann::json::parse(test::readText(dir / "a.json"))["results"];
+  const auto b = nlohmann::json::parse(test::readText(dir / "b.json"))["results"];
+  const auto c = nlohmann::json::parse(test::readText(dir / "c.json"))["results"];
+  ASSERT_EQ(a.size(), 3u);
+  ASSERT_EQ(b.size(), 3u);
+  EXPECT_FALSE(a[0].contains("reference_cached"));
+  EXPECT_EQ(b[0]["reference_cached"], true);
+  EXPECT_FALSE(c[0].contains("reference_cached")) << "3 frames are another reference";
+  EXPECT_EQ(b[0]["ms_per_frame"], a[0]["ms_per_frame"]) << "the kept row";
+  for (int i : {1, 2}) {
+    EXPECT_GT(a[i]["rel_position_error"].get<double>(), 0.0);
+    EXPECT_EQ(b[i]["rel_position_error"], a[i]["rel_position_error"]);
+    EXPECT_EQ(b[i]["rel_position_error_motion"], a[i]["rel_position_error_motion"]);
+  }
+  int kept = 0;
+  for (const auto& entry : fs::directory_iterator(refs)) kept += entry.is_regular_file();
+  EXPECT_EQ(kept, 6) << "rows and positions of two references";
+}
+
 TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   test::TempDir dir;
   useSmallSphereAssets(dir);
