@@ -81,6 +81,11 @@ PieceLayout pieceLayout(const SimModel& model, const std::vector<std::uint8_t>& 
 // least) keeps the straight-line start: a hard contact.
 inline constexpr double kMostPush = 2.0;
 
+// How much shorter than at rest (relative, squared length) a crack's edge must be to press:
+// far above the round-off of a squared length (a few 1e-16), far below any compression a load
+// makes.
+inline constexpr double kPressingRoundOff = 1e-10;
+
 // A piece is held when one of its vertices is (operator(): one thread walks the piece), or when
 // it presses on a held piece (spread: one round; rounds run until nothing changes): a damaged
 // edge between them is shorter than at rest at x_n, a crack face closed on the other. A piece
@@ -110,13 +115,17 @@ struct HeldPieces {
     }
     return 0;
   }
+  // Shorter than at rest by more than round-off: a crack face pressed on the other, not one
+  // still at rest where the knife left it (there every such edge is a tie, and the GPU's fused
+  // multiply-adds put an eighth of them a last bit short, holding every piece a cut sphere
+  // drops).
   GALSCULPT_HD bool pressing(int a, int b, double restSq) const {
     double lengthSq = 0.0;
     for (int k = 0; k < 3; ++k) {
       const double d = xn[3 * b + k] - xn[3 * a + k];
       lengthSq += d * d;
     }
-    return lengthSq < restSq;
+    return lengthSq < restSq * (1.0 - kPressingRoundOff);
   }
 };
 
