@@ -20,7 +20,11 @@
 #include <utility>
 #include <vector>
 
+#include <memory>
+#include <typeinfo>
+
 #include "gpu/cusolver_loader.h"
+#include "gpu/launch_profile.h"
 
 namespace galsculpt::gpu {
 
@@ -206,6 +210,10 @@ class CudaExecutor {
     GALSCULPT_CUDA_CHECK(cudaMalloc(&info_, sizeof(int)));
     const char* graphs = std::getenv("GALSCULPT_CUDA_GRAPHS");
     graphs_ = !(graphs && std::string(graphs) == "0");
+    if (LaunchProfile::requested()) {
+      profile_ = std::make_unique<LaunchProfile>();
+      graphs_ = false;  // each launch is waited for
+    }
   }
   ~CudaExecutor() {
     for (Graph& g : slots_)
@@ -220,8 +228,10 @@ class CudaExecutor {
   template <typename F>
   void forEach(int n, const F& f, long /*cost: a CPU's threading hint*/ = 1) const {
     if (n <= 0) return;
+    if (profile_) profile_->begin(GALSCULPT_CUDA_STREAM);
     forEachKernel<<<(n + kThreads - 1) / kThreads, kThreads, 0, GALSCULPT_CUDA_STREAM>>>(n, f);
     GALSCULPT_CUDA_CHECK(cudaGetLastError());
+    if (profile_) profile_->end(GALSCULPT_CUDA_STREAM, "launch", typeid(F).name(), n);
   }
   template <typename F>
   void sum(int n, const F& f, double* out) const {
@@ -308,10 +318,12 @@ class CudaExecutor {
   template <typename F, typename Op>
   void reduce(int n, const F& f, Op op, double identity, double* out) const {
     const int blocks = n <= 0 ? 1 : std::min(kReduceBlocks, (n + kThreads - 1) / kThreads);
+    if (profile_) profile_->begin(GALSCULPT_CUDA_STREAM);
     reduceKernel<<<blocks, kThreads, 0, GALSCULPT_CUDA_STREAM>>>(n, f, op, identity, partial_);
     GALSCULPT_CUDA_CHECK(cudaGetLastError());
     finishKernel<<<1, kThreads, 0, GALSCULPT_CUDA_STREAM>>>(blocks, partial_, op, identity, out);
     GALSCULPT_CUDA_CHECK(cudaGetLastError());
+    if (profile_) profile_->end(GALSCULPT_CUDA_STREAM, "reduce", typeid(F).name(), n);
   }
   struct Graph {
     std::uint64_t key = 0;
@@ -324,6 +336,7 @@ class CudaExecutor {
   double* workspace_ = nullptr;
   size_t workspaceSize_ = 0;
   bool graphs_ = true;
+  std::unique_ptr<LaunchProfile> profile_;  // GALSCULPT_CUDA_PROFILE=1
   mutable PinnedStaging staging_;
   std::vector<Graph> slots_;
 };

@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# The GPU checks, run on a lent device machine (docs/gpu.md): the binaries are built here (Debian
+# 12, nvcc 13, sm_90) and travel with the libraries they need, since the device machine has the
+# CUDA toolkit but none of galsculpt's Debian libraries. Make the pack with
+# `scripts/device_pack.sh`; then on the device machine, from the repository root:
+#   scripts/device_check.sh PACK SECONDS STEP...
+# STEP: tests[:FILTER] (gpu_tests), tests0[:FILTER] (without CUDA graphs), sanitize:TOOL:FILTER
+# (under compute-sanitizer), bench:SCENE[:FRAMES[:EXTRA]] (bench --backend cuda), nographs:SCENE
+# (the same without CUDA graphs), profile:SCENE (the same, each launch timed: gpu/launch_profile.h). Each step gets what is left of SECONDS; every log and JSON goes
+# to $OUT/results.tar.gz (rewritten after each step) and a summary ends the output.
+set -u
+pack=$1
+budget=$2
+shift 2
+start=$(date +%s)
+out=${OUT:-/tmp/galsculpt-device-out}
+mkdir -p "$out/r"
+root=$PWD
+# The test binaries name their data by the absolute path of the checkout they were built in.
+if [ ! -e /work/main ]; then mkdir -p /work && ln -s "$root" /work/main; fi
+dev=/tmp/galsculpt-dev
+mkdir -p "$dev" && tar -C "$dev" -xJf "$pack" || exit 1
+cusolver=$(find /usr/local/cuda*/lib64 /usr/local/cuda*/targets/*/lib /opt -name 'libcusolver.so*' \
+  2>/dev/null | head -1)
+export LD_LIBRARY_PATH="$dev/lib${cusolver:+:$(dirname "$cusolver")}"
+export GALSCULPT_CACHE_DIR=$dev/cache GALSCULPT_ASSETS=$root/assets PATH=$dev/bin:$PATH:/usr/local/cuda/bin
+[ -d "$dev/refs" ] && export GALSCULPT_REFERENCE_DIR=${GALSCULPT_REFERENCE_DIR:-$dev/refs}
+if ! galsculpt --version >/dev/null 2>&1; then export LD_LIBRARY_PATH=$dev/libcxx:$LD_LIBRARY_PATH; fi
+{
+  nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv
+  nproc
+  galsculpt --version
+  echo "cusolver: ${cusolver:-none}"
+  ldd "$dev/bin/galsculpt" | grep -i "not found"
+} 2>&1 | tee "$out/r/machine.txt"
+
+left() { echo $((budget - ($(date +%s) - start))); }
+summary=$out/r/summary.txt
+: >"$summary"
+for step in "$@"; do
+  t=$(left)
+  if [ "$t" -lt 10 ]; then echo "$step: skipped, no time left" | tee -a "$summary"; continue; fi
+  IFS=: read -r kind scene frames extra <<<"$step"
+  log=$out/r/${step//:/-}.log
+  t0=$(date +%s)
+  case $kind in
+    tests | tests0 | sanitize)
+      # tests[:FILTER], tests0[:FILTER] (without CUDA graphs), sanitize:TOOL:FILTER[:FRAMES]
+      # (compute-sanitizer, GALSCULPT_COMPARE_FRAMES frames, default 10).
+      run=(gpu_tests "--gtest_filter=${scene:-*}" --gtest_output="xml:$out/r/${step//[:*]/-}.xml")
+      envs=(GALSCULPT_DEBUG_COMPARE=1)
+      [ "$kind" = tests0 ] && envs+=(GALSCULPT_CUDA_GRAPHS=0)
+      if [ "$kind" = sanitize ]; then
+        run=(compute-sanitizer --tool "$scene" --print-limit 20 gpu_tests "--gtest_filter=$frames")
+        envs+=("GALSCULPT_COMPARE_FRAMES=${extra:-10}")
+      fi
+      timeout "$t" env "${envs[@]}" "${run[@]}" >"$log" 2>&1
+      rc=$?
+      grep -E "against cpu|^\[       OK|^\[  FAILED|^\[  SKIPPED|Failure|actual|ERROR SUMMARY|Invalid|Uninitialized|Race" \
+        "$log" | head -40 >>"$summary"
+      ;;
+    bench | nographs | profile)
+      env_graphs=(GALSCULPT_DEVICE_CHECK=1)
+      [ "$kind" = nographs ] && env_graphs=(GALSCULPT_CUDA_GRAPHS=0)
+      [ "$kind" = profile ] && env_graphs=(GALSCULPT_CUDA_PROFILE=1)
+      # shellcheck disable=SC2086
+      timeout "$t" env "${env_graphs[@]}" galsculpt bench --backend cuda --scene "$scene" \
+        --frames "${frames:-60}" --json "$out/r/${step//:/-}.json" \
+        ${GALSCULPT_REFERENCE_DIR:+--reference-dir "$GALSCULPT_REFERENCE_DIR"} $extra >"$log" 2>&1
+      rc=$?
+      cat "$log" >>"$summary"
+      ;;
+    *) echo "unknown step $step" >>"$summary"; rc=2 ;;
+  esac
+  echo "== $step: exit $rc in $(($(date +%s) - t0)) s" | tee -a "$summary"
+  tar -C "$out" -czf "$out/results.tar.gz.tmp" r && mv "$out/results.tar.gz.tmp" "$out/results.tar.gz"
+done
+cat "$summary"
