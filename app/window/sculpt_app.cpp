@@ -388,7 +388,7 @@ void SculptApp::finish() {
   } else {
     recovery_->remove(recovery_->ownFile());  // a normal exit leaves nothing to recover
   }
-  // What the run cost, measured (docs/benchmarks.md, "The window"): the window's draws, the
+  // What the run cost, measured (docs/benchmarks.md, "Threads and the window"): the window's draws, the
   // simulation's frames in the window, and input to screen.
   const double seconds = std::chrono::duration<double>(Clock::now() - runStart_).count();
   char line[768];
