@@ -37,6 +37,7 @@
 #include "solver/frame/accelerated_start.h"
 #include "solver/frame/direct_solver.h"
 #include "solver/frame/element_pass.h"
+#include "solver/frame/fracture_pass.h"
 #include "solver/frame/frame_loop.h"
 #include "solver/frame/piece_residual.h"
 #include "solver/frame/step.h"
@@ -45,8 +46,6 @@
 #include "solver/multigrid/multigrid_cycle.h"
 
 namespace galsculpt {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Why a frame with these settings cannot run on the CUDA executor ("" when it can).
 inline std::string cudaUnsupportedReason([[maybe_unused]] const SimModel& model,
@@ -88,7 +87,7 @@ class FrameSolver {
     vertexSlots_.mirror(model.vertexSlots);
     blockSlotStart_.mirror(model.blockSlotStart);
     blockSlots_.mirror(model.blockSlots);
-    if (model.fracture.enabled) mirrorFracture(model.fracture);
+    if (model.fracture.enabled) fracture_ = std::make_unique<FracturePass<Exec>>(ex, model);
     // Every per-vertex buffer up front: nothing may allocate inside a captured section.
     for (Buffer<double>* b :
          {&x_, &v_, &xn_, &vn_, &xhat_, &grad_, &trialGrad_, &acceptedGrad_, &g_, &delta_, &trial_,
@@ -1492,56 +1491,22 @@ class FrameSolver {
   // Needs the model's fracture field.
   std::vector<double> edgeStress(const SimState& state, const StepSettings& settings) {
     syncIn(state, settings);
-    evaluateEdgeStress(true);
+    fracture_->evaluate(elementInputs(), x_.data(), damaged_.data(), true);
     std::vector<double> ratio(edges_), out(edges_, 0.0);
-    if (edges_ > 0) ex_.download(mean_.data(), ratio.data(), ratio.size());
+    if (edges_ > 0) ex_.download(fracture_->stressRatio(), ratio.data(), ratio.size());
     for (int e = 0; e < edges_; ++e)
       if (!hostDamaged_[e]) out[e] = ratio[e] * model_.fracture.threshold[e];
     return out;
   }
 
   FractureReport fracturePass() {
-    FractureReport report;
-    const int edges = edges_;
-    evaluateEdgeStress(false);
-    std::uint8_t* breaks = breaks_.data();
-    double* ratio = mean_.data();
-    double* sc = scalars_.data();
-    const double* stretch = stretch_.data();
-    const FractureSettings& settings = model_.fracture.settings;
-    if (settings.criticalFraction > 0.0) {
-      // The most critical breaks first (fracture_field.h).
-      const double* compression = compression_.data();
-      const double crush = settings.crushRatio();
-      const double* threshold = threshold_.data();
-      auto criticality = [=] GALSCULPT_LAMBDA(int e) {
-        const double crushed = crush > 0.0 ? -compression[e] / (crush * threshold[e]) : 0.0;
-        return breaks[e] ? fmax(fmax(ratio[e], crushed), stretch[e]) : -kInf;
-      };
-      ex_.maximum(edges, criticality, sc + kCritical);
-      double most = 0.0;
-      ex_.read(sc + kCritical, &most, 1);
-      const double below = settings.criticalFraction * most;
-      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
-        if (breaks[e] && !(criticality(e) >= below)) breaks[e] = 0;
-      });
-    }
-    ex_.maximum(
-        edges, [=] GALSCULPT_LAMBDA(int e) { return fmax(ratio[e], stretch[e]); }, sc + kRatio);
-    ex_.sum(
-        edges, [=] GALSCULPT_LAMBDA(int e) { return breaks[e] ? 1.0 : 0.0; }, sc + kCount);
-    double read[kScalars];
-    ex_.read(sc, read, kScalars);
-    report.maxStressRatio = std::max(0.0, read[kRatio]);
-    report.newlyDamaged = static_cast<int>(read[kCount]);
+    FractureReport report = fracture_->findBreaks(elementInputs(), x_.data(), damaged_.data());
     if (report.newlyDamaged > 0) {
-      std::uint8_t* d = damaged_.data();
-      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
-        if (breaks[e]) d[e] = 1;
-      });
+      fracture_->markBroken(damaged_.data());
       damaged_.download(hostDamaged_.data(), hostDamaged_.size());
-      const std::vector<int> parted = crackedSectionEdges(model_, model_.fracture.tetNeighbours,
-                                                          hostDamaged_, settings.partingFraction);
+      const std::vector<int> parted =
+          crackedSectionEdges(model_, model_.fracture.tetNeighbours, hostDamaged_,
+                              model_.fracture.settings.partingFraction);
       if (!parted.empty()) {
         for (const int e : parted) hostDamaged_[e] = 1;
         damaged_.upload(hostDamaged_);
@@ -1552,163 +1517,6 @@ class FrameSolver {
       gradientAtX_ = false;
     }
     return report;
-  }
-
-  // Per edge: its stress over its threshold (`mean_`; -inf where no edge near it is close to
-  // breaking, unless `everyEdge`) and whether it breaks (`breaks_`).
-  void evaluateEdgeStress(bool everyEdge) {
-    const FractureField& field = model_.fracture;
-    const int edges = edges_;
-    if (!(field.settings.threshold > 0.0)) {  // strain alone: no element stress to project
-      std::uint8_t* breaks = breaks_.data();
-      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) { breaks[e] = 0; });
-      edgeStrain();  // the stress ratios stay the zeros mirrorFracture set
-      return;
-    }
-    // Element edge stresses into slots 6 t + k.
-    const ElementInputs in = elementInputs();
-    const std::uint8_t* damaged = damaged_.data();
-    const double* x = x_.data();
-    double* slot = slotStress_.data();
-    const MaterialModel model = model_.material.model;
-    const Lame lame = model_.material.lame;
-    const bool resists = model_.material.compressionResists;
-    ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
-      double x12[12];
-      std::uint8_t intact;
-      const kernels::RestData& r = in.load(t, x, x12, intact);
-      kernels::edgeNormalStress(model, lame, r, x12, intact, in.resists(t, resists), slot + 6 * t);
-    });
-    const int* slotStart = edgeSlotStart_.data();
-    const int* slots = edgeSlots_.data();
-    double* local = localStress_.data();
-    double* compression = compression_.data();
-    ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
-      local[e] = 0.0;
-      compression[e] = 0.0;
-      if (damaged[e]) return;
-      double hi = -kInf, lo = kInf;
-      for (int k = slotStart[e]; k < slotStart[e + 1]; ++k) {
-        hi = fmax(hi, slot[slots[k]]);
-        lo = fmin(lo, slot[slots[k]]);
-      }
-      local[e] = fabs(hi) <= 1.7e308 ? hi : 0.0;
-      compression[e] = fabs(lo) <= 1.7e308 ? lo : 0.0;
-    });
-    const double* threshold = threshold_.data();
-    std::uint8_t* breaks = breaks_.data();
-    double* ratio = mean_.data();
-    // Crushing scales per edge as the tensile threshold does (fracture_field.h).
-    const double crush = field.settings.crushRatio();
-    if (field.settings.kernelRadius <= 0.0) {
-      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
-        breaks[e] = 0;
-        ratio[e] = -kInf;
-        if (damaged[e]) return;
-        breaks[e] =
-            (crush > 0.0 && -compression[e] > crush * threshold[e]) || local[e] > threshold[e];
-        ratio[e] = local[e] / threshold[e];
-      });
-    } else {
-      kernelMeanStress(everyEdge);
-    }
-    edgeStrain();
-  }
-
-  // The strain criterion (fracture.h): each undamaged edge's engineering strain over its limit
-  // (`stretch_`, -inf without the criterion), and it breaks past 1. Local: the edge's own
-  // stretch already averages the strain along it.
-  void edgeStrain() {
-    if (model_.fracture.strainLimit.empty()) return;  // -inf throughout (mirrorFracture)
-    double* stretch = stretch_.data();
-    const std::uint8_t* damaged = damaged_.data();
-    const double* x = x_.data();
-    const int* ends = edgeEnds_.data();
-    const double* limit = strainLimit_.data();
-    const double* length = restLength_.data();
-    std::uint8_t* breaks = breaks_.data();
-    ex_.forEach(edges_, [=] GALSCULPT_LAMBDA(int e) {
-      stretch[e] = -kInf;
-      if (damaged[e]) return;
-      const double* a = x + 3 * ends[2 * e];
-      const double* b = x + 3 * ends[2 * e + 1];
-      const double d0 = b[0] - a[0], d1 = b[1] - a[1], d2 = b[2] - a[2];
-      stretch[e] = (sqrt(d0 * d0 + d1 * d1 + d2 * d2) / length[e] - 1.0) / limit[e];
-      if (stretch[e] > 1.0) breaks[e] = 1;
-    });
-  }
-
-  // The non-local criterion: each edge's stress is the weighted mean over the undamaged edges
-  // within the kernel radius (fracture.h). Only edges with an edge over the smallest threshold
-  // within reach can average above theirs; the others are skipped unless `everyEdge`.
-  void kernelMeanStress(bool everyEdge) {
-    const FractureField& field = model_.fracture;
-    const int edges = edges_;
-    const std::uint8_t* damaged = damaged_.data();
-    const double* local = localStress_.data();
-    const double* compression = compression_.data();
-    const double* threshold = threshold_.data();
-    std::uint8_t* breaks = breaks_.data();
-    double* ratio = mean_.data();
-    const double crush = field.settings.crushRatio();
-    double* sc = scalars_.data();
-    // Only edges within R_d of an edge over the smallest threshold can average above theirs.
-    const double minThreshold = field.minThreshold;
-    std::uint8_t* hot = hot_.data();
-    ex_.forEach(edges,
-                [=] GALSCULPT_LAMBDA(int e) { hot[e] = !damaged[e] && local[e] > minThreshold; });
-    const double radius = field.settings.kernelRadius;
-    const double* mid = midpoint_.data();
-    const int* cellBegin = cellBegin_.data();
-    const int* cellEnd = cellEnd_.data();
-    const int* cellEdges = cellEdges_.data();
-    const int* edgeCell = edgeCell_.data();
-    const int* neighbors = cellNeighbors_.data();
-    std::uint8_t* cellHot = cellHot_.data();
-    ex_.forEach(model_.fracture.cells(), [=] GALSCULPT_LAMBDA(int c) {
-      std::uint8_t any = 0;
-      for (int i = cellBegin[c]; i < cellEnd[c]; ++i) any |= hot[cellEdges[i]];
-      cellHot[c] = any;
-    });
-    ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
-      breaks[e] = !damaged[e] && crush > 0.0 && -compression[e] > crush * threshold[e];
-      ratio[e] = -kInf;
-      if (damaged[e]) return;
-      const int* around = neighbors + 27 * edgeCell[e];
-      bool near = false;
-      for (int k = 0; k < 27; ++k) near = near || (around[k] >= 0 && cellHot[around[k]]);
-      if (!near && !everyEdge) return;  // nothing near it can break it: common and cheap
-      bool candidate = false;
-      double sum = 0.0, weights = 0.0;
-      const double r2 = radius * radius;
-      for (int k = 0; k < 27; ++k) {
-        const int c = around[k];
-        if (c < 0) continue;
-        for (int i = cellBegin[c]; i < cellEnd[c]; ++i) {
-          const int f = cellEdges[i];
-          double d2 = 0.0;
-          for (int j = 0; j < 3; ++j)
-            d2 += (mid[3 * f + j] - mid[3 * e + j]) * (mid[3 * f + j] - mid[3 * e + j]);
-          if (!(d2 < r2)) continue;
-          candidate = candidate || hot[f];
-          if (damaged[f]) continue;
-          const double w = (1.0 - d2 / r2) * (1.0 - d2 / r2);
-          sum += w * local[f];
-          weights += w;
-        }
-      }
-      if (!candidate && !everyEdge) return;
-      const double mean = weights > 0.0 ? sum / weights : local[e];
-      ratio[e] = mean / threshold[e];
-      breaks[e] = breaks[e] || mean > threshold[e];
-    });
-    // Without any candidate the ratio is the local one (the pass reports the largest ratio).
-    ex_.sum(
-        edges, [=] GALSCULPT_LAMBDA(int e) { return ratio[e] > -1.7e308 ? 1.0 : 0.0; },
-        sc + kCount);
-    ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
-      if (sc[kCount] == 0.0 && !damaged[e]) ratio[e] = local[e] / threshold[e];
-    });
   }
 
   // ---- setup ----------------------------------------------------------------------------
@@ -1722,39 +1530,6 @@ class FrameSolver {
       multigrid_->updateDamage(model_.edges, hostDamaged_, damageRevision_);
     mg_.upload(buildMultigridLayout(*multigrid_, model_.pattern));
     ++mgRevision_;
-  }
-
-  void mirrorFracture(const FractureField& field) {
-    edgeSlotStart_.mirror(field.slotStart);
-    edgeSlots_.mirror(field.slots);
-    threshold_.mirror(field.threshold);
-    strainLimit_.mirror(field.strainLimit);
-    restLength_.mirror(field.restLength);
-    edgeEnds_.mirror(model_.edges.empty() ? nullptr : model_.edges[0].data(),
-                     field.strainLimit.empty() ? 0 : 2 * model_.edges.size());
-    midpoint_.mirror(field.midpoint.empty() ? nullptr : field.midpoint[0].data(),
-                     3 * field.midpoint.size());
-    cellBegin_.mirror(field.cellBegin);
-    cellEnd_.mirror(field.cellEnd);
-    cellEdges_.mirror(field.cellEdges);
-    edgeCell_.mirror(field.edgeCell);
-    cellNeighbors_.mirror(field.cellNeighbors);
-    cellHot_.resize(field.cells());
-    slotStress_.resize(6 * static_cast<size_t>(tets_));
-    for (Buffer<double>* b : {&localStress_, &compression_, &mean_, &stretch_}) b->resize(edges_);
-    breaks_.resize(edges_);
-    hot_.resize(edges_);
-    // What a criterion the scene does not use reads, set once rather than on every pass: no
-    // strain criterion, no strain ratio; no stress criterion, zero stress ratios.
-    double* stretch = stretch_.data();
-    double* ratio = mean_.data();
-    double* local = localStress_.data();
-    double* compression = compression_.data();
-    const bool strain = !field.strainLimit.empty(), stress = field.settings.threshold > 0.0;
-    ex_.forEach(edges_, [=] GALSCULPT_LAMBDA(int e) {
-      if (!strain) stretch[e] = -kInf;
-      if (!stress) ratio[e] = local[e] = compression[e] = 0.0;
-    });
   }
 
   // The debris rule (solver/fracture/debris.h): the vertices of pieces under
@@ -1861,8 +1636,6 @@ class FrameSolver {
     kR1,
     kPap,
     kCount,
-    kRatio,
-    kCritical,
     kInverted,
     kTrialInverted,
     kGuardSlope,
@@ -1933,13 +1706,7 @@ class FrameSolver {
   Buffer<double> contactSums_;                 // (4 nColliders) contactForces' sums
   std::vector<double> contactRead_;            // the same, read to the host
   Buffer<kernels::ColliderPose> poseBuffer_;
-  // Fracture (the model's field; scratch for the pass).
-  Mirror<int> edgeSlotStart_, edgeSlots_, cellBegin_, cellEnd_, cellEdges_, edgeCell_,
-      cellNeighbors_;
-  Mirror<double> threshold_, midpoint_, strainLimit_, restLength_;
-  Mirror<int> edgeEnds_;  // (2 nEdges) strain criterion only
-  Buffer<double> slotStress_, localStress_, compression_, mean_, stretch_;
-  Buffer<std::uint8_t> breaks_, hot_, cellHot_;
+  std::unique_ptr<FracturePass<Exec>> fracture_;  // with the model's fracture field
   // Host shadows: what the device holds, to upload only changes.
   std::vector<double> hostX_, hostV_, hostFp_, hostStrain_, hostAnchorTargets_;
   std::vector<std::uint8_t> hostDamaged_, hostFixed_, hostRemoved_;
