@@ -35,6 +35,7 @@
 #include "solver/fracture/cracked_sections.h"
 #include "solver/fracture/debris.h"
 #include "solver/frame/accelerated_start.h"
+#include "solver/frame/contact_term.h"
 #include "solver/frame/direct_solver.h"
 #include "solver/frame/element_pass.h"
 #include "solver/frame/fracture_pass.h"
@@ -60,7 +61,8 @@ class FrameSolver {
   template <typename T>
   using Buffer = typename Exec::template Buffer<T>;
 
-  FrameSolver(Exec& ex, const SimModel& model) : ex_(ex), model_(model), mg_(ex, model.pattern) {
+  FrameSolver(Exec& ex, const SimModel& model)
+      : ex_(ex), model_(model), mg_(ex, model.pattern), contact_(ex, model) {
     n_ = model.numVertices();
     tets_ = model.numTets();
     edges_ = model.numEdges();
@@ -111,11 +113,6 @@ class FrameSolver {
     elemHess_.resize(kPackedHessian * static_cast<size_t>(tets_));
     for (Buffer<double>* b : {&k_, &h_}) b->resize(9 * static_cast<size_t>(blocks_));
     scalars_.resize(kScalars);
-    // Each collider's force on the body (3) and a rigid pendulum's moment (1): a buffer of its
-    // own, sized by the model, so that the scalar slots have no collider limit.
-    contactSums_.resize(4 * model.colliders.size());
-    contactRead_.resize(4 * model.colliders.size());
-    contactPerVertex_.resize(n_);
     const auto box = boundingBox(model.mesh.vertices);
     modelSize_ = std::max(box.size().norm(), 1e-12);
     double massNorm = 0.0;
@@ -433,34 +430,8 @@ class FrameSolver {
 
   // Penalty contact at y: energy into a slot; gradient added (when given).
   void contact(const double* y, double* gradient, int energySlot) {
-    const int colliders = static_cast<int>(poses_.size());
-    double* perVertex = contactPerVertex_.data();
-    if (colliders == 0) {
-      double* sc = scalars_.data();
-      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { sc[energySlot] = 0.0; });
-      return;
-    }
-    const kernels::ColliderPose* poses = poseBuffer_.data();
-    const std::uint8_t* fixed = fixed_.data();
-    const double* mass = mass_.data();
-    const double h = h_step_;
-    ex_.forEach(n_, [=] GALSCULPT_LAMBDA(int v) {
-      double energy = 0.0;
-      if (!fixed[v]) {
-        for (int c = 0; c < colliders; ++c) {
-          double normal[3];
-          const double d = kernels::colliderDistance(poses[c], y + 3 * v, normal);
-          if (d >= 0.0) continue;
-          const double stiffness = poses[c].contactStiffness * mass[v] / (h * h);
-          energy += 0.5 * stiffness * d * d;
-          if (gradient)
-            for (int k = 0; k < 3; ++k) gradient[3 * v + k] += stiffness * d * normal[k];
-        }
-      }
-      perVertex[v] = energy;
-    });
-    ex_.sum(
-        n_, [=] GALSCULPT_LAMBDA(int v) { return perVertex[v]; }, scalars_.data() + energySlot);
+    contact_.energy(y, fixed_.data(), mass_.data(), h_step_, gradient,
+                    scalars_.data() + energySlot);
   }
 
   // The terms of the incremental potential that belong to one coordinate: inertia, gravity and
@@ -497,12 +468,12 @@ class FrameSolver {
 
   // Each vertex's share of the incremental potential at y: a quarter of each element energy
   // around it, its own inertia, gravity, damping and contact terms (they sum to the potential).
-  // `energy`: the elements' energies at y; contactPerVertex_ must be y's.
+  // `energy`: the elements' energies at y; the contact term's must be y's.
   void vertexPotential(const double* y, const double* energy, const double* dampedK, double* out) {
     const DofPotential dof = dofPotential();
     const int* vStart = vertexSlotStart_.data();
     const int* vSlots = vertexSlots_.data();
-    const double* contactEnergy = poses_.empty() ? nullptr : contactPerVertex_.data();
+    const double* contactEnergy = contact_.perVertex();
     ex_.forEach(n_, [=] GALSCULPT_LAMBDA(int v) {
       double sum = contactEnergy ? contactEnergy[v] : 0.0;
       for (int i = vStart[v]; i < vStart[v + 1]; ++i) sum += 0.25 * energy[vSlots[i] / 4];
@@ -543,9 +514,8 @@ class FrameSolver {
     const int* columns = columns_.data();
     const std::uint8_t* fixed = fixed_.data();
     const double* mass = mass_.data();
-    const kernels::ColliderPose* poses = poseBuffer_.data();
-    const int colliders = static_cast<int>(poses_.size());
     const double h = h_step_;
+    const auto contactStiffness = contact_.stiffness(mass, h);
     const double betaOverH = model_.material.dampingStiffness / h;
     const double alpha = model_.material.dampingMass;
     ex_.forEach(blocks_, [=] GALSCULPT_LAMBDA(int b) {
@@ -553,16 +523,7 @@ class FrameSolver {
       double out[9];
       for (int i = 0; i < 9; ++i) out[i] = kb[9 * b + i] + betaOverH * frozen[9 * b + i];
       if (r == c) {
-        if (!fixed[r]) {
-          for (int ci = 0; ci < colliders; ++ci) {
-            double normal[3];
-            const double d = kernels::colliderDistance(poses[ci], y + 3 * r, normal);
-            if (d >= 0.0) continue;
-            const double stiffness = poses[ci].contactStiffness * mass[r] / (h * h);
-            for (int j = 0; j < 3; ++j)
-              for (int i = 0; i < 3; ++i) out[i + 3 * j] += stiffness * normal[i] * normal[j];
-          }
-        }
+        if (!fixed[r]) contactStiffness.add(r, y, out);
         const double m = mass[r] * (1.0 / (h * h) + alpha / h);
         for (int i = 0; i < 3; ++i) out[4 * i] += m;
       }
@@ -774,8 +735,8 @@ class FrameSolver {
         xhat_.data(),
         vn_.data(),
         mass_.data(),
-        poseBuffer_.data(),
-        static_cast<int>(poses_.size()),
+        contact_.poses(),
+        contact_.colliders(),
         h,
         model_.material.dampingMass,
         {model_.gravity.x(), model_.gravity.y(), model_.gravity.z()}};
@@ -1224,16 +1185,7 @@ class FrameSolver {
         ex_, pieces(), g_.data(), tmp_.data(), fixed_.data(), mass_.data(), model_.gravity.norm());
     result.pieceResidual = pieceResidual < 0.0 ? result.residual : pieceResidual;
     result.invertedElements = static_cast<int>(read[kTrialInverted]);  // the accepted trial's
-    const size_t colliders = poses_.size();
-    result.contactForces.assign(colliders, Vec3::Zero());
-    contactMoments_.assign(colliders, 0.0);
-    if (colliders > 0) ex_.read(contactSums_.data(), contactRead_.data(), 4 * colliders);
-    for (size_t c = 0; c < colliders; ++c) {
-      const double* f = &contactRead_[3 * c];
-      result.contactForces[c] = Vec3(f[0], f[1], f[2]);
-      if (model_.colliders[c].motion.rigidPendulum())
-        contactMoments_[c] = contactRead_[3 * colliders + c];
-    }
+    contact_.readForces(result.contactForces, contactMoments_);
     // Otherwise the caller restores x and v.
     if (read[kBad] > 0.0 || !std::isfinite(result.energy)) result.ok = false;
   }
@@ -1248,7 +1200,7 @@ class FrameSolver {
         3 * n_,
         [=] GALSCULPT_LAMBDA(int i) { return x[i] == x[i] && fabs(x[i]) <= 1.7e308 ? 0.0 : 1.0; },
         sc + kBad);
-    contactForces(x);
+    contact_.sumForces(x, fixed_.data(), mass_.data(), h_step_);
     ex_.forEach(3 * n_, [=] GALSCULPT_LAMBDA(int i) { v[i] = (x[i] - xn[i]) / h; });
   }
 
@@ -1273,7 +1225,7 @@ class FrameSolver {
         sc + kBad);
     ex_.maximum(
         3 * n_, [=] GALSCULPT_LAMBDA(int i) { return fabs(delta[i]); }, sc + kDeltaMax);
-    // What the vertex guard compares its trials with (contactPerVertex_ holds x's here).
+    // What the vertex guard compares its trials with (the contact term holds x's energies here).
     if (settings_->vertexGuard)
       vertexPotential(x, elemEnergy_.data(), dampedK_.data(), potentialAtX_.data());
   }
@@ -1314,10 +1266,10 @@ class FrameSolver {
     mix(static_cast<std::uint64_t>(s.newtonIterations));
     mix(mgRevision_);
     mix(anchorCount_);
-    mix(poses_.size());
+    mix(static_cast<std::uint64_t>(contact_.colliders()));
     mix(reinterpret_cast<std::uintptr_t>(anchorVertices_.data()));
     mix(reinterpret_cast<std::uintptr_t>(anchorTargets_.data()));
-    mix(reinterpret_cast<std::uintptr_t>(poseBuffer_.data()));
+    mix(reinterpret_cast<std::uintptr_t>(contact_.poses()));
     mix(reinterpret_cast<std::uintptr_t>(fp_.data()));
     mix(plastic_);
     mix(static_cast<std::uint64_t>(m.preSweeps) << 32 | static_cast<std::uint32_t>(m.postSweeps));
@@ -1397,50 +1349,6 @@ class FrameSolver {
   double pcgTarget() const {
     return std::min(0.5 * settings_->residualTolerance * std::max(weight(), forceScale_),
                     pieceTargetCap_);
-  }
-
-  // Force of each collider c on the body at y, into contactSums_[3 c + k]; for a rigid
-  // pendulum also the moment of the body's reaction about its axis (contactSums_[3 N + c] of N
-  // colliders), what turns it.
-  void contactForces(const double* y) {
-    const kernels::ColliderPose* poses = poseBuffer_.data();
-    const std::uint8_t* fixed = fixed_.data();
-    const double* mass = mass_.data();
-    const double h = h_step_;
-    double* sums = contactSums_.data();
-    const int colliders = static_cast<int>(poses_.size());
-    for (size_t c = 0; c < poses_.size(); ++c) {
-      const int ci = static_cast<int>(c);
-      for (int k = 0; k < 3; ++k) {
-        ex_.sum(
-            n_,
-            [=] GALSCULPT_LAMBDA(int v) {
-              double f[3];
-              if (fixed[v] || !kernels::contactForce(poses[ci], y + 3 * v, mass[v], h, f))
-                return 0.0;
-              return f[k];
-            },
-            sums + 3 * ci + k);
-      }
-      const ColliderMotion& motion = model_.colliders[c].motion;
-      if (!motion.rigidPendulum()) continue;
-      const Vec3 a = motion.axis.normalized();
-      const double p0 = motion.pivot.x(), p1 = motion.pivot.y(), p2 = motion.pivot.z();
-      const double a0 = a.x(), a1 = a.y(), a2 = a.z();
-      ex_.sum(
-          n_,
-          [=] GALSCULPT_LAMBDA(int v) {
-            double f[3];
-            if (fixed[v] || !kernels::contactForce(poses[ci], y + 3 * v, mass[v], h, f)) return 0.0;
-            // The body pushes back with -f at the vertex: ((x - p) x -f) . a
-            const double r0 = y[3 * v] - p0, r1 = y[3 * v + 1] - p1, r2 = y[3 * v + 2] - p2;
-            const double m0 = r1 * f[2] - r2 * f[1];
-            const double m1 = r2 * f[0] - r0 * f[2];
-            const double m2 = r0 * f[1] - r1 * f[0];
-            return -(m0 * a0 + m1 * a1 + m2 * a2);
-          },
-          sums + 3 * colliders + ci);
-    }
   }
 
   // ---- plasticity and fracture --------------------------------------------------------------
@@ -1585,14 +1493,7 @@ class FrameSolver {
       hostAnchorTargets_ = targets;
       anchorTargets_.upload(targets);
     }
-    std::vector<kernels::ColliderPose> poses;
-    for (size_t c = 0; c < model_.colliders.size(); ++c) {
-      ColliderState at = colliderStates_[c];
-      at.angle += h * at.angularVelocity;
-      poses.push_back(colliderPose(model_.colliders[c], time, &at));
-    }
-    poses_ = poses;
-    if (!poses.empty()) poseBuffer_.upload(poses);
+    contact_.place(colliderStates_, time, h);
   }
 
   double* rhs() { return pcgB_.data(); }
@@ -1651,6 +1552,7 @@ class FrameSolver {
   Exec& ex_;
   const SimModel& model_;
   MultigridCycle<Exec> mg_;
+  ContactTerm<Exec> contact_;
   std::unique_ptr<Multigrid> multigrid_;
   std::unique_ptr<DirectSolver> direct_;  // the reference's (host memory only)
   std::vector<int> gridHandles_;
@@ -1677,8 +1579,7 @@ class FrameSolver {
   Buffer<int> transposedBlock_;  // (blocks) the index of block (c, r) for block (r, c)
   Buffer<double> x_, v_, xn_, vn_, xhat_, grad_, trialGrad_, acceptedGrad_, g_, delta_, trial_,
       dampedK_, tmp_, savedX_, savedV_;
-  Buffer<double> elemEnergy_, elemInverted_, elemGrad_, elemHess_, k_, frozen_, h_, scalars_,
-      contactPerVertex_;
+  Buffer<double> elemEnergy_, elemInverted_, elemGrad_, elemHess_, k_, frozen_, h_, scalars_;
   // The trial's element energies and inversions (elemEnergy_, elemInverted_: at x), and the
   // vertex guard's per-vertex step lengths and potentials at x and at the trial.
   Buffer<double> trialEnergy_, trialInverted_, guardLength_, potentialAtX_, potentialAtTrial_;
@@ -1700,12 +1601,8 @@ class FrameSolver {
   Buffer<int> anchorVertices_;
   Buffer<double> anchorTargets_;
   size_t anchorCount_ = 0;
-  std::vector<kernels::ColliderPose> poses_;
-  std::vector<ColliderState> colliderStates_;  // the stepped state's, advanced per sub-step
-  std::vector<double> contactMoments_;         // (nColliders) the last sub-step's, N m
-  Buffer<double> contactSums_;                 // (4 nColliders) contactForces' sums
-  std::vector<double> contactRead_;            // the same, read to the host
-  Buffer<kernels::ColliderPose> poseBuffer_;
+  std::vector<ColliderState> colliderStates_;     // the stepped state's, advanced per sub-step
+  std::vector<double> contactMoments_;            // (nColliders) the last sub-step's, N m
   std::unique_ptr<FracturePass<Exec>> fracture_;  // with the model's fracture field
   // Host shadows: what the device holds, to upload only changes.
   std::vector<double> hostX_, hostV_, hostFp_, hostStrain_, hostAnchorTargets_;
