@@ -41,6 +41,7 @@
 #include "solver/frame/fracture_pass.h"
 #include "solver/frame/frame_loop.h"
 #include "solver/frame/piece_residual.h"
+#include "solver/frame/plastic_state.h"
 #include "solver/frame/step.h"
 #include "solver/frame/step_backend.h"
 #include "solver/frame/timing.h"
@@ -62,7 +63,7 @@ class FrameSolver {
   using Buffer = typename Exec::template Buffer<T>;
 
   FrameSolver(Exec& ex, const SimModel& model)
-      : ex_(ex), model_(model), mg_(ex, model.pattern), contact_(ex, model) {
+      : ex_(ex), model_(model), mg_(ex, model.pattern), contact_(ex, model), plastic_(ex, model) {
     n_ = model.numVertices();
     tets_ = model.numTets();
     edges_ = model.numEdges();
@@ -146,24 +147,7 @@ class FrameSolver {
     for (int v : removedVertices_)
       removedTargets_.insert(removedTargets_.end(),
                              {state.x[v].x(), state.x[v].y(), state.x[v].z()});
-    plastic_ = !state.plasticInverse.empty();
-    if (plastic_) {
-      if (plasticShape_.size() != static_cast<size_t>(tets_)) {
-        plasticShape_.resize(tets_);
-        plasticShaped_.resize(tets_);
-        hostFp_.clear();  // the shapes are computed below
-      }
-      if (uploadIfChanged(state.plasticInverse, hostFp_, fp_)) {
-        refreshPlasticShapes(nullptr);
-        gradientAtX_ = false;
-      }
-      uploadIfChanged(state.plasticStrain, hostStrain_, strain_);
-      if (savedFp_.size() != fp_.size()) {
-        savedFp_.resize(fp_.size());
-        savedStrain_.resize(strain_.size());
-      }
-      plasticFlowed_ = false;
-    }
+    if (plastic_.syncIn(state, rest_.data())) gradientAtX_ = false;
     time_ = state.time;
     colliderStates_ = state.colliders;
     for (size_t c = colliderStates_.size(); c < model_.colliders.size(); ++c)
@@ -180,16 +164,13 @@ class FrameSolver {
   // Writes positions, velocities, damage and plastic state back (positions through the
   // executor's pinned staging buffer).
   void syncOut(SimState& state) {
-    download(x_, hostX_, state.x);
-    download(v_, hostV_, state.v);
+    downloadThroughShadow(ex_, x_, hostX_, state.x);
+    downloadThroughShadow(ex_, v_, hostV_, state.v);
     if (damageRevision_ != state.damageRevision) {
       state.damaged = hostDamaged_;
       state.damageRevision = damageRevision_;
     }
-    if (plasticFlowed_) {  // otherwise the host's plastic state is still the device's
-      download(fp_, hostFp_, state.plasticInverse);
-      download(strain_, hostStrain_, state.plasticStrain);
-    }
+    plastic_.syncOut(state);
     state.time = time_;
     state.colliders = colliderStates_;
   }
@@ -215,7 +196,7 @@ class FrameSolver {
     Saved save() { return s.save(); }
     void restore(const Saved& saved, bool keepDamage) { s.restore(saved, keepDamage); }
     SubstepOutcome substep(double h) { return s.substep(h); }
-    bool plastic() const { return s.plastic_; }
+    bool plastic() const { return s.plastic_.active(); }
     int plasticUpdate() { return s.plasticUpdate(); }
     bool fractures() const { return s.model_.fracture.enabled; }
     FractureReport fracturePass() { return s.fracturePass(); }
@@ -226,10 +207,7 @@ class FrameSolver {
   Saved save() {
     ex_.copy(savedX_.data(), x_.data(), 3 * n_);
     ex_.copy(savedV_.data(), v_.data(), 3 * n_);
-    if (plastic_) {
-      ex_.copy(savedFp_.data(), fp_.data(), 9 * static_cast<size_t>(tets_));
-      ex_.copy(savedStrain_.data(), strain_.data(), tets_);
-    }
+    plastic_.save();
     return Saved{time_, colliderStates_};
   }
   // Damage never needs restoring: a failed sub-step is rolled back before its fracture pass,
@@ -238,11 +216,7 @@ class FrameSolver {
     gradientAtX_ = false;
     ex_.copy(x_.data(), savedX_.data(), 3 * n_);
     ex_.copy(v_.data(), savedV_.data(), 3 * n_);
-    if (plastic_) {
-      ex_.copy(fp_.data(), savedFp_.data(), 9 * static_cast<size_t>(tets_));
-      refreshPlasticShapes(nullptr);
-      ex_.copy(strain_.data(), savedStrain_.data(), tets_);
-    }
+    plastic_.restore(rest_.data());
     time_ = saved.time;
     colliderStates_ = saved.colliders;
   }
@@ -378,33 +352,12 @@ class FrameSolver {
     });
   }
 
-  // The plastic rest shapes of the elements (all, or those with flowed[t] > 0) from fp_.
-  void refreshPlasticShapes(const double* flowed) {
-    const kernels::RestData* rest = rest_.data();
-    const double* fp = fp_.data();
-    kernels::RestData* shape = plasticShape_.data();
-    std::uint8_t* shaped = plasticShaped_.data();
-    ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
-      if (flowed && !(flowed[t] > 0.0)) return;
-      shaped[t] = 0;
-      if (ElementInputs::isIdentity(fp + 9 * t)) return;
-      kernels::M3 f;
-      for (int i = 0; i < 9; ++i) f.a[i] = fp[9 * t + i];
-      shaped[t] = kernels::plasticRest(rest[t], f, shape[t]) ? 1 : 0;
-    });
-  }
-
   static constexpr int kPackedHessian = ElementPass::kPackedHessian;
   GALSCULPT_HD static int packedBlock(int a, int c) { return ElementPass::packedBlock(a, c); }
 
   ElementInputs elementInputs() const {
-    return {tetVertices_.data(),
-            tetEdges_.data(),
-            damaged_.data(),
-            rest_.data(),
-            plastic_ ? plasticShape_.data() : nullptr,
-            plastic_ ? plasticShaped_.data() : nullptr,
-            removed_.data()};
+    return {tetVertices_.data(), tetEdges_.data(),  damaged_.data(), rest_.data(),
+            plastic_.shapes(),   plastic_.shaped(), removed_.data()};
   }
 
   // out = beta K0 (y - x_n).
@@ -1270,8 +1223,8 @@ class FrameSolver {
     mix(reinterpret_cast<std::uintptr_t>(anchorVertices_.data()));
     mix(reinterpret_cast<std::uintptr_t>(anchorTargets_.data()));
     mix(reinterpret_cast<std::uintptr_t>(contact_.poses()));
-    mix(reinterpret_cast<std::uintptr_t>(fp_.data()));
-    mix(plastic_);
+    mix(reinterpret_cast<std::uintptr_t>(plastic_.inverse()));
+    mix(plastic_.active());
     mix(static_cast<std::uint64_t>(m.preSweeps) << 32 | static_cast<std::uint32_t>(m.postSweeps));
     mix(static_cast<std::uint64_t>(m.coarseIterations) << 32 |
         static_cast<std::uint32_t>(m.cycles));
@@ -1355,42 +1308,8 @@ class FrameSolver {
 
   int plasticUpdate() {
     gradientAtX_ = false;  // rest shapes flow
-    const int* tv = tetVertices_.data();
-    const int* te = tetEdges_.data();
-    const std::uint8_t* damaged = damaged_.data();
-    const kernels::RestData* rest = rest_.data();
-    const double* x = x_.data();
-    double* fp = fp_.data();
-    double* strain = strain_.data();
-    double* flowed = elemEnergy_.data();  // scratch: 1 where the element flowed
-    const Lame lame = model_.material.lame;
-    const kernels::PlasticParamsData params{model_.material.plastic.yieldStress,
-                                            model_.material.plastic.hardening};
-    ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
-      // As on the CPU (solver/frame/step.cpp plasticUpdate): damaged elements do not flow.
-      flowed[t] = 0.0;
-      for (int k = 0; k < 6; ++k)
-        if (damaged[te[6 * t + k]]) return;
-      double x12[12];
-      for (int a = 0; a < 4; ++a)
-        for (int k = 0; k < 3; ++k) x12[3 * a + k] = x[3 * tv[4 * t + a] + k];
-      const kernels::M3 f = kernels::deformationGradient(rest[t], x12);
-      kernels::M3 inv;
-      for (int i = 0; i < 9; ++i) inv.a[i] = fp[9 * t + i];
-      const bool flow = kernels::plasticReturn(lame, params, f, inv, strain[t]);
-      if (flow)
-        for (int i = 0; i < 9; ++i) fp[9 * t + i] = inv.a[i];
-      flowed[t] = flow ? 1.0 : 0.0;
-    });
-    refreshPlasticShapes(flowed);
-    double* sc = scalars_.data();
-    ex_.sum(
-        tets_, [=] GALSCULPT_LAMBDA(int t) { return flowed[t]; }, sc + kCount);
-    double read[kScalars];
-    ex_.read(sc, read, kScalars);
-    const int count = static_cast<int>(read[kCount]);
-    plasticFlowed_ = plasticFlowed_ || count > 0;
-    return count;
+    return plastic_.returnMap(x_.data(), damaged_.data(), tetVertices_.data(), tetEdges_.data(),
+                              rest_.data(), elemEnergy_.data());
   }
 
   // Each edge's stress as the fracture pass sees it at `state` (element maximum, then the
@@ -1501,27 +1420,6 @@ class FrameSolver {
 
   // Host arrays of plain doubles (Vec3, Matrix3d, double) copied to and from device buffers;
   // `shadow` is what the device holds, so an upload happens only when the host changed it.
-  template <typename V>
-  bool uploadIfChanged(const std::vector<V>& src, std::vector<double>& shadow,
-                       Buffer<double>& dst) {
-    static_assert(sizeof(V) % sizeof(double) == 0, "an array of doubles");
-    const size_t n = src.size() * (sizeof(V) / sizeof(double));
-    if (shadow.size() == n &&
-        std::memcmp(shadow.data(), static_cast<const void*>(src.data()), n * sizeof(double)) == 0)
-      return false;
-    shadow.resize(n);
-    std::memcpy(shadow.data(), static_cast<const void*>(src.data()), n * sizeof(double));
-    dst.upload(shadow);
-    return true;
-  }
-  template <typename V>
-  void download(const Buffer<double>& src, std::vector<double>& shadow, std::vector<V>& dst) {
-    static_assert(sizeof(V) % sizeof(double) == 0, "an array of doubles");
-    shadow.resize(dst.size() * (sizeof(V) / sizeof(double)));
-    ex_.download(src.data(), shadow.data(), shadow.size());
-    std::memcpy(static_cast<void*>(dst.data()), shadow.data(), shadow.size() * sizeof(double));
-  }
-
   enum Slot {
     kElastic,
     kContact,
@@ -1553,6 +1451,7 @@ class FrameSolver {
   const SimModel& model_;
   MultigridCycle<Exec> mg_;
   ContactTerm<Exec> contact_;
+  PlasticState<Exec> plastic_;
   std::unique_ptr<Multigrid> multigrid_;
   std::unique_ptr<DirectSolver> direct_;  // the reference's (host memory only)
   std::vector<int> gridHandles_;
@@ -1565,10 +1464,9 @@ class FrameSolver {
   double switchedCracks_ = 0.0;  // elements whose open cracks the last accepted step changed
   Clock::time_point frameStart_ = Clock::now();
   std::uint64_t mgRevision_ = 0;  // bumped whenever the hierarchy is uploaded again
-  bool plastic_ = false, frozenIsK_ = true;
+  bool frozenIsK_ = true;
   bool predicted_ = false;      // this sub-step's Newton started from x_n + h v_n, not yet checked
   bool systemSkipped_ = false;  // the last iteration's null step built no system (takeNullStep)
-  bool plasticFlowed_ = false;  // an element flowed this frame: the plastic state goes back
   template <typename T>
   using Mirror = typename Exec::template Mirror<T>;
   Mirror<int> tetVertices_, tetEdges_, rowStart_, columns_, diagonal_;
@@ -1594,9 +1492,6 @@ class FrameSolver {
   // step is taken only while few differ (substep).
   Buffer<std::uint8_t> stiffnessOpened_, trialOpened_;
   Buffer<double> pcgB_, pcgAp_;  // the linear system's right-hand side and A delta
-  Buffer<double> fp_, strain_, savedFp_, savedStrain_;
-  Buffer<kernels::RestData> plasticShape_;  // refreshPlasticShapes
-  Buffer<std::uint8_t> plasticShaped_;
   Buffer<std::uint8_t> fixed_, damaged_;
   Buffer<int> anchorVertices_;
   Buffer<double> anchorTargets_;
@@ -1605,7 +1500,7 @@ class FrameSolver {
   std::vector<double> contactMoments_;            // (nColliders) the last sub-step's, N m
   std::unique_ptr<FracturePass<Exec>> fracture_;  // with the model's fracture field
   // Host shadows: what the device holds, to upload only changes.
-  std::vector<double> hostX_, hostV_, hostFp_, hostStrain_, hostAnchorTargets_;
+  std::vector<double> hostX_, hostV_, hostAnchorTargets_;
   std::vector<std::uint8_t> hostDamaged_, hostFixed_, hostRemoved_;
   AcceleratedStart<Exec> accelerated_;  // the pieces' starts (startPiecesAccelerated)
   PieceResidual<Exec> pieceResidual_;   // the residual piece by piece (piecesWithinTolerance)
