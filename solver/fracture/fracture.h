@@ -1,6 +1,6 @@
 // The graph-based fracture pass (paper section 3.1, Algorithm 1), on the finest level: its
-// parameters and per-mesh data here; the pass itself is part of the frame
-// (solver/frame/frame_solver.h, fracturePass), the same on every executor.
+// parameters and per-mesh data here; the pass itself is a part of the frame
+// (solver/frame/fracture_pass.h), the same on every executor.
 //
 // After each sub-step every element's stress is projected on its six edges (edgeNormalStress:
 // n^T sigma n, Cauchy stress, current edge direction). An edge's stress is the largest over the

@@ -12,6 +12,7 @@
 
 #include "solver/fem/collider_kernels.h"
 #include "solver/fem/colliders.h"
+#include "solver/fem/dense_kernels.h"
 #include "solver/model/sim_model.h"
 
 namespace galsculpt {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "solver/fem/dense_kernels.h"
 #include "solver/fracture/fracture.h"
 #include "solver/frame/element_pass.h"
 #include "solver/model/sim_model.h"

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "solver/fem/dense_kernels.h"
 #include "solver/fem/element_kernels.h"
 #include "solver/frame/element_pass.h"
 #include "solver/frame/host_shadow.h"

@@ -22,7 +22,8 @@ TEST(Parallel, EveryIndexRunsExactlyOnce) {
     for (long cost : {1L, 50L, 100000L}) {
       for (int n : {0, 1, 7, 4097, 100000}) {
         std::vector<std::atomic<int>> hits(static_cast<size_t>(n));
-        parallelFor(n, [&](int i) { hits[static_cast<size_t>(i)].fetch_add(1); }, cost);
+        parallelFor(
+            n, [&](int i) { hits[static_cast<size_t>(i)].fetch_add(1); }, cost);
         int wrong = 0;
         for (const auto& h : hits) wrong += h.load() != 1;
         EXPECT_EQ(wrong, 0) << threads << " threads, n " << n << ", cost " << cost;
