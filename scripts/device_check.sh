@@ -6,7 +6,8 @@
 #   scripts/device_check.sh PACK SECONDS STEP...
 # STEP: tests[:FILTER] (gpu_tests), tests0[:FILTER] (without CUDA graphs), sanitize:TOOL:FILTER
 # (under compute-sanitizer), bench:SCENE[:FRAMES[:EXTRA]] (bench --backend cuda), nographs:SCENE
-# (the same without CUDA graphs), profile:SCENE (the same, each launch timed: gpu/launch_profile.h). Each step gets what is left of SECONDS; every log and JSON goes
+# (the same without CUDA graphs), profile:SCENE (the same, each launch timed: gpu/launch_profile.h),
+# play:SCRIPT (a shipped playback script with --backend cuda). Each step gets what is left of SECONDS; every log and JSON goes
 # to $OUT/results.tar.gz (rewritten after each step) and a summary ends the output.
 set -u
 pack=$1
@@ -69,6 +70,24 @@ for step in "$@"; do
         ${GALSCULPT_REFERENCE_DIR:+--reference-dir "$GALSCULPT_REFERENCE_DIR"} $extra >"$log" 2>&1
       rc=$?
       cat "$log" >>"$summary"
+      ;;
+    play)
+      # play:SCRIPT (assets/scripts/SCRIPT.json with --backend cuda): frames, median and p95 ms,
+      # unconverged frames from its metrics.
+      csv=$out/r/${step//:/-}.csv
+      timeout "$t" galsculpt play "$root/assets/scripts/$scene.json" --backend cuda \
+        --out /tmp/galsculpt-play --metrics "$csv" >"$log" 2>&1
+      rc=$?
+      tail -3 "$log" >>"$summary"
+      python3 - "$csv" >>"$summary" <<'PY'
+import csv, statistics, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+ms = sorted(float(r["ms_total"]) for r in rows)
+if ms:
+    print(f"{len(ms)} frames, median {statistics.median(ms):.2f} ms, "
+          f"p95 {ms[int(0.95 * (len(ms) - 1))]:.2f} ms, "
+          f"unconverged {sum(r['converged'] != '1' for r in rows)}")
+PY
       ;;
     *) echo "unknown step $step" >>"$summary"; rc=2 ;;
   esac
