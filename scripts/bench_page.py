@@ -7,7 +7,8 @@
   scripts/bench_page.py render                         renders every docs/bench/*.json again
 
 Each results file fills the part of docs/benchmarks.md between the lines
-`<!-- bench_page NAME begin -->` and `<!-- bench_page NAME end -->`; the rest of the page is
+`<!-- bench_page NAME begin -->` and `<!-- bench_page NAME end -->`, and the index of
+docs/notes/ fills `<!-- bench_page notes begin -->` ... `end -->`; the rest of the page is
 written by hand. Options: --galsculpt PATH (default build/app/galsculpt); with `run`, everything
 after NAME goes to `galsculpt bench` (--reference-dir keeps the references between runs).
 """
@@ -99,8 +100,22 @@ def table(doc):
     return "\n".join(lines)
 
 
+def notes_index():
+    """The notes, newest first, each by its title (its first line)."""
+    folder = os.path.join(ROOT, "docs", "notes")
+    lines = []
+    for file in sorted((f for f in os.listdir(folder) if f.endswith(".md")), reverse=True):
+        title = open(os.path.join(folder, file)).readline().lstrip("# ").strip()
+        lines.append(f"- [{title}](notes/{file})")
+    return "\n".join(lines)
+
+
 def render():
     page = open(PAGE).read()
+    begin, end = "<!-- bench_page notes begin -->", "<!-- bench_page notes end -->"
+    if begin in page:
+        page = re.sub(re.escape(begin) + ".*?" + re.escape(end),
+                      lambda _: f"{begin}\n{notes_index()}\n{end}", page, flags=re.S)
     for file in sorted(os.listdir(BENCH)):
         if not file.endswith(".json"):
             continue

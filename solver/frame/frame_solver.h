@@ -1418,8 +1418,7 @@ class FrameSolver {
   double* rhs() { return pcgB_.data(); }
   const double* frozenBlocks() const { return frozenIsK_ ? k_.data() : frozen_.data(); }
 
-  // Host arrays of plain doubles (Vec3, Matrix3d, double) copied to and from device buffers;
-  // `shadow` is what the device holds, so an upload happens only when the host changed it.
+  // The scalars kernels hand back to the host, slots of one executor array (read together).
   enum Slot {
     kElastic,
     kContact,
