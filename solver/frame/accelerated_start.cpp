@@ -6,9 +6,14 @@ namespace galsculpt {
 
 PieceLayout pieceLayout(const SimModel& model, const std::vector<std::uint8_t>& damaged,
                         std::uint64_t revision) {
-  const int n = model.numVertices();
   const std::vector<std::uint8_t> undamaged(damaged.empty() ? model.numEdges() : 0, 0);
-  const PieceCensus census = censusPieces(model, damaged.empty() ? undamaged : damaged);
+  return pieceLayout(model, censusPieces(model, damaged.empty() ? undamaged : damaged), damaged,
+                     revision);
+}
+
+PieceLayout pieceLayout(const SimModel& model, const PieceCensus& census,
+                        const std::vector<std::uint8_t>& damaged, std::uint64_t revision) {
+  const int n = model.numVertices();
   const std::vector<int>& pieceOf = census.pieceOfVertex;
   PieceLayout out;
   out.pieceStart.assign(census.pieces + 1, 0);

@@ -51,6 +51,7 @@
 
 #include "solver/fem/collider_kernels.h"
 #include "solver/fem/dense_kernels.h"
+#include "solver/fracture/debris.h"
 #include "solver/model/sim_model.h"
 
 namespace galsculpt {
@@ -76,6 +77,9 @@ struct PieceLayout {
 
 PieceLayout pieceLayout(const SimModel& model, const std::vector<std::uint8_t>& damaged,
                         std::uint64_t revision = 0);
+// The same from the damage's census (censusPieces), where the caller has it already.
+PieceLayout pieceLayout(const SimModel& model, const PieceCensus& census,
+                        const std::vector<std::uint8_t>& damaged, std::uint64_t revision);
 
 // A piece whose neighbours push on it with more than this many times its weight (at 1 g at
 // least) keeps the straight-line start: a hard contact.

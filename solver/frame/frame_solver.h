@@ -702,11 +702,18 @@ class FrameSolver {
                        copy ? elemGrad_.data() : nullptr, x_.data());
   }
 
-  // The pieces of the current damage (host), found once per damage change for both the pieces'
-  // start and the residual piece by piece.
+  // The pieces of the current damage (host), counted once per damage change for all that reads
+  // them: the debris rule, the pieces' start and the residual piece by piece.
+  const PieceCensus& census() {
+    if (censusFor_ != hostDamageChanges_) {
+      census_ = censusPieces(model_, hostDamaged_);
+      censusFor_ = hostDamageChanges_;
+    }
+    return census_;
+  }
   const PieceLayout& pieces() {
     if (piecesFor_ != hostDamageChanges_) {
-      pieces_ = pieceLayout(model_, hostDamaged_, pieces_.revision + 1);
+      pieces_ = pieceLayout(model_, census(), hostDamaged_, pieces_.revision + 1);
       piecesFor_ = hostDamageChanges_;
     }
     return pieces_;
@@ -1363,8 +1370,7 @@ class FrameSolver {
   // model_.debrisRemoval of the body's rest volume are held where they are, out of the solve,
   // and the elements around them stop pushing back on the rest of the body.
   void updateRemovedDebris() {
-    std::vector<std::uint8_t> removed =
-        debrisVertices(censusPieces(model_, hostDamaged_), model_.debrisRemoval);
+    std::vector<std::uint8_t> removed = debrisVertices(census(), model_.debrisRemoval);
     if (removed.empty()) removed.assign(n_, 0);
     if (removed == hostRemoved_) return;
     hostRemoved_ = std::move(removed);
@@ -1509,6 +1515,8 @@ class FrameSolver {
   // structures derived from the damage are keyed on. (damageRevision_ cannot be: a backend may be
   // handed several states under one revision, and syncIn compares their damage by content.)
   std::uint64_t hostDamageChanges_ = 0;
+  PieceCensus census_;  // census(): for the damage change censusFor_
+  std::uint64_t censusFor_ = ~std::uint64_t{0};
   PieceLayout pieces_;  // pieces(): for the damage change piecesFor_
   std::uint64_t piecesFor_ = ~std::uint64_t{0};
   // Whether elemGrad_ holds every element's gradient at x_ under the current damage, rest shapes
