@@ -129,6 +129,12 @@ inline StepSettings tightlyConverged(StepSettings s) {
   return s;
 }
 
+// The hanging sphere (6k tets), uncut.
+inline std::unique_ptr<Simulation> hangingSphere() {
+  const SceneDescription scene = sceneNamed("hanging_sphere", 6000);
+  return std::make_unique<Simulation>(scene, loadSceneMesh(scene));
+}
+
 // The hanging sphere (6k tets) cut twice: two pieces fall free of the anchored cap (the pieces'
 // own starts, coarse solves and residuals).
 inline std::unique_ptr<Simulation> cutSphere() {

@@ -21,9 +21,7 @@ void expectTheGpuSolvesAsTheCpuDoes(const Simulation& sim, int frames) {
 }
 
 TEST(CudaBackend, HangingSphereSolvesAsOnTheCpuFor100Frames) {
-  const SceneDescription scene = sceneNamed("hanging_sphere", 6000);
-  const Simulation sim(scene, loadSceneMesh(scene));
-  expectTheGpuSolvesAsTheCpuDoes(sim, 100);
+  expectTheGpuSolvesAsTheCpuDoes(*hangingSphere(), 100);
 }
 
 TEST(CudaBackend, CutSphereSolvesAsOnTheCpuFor100Frames) {

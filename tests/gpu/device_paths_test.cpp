@@ -15,9 +15,7 @@ void expectDevicePathsSolveAsTheCpuDoes(const Simulation& sim, int frames) {
 }
 
 TEST(DevicePaths, HangingSphereSolvesAsOnTheCpu) {
-  const SceneDescription scene = sceneNamed("hanging_sphere", 6000);
-  const Simulation sim(scene, loadSceneMesh(scene));
-  expectDevicePathsSolveAsTheCpuDoes(sim, 30);
+  expectDevicePathsSolveAsTheCpuDoes(*hangingSphere(), 30);
 }
 
 TEST(DevicePaths, CutSphereSolvesAsOnTheCpu) {
