@@ -415,12 +415,18 @@ std::string row(const nlohmann::json& r) {
 // The scenes asked for: one by name, the quick pair, the sphere for --cracks, or all five.
 std::vector<BenchScene> benchScenes(const CliArgs& a) {
   std::vector<BenchScene> scenes;
-  if (auto name = a.value("--scene")) {
-    for (const BenchScene& s : kScenes) {
-      if (*name == s.name) scenes.push_back(s);
+  if (auto list = a.value("--scene")) {
+    // NAME[,NAME...]: those scenes, in the order given.
+    std::stringstream names(*list);
+    for (std::string name; std::getline(names, name, ',');) {
+      const size_t before = scenes.size();
+      for (const BenchScene& s : kScenes) {
+        if (name == s.name) scenes.push_back(s);
+      }
+      if (scenes.size() == before)
+        throw UsageError("unknown scene '" + name + "' (sphere, charpy, human, armadillo, steak)");
     }
-    if (scenes.empty())
-      throw UsageError("unknown scene '" + *name + "' (sphere, charpy, human, armadillo, steak)");
+    if (scenes.empty()) throw UsageError("--scene names no scene");
   } else if (a.has("--quick") || a.has("--cracks")) {
     scenes = a.has("--cracks") ? std::vector<BenchScene>{kScenes[0]}
                                : std::vector<BenchScene>{kScenes[0], kScenes[1]};
@@ -580,7 +586,7 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
                   {"--quick", "--sweep", "--cracks"});
   a.expectPositional(
       0, 0,
-      "galsculpt bench [--scene NAME] [--quick] [--sweep] [--cracks] [--frames N] "
+      "galsculpt bench [--scene NAME[,NAME...]] [--quick] [--sweep] [--cracks] [--frames N] "
       "[--settle N[,N...]] [--json FILE] [--backend auto|cpu|cuda] [--debris keep|remove] "
       "[--preset converged|paper] [--threads N] [--reference-dir DIR]");
   applyThreadsOption(a);

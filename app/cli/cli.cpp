@@ -27,8 +27,8 @@ commands:
   play SCRIPT --out DIR [--export-every K] [--metrics FILE.csv] [--solver reference]
                          run a playback script (scene + timed knife/brush/anchor events)
                          headless; always writes DIR/final.obj
-  bench [--scene NAME] [--quick] [--sweep] [--cracks] [--frames N] [--settle N[,N...]]
-        [--json FILE]
+  bench [--scene NAME[,NAME...]] [--quick] [--sweep] [--cracks] [--frames N]
+        [--settle N[,N...]] [--json FILE] [--reference-dir DIR]
                          speed against error of the multigrid vs the reference solver
   mesh info FILE [--json]
                          counts, bounding box, volume, quality, watertightness, pieces

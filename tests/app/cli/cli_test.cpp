@@ -333,12 +333,16 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   const CliRun removing = run({"bench", "--cracks", "--frames", "2", "--debris", "remove", "--json",
                                (dir / "d.json").string()});
   const CliRun badDebris = run({"bench", "--cracks", "--debris", "merge"});
+  const CliRun badScene = run({"bench", "--scene", "sphere,bowl"});
   // A scene whose own preset is the paper's still gets the converged default beside it.
   test::writeText(dir / "scenes" / "charpy.json",
                   std::string(R"({"mesh": {"file": ")") + GALSCULPT_SOURCE_DIR +
                       R"(/assets/meshes/sphere_small.node"}, "solver": {"preset": "paper"}})");
   const CliRun paperScene =
       run({"bench", "--scene", "charpy", "--frames", "2", "--json", (dir / "p.json").string()});
+  // Several scenes, in the order named.
+  const CliRun two = run(
+      {"bench", "--scene", "charpy,sphere", "--frames", "1", "--json", (dir / "2.json").string()});
   // --settle: untimed frames first; one measured frame after three settling ones ends where four
   // measured frames do.
   const CliRun settled = run({"bench", "--scene", "sphere", "--frames", "1", "--settle", "3",
@@ -358,6 +362,11 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
               f["results"][0]["volume_change_pct"].get<double>(),
               1e-9 * std::fabs(f["results"][0]["volume_change_pct"].get<double>()))
       << "the reference ran the settling frames";
+  ASSERT_EQ(two.code, kExitOk) << two.err;
+  const auto both = nlohmann::json::parse(test::readText(dir / "2.json"))["results"];
+  ASSERT_EQ(both.size(), 6u);
+  EXPECT_EQ(both[0]["scene"], "charpy");
+  EXPECT_EQ(both[5]["scene"], "sphere");
   ASSERT_EQ(paperScene.code, kExitOk) << paperScene.err;
   const auto p = nlohmann::json::parse(test::readText(dir / "p.json"));
   ASSERT_EQ(p["results"].size(), 3u);
@@ -397,6 +406,8 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   EXPECT_EQ(d["results"][2]["debris_pieces"], c["results"][2]["debris_pieces"]);
   EXPECT_EQ(d["results"][2]["debris_volume_pct"], c["results"][2]["debris_volume_pct"]);
   EXPECT_EQ(c["results"][0]["debris_pieces"], 0);
+  EXPECT_EQ(badScene.code, kExitUsage);
+  EXPECT_NE(badScene.err.find("unknown scene 'bowl'"), std::string::npos) << badScene.err;
   EXPECT_EQ(badDebris.code, kExitUsage);
   EXPECT_NE(badDebris.err.find("--debris must be keep or remove"), std::string::npos)
       << badDebris.err;
