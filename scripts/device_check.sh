@@ -61,11 +61,11 @@ for step in "$@"; do
         "$log" | head -40 >>"$summary"
       ;;
     bench | nographs | profile)
-      env_graphs=(GALSCULPT_DEVICE_CHECK=1)
-      [ "$kind" = nographs ] && env_graphs=(GALSCULPT_CUDA_GRAPHS=0)
-      [ "$kind" = profile ] && env_graphs=(GALSCULPT_CUDA_PROFILE=1)
+      envs=()
+      [ "$kind" = nographs ] && envs=(GALSCULPT_CUDA_GRAPHS=0)
+      [ "$kind" = profile ] && envs=(GALSCULPT_CUDA_PROFILE=1)
       # shellcheck disable=SC2086
-      timeout "$t" env "${env_graphs[@]}" galsculpt bench --backend cuda --scene "$scene" \
+      timeout "$t" env ${envs[@]+"${envs[@]}"} galsculpt bench --backend cuda --scene "$scene" \
         --frames "${frames:-60}" --json "$out/r/${step//:/-}.json" \
         ${GALSCULPT_REFERENCE_DIR:+--reference-dir "$GALSCULPT_REFERENCE_DIR"} $extra >"$log" 2>&1
       rc=$?
