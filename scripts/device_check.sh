@@ -7,7 +7,8 @@
 # STEP: tests[:FILTER] (gpu_tests), tests0[:FILTER] (without CUDA graphs), sanitize:TOOL:FILTER
 # (under compute-sanitizer), bench:SCENE[:FRAMES[:EXTRA]] (bench --backend cuda), nographs:SCENE
 # (the same without CUDA graphs), profile:SCENE (the same, each launch timed: gpu/launch_profile.h),
-# play:SCRIPT (a shipped playback script with --backend cuda). Each step gets what is left of SECONDS; every log and JSON goes
+# play:SCRIPT (a shipped playback script with --backend cuda), run:SCENE[:FRAMES] (run --backend
+# cuda on assets/scenes/SCENE.json, for scenes without a reference here). Each step gets what is left of SECONDS; every log and JSON goes
 # to $OUT/results.tar.gz (rewritten after each step) and a summary ends the output.
 set -u
 pack=$1
@@ -71,12 +72,18 @@ for step in "$@"; do
       rc=$?
       cat "$log" >>"$summary"
       ;;
-    play)
-      # play:SCRIPT (assets/scripts/SCRIPT.json with --backend cuda): frames, median and p95 ms,
-      # unconverged frames from its metrics.
+    play | run)
+      # play:SCRIPT (assets/scripts/SCRIPT.json), run:SCENE[:FRAMES] (assets/scenes/SCENE.json,
+      # default 30 frames), both with --backend cuda: frames, median and p95 ms, unconverged frames
+      # from its metrics.
       csv=$out/r/${step//:/-}.csv
-      timeout "$t" galsculpt play "$root/assets/scripts/$scene.json" --backend cuda \
-        --out /tmp/galsculpt-play --metrics "$csv" >"$log" 2>&1
+      if [ "$kind" = play ]; then
+        timeout "$t" galsculpt play "$root/assets/scripts/$scene.json" --backend cuda \
+          --out /tmp/galsculpt-play --metrics "$csv" >"$log" 2>&1
+      else
+        timeout "$t" galsculpt run "$root/assets/scenes/$scene.json" --frames "${frames:-30}" \
+          --backend cuda --out /tmp/galsculpt-run --metrics "$csv" >"$log" 2>&1
+      fi
       rc=$?
       tail -3 "$log" >>"$summary"
       python3 - "$csv" >>"$summary" <<'PY'

@@ -57,7 +57,8 @@ unsigned evaluateCrackedLanes(const Lame& lame, const CrackedLaneInputs& in,
   std::uint8_t opened[kLanes];
   for (int l = 0; l < kLanes; ++l) {
     bool none = in.intact[l < in.count ? l : 0] == 0;
-    for (int e = 0; e < 6 && none; ++e) none = !((oneWay[l] >> e) & 1) || eps[e][l] >= 0.0;
+    for (int e = 0; e < 6 && none; ++e)
+      none = !((oneWay[l] >> e) & 1) || eps[e][l] + kCrackClosingStrain >= 0.0;
     if (none) unloaded[l] = ~unloaded[l];
     opened[l] = damaged[l];
   }

@@ -703,19 +703,32 @@ struct CrackedStrainState {
   std::uint8_t opened;  // the damaged edges whose cracks are open (the active set)
 };
 
+// How far a one-way crack's edge strain may fall below zero before the crack closes: far above
+// the round-off of an edge's Green strain (a few 1e-16 relative to the body's size over the
+// edge's, and growing with the frames that two executors' different roundings put between their
+// positions), far below any compression a load makes. A crack the knife leaves is at zero strain,
+// a tie between open and closed, for thousands of edges at once; decided by the sign of the
+// round-off, each executor and each perturbation of the start closes another set, and the
+// damping's stiffness, frozen at the frame's start, differs between them (a split sphere's tight
+// solutions 25 % of its motion apart). With the threshold a crack at rest is open on every one.
+inline constexpr double kCrackClosingStrain = 5e-11;
+
 // Adds to `out` the energy min over openings c of 1/2 (eps - c)^T K (eps - c), with c_e free on
-// the edges in `free`, c_e >= 0 on those in `oneWay` and 0 elsewhere. It is convex and C1 in eps
-// (a partial minimum of a convex quadratic over a convex set); its gradient tau = K (eps - c*)
-// is zero on every opened edge and compressive (<= 0) on every closed one-way edge, and its
+// the edges in `free`, c_e >= -kCrackClosingStrain on those in `oneWay` and 0 elsewhere (the
+// one-way edges' strains shifted by the threshold, c_e >= 0: the same problem). It is convex and C1
+// in eps (a partial minimum of a convex quadratic over a convex set); its gradient tau = K (eps -
+// c*) is zero on every opened edge and compressive (<= 0) on every closed one-way edge, and its
 // Hessian is the Schur complement of K on the opened edges. The openings solve a linear
 // complementarity problem with a positive definite matrix: Murty's least-index principal
 // pivoting finds the opened set exactly in finitely many flips (at most 2^6 sets), starting from
 // the edges that are not compressed. A crack at rest (zero strain, zero force) is a tie between
 // open and closed; it counts as open, so that a freshly cut body's linearized step lets its
 // sides part (counted closed, its stiffness would glue them for that step).
-GALSCULPT_HD void addOpenedCrackEnergy(const double k[6][6], const double eps[6], std::uint8_t free,
+GALSCULPT_HD void addOpenedCrackEnergy(const double k[6][6], const double raw[6], std::uint8_t free,
                                        std::uint8_t oneWay, bool wantStiffness,
                                        CrackedStrainState& out) {
+  double eps[6];
+  for (int e = 0; e < 6; ++e) eps[e] = ((oneWay >> e) & 1) ? raw[e] + kCrackClosingStrain : raw[e];
   // K is positive definite: its largest entry is on its diagonal. (Comparisons, not fmax: a
   // library call per entry on the CPU, a sixth of this function's time.)
   double keps[6], scale = 0.0, kScale = 0.0;
@@ -786,12 +799,14 @@ GALSCULPT_HD void crackedStrainState(const Lame& lame, const RestData& rest, con
   }
   const std::uint8_t damaged = static_cast<std::uint8_t>(~intact & kIntact);
   const std::uint8_t oneWay = compressionResists ? damaged : 0;
-  // Every edge damaged and no crack closed (pressed shorter than at rest): all six open, the
+  // Every edge damaged and no crack closed (pressed shorter than at rest, past the threshold):
+  // all six open, the
   // element carries nothing, exactly. The common case in a body cut to pieces (after 100
   // random cuts through the sphere, a quarter of the damaged elements' evaluations), spared
   // its stiffness and the elimination that would return zeros up to round-off.
   out.unloaded = intact == 0;
-  for (int e = 0; e < 6 && out.unloaded; ++e) out.unloaded = !((oneWay >> e) & 1) || eps[e] >= 0.0;
+  for (int e = 0; e < 6 && out.unloaded; ++e)
+    out.unloaded = !((oneWay >> e) & 1) || eps[e] + kCrackClosingStrain >= 0.0;
   out.opened = out.unloaded ? damaged : static_cast<std::uint8_t>(damaged & ~oneWay);
   if (out.unloaded) return;
   double k[6][6];

@@ -9,6 +9,7 @@
 #include "solver/model/sim_model.h"
 #include "solver/multigrid/multigrid_cycle.h"
 #include "solver/multigrid/multigrid_layout.h"
+#include "tests/gpu/device_like_executor.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -144,6 +145,39 @@ TEST(Multigrid, CoarseOperatorsAreGalerkinProductsAndPositiveDefinite) {
     const Eigen::MatrixXd u2 = mg.prolongationMatrix(1);
     EXPECT_LT((a2 - u2.transpose() * a1 * u2).norm(), 1e-8 * a2.norm());
     EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(a2).info(), Eigen::Success);
+  }
+}
+
+// A device builds the coarse levels a thread per entry and multiplies them a thread per row
+// entry (DeviceLikeExecutor: the CUDA executor's paths on the CPU); the host a thread per block
+// and per row. Both sum the same terms in the same order: the same bits, on both coarse levels.
+TEST(Multigrid, DeviceShapedGalerkinProductsAndCoarseProductsGiveTheHostsBits) {
+  const System s = elasticitySystem();
+  Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {150, 30});
+  const MultigridLayout layout = buildMultigridLayout(mg, s.model.pattern);
+  std::vector<double> a;
+  for (const Eigen::Matrix3d& blk : s.a.blocks) a.insert(a.end(), blk.data(), blk.data() + 9);
+  std::vector<std::uint8_t> fixed(s.model.numVertices(), 0);
+  for (int v = 0; v < s.model.numVertices(); v += 7) fixed[v] = 1;
+  CpuExecutor hostEx;
+  DeviceLikeExecutor deviceEx;
+  MultigridCycle<CpuExecutor> host(hostEx, s.model.pattern);
+  MultigridCycle<DeviceLikeExecutor> device(deviceEx, s.model.pattern);
+  host.upload(layout);
+  device.upload(layout);
+  host.setFixed(fixed.data());
+  device.setFixed(fixed.data());
+  host.refresh(a.data(), false);
+  device.refresh(a.data(), false);
+  for (int l = 1; l <= 2; ++l) {
+    const Eigen::MatrixXd h = host.coarseMatrix(l), d = device.coarseMatrix(l);
+    ASSERT_GT(h.norm(), 0.0);
+    EXPECT_TRUE(h == d) << "level " << l << ": " << (h - d).norm();
+    std::vector<double> x(h.rows()), yh(h.rows()), yd(h.rows());
+    for (size_t i = 0; i < x.size(); ++i) x[i] = std::sin(0.7 * static_cast<double>(i));
+    host.multiplyCoarse(l - 1, x.data(), yh.data());
+    device.multiplyCoarse(l - 1, x.data(), yd.data());
+    EXPECT_TRUE(yh == yd) << "level " << l;
   }
 }
 
