@@ -15,8 +15,11 @@ pack=$1
 budget=$2
 shift 2
 start=$(date +%s)
+# Logs and JSON go to a work folder packed into $OUT/results.tar.gz after each step, the summary
+# beside it: two files come back, whatever the number of steps.
 out=${OUT:-/tmp/galsculpt-device-out}
-mkdir -p "$out/r"
+work=$(mktemp -d)
+mkdir -p "$out" "$work/r"
 root=$PWD
 # The test binaries name their data by the absolute path of the checkout they were built in.
 if [ ! -e /work/main ]; then mkdir -p /work && ln -s "$root" /work/main; fi
@@ -34,22 +37,22 @@ if ! galsculpt --version >/dev/null 2>&1; then export LD_LIBRARY_PATH=$dev/libcx
   galsculpt --version
   echo "cusolver: ${cusolver:-none}"
   ldd "$dev/bin/galsculpt" | grep -i "not found"
-} 2>&1 | tee "$out/r/machine.txt"
+} 2>&1 | tee "$work/r/machine.txt"
 
 left() { echo $((budget - ($(date +%s) - start))); }
-summary=$out/r/summary.txt
+summary=$work/r/summary.txt
 : >"$summary"
 for step in "$@"; do
   t=$(left)
   if [ "$t" -lt 10 ]; then echo "$step: skipped, no time left" | tee -a "$summary"; continue; fi
   IFS=: read -r kind scene frames extra <<<"$step"
-  log=$out/r/${step//:/-}.log
+  log=$work/r/${step//[:*]/-}.log
   t0=$(date +%s)
   case $kind in
     tests | tests0 | sanitize)
       # tests[:FILTER], tests0[:FILTER] (without CUDA graphs), sanitize:TOOL:FILTER[:FRAMES]
       # (compute-sanitizer, GALSCULPT_COMPARE_FRAMES frames, default 10).
-      run=(gpu_tests "--gtest_filter=${scene:-*}" --gtest_output="xml:$out/r/${step//[:*]/-}.xml")
+      run=(gpu_tests "--gtest_filter=${scene:-*}" --gtest_output="xml:$work/r/${step//[:*]/-}.xml")
       envs=(GALSCULPT_DEBUG_COMPARE=1)
       [ "$kind" = tests0 ] && envs+=(GALSCULPT_CUDA_GRAPHS=0)
       if [ "$kind" = sanitize ]; then
@@ -67,7 +70,7 @@ for step in "$@"; do
       [ "$kind" = profile ] && envs=(GALSCULPT_CUDA_PROFILE=1)
       # shellcheck disable=SC2086
       timeout "$t" env ${envs[@]+"${envs[@]}"} galsculpt bench --backend cuda --scene "$scene" \
-        --frames "${frames:-60}" --json "$out/r/${step//:/-}.json" \
+        --frames "${frames:-60}" --json "$work/r/${step//:/-}.json" \
         ${GALSCULPT_REFERENCE_DIR:+--reference-dir "$GALSCULPT_REFERENCE_DIR"} $extra >"$log" 2>&1
       rc=$?
       cat "$log" >>"$summary"
@@ -76,7 +79,7 @@ for step in "$@"; do
       # play:SCRIPT (assets/scripts/SCRIPT.json), run:SCENE[:FRAMES] (assets/scenes/SCENE.json,
       # default 30 frames), both with --backend cuda: frames, median and p95 ms, unconverged frames
       # from its metrics.
-      csv=$out/r/${step//:/-}.csv
+      csv=$work/r/${step//:/-}.csv
       if [ "$kind" = play ]; then
         timeout "$t" galsculpt play "$root/assets/scripts/$scene.json" --backend cuda \
           --out /tmp/galsculpt-play --metrics "$csv" >"$log" 2>&1
@@ -99,6 +102,7 @@ PY
     *) echo "unknown step $step" >>"$summary"; rc=2 ;;
   esac
   echo "== $step: exit $rc in $(($(date +%s) - t0)) s" | tee -a "$summary"
-  tar -C "$out" -czf "$out/results.tar.gz.tmp" r && mv "$out/results.tar.gz.tmp" "$out/results.tar.gz"
+  tar -C "$work" -czf "$out/results.tar.gz.tmp" r && mv "$out/results.tar.gz.tmp" "$out/results.tar.gz"
+  cp "$summary" "$out/summary.txt"
 done
 cat "$summary"

@@ -30,7 +30,7 @@ cache=${GALSCULPT_CACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/galsculpt}
 export GALSCULPT_CACHE_DIR=$stage/cache
 [ -d "$cache/cgal" ] && cp -r "$cache/cgal" "$stage/cache/"
 [ -d "$cache/meshes" ] && mkdir -p "$stage/cache/meshes" && cp "$cache"/meshes/* "$stage/cache/meshes/"
-for scene in hanging_sphere charpy human armadillo steak; do
+for scene in hanging_sphere charpy human armadillo steak clay_head; do
   "$build/app/galsculpt" scene check "assets/scenes/$scene.json" --load-mesh >/dev/null
 done
 # The GPU tests' smaller meshes.

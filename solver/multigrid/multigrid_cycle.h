@@ -215,13 +215,14 @@ class MultigridCycle {
     const int* columns = c.columns.data();
     const int n = denseSize_;
     ex_.forEach(n * n, [=] GALSCULPT_LAMBDA(int i) { dense[i] = 0.0; });
-    ex_.forEach(c.handles, [=] GALSCULPT_LAMBDA(int r) {
+    // A thread per row of the dense matrix (twelve per handle: a handle's thread wrote 1,500
+    // entries serially on a device).
+    ex_.forEach(12 * c.handles, [=] GALSCULPT_LAMBDA(int e) {
+      const int r = e / 12, i = e % 12;
       for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
         const int col = columns[k];
         for (int j = 0; j < 12; ++j)
-          for (int i = 0; i < 12; ++i)
-            dense[(12 * r + i) + static_cast<size_t>(n) * (12 * col + j)] =
-                blocks[144 * k + i + 12 * j];
+          dense[e + static_cast<size_t>(n) * (12 * col + j)] = blocks[144 * k + i + 12 * j];
       }
     });
     factored_ = ex_.denseCholesky(n, dense);
@@ -691,6 +692,29 @@ class MultigridCycle {
     const double* toParent = d.toParent.data();
     const bool first = l == 0;
     const std::uint8_t* fixed = fixed_;
+    if constexpr (!Exec::kHostMemory) {
+      // On a device a thread per coarse entry (a handle's aggregate is hundreds of rows), each
+      // summing in the order of the handle's thread (the same bits).
+      ex_.forEach(12 * d.handles, [=] GALSCULPT_LAMBDA(int e) {
+        const int h = e / 12, c = e % 12;
+        double acc = 0.0;
+        for (int i = start[h]; i < start[h + 1]; ++i) {
+          const int r = members[i];
+          if (first) {
+            if (fixed && fixed[r]) continue;
+            const int m = c / 3, k = c % 3;
+            acc += y[4 * r + m] * (b[3 * r + k] - ax[3 * r + k]);
+          } else {
+            const double* t = toParent + 144 * r + 12 * c;
+            double sum = 0.0;
+            for (int k = 0; k < 12; ++k) sum += t[k] * (b[12 * r + k] - ax[12 * r + k]);
+            acc += sum;
+          }
+        }
+        coarse[e] = acc;
+      });
+      return;
+    }
     ex_.forEach(
         d.handles,
         [=] GALSCULPT_LAMBDA(int h) {

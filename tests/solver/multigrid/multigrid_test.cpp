@@ -148,8 +148,8 @@ TEST(Multigrid, CoarseOperatorsAreGalerkinProductsAndPositiveDefinite) {
   }
 }
 
-// A device builds the coarse levels a thread per entry and multiplies them a thread per row
-// entry (DeviceLikeExecutor: the CUDA executor's paths on the CPU); the host a thread per block
+// A device builds the coarse levels a thread per entry, multiplies them and restricts to them a
+// thread per row entry (DeviceLikeExecutor: the CUDA executor's paths on the CPU); the host a thread per block
 // and per row. Both sum the same terms in the same order: the same bits, on both coarse levels.
 TEST(Multigrid, DeviceShapedGalerkinProductsAndCoarseProductsGiveTheHostsBits) {
   const System s = elasticitySystem();
@@ -178,6 +178,19 @@ TEST(Multigrid, DeviceShapedGalerkinProductsAndCoarseProductsGiveTheHostsBits) {
     host.multiplyCoarse(l - 1, x.data(), yh.data());
     device.multiplyCoarse(l - 1, x.data(), yd.data());
     EXPECT_TRUE(yh == yd) << "level " << l;
+  }
+  // The restriction of a residual to each coarse level.
+  for (int l = 0; l < 2; ++l) {
+    const int rows = l == 0 ? 3 * s.model.numVertices() : static_cast<int>(host.coarseMatrix(l).rows());
+    const int coarseRows = static_cast<int>(host.coarseMatrix(l + 1).rows());
+    std::vector<double> b(rows), ax(rows), ch(coarseRows), cd(coarseRows);
+    for (int i = 0; i < rows; ++i) {
+      b[i] = std::cos(0.3 * i);
+      ax[i] = 0.1 * std::sin(1.1 * i);
+    }
+    host.restrictResidual(l, b.data(), ax.data(), ch.data());
+    device.restrictResidual(l, b.data(), ax.data(), cd.data());
+    EXPECT_TRUE(ch == cd) << "restricted to level " << l + 1;
   }
 }
 
