@@ -149,8 +149,9 @@ TEST(Multigrid, CoarseOperatorsAreGalerkinProductsAndPositiveDefinite) {
 }
 
 // A device builds the coarse levels a thread per entry, multiplies them and restricts to them a
-// thread per row entry (DeviceLikeExecutor: the CUDA executor's paths on the CPU); the host a thread per block
-// and per row. Both sum the same terms in the same order: the same bits, on both coarse levels.
+// thread per row entry (DeviceLikeExecutor: the CUDA executor's paths on the CPU); the host a
+// thread per block and per row. Both sum the same terms in the same order: the same bits, on both
+// coarse levels.
 TEST(Multigrid, DeviceShapedGalerkinProductsAndCoarseProductsGiveTheHostsBits) {
   const System s = elasticitySystem();
   Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {150, 30});
@@ -181,7 +182,8 @@ TEST(Multigrid, DeviceShapedGalerkinProductsAndCoarseProductsGiveTheHostsBits) {
   }
   // The restriction of a residual to each coarse level.
   for (int l = 0; l < 2; ++l) {
-    const int rows = l == 0 ? 3 * s.model.numVertices() : static_cast<int>(host.coarseMatrix(l).rows());
+    const int rows =
+        l == 0 ? 3 * s.model.numVertices() : static_cast<int>(host.coarseMatrix(l).rows());
     const int coarseRows = static_cast<int>(host.coarseMatrix(l + 1).rows());
     std::vector<double> b(rows), ax(rows), ch(coarseRows), cd(coarseRows);
     for (int i = 0; i < rows; ++i) {
