@@ -91,12 +91,16 @@ RestData restOf(const double p[12]) {
   return r;
 }
 
+// A tet of no special shape and a soft material, for the kernels' tests.
+constexpr double kSampleTet[12] = {0, 0, 0, 1, 0.1, 0, 0.2, 0.9, 0.1, 0.1, 0.2, 1.1};
+constexpr Lame kSampleLame{3e4, 8e4};
+
 // The 12x12 element Hessian (built from the modes' 12-vectors) equals D^T (dP/dF) D built from
 // the 9x9 stress derivative, for each model, exact and projected.
 TEST(ElementKernels, ElementHessianMatchesStressDerivative) {
-  const double rest[12] = {0, 0, 0, 1, 0.1, 0, 0.2, 0.9, 0.1, 0.1, 0.2, 1.1};
+  const double* rest = kSampleTet;
   const RestData r = restOf(rest);
-  const Lame lame{3e4, 8e4};
+  const Lame lame = kSampleLame;
   std::mt19937 gen(3);
   std::uniform_real_distribution<double> u(-0.4, 0.4);
   for (MaterialModel model :
@@ -126,9 +130,9 @@ TEST(ElementKernels, ElementHessianMatchesStressDerivative) {
 // an intact element, every damaged edge where nothing is pressed or cracks cannot push back, and
 // not a crack whose faces are pressed together (it carries load: another stiffness).
 TEST(ElementKernels, EvaluationReportsWhichCracksAreOpen) {
-  const double rest[12] = {0, 0, 0, 1, 0.1, 0, 0.2, 0.9, 0.1, 0.1, 0.2, 1.1};
+  const double* rest = kSampleTet;
   const RestData r = restOf(rest);
-  const Lame lame{3e4, 8e4};
+  const Lame lame = kSampleLame;
   double stretched[12], squeezed[12];
   for (int i = 0; i < 12; ++i) stretched[i] = squeezed[i] = 1.1 * rest[i];
   for (int k = 0; k < 3; ++k) squeezed[3 + k] = 0.7 * rest[3 + k];  // edge 0-1 pressed shorter
@@ -159,9 +163,9 @@ TEST(ElementKernels, EvaluationReportsWhichCracksAreOpen) {
 // rest within round-off is open and its stiffness is that of exact rest; pressed shorter than
 // round-off can explain, it closes (EvaluationReportsWhichCracksAreOpen).
 TEST(ElementKernels, ACrackAtRestIsOpenWhateverItsRoundOff) {
-  const double rest[12] = {0, 0, 0, 1, 0.1, 0, 0.2, 0.9, 0.1, 0.1, 0.2, 1.1};
+  const double* rest = kSampleTet;
   const RestData r = restOf(rest);
-  const Lame lame{3e4, 8e4};
+  const Lame lame = kSampleLame;
   std::mt19937 gen(11);
   std::uniform_int_distribution<int> ulps(-8, 8);
   for (const std::uint8_t intact : {0x00, 0x3e, 0x21, 0x07}) {

@@ -4,6 +4,7 @@
 // pieces flying off a clamped bar against the straight-line start and the reference.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "solver/fracture/fracture.h"
@@ -157,6 +158,25 @@ TEST(AcceleratedStart, WhatHoldsAVertex) {
   EXPECT_EQ(test(0), 1) << "the floor within reach";
 }
 
+// A sub-step's inputs without colliders or mass damping, the inertial target at x_n.
+AcceleratedStart<CpuExecutor>::SubstepInputs atRest(
+    bool anyFixed, const std::vector<std::uint8_t>& fixed, const std::vector<std::uint8_t>& removed,
+    const std::vector<double>& xn, const std::vector<double>& vn, const SimModel& m, double h,
+    const std::array<double, 3>& gravity) {
+  return {anyFixed,
+          fixed.data(),
+          removed.data(),
+          xn.data(),
+          xn.data(),
+          vn.data(),
+          m.mass.data(),
+          nullptr,
+          0,
+          h,
+          0.0,
+          {gravity[0], gravity[1], gravity[2]}};
+}
+
 // The 3-cell bar cut at x = 0.01 and 0.02: pieces at x = 0 and 0.01, at 0.02, at 0.03.
 SimState cutInThree(const SimModel& m) {
   SimState s = initialState(m);
@@ -263,10 +283,7 @@ TEST(AcceleratedStart, OnlyTheElementsBetweenAFreePieceAndOthersAreEvaluated) {
   std::vector<double> x = xn;
   CpuExecutor ex;
   AcceleratedStart<CpuExecutor> start;
-  const AcceleratedStart<CpuExecutor>::SubstepInputs in{
-      true,      fixed.data(),     removed.data(), xn.data(), xn.data(),
-      vn.data(), m.mass.data(),    nullptr,        0,         h,
-      0.0,       {0.0, -9.81, 0.0}};
+  const auto in = atRest(true, fixed, removed, xn, vn, m, h, {0.0, -9.81, 0.0});
   std::vector<std::uint8_t> evaluated(m.numTets(), 0);
   std::uint8_t* mark = evaluated.data();
   const auto gradient = [mark](int t, const double*, double* g) {
@@ -313,10 +330,7 @@ TEST(AcceleratedStart, APieceWhoseStartWouldPressOnAHeldPieceKeepsTheStraightLin
     std::vector<double> x = xn;
     CpuExecutor ex;
     AcceleratedStart<CpuExecutor> start;
-    const AcceleratedStart<CpuExecutor>::SubstepInputs in{
-        true,      fixed.data(),  removed.data(), xn.data(), xn.data(),
-        vn.data(), m.mass.data(), nullptr,        0,         h,
-        0.0,       {gx, 0.0, 0.0}};
+    const auto in = atRest(true, fixed, removed, xn, vn, m, h, {gx, 0.0, 0.0});
     const auto noPush = [](int, const double*, double* g) {
       for (int i = 0; i < 12; ++i) g[i] = 0.0;
     };
@@ -342,10 +356,7 @@ TEST(AcceleratedStart, GradientsTheFrameStillHasAreReadNotEvaluated) {
     for (int k = 0; k < 3; ++k) xn[3 * v + k] = m.mesh.vertices[v][k];
   const std::vector<std::uint8_t> fixed(n, 0), removed(n, 0);
   const double h = 0.01;
-  const AcceleratedStart<CpuExecutor>::SubstepInputs in{
-      false,     fixed.data(),     removed.data(), xn.data(), xn.data(),
-      vn.data(), m.mass.data(),    nullptr,        0,         h,
-      0.0,       {0.0, -9.81, 0.0}};
+  const auto in = atRest(false, fixed, removed, xn, vn, m, h, {0.0, -9.81, 0.0});
   // Each element's corners pushed up unevenly (an energy gradient pointing down), by its index.
   const auto push = [](int t, int i) { return i % 3 == 1 ? -1e-4 * (1 + t % 5) * (1 + i) : 0.0; };
   int evaluated = 0;
