@@ -248,7 +248,8 @@ void SculptApp::drawScenePanel() {
   ImGui::InputText("grid (e.g. 50/1000/all)", grid_, sizeof grid_);
   ImGui::InputInt("fine sweeps", &v.fineSweeps);
   ImGui::InputInt("coarse iterations", &v.coarseIterations);
-  pickEnum("smoother", v.smoother, {Smoother::GaussSeidel, Smoother::Jacobi}, smootherName);
+  pickEnum("smoother", v.smoother, {Smoother::Auto, Smoother::GaussSeidel, Smoother::Jacobi},
+           smootherName);
   pickEnum("coarse solver", v.coarseSolver, {CoarseSolver::Cg, CoarseSolver::Cholesky},
            coarseSolverName);
   pickEnum("energy guard", v.energyGuard, {EnergyGuard::Vertex, EnergyGuard::Body},

@@ -45,7 +45,8 @@ constexpr Named<SolverType> kSolverTypeNames[] = {{SolverType::Multigrid, "multi
                                                   {SolverType::Reference, "reference"}};
 constexpr Named<SolverPreset> kSolverPresetNames[] = {{SolverPreset::Converged, "converged"},
                                                       {SolverPreset::Paper, "paper"}};
-constexpr Named<Smoother> kSmootherNames[] = {{Smoother::GaussSeidel, "gauss_seidel"},
+constexpr Named<Smoother> kSmootherNames[] = {{Smoother::Auto, "auto"},
+                                              {Smoother::GaussSeidel, "gauss_seidel"},
                                               {Smoother::Jacobi, "jacobi"}};
 constexpr Named<CoarseSolver> kCoarseSolverNames[] = {{CoarseSolver::Cg, "cg"},
                                                       {CoarseSolver::Cholesky, "cholesky"}};

@@ -112,7 +112,8 @@ enum class SolverType { Multigrid, Reference };
 // The multigrid's defaults: `converged` (Newton with multigrid-preconditioned CG until the
 // residual is within tolerance) or `paper` (the paper's one linearized step, one V-cycle).
 enum class SolverPreset { Converged, Paper };
-enum class Smoother { GaussSeidel, Jacobi };
+// Auto: Gauss-Seidel on the CPU, Jacobi on a GPU (MultigridSettings::jacobiOnDevice).
+enum class Smoother { Auto, GaussSeidel, Jacobi };
 enum class CoarseSolver { Cg, Cholesky };
 // What a Newton step that raised the potential shortens first (StepSettings::vertexGuard).
 enum class EnergyGuard { Vertex, Body };
@@ -142,7 +143,7 @@ struct SolverDesc {
   std::string grid = "50/all";
   int fineSweeps = 3;
   int coarseIterations = 20;
-  Smoother smoother = Smoother::GaussSeidel;
+  Smoother smoother = Smoother::Auto;
   CoarseSolver coarseSolver = CoarseSolver::Cholesky;
   int newtonIterations = 40;        // the most per sub-step
   int cycles = 1;                   // V-cycles per linear solve (without PCG)

@@ -112,6 +112,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     MultigridSettings& mg = settings_.multigridSettings;
     mg.preSweeps = mg.postSweeps = scene.solver.fineSweeps;
     mg.jacobi = scene.solver.smoother == Smoother::Jacobi;
+    mg.jacobiOnDevice = scene.solver.smoother == Smoother::Auto;
     mg.coarseCholesky = scene.solver.coarseSolver == CoarseSolver::Cholesky;
     mg.coarseIterations = scene.solver.coarseIterations;
     mg.cycles = scene.solver.cycles;

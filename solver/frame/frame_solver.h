@@ -1236,6 +1236,7 @@ class FrameSolver {
     mix(static_cast<std::uint64_t>(m.coarseIterations) << 32 |
         static_cast<std::uint32_t>(m.cycles));
     mix(m.jacobi);
+    mix(m.jacobiOnDevice);
     mixDouble(m.jacobiWeight);
     mixDouble(s.stiffnessTolerance);
     mix(s.reuseStiffness);  // the trial counts switched cracks only for chord steps
@@ -1270,7 +1271,7 @@ class FrameSolver {
     typename MultigridCycle<Exec>::Settings mgs;
     mgs.preSweeps = ms.preSweeps;
     mgs.postSweeps = ms.postSweeps;
-    mgs.jacobi = ms.jacobi;
+    mgs.jacobi = ms.jacobi || (!Exec::kHostMemory && ms.jacobiOnDevice && ms.pcg);
     mgs.jacobiWeight = ms.jacobiWeight;
     mgs.coarseCholesky = ms.coarseCholesky;
     mgs.coarseIterations = ms.coarseIterations;

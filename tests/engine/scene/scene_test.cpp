@@ -264,8 +264,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{std::string("{") + kMesh + R"(, "material": {"model": "neo"}})",
                  "$.material.model: unknown value 'neo' (expected one of: corotational, stvk, "
                  "stable_neo_hookean)"},
-        BadScene{std::string("{") + kMesh + R"(, "solver": {"smoother": "sor"}})",
-                 "$.solver.smoother: unknown value 'sor' (expected one of: gauss_seidel, jacobi)"},
+        BadScene{
+            std::string("{") + kMesh + R"(, "solver": {"smoother": "sor"}})",
+            "$.solver.smoother: unknown value 'sor' (expected one of: auto, gauss_seidel, jacobi)"},
         BadScene{std::string("{") + kMesh + R"(, "solver": {"backend": "gpu"}})",
                  "$.solver.backend: unknown value 'gpu' (expected one of: auto, cpu, cuda)"},
         BadScene{std::string("{") + kMesh + R"(, "solver": {"energy_guard": "local"}})",

@@ -74,6 +74,22 @@ TEST(Simulation, CompressionResistanceOfCracksIsTheModelsFromTheScene) {
   EXPECT_GT(energy[1], 0.0) << "closed cracks bear compression";
 }
 
+// The scene's smoother reaches the multigrid: `auto` (the default) is Gauss-Seidel on the CPU
+// and Jacobi on a device, the other two the same everywhere.
+TEST(Simulation, TheSmootherIsTheScenesAndAutoPicksJacobiOnDevicesOnly) {
+  test::TempDir dir;
+  for (const char* name : {"", "auto", "gauss_seidel", "jacobi"}) {
+    const std::string key =
+        *name ? std::string(R"(, "solver": {"smoother": ")") + name + "\"}" : "";
+    const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + key + "}");
+    const Simulation sim(scene, loadSceneMesh(scene));
+    const MultigridSettings& m = sim.settings().multigridSettings;
+    const std::string n = name;
+    EXPECT_EQ(m.jacobi, n == "jacobi") << name;
+    EXPECT_EQ(m.jacobiOnDevice, n.empty() || n == "auto") << name;
+  }
+}
+
 // The measure probes: the opening between a top and a bottom vertex grows as the sphere sags,
 // and the ground's force on a resting ball is reported on its own.
 TEST(Simulation, MeasureProbesReportOpeningAndLoad) {
