@@ -265,7 +265,7 @@ class AcceleratedStart {
           lp.end - begin, [=] GALSCULPT_LAMBDA(int i) { return mass[vertices[begin + i]]; },
           out + 1);
     }
-    spreadHeld(ex, heldPieces);
+    spreadHeld(ex, heldPieces, in.xn, nullptr, nullptr);
     // The elements between pieces at x_n (how hard each piece's neighbours push on it), where a
     // corner is in a piece that starts on its own: only such a piece reads them.
     const int* shared = sharedTets_.data();
@@ -305,7 +305,7 @@ class AcceleratedStart {
                                  x};
     ex.forEach(smallPieceCount_, [=] GALSCULPT_LAMBDA(int i) { piece(small[i]); });
     moveLarge(ex, piece);
-    if (sharedTetCount_ > 0) holdPressingStarts(ex, heldPieces, in.xhat, x);
+    spreadHeld(ex, heldPieces, x, in.xhat, x);
   }
 
   // The large pieces moved by their sums (read once). Public only because nvcc refuses extended
@@ -335,20 +335,22 @@ class AcceleratedStart {
     }
   }
 
-  // A free piece whose start presses on a held piece (a crack between them shorter at the starts
-  // than at rest, past the closing strain: the piece's predicted fall drives it into a piece that
-  // stays) keeps the straight line and counts as held, in rounds as the spread (a piece put back
-  // may now be pressed by another). Without it a slice lying against a clamped bar started a
-  // fall's worth (h^2 g) into the bar's face: Newton found the contact in 25 iterations where the
-  // straight line took 7.
-  void holdPressingStarts(const Exec& ex, const HeldPieces& heldPieces, const double* xhat,
-                          double* x) {
+  // Rounds until no piece changes (a read each): a piece with a crack pressed, at positions y,
+  // against a held piece is held. Before the pieces move, y is x_n (HeldPieces::spread). After
+  // they have, y is their starts and `straight` is given: a free piece whose start presses on a
+  // held piece (its predicted fall drives it into a piece that stays) goes back to the straight
+  // line there and counts as held, and a piece put back may now be pressed by another. Without
+  // that a slice lying against a clamped bar started a fall's worth (h^2 g) into the bar's face:
+  // Newton found the contact in 25 iterations where the straight line took 7. Public only
+  // because nvcc refuses extended lambdas in private member functions.
+  void spreadHeld(const Exec& ex, const HeldPieces& heldPieces, const double* y,
+                  const double* straight, double* x) {
+    if (sharedTetCount_ == 0) return;
     std::uint8_t* heldPiece = heldPiece_.data();
     std::uint8_t* next = heldPieceNext_.data();
     double* changed = largeSums_.data() + 5 * large_.size();
     const int* pieceStart = pieceStart_.data();
     const int* vertices = pieceVertices_.data();
-    const double* y = x;
     for (int round = 0; round < kSpreadRounds; ++round) {
       ex.forEach(pieceCount_, [=] GALSCULPT_LAMBDA(int p) {
         next[p] = heldPiece[p] || heldPieces.pressesOnHeld(p, heldPiece, y) ? 1 : 0;
@@ -359,31 +361,13 @@ class AcceleratedStart {
       double count = 0.0;
       ex.read(changed, &count, 1);
       if (count == 0.0) break;
-      ex.forEach(pieceCount_, [=] GALSCULPT_LAMBDA(int p) {
-        if (next[p] == heldPiece[p]) return;
-        for (int i = pieceStart[p]; i < pieceStart[p + 1]; ++i)
-          for (int k = 0; k < 3; ++k) x[3 * vertices[i] + k] = xhat[3 * vertices[i] + k];
-      });
+      if (straight)
+        ex.forEach(pieceCount_, [=] GALSCULPT_LAMBDA(int p) {
+          if (next[p] == heldPiece[p]) return;
+          for (int i = pieceStart[p]; i < pieceStart[p + 1]; ++i)
+            for (int k = 0; k < 3; ++k) x[3 * vertices[i] + k] = straight[3 * vertices[i] + k];
+        });
       ex.copy(heldPiece, next, static_cast<size_t>(pieceCount_));
-    }
-  }
-
-  // Rounds of HeldPieces::spread until no piece changes (a read each). Public only because nvcc
-  // refuses extended lambdas in private member functions.
-  void spreadHeld(const Exec& ex, const HeldPieces& heldPieces) {
-    std::uint8_t* heldPiece = heldPiece_.data();
-    std::uint8_t* next = heldPieceNext_.data();
-    double* changed = largeSums_.data() + 5 * large_.size();
-    for (int round = 0; round < kSpreadRounds && sharedTetCount_ > 0; ++round) {
-      ex.forEach(pieceCount_,
-                 [=] GALSCULPT_LAMBDA(int p) { next[p] = heldPieces.spread(p, heldPiece); });
-      ex.sum(
-          pieceCount_, [=] GALSCULPT_LAMBDA(int p) { return next[p] != heldPiece[p] ? 1.0 : 0.0; },
-          changed);
-      ex.copy(heldPiece, next, static_cast<size_t>(pieceCount_));
-      double count = 0.0;
-      ex.read(changed, &count, 1);
-      if (count == 0.0) break;
     }
   }
 
