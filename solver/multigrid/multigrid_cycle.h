@@ -22,8 +22,12 @@
 #include "solver/fem/block_sparse.h"
 #include "solver/fem/dense_kernels.h"
 #include "solver/multigrid/coarse_cholesky.h"
+#include "solver/multigrid/fine_smoother.h"
+#include "solver/multigrid/fragment_correction.h"
+#include "solver/multigrid/kept_coarse_factor.h"
 #include "solver/multigrid/multigrid.h"
 #include "solver/multigrid/multigrid_layout.h"
+#include "solver/multigrid/multigrid_pcg.h"
 
 namespace galsculpt {
 
@@ -34,13 +38,13 @@ class MultigridCycle {
   using Buffer = typename Exec::template Buffer<T>;
 
   // `fine`: the model's block pattern, read in place (it must outlive the cycle).
-  MultigridCycle(Exec& ex, const BlockPattern& fine) : ex_(ex), finePattern_(fine) {
+  MultigridCycle(Exec& ex, const BlockPattern& fine)
+      : ex_(ex), finePattern_(fine), smoother_(ex), pcg_(ex), fragments_(ex) {
     rows_ = fine.rows;
     fineRowStart_.mirror(fine.rowStart);
     fineColumns_.mirror(fine.columns);
     fineDiagonal_.mirror(fine.diagonal);
     ax_.resize(3 * rows_);
-    fragmentResidual_.resize(3 * rows_);
     scalars_.resize(kScalars);
   }
 
@@ -48,7 +52,7 @@ class MultigridCycle {
   void upload(const MultigridLayout& m) {
     fineColorStart_ = m.fineColorStart;
     fineColorRows_.upload(m.fineColorRows);
-    uploadSmootherPattern(m.fineColorRows);
+    smoother_.uploadPattern(finePattern_, m.fineColorRows);
     levels_.clear();
     levels_.resize(m.levels.size());
     for (size_t l = 0; l < m.levels.size(); ++l) {
@@ -98,21 +102,10 @@ class MultigridCycle {
       pieceFactor_.resize(144 * static_cast<size_t>(pieceCount_));
       pieceSolution_.resize(12 * static_cast<size_t>(pieceCount_));
     }
-    fragments_ = static_cast<int>(m.fragmentStart.size()) - 1;
-    if (fragments_ > 0) {
-      fragmentStart_.upload(m.fragmentStart);
-      fragmentVertices_.upload(m.fragmentVertices);
-      fragmentOf_.upload(m.fragmentOf);
-      fragmentFrame_.upload(m.fragmentFrame);
-      restPositions_.upload(m.restPositions);
-      fragmentFactor_.resize(144 * static_cast<size_t>(fragments_));
-      fragmentPerm_.resize(12 * static_cast<size_t>(fragments_));
-      fragmentTranslation_.resize(9 * static_cast<size_t>(fragments_));
-      fragmentMode_.resize(fragments_);
-    }
+    fragments_.upload(m, rows_);
     denseSize_ = 12 * c.handles;
     factored_ = sparseFactored_ = false;
-    factoredBlocks_.clear();
+    kept_.clear();
     coarseFactorsKept_ = 0;
   }
 
@@ -129,9 +122,9 @@ class MultigridCycle {
   // asked for. `preconditions`: the V-cycle only preconditions CG, so the fine smoother reads a
   // float copy of the fine blocks (smoothFine) and, in host memory, the coarsest level keeps
   // its last factorization while its matrix stays within kCoarseReuse of the one factored
-  // (keptCoarseFactor).
+  // (kept_coarse_factor.h).
   void refresh(const double* fine, bool coarseCholesky, bool preconditions = false) {
-    refreshSmoother(fine, preconditions);
+    smoother_.refresh(fine, preconditions, fineColorRows_.data(), fineDiagonal_.data());
     for (size_t l = 0; l < levels_.size(); ++l) {
       Level& d = levels_[l];
       const double* finer = l == 0 ? fine : levels_[l - 1].blocks.data();
@@ -185,7 +178,8 @@ class MultigridCycle {
           },
           1000);
     }
-    if (fragments_ > 0) factorFragments(fine);
+    if (fragments_.fragments() > 0)
+      fragments_.factorize(fine, fineRowStart_.data(), fineColumns_.data());
     if (pieceCount_ >= 2) factorPieces();
     if (!coarseCholesky) {
       factored_ = sparseFactored_ = false;
@@ -193,7 +187,9 @@ class MultigridCycle {
     }
     const Level& c = levels_.back();
     if constexpr (Exec::kHostMemory) {
-      if (preconditions && keptCoarseFactor(c)) {
+      if (preconditions && factored_ &&
+          kept_.keeps(c.blocks.data(), c.blocks.size(), c.rowStart.data(), c.columns.data(),
+                      c.handles)) {
         ++coarseFactorsKept_;
         return;
       }
@@ -280,16 +276,8 @@ class MultigridCycle {
     });
   }
 
-  // How far the coarsest matrix may move from the one factored, entry by entry relative to the
-  // geometric mean of its row's and column's diagonal entries (|A_ij - F_ij| <= kCoarseReuse
-  // sqrt(F_ii F_jj): scale-free, so an affine handle's linear and translation rows count
-  // alike), before it is factored again. Within it the V-cycle's coarsest solve is that of a
-  // matrix a hundredth off: positive definite all the same, and it only preconditions CG, so
-  // the frame solves the same equations to the same tolerance. What it saves is the
-  // factorization of a body at rest: 5 of the uncut sphere's 50 ms a frame, and a sixth of the
-  // frame once 10 cuts have split its coarsest level to 110 handles (docs/benchmarks.md). In
-  // motion the matrix moves more than this (crack faces meet and part), and it is refactored.
-  static constexpr double kCoarseReuse = 1e-2;
+  // (kept_coarse_factor.h)
+  static constexpr double kCoarseReuse = KeptCoarseFactor::kReuse;
 
   // Coarsest factorizations reused since the hierarchy was uploaded (for tests).
   long coarseFactorsKept() const { return coarseFactorsKept_; }
@@ -313,71 +301,11 @@ class MultigridCycle {
   void cycles(const double* a, const double* b, double* x, const Settings& s) {
     for (int c = 0; c < s.cycles; ++c) vcycle(a, 0, b, x, s);
   }
-  struct PcgResult {
-    double reduction = 0.0;  // |r| / |b| (0 for b = 0)
-    int iterations = 0;
-  };
-  // CG on A x = b from x = 0, preconditioned by one V-cycle per iteration, until
-  // |r| <= max(tolerance |b|, absoluteTarget) or maxIterations. Reads two scalars per iteration
-  // (not capturable).
+  using PcgResult = typename MultigridPcg<Exec>::Result;
+  // CG on A x = b from x = 0, preconditioned by one V-cycle per iteration (multigrid_pcg.h).
   PcgResult pcg(const double* a, const double* b, double* x, const Settings& s, double tolerance,
                 int maxIterations, double absoluteTarget = 0.0) {
-    const int n = 3 * rows_;
-    if (pcgR_.size() != static_cast<size_t>(n)) {
-      for (Buffer<double>* v : {&pcgR_, &pcgZ_, &pcgP_, &pcgAp_}) v->resize(n);
-      pcgScalars_.resize(kPcgScalars);
-    }
-    double* r = pcgR_.data();
-    double* z = pcgZ_.data();
-    double* p = pcgP_.data();
-    double* ap = pcgAp_.data();
-    double* sc = pcgScalars_.data();
-    double read[kPcgScalars];
-    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
-      x[i] = 0.0;
-      r[i] = b[i];
-      z[i] = 0.0;
-    });
-    ex_.sum(
-        n, [=] GALSCULPT_LAMBDA(int i) { return b[i] * b[i]; }, sc + kPcgBb);
-    vcycle(a, 0, r, z, s);
-    ex_.copy(p, z, n);
-    ex_.sum(
-        n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, sc + kPcgRz);
-    ex_.read(sc, read, kPcgScalars);
-    const double bnorm = std::sqrt(read[kPcgBb]);
-    const double target = std::max(tolerance * std::max(bnorm, 1e-300), absoluteTarget);
-    double rz = read[kPcgRz], rnorm = bnorm;
-    int it = 0;
-    for (; it < maxIterations && rnorm > target; ++it) {
-      multiplyFine(a, p, ap);
-      ex_.sum(
-          n, [=] GALSCULPT_LAMBDA(int i) { return p[i] * ap[i]; }, sc + kPcgPap);
-      ex_.read(sc, read, kPcgScalars);
-      if (!(read[kPcgPap] > 0.0)) break;
-      const double alpha = rz / read[kPcgPap];
-      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
-        x[i] += alpha * p[i];
-        r[i] -= alpha * ap[i];
-      });
-      ex_.sum(
-          n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * r[i]; }, sc + kPcgRr);
-      ex_.read(sc, read, kPcgScalars);
-      rnorm = std::sqrt(read[kPcgRr]);
-      if (rnorm <= target) {
-        ++it;
-        break;
-      }
-      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) { z[i] = 0.0; });
-      vcycle(a, 0, r, z, s);
-      ex_.sum(
-          n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, sc + kPcgRz);
-      ex_.read(sc, read, kPcgScalars);
-      const double beta = read[kPcgRz] / rz;
-      rz = read[kPcgRz];
-      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) { p[i] = z[i] + beta * p[i]; });
-    }
-    return {bnorm > 0.0 ? rnorm / bnorm : 0.0, it};
+    return pcg_.solve(*this, rows_, a, b, x, s, tolerance, maxIterations, absoluteTarget);
   }
 
   // The operator of coarse level l (1: the first coarse level) as a dense matrix, read back
@@ -419,7 +347,8 @@ class MultigridCycle {
     vcycle(a, l + 1, next.b.data(), cx, s);
     prolongAdd(l, cx, x);
     if (l == 0) {
-      if (fragments_ > 0) correctFragments(a, b, x);
+      if (fragments_.fragments() > 0)
+        fragments_.correct(a, fineRowStart_.data(), fineColumns_.data(), b, x);
       smoothFine(a, b, x, s.postSweeps, true, s);
     } else {
       smoothCoarse(l, b, x, s.postSweeps, true, s);
@@ -460,7 +389,6 @@ class MultigridCycle {
     Buffer<double> b, x, ax;  // the right-hand side, solution and product of this level's rows
   };
   enum Scalar { kRr, kPap, kRrNew, kStop, kDone, kBB, kBad, kScalars };
-  enum PcgScalar { kPcgBb, kPcgRz, kPcgPap, kPcgRr, kPcgScalars };
 
   // Gauss-Seidel order: colour by colour (backwards when reversed, for the symmetric cycle), the
   // rows of one colour at once (no two share a block). `update` gets each row's position in the
@@ -485,12 +413,12 @@ class MultigridCycle {
   // `a` is the operator of the last refresh().
   void smoothFine(const double* a, const double* b, double* x, int sweeps, bool reverse,
                   const Settings& s) {
-    const int* rowStart = smoothRowStart_.data();
-    const int* columns = smoothColumns_.data();
-    const int* source = smoothSource_.data();
-    const float* single = smoothBlocks_.data();
-    const bool inFloat = singleSmoother_;
-    const double* inverse = smoothDiagonalInverse_.data();
+    const int* rowStart = smoother_.rowStart();
+    const int* columns = smoother_.columns();
+    const int* source = smoother_.source();
+    const float* single = smoother_.singleBlocks();
+    const bool inFloat = smoother_.single();
+    const double* inverse = smoother_.diagonalInverse();
     const int* rowOf = fineColorRows_.data();
     for (int sweep = 0; sweep < sweeps; ++sweep) {
       if (s.jacobi) {
@@ -522,88 +450,17 @@ class MultigridCycle {
             }
             multiply3(inverse + 9 * i, rhs, x + 3 * r);
           },
-          kSmootherRowCost);
+          FineSmoother<Exec>::kRowCost);
     }
   }
 
   // y = A x with the smoother's operator (the V-cycle's residual): the float copy after a
   // single-precision refresh, the fine blocks otherwise.
   void multiplySmoother(const double* a, const double* x, double* y) {
-    if (!singleSmoother_) {
+    if (smoother_.single())
+      smoother_.multiplySingle(a, x, y, fineColorRows_.data(), fineDiagonal_.data());
+    else
       multiplyFine(a, x, y);
-      return;
-    }
-    const int* rowStart = smoothRowStart_.data();
-    const int* columns = smoothColumns_.data();
-    const float* blocks = smoothBlocks_.data();
-    const int* diagonal = fineDiagonal_.data();
-    const int* rowOf = fineColorRows_.data();
-    ex_.forEach(
-        rows_,
-        [=] GALSCULPT_LAMBDA(int i) {
-          const int r = rowOf[i];
-          double acc[3];
-          multiply3(a + 9 * static_cast<size_t>(diagonal[r]), x + 3 * r, acc);
-          for (int k = 0; k < 3; ++k) acc[k] = -acc[k];
-          for (int k = rowStart[i]; k < rowStart[i + 1]; ++k)
-            subtractMultiply3(blocks + 9 * static_cast<size_t>(k), x + 3 * columns[k], acc);
-          for (int k = 0; k < 3; ++k) y[3 * r + k] = -acc[k];
-        },
-        kSmootherRowCost);
-  }
-
-  // Work of one smoother row (about 14 blocks) for the CPU executor's threading.
-  static constexpr long kSmootherRowCost = 16;
-
-  // The smoother's pattern: row i of the colour order is fine row colorRows[i]; its
-  // off-diagonal blocks with their columns and the fine blocks they copy.
-  void uploadSmootherPattern(const std::vector<int>& colorRows) {
-    const BlockPattern& f = finePattern_;
-    std::vector<int> rowStart(1, 0), columns, source;
-    columns.reserve(f.columns.size());
-    source.reserve(f.columns.size());
-    for (const int r : colorRows) {
-      for (int k = f.rowStart[r]; k < f.rowStart[r + 1]; ++k) {
-        if (f.columns[k] == r) continue;
-        columns.push_back(f.columns[k]);
-        source.push_back(k);
-      }
-      rowStart.push_back(static_cast<int>(columns.size()));
-    }
-    smoothNnz_ = static_cast<int>(columns.size());
-    smoothRowStart_.upload(rowStart);
-    smoothColumns_.upload(columns);
-    smoothSource_.upload(source);
-    smoothBlocks_.resize(9 * static_cast<size_t>(smoothNnz_));
-    smoothDiagonalInverse_.resize(9 * static_cast<size_t>(rows_));
-  }
-
-  // The inverses of the diagonal blocks of `a` in colour order (the arithmetic of solve3), and
-  // with `single` the off-diagonal blocks rounded to float.
-  void refreshSmoother(const double* a, bool single) {
-    singleSmoother_ = single;
-    if (single) {
-      const int* source = smoothSource_.data();
-      float* blocks = smoothBlocks_.data();
-      ex_.forEach(smoothNnz_, [=] GALSCULPT_LAMBDA(int k) {
-        const double* from = a + 9 * static_cast<size_t>(source[k]);
-        for (int i = 0; i < 9; ++i)
-          blocks[9 * static_cast<size_t>(k) + i] = static_cast<float>(from[i]);
-      });
-    }
-    const int* rowOf = fineColorRows_.data();
-    const int* diagonalBlock = fineDiagonal_.data();
-    double* inverse = smoothDiagonalInverse_.data();
-    ex_.forEach(
-        rows_,
-        [=] GALSCULPT_LAMBDA(int i) {
-          kernels::M3 m;
-          const double* from = a + 9 * static_cast<size_t>(diagonalBlock[rowOf[i]]);
-          for (int k = 0; k < 9; ++k) m.a[k] = from[k];
-          const kernels::M3 inv = kernels::inverse(m);
-          for (int k = 0; k < 9; ++k) inverse[9 * i + k] = inv.a[k];
-        },
-        16);
   }
 
   // Smoothing of the operator of levels_[l - 1] (the rows of vcycle level l).
@@ -889,174 +746,28 @@ class MultigridCycle {
     });
   }
 
-  // Fragment f's affine modes at vertex v: [(X_v - c_f) / s_f, 1].
-  GALSCULPT_HD static void fragmentModes(const double* frame, const double* rest, int v,
-                                         double* y) {
-    for (int k = 0; k < 3; ++k) y[k] = (rest[3 * v + k] - frame[k]) / frame[3];
-    y[3] = 1.0;
-  }
-
-  void factorFragments(const double* a) {
-    const int* start = fragmentStart_.data();
-    const int* vertices = fragmentVertices_.data();
-    const int* fragmentOf = fragmentOf_.data();
-    const double* frames = fragmentFrame_.data();
-    const double* rest = restPositions_.data();
-    const int* rowStart = fineRowStart_.data();
-    const int* columns = fineColumns_.data();
-    double* factor = fragmentFactor_.data();
-    int* perm = fragmentPerm_.data();
-    double* translation = fragmentTranslation_.data();
-    std::uint8_t* mode = fragmentMode_.data();
-    ex_.forEach(fragments_, [=] GALSCULPT_LAMBDA(int f) {
-      double m[144] = {};
-      const double* frame = frames + 4 * f;
-      // Row by row: the row's blocks against the column modes first (36 multiply-adds a block),
-      // then the row's mode once (144), where the Kronecker product of each block took 144.
-      for (int i = start[f]; i < start[f + 1]; ++i) {
-        const int r = vertices[i];
-        double row[36] = {};
-        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
-          const int c = columns[k];
-          if (fragmentOf[c] != f) continue;
-          double yc[4];
-          fragmentModes(frame, rest, c, yc);
-          addBlockTimesModes(yc, a + 9 * k, row);
-        }
-        double yr[4];
-        fragmentModes(frame, rest, r, yr);
-        addModesTimesRow(yr, row, m);
-      }
-      double trace = 0.0;
-      for (int i = 0; i < 12; ++i) trace += m[13 * i];
-      double* t = translation + 9 * f;
-      for (int j = 0; j < 3; ++j)
-        for (int i = 0; i < 3; ++i) t[i + 3 * j] = m[(9 + i) + 12 * (9 + j)];
-      const bool translationOk = cholesky(3, t);
-      double* l = factor + 144 * f;
-      for (int i = 0; i < 144; ++i) l[i] = m[i];
-      bool affine = start[f + 1] - start[f] >= 4 && ldlt12(l, perm + 12 * f);
-      for (int i = 0; affine && i < 12; ++i) affine = l[13 * i] > 1e-12 * trace;
-      mode[f] = affine ? 2 : (translationOk ? 1 : 0);
-    });
-  }
-
-  // Galerkin correction of each fragment in its own affine modes (or its translation), from the
-  // residual of all fragment vertices taken before any moves.
-  void correctFragments(const double* a, const double* b, double* x) {
-    const int* start = fragmentStart_.data();
-    const int* vertices = fragmentVertices_.data();
-    const int* fragmentOf = fragmentOf_.data();
-    const double* frames = fragmentFrame_.data();
-    const double* rest = restPositions_.data();
-    const int* rowStart = fineRowStart_.data();
-    const int* columns = fineColumns_.data();
-    const double* factor = fragmentFactor_.data();
-    const int* perm = fragmentPerm_.data();
-    const double* translation = fragmentTranslation_.data();
-    const std::uint8_t* mode = fragmentMode_.data();
-    double* residual = fragmentResidual_.data();
-    ex_.forEach(rows_, [=] GALSCULPT_LAMBDA(int r) {
-      if (fragmentOf[r] < 0) return;
-      double res[3] = {b[3 * r], b[3 * r + 1], b[3 * r + 2]};
-      for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
-        subtractMultiply3(a + 9 * k, x + 3 * columns[k], res);
-      for (int i = 0; i < 3; ++i) residual[3 * r + i] = res[i];
-    });
-    ex_.forEach(fragments_, [=] GALSCULPT_LAMBDA(int f) {
-      if (mode[f] == 0) return;
-      const double* frame = frames + 4 * f;
-      double rhs[12] = {};
-      for (int i = start[f]; i < start[f + 1]; ++i) {
-        const int r = vertices[i];
-        double y[4];
-        fragmentModes(frame, rest, r, y);
-        for (int j = 0; j < 4; ++j)
-          for (int k = 0; k < 3; ++k) rhs[3 * j + k] += y[j] * residual[3 * r + k];
-      }
-      double e[12] = {};
-      if (mode[f] == 2) {
-        ldlt12Solve(factor + 144 * f, perm + 12 * f, rhs, e);
-      } else {
-        double t[3] = {rhs[9], rhs[10], rhs[11]};
-        choleskySolve(3, translation + 9 * f, t);
-        for (int k = 0; k < 3; ++k) e[9 + k] = t[k];
-      }
-      for (double value : e)
-        if (!(value == value) || fabs(value) > 1e300) return;
-      for (int i = start[f]; i < start[f + 1]; ++i) {
-        const int v = vertices[i];
-        double y[4];
-        fragmentModes(frame, rest, v, y);
-        for (int j = 0; j < 4; ++j)
-          for (int k = 0; k < 3; ++k) x[3 * v + k] += y[j] * e[3 * j + k];
-      }
-    });
-  }
-
  private:
-  // Whether the last factorization (of this layout) may serve the coarsest matrix now.
-  bool keptCoarseFactor(const Level& c) const {
-    if (!factored_ || factoredBlocks_.size() != c.blocks.size()) return false;
-    const double* now = c.blocks.data();
-    const double* was = factoredBlocks_.data();
-    const double* root = factoredRootDiagonal_.data();
-    const int* rowStart = c.rowStart.data();
-    const int* columns = c.columns.data();
-    for (int r = 0; r < c.handles; ++r)
-      for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
-        const double* rowRoot = root + 12 * r;
-        const double* columnRoot = root + 12 * columns[k];
-        for (int j = 0; j < 12; ++j)
-          for (int i = 0; i < 12; ++i) {
-            const size_t at = 144 * static_cast<size_t>(k) + i + 12 * j;
-            if (!(std::abs(now[at] - was[at]) <= kCoarseReuse * rowRoot[i] * columnRoot[j]))
-              return false;
-          }
-      }
-    return true;
-  }
-
   void rememberFactored(const Level& c) {
-    if (!factored_) {
-      factoredBlocks_.clear();
-      return;
-    }
-    factoredBlocks_.assign(c.blocks.data(), c.blocks.data() + c.blocks.size());
-    factoredRootDiagonal_.assign(12 * static_cast<size_t>(c.handles), 0.0);
-    const double* blocks = c.blocks.data();
-    const int* diagonal = c.diagonal.data();
-    for (int h = 0; h < c.handles; ++h)
-      for (int i = 0; i < 12; ++i)
-        factoredRootDiagonal_[12 * h + i] =
-            std::sqrt(std::abs(blocks[144 * static_cast<size_t>(diagonal[h]) + 13 * i]));
+    kept_.remember(factored_, c.blocks.data(), c.blocks.size(), c.diagonal.data(), c.handles);
   }
 
   Exec& ex_;
   const BlockPattern& finePattern_;
   int rows_ = 0;
-  // The fine smoother's operator in colour order (uploadSmootherPattern, refreshSmoother).
-  int smoothNnz_ = 0;
-  bool singleSmoother_ = false;
-  Buffer<int> smoothRowStart_, smoothColumns_, smoothSource_;
-  Buffer<float> smoothBlocks_;
-  Buffer<double> smoothDiagonalInverse_;
+  FineSmoother<Exec> smoother_;  // the fine level's operator in colour order
   typename Exec::template Mirror<int> fineRowStart_, fineColumns_, fineDiagonal_;
   const std::uint8_t* fixed_ = nullptr;  // anchored fine vertices (setFixed)
   std::vector<int> fineColorStart_;
   Buffer<int> fineColorRows_;
   std::vector<Level> levels_;
-  Buffer<double> ax_, fragmentResidual_, scalars_;
-  Buffer<double> pcgR_, pcgZ_, pcgP_, pcgAp_, pcgScalars_;  // allocated on the first pcg()
+  Buffer<double> ax_, scalars_;
+  MultigridPcg<Exec> pcg_;
   Buffer<double> cgR_, cgP_, cgAp_;
   int pieceCount_ = 0;
   Buffer<int> pieceOfHandle_, pieceContribStart_, pieceContribBlock_, pieceContribRow_;
   Buffer<int> pieceHandleStart_, pieceHandles_;
   Buffer<double> pieceMap_, pieceFactor_, pieceSolution_;
-  int fragments_ = 0;
-  Buffer<int> fragmentStart_, fragmentVertices_, fragmentOf_, fragmentPerm_;
-  Buffer<double> fragmentFrame_, restPositions_, fragmentFactor_, fragmentTranslation_;
-  Buffer<std::uint8_t> fragmentMode_;
+  FragmentCorrection<Exec> fragments_;  // the fine level's
   int denseSize_ = 0;
   Buffer<double> dense_;
   // The host's sparse factorization of the coarsest level (coarse_cholesky.h), and whether the
@@ -1064,8 +775,8 @@ class MultigridCycle {
   std::unique_ptr<CoarseCholesky> sparse_;
   bool sparseFactored_ = false;
   bool factored_ = false;
-  // The coarsest matrix as last factored (host memory only) and its diagonal's square roots.
-  std::vector<double> factoredBlocks_, factoredRootDiagonal_;
+  // The coarsest matrix as last factored (host memory only).
+  KeptCoarseFactor kept_;
   long coarseFactorsKept_ = 0;
 };
 
