@@ -3,10 +3,12 @@
 #include <imgui.h>
 
 #include <cstdio>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include "engine/session/simulation.h"
+#include "solver/fem/material_table.h"
 #include "solver/frame/parallel.h"
 #include "solver/frame/timing.h"
 
@@ -230,9 +232,17 @@ void SculptApp::drawScenePanel() {
     if (m.preset == presets[i]) preset = static_cast<int>(i);
   if (ImGui::Combo("preset", &preset, presets.data(), static_cast<int>(presets.size())))
     m = materialPreset(presets[preset]);
-  pickEnum("model", m.model,
-           {MaterialModel::Corotational, MaterialModel::StVK, MaterialModel::StableNeoHookean},
-           materialModelName);
+  {
+    int current = 0;
+    const char* names[std::size(kMaterialModels)];
+    for (size_t k = 0; k < std::size(kMaterialModels); ++k) {
+      names[k] = kMaterialModels[k].name;
+      if (kMaterialModels[k].model == m.model) current = static_cast<int>(k);
+    }
+    if (ImGui::Combo("model", &current, names, static_cast<int>(std::size(names))))
+      m.model = kMaterialModels[current].model;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kMaterialModels[current].summary);
+  }
   ImGui::InputDouble("Young's modulus (Pa)", &m.youngsModulus, 0.0, 0.0, "%.4g");
   ImGui::InputDouble("Poisson ratio", &m.poissonRatio, 0.0, 0.0, "%.4g");
   ImGui::InputDouble("density (kg/m^3)", &m.density, 0.0, 0.0, "%.4g");

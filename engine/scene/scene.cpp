@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "engine/scene/json_reader.h"
+#include "solver/fem/material_table.h"
 #include "solver/io/input_error.h"
 #include "solver/multigrid/multigrid.h"
 
@@ -37,10 +38,6 @@ struct Named {
   E value;
   const char* name;
 };
-constexpr Named<MaterialModel> kModelNames[] = {
-    {MaterialModel::Corotational, "corotational"},
-    {MaterialModel::StVK, "stvk"},
-    {MaterialModel::StableNeoHookean, "stable_neo_hookean"}};
 constexpr Named<SolverType> kSolverTypeNames[] = {{SolverType::Multigrid, "multigrid"},
                                                   {SolverType::Reference, "reference"}};
 constexpr Named<SolverPreset> kSolverPresetNames[] = {{SolverPreset::Converged, "converged"},
@@ -63,25 +60,36 @@ constexpr Named<FractureCriterion> kCriterionNames[] = {
 constexpr Named<BackendRequest> kBackendNames[] = {
     {BackendRequest::Auto, "auto"}, {BackendRequest::Cpu, "cpu"}, {BackendRequest::Cuda, "cuda"}};
 
-template <typename E, size_t N>
-const char* nameOf(const Named<E> (&names)[N], E value) {
-  for (const Named<E>& n : names)
-    if (n.value == value) return n.name;
+// The value of a row of a names table: Named<E>, or a material model's row of the solver's table
+// (solver/fem/material_table.h).
+template <typename E>
+E valueOfRow(const Named<E>& n) {
+  return n.value;
+}
+MaterialModel valueOfRow(const MaterialInfo& m) {
+  return m.model;
+}
+
+template <typename Row, size_t N, typename E>
+const char* nameOf(const Row (&names)[N], E value) {
+  for (const Row& n : names)
+    if (valueOfRow(n) == value) return n.name;
   return "?";
 }
 
-template <typename E, size_t N>
-std::optional<E> valueOf(const Named<E> (&names)[N], const std::string& name) {
-  for (const Named<E>& n : names)
-    if (name == n.name) return n.value;
+template <typename Row, size_t N>
+auto valueOf(const Row (&names)[N], const std::string& name)
+    -> std::optional<decltype(valueOfRow(names[0]))> {
+  for (const Row& n : names)
+    if (name == n.name) return valueOfRow(n);
   return std::nullopt;
 }
 
 // An optional enum member of a scene object, by name; unknown names fail with the choices.
-template <typename E, size_t N>
-E readEnum(JsonObject& o, const std::string& key, E fallback, const Named<E> (&names)[N]) {
+template <typename Row, size_t N, typename E>
+E readEnum(JsonObject& o, const std::string& key, E fallback, const Row (&names)[N]) {
   std::vector<std::string> allowed;
-  for (const Named<E>& n : names) allowed.push_back(n.name);
+  for (const Row& n : names) allowed.push_back(n.name);
   return valueOf(names, o.string(key, nameOf(names, fallback), allowed)).value_or(fallback);
 }
 
@@ -131,7 +139,7 @@ MeshSource readMesh(JsonObject o, const fs::path& sceneDir) {
 MaterialDesc readMaterial(JsonObject o) {
   const std::string preset = o.string("preset", "rubber", kPresets);
   MaterialDesc m = materialPreset(preset);
-  m.model = readEnum(o, "model", m.model, kModelNames);
+  m.model = readEnum(o, "model", m.model, kMaterialModels);
   m.youngsModulus = o.number("youngs_modulus", m.youngsModulus, 1e-3, 1e13);
   m.poissonRatio = o.number("poisson_ratio", m.poissonRatio, -0.99, 0.4999);
   m.density = o.number("density", m.density, 1e-3, 1e6);
@@ -338,7 +346,7 @@ const char* backendRequestName(BackendRequest b) {
   return nameOf(kBackendNames, b);
 }
 const char* materialModelName(MaterialModel m) {
-  return nameOf(kModelNames, m);
+  return nameOf(kMaterialModels, m);
 }
 const char* generatorName(Generator g) {
   return nameOf(kGeneratorNames, g);

@@ -2,12 +2,15 @@
 // defines GALSCULPT_LANES_NAMESPACE (and its compiler flags). No include guard on purpose.
 //
 // Every expression mirrors element_kernels.h's scalar code operation by operation (same
-// operands, same order), so each lane rounds exactly as the scalar kernel does; branches become
+// operands, same order), so each lane rounds exactly as the scalar kernel does (the material
+// models are not mirrored: their one source, templated on the number type, is instantiated here
+// with this file's lane type); branches become
 // per-lane selections, loops that stop early run until every lane has stopped (each lane
 // keeping its values from where it stopped), and the scalar code's turn to its accurate SVD
-// becomes a lane handed back. Nothing here may call an inline function of another header: this file is compiled with
-// instruction sets the rest of the program does not assume, and the linker could keep such a
-// copy for everyone.
+// becomes a lane handed back. Nothing here may call an inline function of another header: this
+// file is compiled with instruction sets the rest of the program does not assume, and the linker
+// could keep such a copy for everyone (templates instantiated with this file's own types, as the
+// material models are, have internal linkage and are safe).
 #include <cmath>
 #include <cstring>
 
@@ -305,62 +308,26 @@ struct Energy {
   Mat hessian;
 };
 
-// singularValueEnergy.
+// The number type D's operations the material models ask for (material_table.h): a type of this
+// file's own, so that every model is instantiated here for these lanes alone.
+struct LaneMath {
+  static D all(double x) { return D{x, x, x, x}; }
+  static D log(D x) {
+    D out;
+    for (int l = 0; l < kLanes; ++l) out[l] = ::log(x[l]);
+    return out;
+  }
+};
+
+// singularValueEnergy: the same model source as the scalar kernel, in lanes.
 Energy singularValueEnergy(MaterialModel model, const Lame& lame, const D s[3]) {
   Energy out;
-  const double mu = lame.mu, lambda = lame.lambda;
-  switch (model) {
-    case MaterialModel::Corotational: {
-      const D trace = s[0] + s[1] + s[2] - 3.0;
-      out.energy = 0.5 * lambda * trace * trace;
-      for (int i = 0; i < 3; ++i) {
-        out.energy += mu * (s[i] - 1.0) * (s[i] - 1.0);
-        out.gradient[i] = 2.0 * mu * (s[i] - 1.0) + lambda * trace;
-        for (int j = 0; j < 3; ++j) out.hessian(i, j) = all(lambda + (i == j ? 2.0 * mu : 0.0));
-      }
-      break;
-    }
-    case MaterialModel::StVK: {
-      D e[3], dPsiDe[3];
-      for (int i = 0; i < 3; ++i) e[i] = 0.5 * (s[i] * s[i] - 1.0);
-      const D trace = e[0] + e[1] + e[2];
-      out.energy = 0.5 * lambda * trace * trace;
-      for (int i = 0; i < 3; ++i) {
-        out.energy += mu * e[i] * e[i];
-        dPsiDe[i] = 2.0 * mu * e[i] + lambda * trace;
-        out.gradient[i] = dPsiDe[i] * s[i];
-      }
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-          out.hessian(i, j) =
-              s[i] * s[j] * (lambda + (i == j ? 2.0 * mu : 0.0)) + (i == j ? dPsiDe[i] : all(0.0));
-      break;
-    }
-    case MaterialModel::StableNeoHookean: {
-      const double muS = 4.0 / 3.0 * mu;
-      const double lambdaS = lambda + 5.0 / 6.0 * mu;
-      const double alpha = 1.0 + 0.75 * muS / lambdaS;
-      const D ic = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
-      const D j = s[0] * s[1] * s[2];
-      const D cof[3] = {s[1] * s[2], s[0] * s[2], s[0] * s[1]};
-      const double restEnergy =
-          0.5 * lambdaS * (1.0 - alpha) * (1.0 - alpha) - 0.5 * muS * log(4.0);
-      D logTerm;
-      for (int l = 0; l < kLanes; ++l) logTerm[l] = log(ic[l] + 1.0);
-      out.energy = 0.5 * muS * (ic - 3.0) + 0.5 * lambdaS * (j - alpha) * (j - alpha) -
-                   0.5 * muS * logTerm - restEnergy;
-      const D shear = muS * (1.0 - 1.0 / (ic + 1.0));
-      for (int a = 0; a < 3; ++a) out.gradient[a] = shear * s[a] + lambdaS * (j - alpha) * cof[a];
-      for (int a = 0; a < 3; ++a) {
-        for (int b = 0; b < 3; ++b) {
-          D h = 2.0 * muS * s[a] * s[b] / ((ic + 1.0) * (ic + 1.0)) + lambdaS * cof[a] * cof[b];
-          h += a == b ? shear : lambdaS * (j - alpha) * s[3 - a - b];
-          out.hessian(a, b) = h;
-        }
-      }
-      break;
-    }
-  }
+  D hessian[3][3];
+  withMaterial(model, [&](auto m) {
+    decltype(m)::template singularValues<D, LaneMath>(lame, s, out.energy, out.gradient, hessian);
+  });
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out.hessian(i, j) = hessian[i][j];
   return out;
 }
 

@@ -4,7 +4,8 @@
 
 namespace galsculpt {
 
-enum class MaterialModel { Corotational, StVK, StableNeoHookean };
+// The models (solver/fem/material_table.h lists them; solver/fem/materials/ defines them).
+enum class MaterialModel { Corotational, StVK, StableNeoHookean, FixedCorotated };
 
 struct Lame {
   double mu = 0.0;      // shear modulus (Pa)

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/scene/scene_mesh.h"
+#include "solver/fem/material_table.h"
 #include "solver/io/input_error.h"
 #include "tests/test_util.h"
 
@@ -263,7 +264,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "$.substeps: must be at least 1"},
         BadScene{std::string("{") + kMesh + R"(, "material": {"model": "neo"}})",
                  "$.material.model: unknown value 'neo' (expected one of: corotational, stvk, "
-                 "stable_neo_hookean)"},
+                 "stable_neo_hookean, fixed_corotated)"},
         BadScene{
             std::string("{") + kMesh + R"(, "solver": {"smoother": "sor"}})",
             "$.solver.smoother: unknown value 'sor' (expected one of: auto, gauss_seidel, jacobi)"},
@@ -272,6 +273,18 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{std::string("{") + kMesh + R"(, "solver": {"energy_guard": "local"}})",
                  "$.solver.energy_guard: unknown value 'local' (expected one of: vertex, body)"},
         BadScene{"{\n\"mesh\": {\n\"file\": \"x.node\",\n}\n}", "s.json:4: JSON syntax error"}));
+
+// Every model of the solver's table (solver/fem/material_table.h) is a scene's by its name.
+TEST(Scene, EveryMaterialModelOfTheTableReadsByItsName) {
+  test::TempDir dir;
+  for (const MaterialInfo& row : kMaterialModels) {
+    test::writeText(dir / "s.json",
+                    std::string("{") + kMesh + R"(, "material": {"model": ")" + row.name + "\"}}");
+    const SceneDescription s = loadScene(dir / "s.json");
+    EXPECT_EQ(s.material.model, row.model) << row.name;
+    EXPECT_STREQ(materialModelName(row.model), row.name);
+  }
+}
 
 // Settings are parsed once into enums; their names come back as written.
 TEST(Scene, SolverChoicesAreTypedAndKeepTheirNames) {

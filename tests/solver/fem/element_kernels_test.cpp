@@ -9,6 +9,8 @@
 #include <cstring>
 #include <random>
 
+#include "solver/fem/material_table.h"
+
 namespace galsculpt::kernels {
 namespace {
 
@@ -103,8 +105,8 @@ TEST(ElementKernels, ElementHessianMatchesStressDerivative) {
   const Lame lame = kSampleLame;
   std::mt19937 gen(3);
   std::uniform_real_distribution<double> u(-0.4, 0.4);
-  for (MaterialModel model :
-       {MaterialModel::Corotational, MaterialModel::StVK, MaterialModel::StableNeoHookean}) {
+  for (const MaterialInfo& row : kMaterialModels) {  // every model of the table
+    const MaterialModel model = row.model;
     for (Hessian mode : {Hessian::Exact, Hessian::ProjectedSpd}) {
       double x[12];
       for (int i = 0; i < 12; ++i) x[i] = rest[i] + u(gen);

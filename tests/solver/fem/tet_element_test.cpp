@@ -3,13 +3,21 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <vector>
+
+#include "solver/fem/material_table.h"
 
 namespace galsculpt {
 namespace {
 
 const Lame kLame = lameFromYoungPoisson(1e5, 0.4);
-const MaterialModel kModels[] = {MaterialModel::Corotational, MaterialModel::StVK,
-                                 MaterialModel::StableNeoHookean};
+// Every model of the table (solver/fem/material_table.h).
+std::vector<MaterialModel> allModels() {
+  std::vector<MaterialModel> out;
+  for (const MaterialInfo& row : kMaterialModels) out.push_back(row.model);
+  return out;
+}
+const std::vector<MaterialModel> kModels = allModels();
 
 TetPoints restTet() {
   return {Eigen::Vector3d(0.0, 0.0, 0.0), Eigen::Vector3d(1.0, 0.1, 0.0),

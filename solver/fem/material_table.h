@@ -1,0 +1,73 @@
+// The material models, one row each: the table the scene reader, the Scene panel and
+// docs/scenes.md list (names and summaries), and withMaterial, the one place in the solver that
+// names the models case by case. Each model is a file under solver/fem/materials/: its energy
+// density, gradient and Hessian in the singular values of F, templated on the number type
+// (double in the scalar and CUDA kernels, a SIMD lane of doubles in element_lanes_body.h) so
+// that every path runs the same source, and, where Psi and P have a closed form in F (kDirect),
+// `direct` for the energy-only evaluations. Adding a model: its file, its value in
+// material_types.h, its row below and its case in withMaterial
+// (tests/solver/fem/material_table_test.cpp checks every row by finite differences).
+#pragma once
+
+#include <cmath>
+
+#include "solver/fem/kernel_math.h"
+#include "solver/fem/material_types.h"
+#include "solver/fem/materials/corotational.h"
+#include "solver/fem/materials/fixed_corotated.h"
+#include "solver/fem/materials/stable_neo_hookean.h"
+#include "solver/fem/materials/stvk.h"
+
+namespace galsculpt {
+
+struct MaterialInfo {
+  MaterialModel model;
+  const char* name;     // in scenes ("material": {"model": NAME}) and the Scene panel
+  const char* summary;  // one line for the panel's tooltip and docs/scenes.md
+};
+
+inline constexpr MaterialInfo kMaterialModels[] = {
+    {MaterialModel::Corotational, "corotational",
+     "linear corotational: stiff and simple, soft in volume under strong compression"},
+    {MaterialModel::StVK, "stvk",
+     "St. Venant-Kirchhoff: Green strain; softens and can invert under strong compression"},
+    {MaterialModel::StableNeoHookean, "stable_neo_hookean",
+     "stable neo-Hookean (Smith et al. 2018): well posed in compression and through inversion"},
+    {MaterialModel::FixedCorotated, "fixed_corotated",
+     "fixed corotated (Stomakhin et al. 2012): corotational with a volume term in J"},
+};
+
+// The row of `model` (every model has one).
+inline const MaterialInfo& materialInfo(MaterialModel model) {
+  for (const MaterialInfo& m : kMaterialModels)
+    if (m.model == model) return m;
+  return kMaterialModels[0];
+}
+
+}  // namespace galsculpt
+
+namespace galsculpt::kernels {
+
+// The number type double's operations the models ask for (a lane type has its own).
+struct ScalarMath {
+  GALSCULPT_HD static double all(double x) { return x; }
+  GALSCULPT_HD static double log(double x) { return ::log(x); }
+};
+
+// f(Model{}) for the model's type.
+template <typename F>
+GALSCULPT_HD decltype(auto) withMaterial(MaterialModel model, F&& f) {
+  switch (model) {
+    case MaterialModel::Corotational:
+      return f(Corotational{});
+    case MaterialModel::StVK:
+      return f(StVK{});
+    case MaterialModel::FixedCorotated:
+      return f(FixedCorotated{});
+    case MaterialModel::StableNeoHookean:
+      break;
+  }
+  return f(StableNeoHookean{});
+}
+
+}  // namespace galsculpt::kernels
