@@ -247,7 +247,8 @@ class CudaExecutor {
       GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(dst, src, n * sizeof(T), cudaMemcpyDeviceToDevice,
                                            GALSCULPT_CUDA_STREAM));
   }
-  void read(const double* deviceValues, double* host, int n) const {
+  template <typename T>
+  void read(const T* deviceValues, T* host, int n) const {
     download(deviceValues, host, static_cast<size_t>(n));
   }
   // Device to host through the pinned staging buffer (one DMA, one wait, one memcpy).

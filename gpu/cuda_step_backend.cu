@@ -1,7 +1,7 @@
 #include "gpu/cuda_executor.cuh"
 #include "gpu/cuda_step_backend.h"
 #include "gpu/device_info.h"
-#include "solver/frame/frame_solver.h"
+#include "solver/frame/executor_step_backend.h"
 
 namespace galsculpt::gpu {
 

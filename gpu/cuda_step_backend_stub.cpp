@@ -1,7 +1,7 @@
 // The CUDA backend's entry points in builds without nvcc: it is not there, and says so.
 #include "gpu/cuda_step_backend.h"
 
-#include "solver/frame/frame_solver.h"
+#include "solver/frame/linear_solve.h"
 
 namespace galsculpt::gpu {
 

@@ -161,7 +161,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
 void Simulation::updatePieces() {
   if (piecesRevision_ == state_.damageRevision) return;
   piecesRevision_ = state_.damageRevision;
-  const PieceCensus census = censusPieces(model_, state_.damaged);
+  const PieceCensus& census = pieceTracker_.census(model_, state_.damaged, state_.damageRevision);
   pieces_ = census.pieces;
   pieceNumber_ = census.pieceOfVertex;
   bodyRestVolume_ = census.bodyRestVolume;

@@ -11,6 +11,7 @@
 #include "engine/surface/surface_builder.h"
 #include "solver/fracture/knife.h"
 #include "solver/frame/cpu_backend.h"
+#include "solver/frame/piece_tracker.h"
 #include "solver/frame/step.h"
 
 namespace galsculpt {
@@ -204,6 +205,7 @@ class Simulation {
   int toolDamage_ = 0;  // edges cut by tools since the last frame
   void updatePieces();  // pieces and counted tets, when the damage changed
   std::uint64_t piecesRevision_ = ~0ull;
+  PieceTracker pieceTracker_;
   std::vector<std::uint8_t> countedTets_;
   int pieces_ = 1;
   std::vector<int> pieceNumber_;           // each vertex's piece, numbered 0 .. pieces_ - 1

@@ -228,10 +228,10 @@ class AcceleratedStart {
   // still has them from its last accepted trial, or null: the elements between pieces are then
   // evaluated with `elementGradient`, the same kernel, to the same bits. `layout`: the body's
   // pieces (pieceLayout; the device copy is rebuilt when its revision changes).
-  template <typename ElementGradient>
+  template <typename Gradient>
   void start(const Exec& ex, const SimModel& model, const PieceLayout& layout,
-             const SubstepInputs& in, const ElementGradient& elementGradient,
-             const double* gradientsAtXn, double* x) {
+             const SubstepInputs& in, const Gradient& elementGradient, const double* gradientsAtXn,
+             double* x) {
     if (!built_ || builtRevision_ != layout.revision) rebuild(model, layout);
     if (pieceCount_ == 1 && in.anyFixed) return;  // a body in one piece, anchored: no launch
     const double g = sqrt(in.gravity[0] * in.gravity[0] + in.gravity[1] * in.gravity[1] +

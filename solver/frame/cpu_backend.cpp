@@ -3,7 +3,7 @@
 #include <stdexcept>
 
 #include "solver/frame/cpu_executor.h"
-#include "solver/frame/frame_solver.h"
+#include "solver/frame/executor_step_backend.h"
 
 namespace galsculpt {
 

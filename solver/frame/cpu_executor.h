@@ -115,7 +115,8 @@ class CpuExecutor {
     ++counters_.copies;
     std::memmove(dst, src, n * sizeof(T));
   }
-  void read(const double* deviceValues, double* host, int n) const {
+  template <typename T>
+  void read(const T* deviceValues, T* host, int n) const {
     detail::forbidInCapture("a host read");
     ++counters_.reads;
     std::copy(deviceValues, deviceValues + n, host);

@@ -57,7 +57,23 @@ struct ElementInputs {
   }
 };
 
-// One element pass's inputs and outputs (FrameSolver::elementPass), copied into its kernels.
+// One element's gradient at positions y, without its stiffness (the pieces' start).
+struct ElementGradient {
+  ElementInputs in;
+  MaterialModel model;
+  Lame lame;
+  bool resists;
+  GALSCULPT_HD void operator()(int t, const double* y, double* gradient) const {
+    double x12[12], energy;
+    std::uint8_t intact;
+    const kernels::RestData& r = in.load(t, y, x12, intact);
+    kernels::evaluateElement(model, lame, r, x12, intact, in.resists(t, resists),
+                             kernels::Hessian::None, energy, gradient, nullptr);
+  }
+};
+
+// One element pass's inputs and outputs (IncrementalPotential::elementPass), copied into its
+// kernels.
 struct ElementPass {
   ElementInputs in;
   const double* y;

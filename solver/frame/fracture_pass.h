@@ -19,6 +19,11 @@ namespace galsculpt {
 template <typename Exec>
 class FracturePass {
  public:
+  // What the pass's kernels hand back: the largest stress ratio, the most critical edge's
+  // criticality, and a count (edges that break; edges with a kernel mean).
+  struct Scalars {
+    double ratio = 0.0, critical = 0.0, count = 0.0;
+  };
   template <typename T>
   using Buffer = typename Exec::template Buffer<T>;
   template <typename T>
@@ -28,7 +33,7 @@ class FracturePass {
   FracturePass(const Exec& ex, const SimModel& model)
       : ex_(ex), model_(model), tets_(model.numTets()), edges_(model.numEdges()) {
     const FractureField& field = model.fracture;
-    scalars_.resize(kScalars);
+    scalars_.resize(1);
     edgeSlotStart_.mirror(field.slotStart);
     edgeSlots_.mirror(field.slots);
     threshold_.mirror(field.threshold);
@@ -76,7 +81,7 @@ class FracturePass {
     evaluate(in, x, damaged, false);
     std::uint8_t* breaks = breaks_.data();
     double* ratio = mean_.data();
-    double* sc = scalars_.data();
+    Scalars* sc = scalars_.data();
     const double* stretch = stretch_.data();
     const FractureSettings& settings = model_.fracture.settings;
     if (settings.criticalFraction > 0.0) {
@@ -88,22 +93,22 @@ class FracturePass {
         const double crushed = crush > 0.0 ? -compression[e] / (crush * threshold[e]) : 0.0;
         return breaks[e] ? fmax(fmax(ratio[e], crushed), stretch[e]) : -kInf;
       };
-      ex_.maximum(edges, criticality, sc + kCritical);
+      ex_.maximum(edges, criticality, &sc->critical);
       double most = 0.0;
-      ex_.read(sc + kCritical, &most, 1);
+      ex_.read(&sc->critical, &most, 1);
       const double below = settings.criticalFraction * most;
       ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
         if (breaks[e] && !(criticality(e) >= below)) breaks[e] = 0;
       });
     }
     ex_.maximum(
-        edges, [=] GALSCULPT_LAMBDA(int e) { return fmax(ratio[e], stretch[e]); }, sc + kRatio);
+        edges, [=] GALSCULPT_LAMBDA(int e) { return fmax(ratio[e], stretch[e]); }, &sc->ratio);
     ex_.sum(
-        edges, [=] GALSCULPT_LAMBDA(int e) { return breaks[e] ? 1.0 : 0.0; }, sc + kCount);
-    double read[kScalars];
-    ex_.read(sc, read, kScalars);
-    report.maxStressRatio = std::max(0.0, read[kRatio]);
-    report.newlyDamaged = static_cast<int>(read[kCount]);
+        edges, [=] GALSCULPT_LAMBDA(int e) { return breaks[e] ? 1.0 : 0.0; }, &sc->count);
+    Scalars read;
+    ex_.read(sc, &read, 1);
+    report.maxStressRatio = std::max(0.0, read.ratio);
+    report.newlyDamaged = static_cast<int>(read.count);
     return report;
   }
 
@@ -211,7 +216,7 @@ class FracturePass {
     std::uint8_t* breaks = breaks_.data();
     double* ratio = mean_.data();
     const double crush = field.settings.crushRatio();
-    double* sc = scalars_.data();
+    Scalars* sc = scalars_.data();
     // Only edges within R_d of an edge over the smallest threshold can average above theirs.
     const double minThreshold = field.minThreshold;
     std::uint8_t* hot = hot_.data();
@@ -264,16 +269,14 @@ class FracturePass {
     });
     // Without any candidate the ratio is the local one (the pass reports the largest ratio).
     ex_.sum(
-        edges, [=] GALSCULPT_LAMBDA(int e) { return ratio[e] > -1.7e308 ? 1.0 : 0.0; },
-        sc + kCount);
+        edges, [=] GALSCULPT_LAMBDA(int e) { return ratio[e] > -1.7e308 ? 1.0 : 0.0; }, &sc->count);
     ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
-      if (sc[kCount] == 0.0 && !damaged[e]) ratio[e] = local[e] / threshold[e];
+      if (sc->count == 0.0 && !damaged[e]) ratio[e] = local[e] / threshold[e];
     });
   }
 
  private:
   static constexpr double kInf = std::numeric_limits<double>::infinity();
-  enum Slot { kRatio, kCritical, kCount, kScalars };
   const Exec& ex_;
   const SimModel& model_;
   int tets_ = 0, edges_ = 0;
@@ -281,7 +284,8 @@ class FracturePass {
       cellNeighbors_;
   Mirror<double> threshold_, midpoint_, strainLimit_, restLength_;
   Mirror<int> edgeEnds_;  // (2 nEdges) strain criterion only
-  Buffer<double> slotStress_, localStress_, compression_, mean_, stretch_, scalars_;
+  Buffer<double> slotStress_, localStress_, compression_, mean_, stretch_;
+  Buffer<Scalars> scalars_;
   Buffer<std::uint8_t> breaks_, hot_, cellHot_;
 };
 

@@ -2,7 +2,7 @@
 // backend's tests, everywhere, so that a defect of those paths shows without a GPU.
 #include <gtest/gtest.h>
 
-#include "solver/frame/frame_solver.h"
+#include "solver/frame/executor_step_backend.h"
 #include "tests/gpu/backend_comparison.h"
 #include "tests/gpu/device_like_executor.h"
 

@@ -1,0 +1,30 @@
+// The scalars a frame's kernels hand back to the host: one struct in executor memory, written by
+// reductions and single-item launches, read whole once per Newton iteration, per trial of the
+// line search and at a sub-step's end (one host synchronization each), or in part (the vertex
+// guard's levels, the null step's |g|^2).
+#pragma once
+
+namespace galsculpt {
+
+struct FrameScalars {
+  static constexpr int kGuardLevels = 24;  // the vertex guard's thresholds: the excess times 2^-k
+
+  double elastic = 0.0, contact = 0.0;            // energies at x
+  double trialElastic = 0.0, trialContact = 0.0;  // energies at the trial
+  double e0 = 0.0, e1 = 0.0;                      // the incremental potential at x, at the trial
+  double slope = 0.0;                             // g . delta along the Newton step
+  double deltaMax = 0.0;                          // |delta|_inf
+  double bad = 0.0;                               // > 0: a NaN or infinity in the step or x
+  double residual = 0.0;                          // |g|^2 at the accepted positions
+  double forceScale = 0.0;    // |f|^2 of the elastic and contact forces on free vertices
+  double r0 = 0.0, r1 = 0.0;  // |b|^2 and |b - A delta|^2 around the V-cycles' solve
+  double inverted = 0.0, trialInverted = 0.0;  // intact elements inside out at x, at the trial
+  double kept = 0.0;                           // elements whose stiffness the pass kept
+  double switched = 0.0;  // damaged elements whose open cracks differ from the stiffness's
+  // The vertex guard's round: the guarded step's slope, the elements evaluated again, the
+  // vertices shortened, and per level the rises above it (the last: every rise).
+  double guardSlope = 0.0, guardElements = 0.0, guardCount = 0.0;
+  double guardLevel[kGuardLevels + 1] = {};
+};
+
+}  // namespace galsculpt

@@ -1,0 +1,107 @@
+// The vertices a sub-step does not solve for: anchored ones, moved along their paths to the
+// sub-step's end, and removed debris (solver/fracture/debris.h), held where the state has them.
+// Computed on the host per sub-step and uploaded only when they change: the held flags (fixed),
+// the removed flags, and the anchored and removed vertices' targets in the frame's data.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "solver/fem/dense_kernels.h"
+#include "solver/fracture/debris.h"
+#include "solver/frame/frame_data.h"
+#include "solver/frame/step.h"
+#include "solver/model/sim_model.h"
+
+namespace galsculpt {
+
+template <typename Exec>
+class HeldVertexSet {
+ public:
+  HeldVertexSet(Exec& ex, const SimModel& model, FrameData<Exec>& data)
+      : ex_(ex), model_(model), d_(data) {}
+
+  // The debris rule: the vertices of pieces under model.debrisRemoval of the body's rest volume
+  // (in `census`, of the current damage) are held where they are, out of the solve, and the
+  // elements around them stop pushing back on the rest of the body.
+  void updateRemovedDebris(const PieceCensus& census) {
+    std::vector<std::uint8_t> removed = debrisVertices(census, model_.debrisRemoval);
+    if (removed.empty()) removed.assign(d_.n, 0);
+    if (removed == hostRemoved_) return;
+    hostRemoved_ = std::move(removed);
+    d_.removed.upload(hostRemoved_);
+    removedVertices_.clear();
+    for (int v = 0; v < d_.n; ++v)
+      if (hostRemoved_[v]) removedVertices_.push_back(v);
+  }
+
+  // Removed debris stays where `state` has it (a backend may step several states).
+  void holdRemovedAt(const SimState& state) {
+    removedTargets_.clear();
+    for (int v : removedVertices_)
+      removedTargets_.insert(removedTargets_.end(),
+                             {state.x[v].x(), state.x[v].y(), state.x[v].z()});
+  }
+
+  // The held vertices and their targets at `time` (the sub-step's end).
+  void prepare(const std::vector<AnchorConstraint>& anchors, double time) {
+    std::vector<std::uint8_t> fixed(d_.n, 0);
+    std::vector<int> vertices;
+    std::vector<double> targets;
+    for (const AnchorConstraint& a : anchors) {
+      const Vec3 offset = anchorOffset(a, time);
+      for (size_t i = 0; i < a.vertices.size(); ++i) {
+        const int v = a.vertices[i];
+        fixed[v] = 1;
+        const Vec3 p = (a.origin.empty() ? model_.mesh.vertices[v] : a.origin[i]) + offset;
+        vertices.push_back(v);
+        targets.insert(targets.end(), {p.x(), p.y(), p.z()});
+      }
+    }
+    for (size_t i = 0; i < removedVertices_.size(); ++i) {
+      const int v = removedVertices_[i];
+      if (fixed[v]) continue;  // an anchor keeps it on its path
+      fixed[v] = 1;
+      vertices.push_back(v);
+      targets.insert(targets.end(), removedTargets_.begin() + 3 * i,
+                     removedTargets_.begin() + 3 * i + 3);
+    }
+    if (fixed != hostFixed_) {
+      hostFixed_ = fixed;
+      d_.fixed.upload(hostFixed_);
+    }
+    d_.anchorCount = vertices.size();
+    if (vertices != hostAnchorVertices_) {
+      hostAnchorVertices_ = vertices;
+      d_.anchorVertices.upload(vertices);
+    }
+    if (targets != hostAnchorTargets_) {
+      hostAnchorTargets_ = targets;
+      d_.anchorTargets.upload(targets);
+    }
+  }
+
+  // The anchored vertices on their paths at the sub-step's end (in x).
+  void place() {
+    double* x = d_.x.data();
+    const int* anchorVertex = d_.anchorVertices.data();
+    const double* anchorTarget = d_.anchorTargets.data();
+    ex_.forEach(static_cast<int>(d_.anchorCount), [=] GALSCULPT_LAMBDA(int i) {
+      for (int k = 0; k < 3; ++k) x[3 * anchorVertex[i] + k] = anchorTarget[3 * i + k];
+    });
+  }
+
+ private:
+  Exec& ex_;
+  const SimModel& model_;
+  FrameData<Exec>& d_;
+  // Host shadows: what the executor holds, to upload only changes.
+  std::vector<std::uint8_t> hostFixed_, hostRemoved_;
+  std::vector<int> hostAnchorVertices_;
+  std::vector<double> hostAnchorTargets_;
+  std::vector<int> removedVertices_;    // ascending
+  std::vector<double> removedTargets_;  // (3 per removed vertex) where each is held
+};
+
+}  // namespace galsculpt

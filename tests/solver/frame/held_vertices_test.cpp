@@ -1,0 +1,83 @@
+// The held vertices (solver/frame/held_vertices.h): anchors on their paths at the sub-step's end,
+// removed debris held where the state has it (an anchor's path winning over it), the flags and
+// targets uploaded only when they change; and the key of a captured section (graph_key.h),
+// which every setting a captured step reads changes.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "solver/fracture/debris.h"
+#include "solver/frame/cpu_executor.h"
+#include "solver/frame/graph_key.h"
+#include "solver/frame/held_vertices.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+MaterialParams rubber() {
+  return {MaterialModel::StableNeoHookean, lameFromYoungPoisson(1e5, 0.45), 1000.0, {}};
+}
+
+TEST(HeldVertexSet, AnchorsFollowTheirPathsAndDebrisStaysWhereTheStateHasIt) {
+  SimModel m = buildSimModel(test::gridBar(8, 2, 2, 0.01), rubber());
+  m.debrisRemoval = 0.2;
+  SimState s = initialState(m);
+  CpuExecutor ex;
+  FrameData<CpuExecutor> d(m);
+  HeldVertexSet<CpuExecutor> held(ex, m, d);
+  // A slab of 9 vertices cut off at x = 0.005: debris (under a fifth of the body).
+  cutAt(m, s, 0.005);
+  held.updateRemovedDebris(censusPieces(m, s.damaged));
+  for (int v = 0; v < m.numVertices(); ++v)
+    if (m.mesh.vertices[v].x() < 0.005) s.x[v] += Vec3(0, -0.003, 0);  // where it fell
+  held.holdRemovedAt(s);
+  AnchorConstraint anchor;
+  anchor.vertices = {m.numVertices() - 1, 0};  // vertex 0 is debris too: the path wins
+  anchor.path = {{0.0, Vec3::Zero()}, {1.0, Vec3(0, 0, 0.01)}};
+  held.prepare({anchor}, 0.5);
+  std::vector<double> x(3 * m.numVertices(), 0.0);
+  d.x.upload(x);
+  held.place();
+  d.x.download(x.data(), x.size());
+  std::vector<std::uint8_t> fixed(m.numVertices()), removed(m.numVertices());
+  d.fixed.download(fixed.data(), fixed.size());
+  d.removed.download(removed.data(), removed.size());
+  int debris = 0;
+  for (int v = 0; v < m.numVertices(); ++v) {
+    const bool isDebris = m.mesh.vertices[v].x() < 0.005;
+    debris += isDebris;
+    EXPECT_EQ(removed[v], isDebris ? 1 : 0) << v;
+    const bool anchored = v == 0 || v == m.numVertices() - 1;
+    EXPECT_EQ(fixed[v], isDebris || anchored ? 1 : 0) << v;
+    Vec3 expected = Vec3::Zero();
+    if (anchored)
+      expected = m.mesh.vertices[v] + Vec3(0, 0, 0.005);
+    else if (isDebris)
+      expected = s.x[v];
+    for (int k = 0; k < 3; ++k) EXPECT_DOUBLE_EQ(x[3 * v + k], expected[k]) << v;
+  }
+  EXPECT_EQ(debris, 9);
+  EXPECT_EQ(d.anchorCount, static_cast<size_t>(2 + debris - 1));
+}
+
+TEST(GraphKey, EverySettingACapturedStepReadsChangesTheKey) {
+  const StepSettings base;
+  const auto key = [](const StepSettings& s) { return GraphKey().mixSettings(s).value(); };
+  EXPECT_EQ(key(base), key(base));
+  std::vector<StepSettings> changed(8, base);
+  changed[0].newtonIterations += 1;
+  changed[1].multigridSettings.preSweeps += 1;
+  changed[2].multigridSettings.postSweeps += 1;
+  changed[3].multigridSettings.coarseIterations += 1;
+  changed[4].multigridSettings.jacobi = !base.multigridSettings.jacobi;
+  changed[5].multigridSettings.jacobiWeight *= 0.5;
+  changed[6].stiffnessTolerance += 1e-3;
+  changed[7].reuseStiffness = !base.reuseStiffness;
+  for (size_t i = 0; i < changed.size(); ++i) EXPECT_NE(key(changed[i]), key(base)) << i;
+  EXPECT_NE(GraphKey().mixDouble(0.01).value(), GraphKey().mixDouble(0.02).value());
+  EXPECT_NE(GraphKey().mix(1).mix(2).value(), GraphKey().mix(2).mix(1).value());
+}
+
+}  // namespace
+}  // namespace galsculpt
