@@ -60,13 +60,11 @@ struct MultigridSettings {
   int postSweeps = 3;
   bool jacobi = false;  // false: symmetric multi-colour Gauss-Seidel
   // With jacobi false, Jacobi all the same on a device (`!Exec::kHostMemory`) where the V-cycle
-  // preconditions CG (pcg): a colour sweep there is a launch per colour (278 a frame on the
-  // converged sphere, two thirds of its device time), a Jacobi sweep one launch, and CG takes
-  // the weaker smoother to the same tolerance. On an H200 the converged sphere's frame took 4.8
-  // ms where Gauss-Seidel took 7.3, the human figure's 74 where it took 90 (docs/benchmarks.md).
-  // Without CG (the paper's one V-cycle) the smoother is the solve: Jacobi there left the
-  // sphere 1.1 % off where Gauss-Seidel left it 0.27 %, and the clay head's volume drifted 2.6 %,
-  // so Gauss-Seidel stays. False: the same smoother on every executor.
+  // preconditions CG (pcg): a colour sweep there is a launch per colour, a Jacobi sweep one
+  // launch, and CG takes the weaker smoother to the same tolerance. Without CG (the paper's one
+  // V-cycle) the smoother is the solve, and Gauss-Seidel stays
+  // (docs/notes/2026-12-04-gpu-second-run.md has the measurements). False: the same smoother on
+  // every executor.
   bool jacobiOnDevice = true;
   double jacobiWeight = 0.66;
   bool coarseCholesky = false;  // false: CG on the coarsest level

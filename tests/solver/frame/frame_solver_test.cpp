@@ -183,26 +183,6 @@ TEST(FrameSolver, LaunchesAndHostReadsPerFrame) {
 
 // What the CUDA executor records as a graph may not read, allocate or wait; the host executor
 // refuses those inside captured(), so the frame tests above check the CUDA path's discipline.
-// A failed step is shortened to the minimum of the quadratic through the energy, its slope and
-// the failed trial, within a tenth and a half of the failed length; halved where the energy
-// says nothing (the trial turned elements inside out, or the step is no descent direction).
-TEST(LineSearch, AFailedStepShrinksToTheQuadraticsMinimum) {
-  using Solver = LineSearch<CpuExecutor>;
-  FrameScalars read;
-  read.slope = -1.0;
-  auto energy = [](double c, double length) { return -length + c * length * length; };
-  EXPECT_NEAR(Solver::shorterStep(1.0, 0.0, energy(1.5, 1.0), read), 1.0 / 3.0, 1e-15);
-  EXPECT_NEAR(Solver::shorterStep(0.1, 0.0, energy(10.0, 0.1), read), 0.05, 1e-15);
-  EXPECT_EQ(Solver::shorterStep(1.0, 0.0, energy(1e6, 1.0), read), 0.1) << "at most ten times";
-  EXPECT_EQ(Solver::shorterStep(1.0, 0.0, energy(0.6, 1.0), read), 0.5) << "at least half";
-  read.trialInverted = 1.0;
-  EXPECT_EQ(Solver::shorterStep(1.0, 0.0, energy(1.5, 1.0), read), 0.5) << "inverted: halved";
-  read.trialInverted = 0.0;
-  read.slope = 0.5;
-  EXPECT_EQ(Solver::shorterStep(1.0, 0.0, 1.0, read), 0.5) << "no descent: halved";
-  EXPECT_EQ(Solver::shorterStep(1.0, 0.0, std::nan(""), read), 0.5);
-}
-
 TEST(CpuExecutor, CapturedSectionsMayNotReadAllocateOrWait) {
   CpuExecutor ex;
   CpuExecutor::Buffer<double> b;

@@ -1,14 +1,11 @@
 // The held vertices (solver/frame/held_vertices.h): anchors on their paths at the sub-step's end,
-// removed debris held where the state has it (an anchor's path winning over it), the flags and
-// targets uploaded only when they change; and the key of a captured section (graph_key.h),
-// which every setting a captured step reads changes.
+// removed debris held where the state has it (an anchor's path winning over it).
 #include <gtest/gtest.h>
 
 #include <vector>
 
 #include "solver/fracture/debris.h"
 #include "solver/frame/cpu_executor.h"
-#include "solver/frame/graph_key.h"
 #include "solver/frame/held_vertices.h"
 #include "tests/test_util.h"
 
@@ -59,24 +56,6 @@ TEST(HeldVertexSet, AnchorsFollowTheirPathsAndDebrisStaysWhereTheStateHasIt) {
   }
   EXPECT_EQ(debris, 9);
   EXPECT_EQ(d.anchorCount, static_cast<size_t>(2 + debris - 1));
-}
-
-TEST(GraphKey, EverySettingACapturedStepReadsChangesTheKey) {
-  const StepSettings base;
-  const auto key = [](const StepSettings& s) { return GraphKey().mixSettings(s).value(); };
-  EXPECT_EQ(key(base), key(base));
-  std::vector<StepSettings> changed(8, base);
-  changed[0].newtonIterations += 1;
-  changed[1].multigridSettings.preSweeps += 1;
-  changed[2].multigridSettings.postSweeps += 1;
-  changed[3].multigridSettings.coarseIterations += 1;
-  changed[4].multigridSettings.jacobi = !base.multigridSettings.jacobi;
-  changed[5].multigridSettings.jacobiWeight *= 0.5;
-  changed[6].stiffnessTolerance += 1e-3;
-  changed[7].reuseStiffness = !base.reuseStiffness;
-  for (size_t i = 0; i < changed.size(); ++i) EXPECT_NE(key(changed[i]), key(base)) << i;
-  EXPECT_NE(GraphKey().mixDouble(0.01).value(), GraphKey().mixDouble(0.02).value());
-  EXPECT_NE(GraphKey().mix(1).mix(2).value(), GraphKey().mix(2).mix(1).value());
 }
 
 }  // namespace

@@ -1,0 +1,31 @@
+// The key of a captured section (solver/frame/graph_key.h): every setting a captured step reads
+// changes it, and so does the order of what it mixes.
+#include "solver/frame/graph_key.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace galsculpt {
+namespace {
+
+TEST(GraphKey, EverySettingACapturedStepReadsChangesTheKey) {
+  const StepSettings base;
+  const auto key = [](const StepSettings& s) { return GraphKey().mixSettings(s).value(); };
+  EXPECT_EQ(key(base), key(base));
+  std::vector<StepSettings> changed(8, base);
+  changed[0].newtonIterations += 1;
+  changed[1].multigridSettings.preSweeps += 1;
+  changed[2].multigridSettings.postSweeps += 1;
+  changed[3].multigridSettings.coarseIterations += 1;
+  changed[4].multigridSettings.jacobi = !base.multigridSettings.jacobi;
+  changed[5].multigridSettings.jacobiWeight *= 0.5;
+  changed[6].stiffnessTolerance += 1e-3;
+  changed[7].reuseStiffness = !base.reuseStiffness;
+  for (size_t i = 0; i < changed.size(); ++i) EXPECT_NE(key(changed[i]), key(base)) << i;
+  EXPECT_NE(GraphKey().mixDouble(0.01).value(), GraphKey().mixDouble(0.02).value());
+  EXPECT_NE(GraphKey().mix(1).mix(2).value(), GraphKey().mix(2).mix(1).value());
+}
+
+}  // namespace
+}  // namespace galsculpt

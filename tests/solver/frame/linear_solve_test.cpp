@@ -1,0 +1,114 @@
+// The Newton system's solve (solver/frame/linear_solve.h) on a bar's backward-Euler system with
+// one vertex held: PCG with the Galerkin multigrid to a tight tolerance gives CHOLMOD's step,
+// a V-cycle reduces the residual it reports, the held vertex's step is zero, and the null-step
+// test says yes for g = 0 only.
+#include "solver/frame/linear_solve.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "solver/frame/contact_term.h"
+#include "solver/frame/cpu_executor.h"
+#include "solver/frame/incremental_potential.h"
+#include "solver/frame/plastic_state.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+struct System {
+  SimModel model =
+      buildSimModel(test::gridBar(8, 2, 2, 0.01),
+                    {MaterialModel::StableNeoHookean, lameFromYoungPoisson(1e5, 0.4), 1000.0, {}});
+  CpuExecutor ex;
+  FrameData<CpuExecutor> d{model};
+  ContactTerm<CpuExecutor> contact{ex, model};
+  PlasticState<CpuExecutor> plastic{ex, model};
+  IncrementalPotential<CpuExecutor> potential{ex, model, d, contact, plastic};
+  LinearSolve<CpuExecutor> linear{ex, model, d};
+  StepSettings settings;
+  std::vector<std::uint8_t> damaged = std::vector<std::uint8_t>(model.numEdges(), 0);
+  int n = model.numVertices();
+
+  System() {
+    settings.multigrid = true;
+    settings.gridHandles = {8};
+    d.settings = &settings;
+    d.h = 0.01;
+    std::vector<double> x(3 * n);
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) x[3 * i + k] = 1.01 * model.mesh.vertices[i][k];
+    d.x.upload(x);
+    d.xn.upload(x);
+    d.xhat.upload(x);
+    std::vector<std::uint8_t> fixed(n, 0);
+    fixed[0] = 1;
+    d.fixed.upload(fixed);
+    std::vector<double> gradient(3 * n);
+    FrameScalars* sc = d.sc();
+    potential.elementPass(x.data(), true, gradient.data(), &sc->elastic, &sc->inverted);
+    potential.buildSystem(x.data());
+    std::vector<double> g(3 * n, 0.0);
+    std::mt19937 gen(9);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 3; i < 3 * n; ++i) g[i] = 1e-3 * u(gen);
+    d.g.upload(g);
+    linear.ensureHierarchy(settings, damaged, 0);
+  }
+  std::vector<double> step() {
+    std::vector<double> delta(3 * n);
+    d.delta.download(delta.data(), delta.size());
+    return delta;
+  }
+};
+
+TEST(LinearSolve, PcgWithTheMultigridGivesTheDirectSolvesStep) {
+  System s;
+  s.linear.solveDirect(s.settings);
+  const std::vector<double> direct = s.step();
+  s.settings.multigridSettings.pcg = true;
+  s.settings.multigridSettings.pcgTolerance = 1e-12;
+  s.linear.refresh(s.settings);
+  s.linear.resetIterations();
+  s.linear.solve(s.settings, 0.0);
+  const std::vector<double> pcg = s.step();
+  EXPECT_GT(s.linear.iterations(), 0);
+  EXPECT_LT(s.linear.reduction(), 1e-11);
+  double largest = 0.0, difference = 0.0;
+  for (int i = 0; i < 3 * s.n; ++i) {
+    largest = std::max(largest, std::abs(direct[i]));
+    difference = std::max(difference, std::abs(pcg[i] - direct[i]));
+  }
+  ASSERT_GT(largest, 0.0);
+  EXPECT_LT(difference, 1e-9 * largest);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(pcg[k], 0.0) << "the held vertex";
+}
+
+TEST(LinearSolve, AVCycleReducesTheResidualItReports) {
+  System s;
+  s.linear.refresh(s.settings);
+  s.linear.solve(s.settings, 0.0);
+  FrameScalars read;
+  s.ex.read(s.d.sc(), &read, 1);
+  EXPECT_GT(read.r0, 0.0);
+  EXPECT_LT(read.r1, 0.25 * read.r0) << "|b - A delta|^2 against |b|^2";
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(s.step()[k], 0.0) << "the held vertex";
+}
+
+TEST(LinearSolve, TheNullStepIsTakenOnlyForANullGradient) {
+  System s;
+  double bnorm = -1.0;
+  EXPECT_FALSE(s.linear.nullStep(s.settings, 0.0, bnorm));
+  EXPECT_GT(bnorm, 0.0);
+  EXPECT_TRUE(s.linear.nullStep(s.settings, 2.0 * bnorm, bnorm)) << "within the target";
+  s.d.g.upload(std::vector<double>(3 * s.n, 0.0));
+  EXPECT_TRUE(s.linear.nullStep(s.settings, 0.0, bnorm));
+  EXPECT_EQ(bnorm, 0.0);
+  EXPECT_EQ(s.linear.reduction(), 0.0);
+}
+
+}  // namespace
+}  // namespace galsculpt
