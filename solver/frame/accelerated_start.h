@@ -12,37 +12,29 @@
 // vertices, so that a falling piece's prediction is backward Euler's exact answer for its
 // centre of mass (with mass damping alpha; the elastic forces do not move it), a piece resting
 // on another (F = -m g) keeps the straight line, and pieces falling together in a cluster start
-// together (gravity only on pieces nothing pushes moved them apart: 5.5 Newton iterations a
-// frame where the straight line took 3.2). A push larger than kMostPush times the piece's weight
-// (a hard contact, whose force the step changes most) keeps the straight line. Only the start
-// changes, not the equations (with stiffness damping K(x_0) too, but only in the elements
-// between pieces: the start moves each piece rigidly).
+// together (gravity only on pieces nothing pushes would move them apart). A push larger than
+// kMostPush times the piece's weight (a hard contact, whose force the step changes most) keeps the
+// straight line. Only the start changes, not the equations (with stiffness damping K(x_0) too, but
+// only in the elements between pieces: the start moves each piece rigidly).
 //
-// Measured on the hanging sphere after 100 random cuts at rest (bench --cracks --settle 120,
-// 1,158 pieces, 88 % of the mass falling): 3.2 -> 2.5 Newton and 14.7 -> 3.2 CG iterations a
-// frame (docs/benchmarks.md, with the variants tried). Tried and dropped: starting a free piece
-// rigidly turned (by h omega, or by atan(h omega) where backward Euler turns it): the straight
-// line already turns a spinning piece by atan(h omega) and only stretches it, a linear
-// correction, where a turned start leaves Newton a rotation to find; a stiff spinning bar took
-// 711 Newton iterations over 20 frames against 204, its fourth to eighth frames (all traced)
-// unconverged.
+// A free piece is not started rigidly turned (by h omega): the straight line already turns a
+// spinning piece by atan(h omega) and only stretches it, a linear correction, where a turned
+// start leaves Newton a rotation to find (the measurements and the variants tried are in
+// docs/notes/2026-12-02-pieces-start-their-acceleration.md).
 //
 // A piece is a set of vertices joined by undamaged edges (as for debris, debris.h). Pieces are
 // found on the host when the damage changes; per sub-step one launch marks held vertices, one
 // marks held pieces (then rounds spread them), one evaluates the elements between pieces at x_n
-// that touch a piece not held (between held pieces nothing reads them: after Charpy's break,
-// none), and one moves the small pieces (a thread each, a serial loop over its vertices and
-// corners); a large piece (the body itself, a big chunk) is summed by reductions and moved by a
-// launch over its vertices, so that no GPU thread walks a whole body. Either way the sums are
-// the same for any thread count.
+// that touch a piece not held (between held pieces nothing reads them), and one moves the small
+// pieces (a thread each, a serial loop over its vertices and corners); a large piece (the body
+// itself, a big chunk) is summed by reductions and moved by a launch over its vertices, so that no
+// GPU thread walks a whole body. Either way the sums are the same for any thread count.
 //
 // The elements between pieces are evaluated only where the frame no longer has their gradients
 // at x_n: x_n is the last sub-step's accepted trial, whose element pass left every element's
 // gradient behind, and unless something changed since (damage, positions, rest shapes, removed
 // debris: FrameSolver::gradientAtX_) those are copied instead, the same bits (on the host
-// executor; FrameSolver::startPiecesAccelerated says why not on the GPU). After 100 random
-// cuts through the hanging sphere (1,158 pieces, the cracked elements' kernel the expensive one)
-// evaluating them cost 8 ms of a 125 ms frame at rest.
+// executor; FrameSolver::startPiecesAccelerated says why not on the GPU).
 #pragma once
 
 #include <cmath>
@@ -90,9 +82,8 @@ inline constexpr double kMostPush = 2.0;
 // it presses on a held piece (spread: one round; rounds run until nothing changes): a damaged
 // edge between them is shorter than at rest at x_n, a crack face closed on the other. A piece
 // lodged in the body that holds it keeps the straight line with it, while pieces falling
-// together, pressing only on each other, start together. (Counting a crack as touching also
-// when it was within 1 % of closing, at x_n or on the straight line, held the slices thrown off
-// a clamped bar back while they left it: 101 Newton iterations where this takes 43.)
+// together, pressing only on each other, start together. (A crack counted as touching when
+// merely near closing would hold back pieces that are leaving.)
 struct HeldPieces {
   const int *pieceStart, *pieceVertices, *pieceOf;
   const std::uint8_t* heldVertex;

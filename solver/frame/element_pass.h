@@ -28,9 +28,8 @@ struct ElementInputs {
   const std::uint8_t* removed;            // (nVerts) or null: 1 on removed debris
 
   // The rest data is returned by reference, not copied: an intact element reads 80 of its 416
-  // bytes (copying them all was a seventh of the element pass). A flowed element's plastic rest
-  // shape is computed when it flows (PlasticState::refreshShapes), not at every read
-  // (that was a sixth of the clay head's frame).
+  // bytes. A flowed element's plastic rest shape is computed when it flows
+  // (PlasticState::refreshShapes), not at every read.
   GALSCULPT_HD const kernels::RestData& load(int t, const double* y, double x12[12],
                                              std::uint8_t& intact) const {
     for (int a = 0; a < 4; ++a)

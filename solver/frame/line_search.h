@@ -34,9 +34,8 @@ class LineSearch {
   // says is doubled while the potential keeps falling, short of the refused length; the trial
   // evaluated last is the accepted one's. The quadratic fit through a refused length puts the
   // minimum far too short where the potential kinks instead of curving: a step that closes a
-  // body's cracks (or opens them) rises steeply past the switch, and backtracking took a tenth
-  // of the step each iteration (two halves of a cut slab driven together: 18 Newton iterations
-  // in the impact frame, 9 with this).
+  // body's cracks (or opens them) rises steeply past the switch, and backtracking would take a
+  // tenth of the step each iteration.
   double lengthened(SubstepOutcome& result, FrameScalars& read, double length, double refused,
                     double sufficient) {
     double best = length, bestEnergy = read.e1;
@@ -61,8 +60,7 @@ class LineSearch {
 
   static constexpr double kShortestStep = 1e-8;
   // Shorter than this, a step refused only for turning elements inside out is taken anyway
-  // (after the lengths 1, 1/2, 1/4 all inverted: on the human figure giving up at 1e-3 instead
-  // cost twice the Newton iterations for the same frames).
+  // (after the lengths 1, 1/2, 1/4 all inverted).
   static constexpr double kInversionGiveUp = 1e-2;
 
   // Backtracking on the step evaluated at full length (`read`: its scalars, already read):
@@ -86,8 +84,8 @@ class LineSearch {
       // A null step (the linear solve had nothing to do: the gradient was already within its
       // target) moves nothing and is taken. Judged by the energy it could be refused: e0 and e1
       // are sums whose round-off (a cracked element's energy is a difference of its strains and
-      // openings) exceeds 1e-12 of a nearly stress-free body's tiny potential, and refusing it at
-      // every length failed the sub-step, every retry, and froze the body.
+      // openings) exceeds 1e-12 of a nearly stress-free body's tiny potential: refused at every
+      // length, it would fail the sub-step and every retry, and freeze the body.
       if (read.deltaMax == 0.0) return stepLength;
       const double e0 = read.e0, e1 = read.e1;
       // A step that turns more elements inside out is shortened (under extreme loads the energy
@@ -114,9 +112,8 @@ class LineSearch {
       stepLength = shorterStep(stepLength, e0, e1, read);
       ++result.backtracks;
       // An element on the edge of inversion that the solution turns over (a sliver, a plastic
-      // rest shape) refuses every length: rather than freezing the body (the human figure stood
-      // still from frame 21 on), take the descending step; the frame reports the elements it
-      // leaves inside out (a warning).
+      // rest shape) refuses every length: rather than freezing the body, take the descending
+      // step; the frame reports the elements it leaves inside out (a warning).
       if (stepLength < kInversionGiveUp && inverting > 0.0) {
         potential_.evaluateTrial(inverting);
         result.energyPasses += 1.0;
@@ -206,8 +203,7 @@ class LineSearch {
         double slope = 0.0;  // along this vertex's shortened step
         for (int k = 0; k < 3; ++k) slope += length[v] * g[3 * v + k] * delta[3 * v + k];
         const double curvature = rise[v] - slope;
-        // Never to nothing: a vertex held still every iteration would never get there (the
-        // body's backtracking once froze the human figure the same way).
+        // Never to nothing: a vertex held still every iteration would never get there.
         double factor = 0.5;
         if (slope < 0.0 && curvature > 0.0)
           factor = fmax(0.1, fmin(0.5, -slope / (2.0 * curvature)));

@@ -4,10 +4,8 @@
 // tolerance of its force scale (FrameSolver::relativeResidual): one 2-norm over every vertex.
 // A body in one piece is judged fairly by it. A body in many is not: the norm adds the pieces'
 // residuals in squares, so a piece holding a small share of the vertices may keep a residual many
-// times its own weight while the body's stays within the tolerance. After 100 random cuts through
-// the hanging sphere (1,158 pieces), frames called converged within 0.85 % of the body's force
-// scale left the worst piece measured here at 4.9 % of its own (median over the first 20 frames;
-// 12 % at most), and single loose vertices at up to 4.6 times their weight (docs/benchmarks.md).
+// times its own weight while the body's stays within the tolerance (measured after many cuts:
+// docs/notes/2026-12-03-residual-piece-piece.md).
 //
 // This measures it: for each piece of more than kMeasuredPieceVertices vertices (the size below
 // which the issue's own targets stop counting pieces), |g_p| / max(|W_p|, |f_p|) over its free

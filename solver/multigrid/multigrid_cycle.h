@@ -226,11 +226,10 @@ class MultigridCycle {
   }
 
   // The Galerkin product of refresh() on a device, a thread per entry of each coarse block (a
-  // block's row of 12 on the levels below the first) instead of one per block: the sphere's 530
-  // blocks of its coarse level took 4 ms a frame on an H200, each thread walking its thousands of
-  // contributions with 144 sums in local memory. Each entry sums the same terms in the same
-  // order as the block's thread (the same bits). Public only because nvcc refuses extended
-  // lambdas in private member functions.
+  // block's row of 12 on the levels below the first) instead of one per block, whose thread
+  // would walk thousands of contributions with 144 sums in local memory. Each entry sums the same
+  // terms in the same order as the block's thread (the same bits). Public only because nvcc refuses
+  // extended lambdas in private member functions.
   void galerkinByEntries(int nnz, const int* start, const int* block, const int* row,
                          const int* finerColumns, bool first, const std::uint8_t* fixed,
                          const double* y, const double* toParent, const double* finer,
@@ -283,9 +282,8 @@ class MultigridCycle {
   long coarseFactorsKept() const { return coarseFactorsKept_; }
 
   // Whether the host factors a coarsest level of this many handles sparse (coarse_cholesky.h)
-  // rather than dense: above 64. Measured on the hanging sphere (50 handles uncut), the dense
-  // factorization was the faster at 50 (a frame 60 against 71 ms) and the slower from 110 (225
-  // against 135 ms a frame with 10 cuts; 1,250 against 391 with 100 cuts, 199 handles).
+  // rather than dense: above 64, where the dense factorization stops being the faster
+  // (docs/notes/2026-12-01-frame-cost-against-cracks-coarsest-level-factored.md).
   static bool sparseCoarsest(int handles) { return handles > 64; }
 
   struct Settings {
