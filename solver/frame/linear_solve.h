@@ -85,14 +85,8 @@ class LinearSolve {
   // read) or PCG to `target` (absolute; host reads; its reduction in reduction()).
   void solve(const StepSettings& s, double target) {
     const MultigridSettings& ms = s.multigridSettings;
-    typename MultigridCycle<Exec>::Settings mgs;
-    mgs.preSweeps = ms.preSweeps;
-    mgs.postSweeps = ms.postSweeps;
+    MultigridSettings mgs = ms;  // the smoother is Jacobi on a device under PCG (multigrid.h)
     mgs.jacobi = ms.jacobi || (!Exec::kHostMemory && ms.jacobiOnDevice && ms.pcg);
-    mgs.jacobiWeight = ms.jacobiWeight;
-    mgs.coarseCholesky = ms.coarseCholesky;
-    mgs.coarseIterations = ms.coarseIterations;
-    mgs.cycles = ms.cycles;
     double* delta = d_.delta.data();
     double* b = d_.rhs.data();
     const std::uint8_t* fixed = d_.fixed.data();

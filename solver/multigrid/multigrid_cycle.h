@@ -286,14 +286,9 @@ class MultigridCycle {
   // (docs/notes/2026-12-01-frame-cost-against-cracks-coarsest-level-factored.md).
   static bool sparseCoarsest(int handles) { return handles > 64; }
 
-  struct Settings {
-    int preSweeps = 3, postSweeps = 3;
-    bool jacobi = false;
-    double jacobiWeight = 0.66;
-    bool coarseCholesky = false;
-    int coarseIterations = 20;
-    int cycles = 1;
-  };
+  // The solve's settings are the scene's (multigrid.h); the cycle reads the sweeps, the
+  // smoother, the coarsest solve and the cycle count, not the PCG fields (linear_solve.h's).
+  using Settings = MultigridSettings;
 
   // x <- x + V-cycles for A x = b (A: fine blocks, 9 doubles each). No host waits.
   void cycles(const double* a, const double* b, double* x, const Settings& s) {
