@@ -48,7 +48,6 @@ struct FrameData {
     mass.mirror(model.mass);
     rowStart.mirror(model.pattern.rowStart);
     columns.mirror(model.pattern.columns);
-    diagonal.mirror(model.pattern.diagonal);
     vertexSlotStart.mirror(model.vertexSlotStart);
     vertexSlots.mirror(model.vertexSlots);
     blockSlotStart.mirror(model.blockSlotStart);
@@ -82,7 +81,7 @@ struct FrameData {
   const int n, tets, edges, blocks;
 
   // The model's arrays.
-  Mirror<int> tetVertices, tetEdges, rowStart, columns, diagonal;
+  Mirror<int> tetVertices, tetEdges, rowStart, columns;
   Mirror<int> vertexSlotStart, vertexSlots, blockSlotStart, blockSlots;  // the gathers' lists
   Mirror<kernels::RestData> rest;
   Mirror<double> mass;

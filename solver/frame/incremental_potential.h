@@ -137,12 +137,12 @@ class IncrementalPotential {
         const int slot = bSlots[i], t = slot / 16, a = (slot % 16) / 4, c = slot % 4;
         // Zero and not written (adding its zeros would leave the sums' bits as they are).
         if (ElementPass::zeroStiffness(opened[t])) continue;
-        const double* h = eh + kPackedHessian * static_cast<size_t>(t);
+        const double* h = eh + ElementPass::kPackedHessian * static_cast<size_t>(t);
         if (a <= c) {
-          const double* blk = h + 9 * packedBlock(a, c);
+          const double* blk = h + 9 * ElementPass::packedBlock(a, c);
           for (int k = 0; k < 9; ++k) acc[k] += blk[k];
         } else {  // the mirror of block (c, a)
-          const double* blk = h + 9 * packedBlock(c, a);
+          const double* blk = h + 9 * ElementPass::packedBlock(c, a);
           for (int j = 0; j < 3; ++j)
             for (int r = 0; r < 3; ++r) acc[r + 3 * j] += blk[j + 3 * r];
         }
@@ -156,9 +156,6 @@ class IncrementalPotential {
         for (int r = 0; r < 3; ++r) kb[9 * b + r + 3 * j] = upper[j + 3 * r];
     });
   }
-
-  static constexpr int kPackedHessian = ElementPass::kPackedHessian;
-  GALSCULPT_HD static int packedBlock(int a, int c) { return ElementPass::packedBlock(a, c); }
 
   ElementInputs elementInputs() const {
     return {d_.tetVertices.data(), d_.tetEdges.data(), d_.damaged.data(), d_.rest.data(),

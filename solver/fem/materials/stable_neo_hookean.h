@@ -13,17 +13,28 @@ namespace galsculpt::kernels {
 struct StableNeoHookean {
   static constexpr bool kDirect = true;
 
+  // mu', lambda', alpha and the rest energy Psi_rest of the user's Lame parameters. A template on
+  // the caller's math so that the SIMD lanes' instantiation stays in their own file.
+  struct Refit {
+    double muS, lambdaS, alpha, restEnergy;
+  };
+  template <typename Math = void>
+  GALSCULPT_HD static Refit refit(const Lame& lame) {
+    const double muS = 4.0 / 3.0 * lame.mu;
+    const double lambdaS = lame.lambda + 5.0 / 6.0 * lame.mu;
+    const double alpha = 1.0 + 0.75 * muS / lambdaS;
+    return {muS, lambdaS, alpha,
+            0.5 * lambdaS * (1.0 - alpha) * (1.0 - alpha) - 0.5 * muS * log(4.0)};
+  }
+
   template <typename T, typename Math>
   GALSCULPT_HD static void singularValues(const Lame& lame, const T s[3], T& energy, T gradient[3],
                                           T hessian[3][3]) {
-    const double mu = lame.mu, lambda = lame.lambda;
-    const double muS = 4.0 / 3.0 * mu;
-    const double lambdaS = lambda + 5.0 / 6.0 * mu;
-    const double alpha = 1.0 + 0.75 * muS / lambdaS;
+    const Refit r = refit<Math>(lame);
+    const double muS = r.muS, lambdaS = r.lambdaS, alpha = r.alpha, restEnergy = r.restEnergy;
     const T ic = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
     const T j = s[0] * s[1] * s[2];
     const T cof[3] = {s[1] * s[2], s[0] * s[2], s[0] * s[1]};
-    const double restEnergy = 0.5 * lambdaS * (1.0 - alpha) * (1.0 - alpha) - 0.5 * muS * log(4.0);
     energy = 0.5 * muS * (ic - 3.0) + 0.5 * lambdaS * (j - alpha) * (j - alpha) -
              0.5 * muS * Math::log(ic + 1.0) - restEnergy;
     const T shear = muS * (1.0 - 1.0 / (ic + 1.0));
@@ -40,13 +51,11 @@ struct StableNeoHookean {
   // Psi and P straight from F: P = mu' (1 - 1/(I_C + 1)) F + lambda' (J - alpha) cof(F).
   GALSCULPT_HD static M3 direct(const Lame& lame, const M3& f, double& psi) {
     M3 p{};
-    const double muS = 4.0 / 3.0 * lame.mu;
-    const double lambdaS = lame.lambda + 5.0 / 6.0 * lame.mu;
-    const double alpha = 1.0 + 0.75 * muS / lambdaS;
+    const Refit r = refit<>(lame);
+    const double muS = r.muS, lambdaS = r.lambdaS, alpha = r.alpha, restEnergy = r.restEnergy;
     const double ic = squaredNorm(f);
     const double j = determinant(f);
     const M3 cof = cofactor(f);
-    const double restEnergy = 0.5 * lambdaS * (1.0 - alpha) * (1.0 - alpha) - 0.5 * muS * log(4.0);
     psi = 0.5 * muS * (ic - 3.0) + 0.5 * lambdaS * (j - alpha) * (j - alpha) -
           0.5 * muS * log(ic + 1.0) - restEnergy;
     const double shear = muS * (1.0 - 1.0 / (ic + 1.0));
