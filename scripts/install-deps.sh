@@ -15,6 +15,7 @@ packages=(
   libopengl-dev libegl-dev libgles-dev libegl1-mesa-dev libgl1-mesa-dri mesa-utils xvfb xauth
   libgtest-dev libgmock-dev libbenchmark-dev
   tetgen gnuplot-nox python3
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 sudo_cmd=()

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "solver/frame/cpu_backend.h"
+#include "solver/frame/solver_options.h"
 #include "solver/mesh/tet_mesh.h"
 
 namespace galsculpt::test {
@@ -126,21 +127,11 @@ inline TetMesh gridBar(int nx, int ny, int nz, double size) {
 
 namespace galsculpt {
 
-// The scenes' converged preset (engine/scene: solver.preset "converged") on a small mesh: 12
-// coarse handles.
+// The converged preset's settings (solver/frame/solver_options.h) on a small mesh: 12 coarse
+// handles.
 inline StepSettings convergedPreset() {
-  StepSettings s;
-  s.multigrid = true;
+  StepSettings s = stepSettings(solverPreset(SolverPreset::Converged), 1.0 / 60.0, 1);
   s.gridHandles = {12};
-  s.newtonIterations = 40;
-  s.residualTolerance = 1e-2;
-  s.reuseStiffness = true;
-  s.predictedStart = true;
-  s.convergePieces = true;
-  s.stiffnessTolerance = 1e-3;
-  s.multigridSettings.pcg = true;
-  s.multigridSettings.pcgTolerance = 1e-2;
-  s.multigridSettings.coarseCholesky = true;
   return s;
 }
 

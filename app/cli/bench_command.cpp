@@ -53,7 +53,7 @@ const BenchScene kScenes[] = {{"sphere", "hanging_sphere.json"},
 // One row: the reference, or the multigrid with a solver description (a preset and overrides).
 struct Setting {
   bool reference = false;
-  SolverDesc solver;
+  SolverOptions solver;
   int cuts = -1;  // >= 0: that many random knife cuts before the frames (the --cracks series)
 };
 
@@ -98,19 +98,19 @@ SceneDescription sceneWithSetting(const SceneDescription& baseScene, const Setti
 
 // The row's description of its solver setting.
 void describeSetting(const Setting& setting, nlohmann::json& r) {
-  const SolverDesc& d = setting.solver;
+  const SolverOptions& d = setting.solver;
   r["solver"] = setting.reference ? "reference" : "multigrid";
   r["grid"] = setting.reference ? "" : d.grid;
   r["fine_sweeps"] = setting.reference ? 0 : d.fineSweeps;
   r["coarse_iters"] = setting.reference ? 0 : d.coarseIterations;
   if (!setting.reference) {
-    r["preset"] = solverPresetName(d.preset);
+    r["preset"] = enumName(d.preset);
     r["newton_iters"] = d.newtonIterations;
     r["pcg_tolerance"] = d.pcgTolerance;
     r["cycles"] = d.cycles;
-    r["coarse_solver"] = coarseSolverName(d.coarseSolver);
+    r["coarse_solver"] = enumName(d.coarseSolver);
     r["residual_tolerance"] = d.residualTolerance;
-    r["energy_guard"] = energyGuardName(d.energyGuard);
+    r["energy_guard"] = enumName(d.energyGuard);
     r["stiffness_tolerance"] = d.stiffnessTolerance;
   }
 }
@@ -332,13 +332,7 @@ nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh
 // --preset: every scene read again with that solver preset in place of its own (its other
 // solver keys still override the preset's defaults, as in the scene file).
 std::optional<SolverPreset> presetOption(const CliArgs& args) {
-  return namedOption(args, "--preset", solverPresetFromName, "converged or paper");
-}
-
-SceneDescription withSolverPreset(const SceneDescription& scene, SolverPreset preset) {
-  nlohmann::json root = scene.source;
-  root["solver"]["preset"] = solverPresetName(preset);
-  return parseScene(root, scene.file);
+  return namedOption(args, "--preset", enumFromName<SolverPreset>, "converged or paper");
 }
 
 // --debris: every run's debris rule instead of the scene's.
@@ -376,15 +370,15 @@ std::string row(const nlohmann::json& r) {
   std::string grid = r["grid"].get<std::string>();
   if (r.contains("preset")) {
     const std::string preset = r["preset"].get<std::string>();
-    const SolverDesc d =
+    const SolverOptions d =
         solverPreset(preset == "paper" ? SolverPreset::Paper : SolverPreset::Converged);
     grid += " " + preset;
     if (r.value("newton_iters", 1) != d.newtonIterations)
       grid += " n" + std::to_string(r.value("newton_iters", 1));
     if (r.value("cycles", 1) != 1) grid += " c" + std::to_string(r.value("cycles", 1));
-    if (r.value("coarse_solver", std::string("cg")) != coarseSolverName(d.coarseSolver))
+    if (r.value("coarse_solver", std::string("cg")) != enumName(d.coarseSolver))
       grid += " " + r.value("coarse_solver", std::string("cg"));
-    if (r.value("energy_guard", std::string("body")) != energyGuardName(d.energyGuard))
+    if (r.value("energy_guard", std::string("body")) != enumName(d.energyGuard))
       grid += " guard:" + r.value("energy_guard", std::string("body"));
     if (r.value("stiffness_tolerance", 0.0) != d.stiffnessTolerance)
       grid += " keep:" + nlohmann::json(r.value("stiffness_tolerance", 0.0)).dump();
@@ -455,7 +449,7 @@ std::vector<Setting> benchSettings(const SceneDescription& scene, bool cracks, b
   own.solver = scene.solver;
   std::vector<Setting> settings = {reference, paper, converged};
   auto same = [&](const Setting& s) {
-    SolverDesc a = s.solver, b = own.solver;
+    SolverOptions a = s.solver, b = own.solver;
     a.backend = b.backend;  // the backend is --backend's, not part of the setting
     return a == b;
   };
@@ -525,7 +519,7 @@ std::uint64_t referenceKey(const SceneDescription& scene, const TetMesh& mesh, i
       h *= 1099511628211ull;
     }
   };
-  const std::string text = scene.source.dump() + "|" + solverPresetName(scene.solver.preset) + "|" +
+  const std::string text = scene.source.dump() + "|" + enumName(scene.solver.preset) + "|" +
                            debrisRuleName(scene.fracture.debris);
   mix(text.data(), text.size());
   mix(mesh.vertices.data(), mesh.vertices.size() * sizeof(Vec3));
@@ -582,17 +576,19 @@ class ReferenceCache {
 int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args,
                   {"--scene", "--json", "--frames", "--settle", "--backend", "--debris", "--preset",
-                   "--threads", "--reference-dir"},
+                   "--threads", "--reference-dir", "--solver-option"},
                   {"--quick", "--sweep", "--cracks"});
   a.expectPositional(
       0, 0,
       "galsculpt bench [--scene NAME[,NAME...]] [--quick] [--sweep] [--cracks] [--frames N] "
       "[--settle N[,N...]] [--json FILE] [--backend auto|cpu|cuda] [--debris keep|remove] "
-      "[--preset converged|paper] [--threads N] [--reference-dir DIR]");
+      "[--preset converged|paper] [--threads N] [--reference-dir DIR] "
+      "[--solver-option KEY=VALUE[,KEY=VALUE...]]");
   applyThreadsOption(a);
-  const std::optional<BackendRequest> backend = backendOption(a);
+  SolverOverrides solver = solverOverrides(a);
   const std::optional<DebrisRule> debris = debrisOption(a);
-  const std::optional<SolverPreset> preset = presetOption(a);
+  if (const std::optional<SolverPreset> preset = presetOption(a))
+    solver.insert(solver.begin(), {"preset", enumName(*preset)});
   const bool quick = a.has("--quick");
   const int frames = a.intValue("--frames", quick ? 20 : 60, 1, 100000);
   const std::vector<int> settles = settleOption(a, frames);
@@ -609,8 +605,7 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
          "      cg  max resid  unconv threads\n";
   for (const BenchScene& bs : scenes) {
     SceneDescription scene = loadScene(fs::path(assetDirectory()) / "scenes" / bs.file);
-    if (preset) scene = withSolverPreset(scene, *preset);
-    if (backend) scene.solver.backend = *backend;
+    scene = withSolverOverrides(scene, solver);
     if (debris) scene.fracture.debris = *debris;
     TetMesh mesh;
     try {

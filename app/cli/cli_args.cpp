@@ -118,7 +118,21 @@ void CliArgs::expectPositional(size_t min, size_t max, const std::string& usage)
 }
 
 std::optional<BackendRequest> backendOption(const CliArgs& args) {
-  return namedOption(args, "--backend", backendRequestFromName, "auto, cpu or cuda");
+  return namedOption(args, "--backend", enumFromName<BackendRequest>, "auto, cpu or cuda");
+}
+
+SolverOverrides solverOverrides(const CliArgs& args) {
+  SolverOverrides overrides;
+  if (const auto list = args.value("--solver-option")) {
+    try {
+      overrides = parseSolverOptionList(*list);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--solver-option: ") + e.what());
+    }
+  }
+  if (const auto backend = backendOption(args))
+    overrides.emplace_back("backend", enumName(*backend));
+  return overrides;
 }
 
 void applyThreadsOption(const CliArgs& args) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "engine/scene/scene.h"
+#include "engine/scene/solver_options_json.h"
 
 #include <map>
 #include <optional>
@@ -57,6 +58,11 @@ std::optional<E> namedOption(const CliArgs& args, const std::string& flag,
 
 // --backend auto|cpu|cuda (run, play, bench, open): empty when absent, UsageError otherwise.
 std::optional<BackendRequest> backendOption(const CliArgs& args);
+
+// --solver-option KEY=VALUE[,KEY=VALUE...] and --backend (run, play, bench, open): the solver
+// keys they set over the scene's (engine/scene/solver_options_json.h); --backend wins. A
+// malformed list or an unknown key is a UsageError; a value out of range fails when applied.
+SolverOverrides solverOverrides(const CliArgs& args);
 
 // --threads N (run, play, bench, open): the CPU's thread count for this process, when given
 // (solver/frame/parallel.h; otherwise GALSCULPT_THREADS, OMP_NUM_THREADS or the cores).

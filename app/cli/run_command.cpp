@@ -186,22 +186,23 @@ TetMesh loadMeshReporting(const SceneDescription& scene, std::ostream& err) {
 }  // namespace
 
 int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(args,
-                  {"--frames", "--solver", "--out", "--metrics", "--export-every",
-                   "--export-format", "--png-every", "--size", "--backend", "--threads"},
-                  {"--export-tets"});
+  const CliArgs a(
+      args,
+      {"--frames", "--solver", "--out", "--metrics", "--export-every", "--export-format",
+       "--png-every", "--size", "--backend", "--threads", "--solver-option"},
+      {"--export-tets"});
   a.expectPositional(
       1, 1,
       "galsculpt run SCENE --frames N [--solver reference] --out DIR --metrics FILE.csv "
       "[--export-every K] [--export-format obj|ply|stl|gltf|glb] [--export-tets] "
-      "[--png-every K] [--size WxH] [--backend auto|cpu|cuda] [--threads N]");
+      "[--png-every K] [--size WxH] [--backend auto|cpu|cuda] [--threads N] "
+      "[--solver-option KEY=VALUE[,KEY=VALUE...]]");
   applyThreadsOption(a);
   const RunOptions o = readRunOptions(a, "run");
   const int frames = a.intValue("--frames", 0, 1, 10000000);
   if (!a.has("--frames")) throw UsageError("run needs --frames N");
-  const std::optional<BackendRequest> backend = backendOption(a);
-  SceneDescription scene = loadScene(a.positional()[0]);
-  if (backend) scene.solver.backend = *backend;
+  const SolverOverrides solver = solverOverrides(a);
+  const SceneDescription scene = withSolverOverrides(loadScene(a.positional()[0]), solver);
   Simulation sim(scene, loadMeshReporting(scene, err), o.solver);
   return simulateFrames(
       scene.name, frames, sim, o, [&sim] { return sim.advance(); }, out, err);
@@ -210,18 +211,18 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
 int playCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args,
                   {"--out", "--metrics", "--export-every", "--solver", "--export-format",
-                   "--png-every", "--size", "--backend", "--threads"},
+                   "--png-every", "--size", "--backend", "--threads", "--solver-option"},
                   {"--export-tets"});
   a.expectPositional(1, 1,
                      "galsculpt play SCRIPT --out DIR [--export-every K] [--metrics FILE.csv] "
                      "[--solver reference] [--export-format obj|ply|stl|gltf|glb] "
                      "[--export-tets] [--png-every K] [--size WxH] [--backend auto|cpu|cuda] "
-                     "[--threads N]");
+                     "[--threads N] [--solver-option KEY=VALUE[,KEY=VALUE...]]");
   applyThreadsOption(a);
   const RunOptions o = readRunOptions(a, "play");
-  const std::optional<BackendRequest> backend = backendOption(a);
+  const SolverOverrides solver = solverOverrides(a);
   PlaybackScript script = loadPlaybackScript(a.positional()[0]);
-  if (backend) script.scene.solver.backend = *backend;
+  script.scene = withSolverOverrides(script.scene, solver);
   Simulation sim(script.scene, loadMeshReporting(script.scene, err), o.solver);
   Playback playback(script, sim);
   return simulateFrames(

@@ -63,7 +63,7 @@ ViewContent loadViewContent(const fs::path& file, std::ostream& log) {
     c.facts.push_back(std::to_string(mesh.numVertices()) + " vertices, " +
                       std::to_string(mesh.numTets()) + " tets");
     c.facts.push_back(describeMaterial(scene.material));
-    c.facts.push_back(std::string("solver: ") + solverTypeName(scene.solver.type) + " " +
+    c.facts.push_back(std::string("solver: ") + enumName(scene.solver.type) + " " +
                       scene.solver.grid);
     return c;
   }
@@ -125,15 +125,15 @@ int renderCommand(const std::vector<std::string>& args, std::ostream& out, std::
 int openCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args,
                   {"--out", "--size", "--input-script", "--save-project", "--save-recording",
-                   "--autosave", "--backend", "--threads"},
+                   "--autosave", "--backend", "--threads", "--solver-option"},
                   {"--headless", "--paused", "--no-recovery"});
   a.expectPositional(1, 1,
                      "galsculpt open FILE [--headless] [--out DIR] [--size WxH] [--paused] "
                      "[--input-script FILE] [--save-project FILE] [--save-recording FILE] "
                      "[--autosave SECONDS] [--no-recovery] [--backend auto|cpu|cuda] "
-                     "[--threads N]");
+                     "[--threads N] [--solver-option KEY=VALUE[,KEY=VALUE...]]");
   applyThreadsOption(a);
-  const std::optional<BackendRequest> backend = backendOption(a);
+  const SolverOverrides solver = solverOverrides(a);
   const fs::path file = a.positional()[0];
   requirePathExists(file);
   bool headless = a.has("--headless");
@@ -151,7 +151,7 @@ int openCommand(const std::vector<std::string>& args, std::ostream& out, std::os
     o.autosaveSeconds = a.doubleValue("--autosave", 60.0, 0.0, 1e9);
     o.offerRecovery = !a.has("--no-recovery") && !o.inputScript;
     o.startPlaying = !a.has("--paused");
-    o.backend = backend;
+    o.solver = solver;
     std::string error;
     if (runSculptWindow(o, out, &error)) return kExitOk;
     out << "cannot open a window (" << error << "): running headless\n";
@@ -167,7 +167,7 @@ int openCommand(const std::vector<std::string>& args, std::ostream& out, std::os
   ViewContent content;
   if (script || a.has("--save-project") || a.has("--save-recording")) {
     OpenedSession opened = openSession(
-        file, [&err](const std::string& line) { err << line << '\n'; }, 20000, backend);
+        file, [&err](const std::string& line) { err << line << '\n'; }, 20000, solver);
     const Simulation& sim = opened.session->simulation();
     content.title = opened.session->scene().name + " (frame " + std::to_string(sim.frame()) + ")";
     content.surface = sim.surface().mesh;
@@ -203,7 +203,7 @@ int sceneCommand(const std::vector<std::string>& args, std::ostream& out, std::o
   out << describeMaterial(s.material) << '\n';
   out << "anchors: " << s.anchors.size() << "\ncolliders: " << s.colliders.size() << '\n';
   out << "fracture: " << (s.fracture.enabled ? "on" : "off") << '\n';
-  out << "solver: " << solverTypeName(s.solver.type) << " " << s.solver.grid << " ("
+  out << "solver: " << enumName(s.solver.type) << " " << s.solver.grid << " ("
       << s.solver.fineSweeps << " sweeps, " << s.solver.coarseIterations << " coarse iterations)\n";
   out << "time_step: " << s.timeStep << " s x " << s.substeps << " substep(s)\n";
   if (a.has("--load-mesh")) {

@@ -174,7 +174,7 @@ void SculptApp::applyToSession(const Command& command) {
       applySceneSettings();
       break;
     case AppCommand::Grid:
-      std::snprintf(grid_, sizeof grid_, "%s", argument.c_str());
+      editing_.solver.grid = argument;
       applySceneSettings();
       break;
     case AppCommand::FrameAll:
@@ -204,7 +204,6 @@ void SculptApp::frameHoveredPiece() {
 void SculptApp::applySceneSettings() {
   try {
     SceneSettings s = editing_;
-    s.solver.grid = grid_;
     const SceneDescription scene = editScene(session_->scene(), s);
     const TetMesh mesh = session_->simulation().model().mesh;
     OpenedSession opened;

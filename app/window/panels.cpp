@@ -1,10 +1,13 @@
 #include "app/window/sculpt_app.h"
 
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iterator>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "engine/session/simulation.h"
@@ -18,16 +21,50 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A combo box over the values of a settings enum, shown by their scene-file names.
-template <typename E, size_t N>
-void pickEnum(const char* label, E& value, const E (&values)[N], const char* (*nameOf)(E)) {
-  const char* names[N];
+// A combo box over the values of a named enum (solver_options.h), shown by their names.
+template <NamedEnum E>
+void pickNamed(const char* label, E& value) {
+  std::vector<const char*> names;
   int current = 0;
-  for (size_t k = 0; k < N; ++k) {
-    names[k] = nameOf(values[k]);
-    if (values[k] == value) current = static_cast<int>(k);
+  for (const EnumName<E>& n : namesOf(value)) {
+    if (n.value == value) current = static_cast<int>(names.size());
+    names.push_back(n.name);
   }
-  if (ImGui::Combo(label, &current, names, static_cast<int>(N))) value = values[current];
+  if (ImGui::Combo(label, &current, names.data(), static_cast<int>(names.size())))
+    value = namesOf(value)[current].value;
+}
+
+// The widget of one solver option (solver/frame/solver_options.h), by its type; numbers are
+// held in the range a scene may give.
+template <typename T>
+void editOption(const OptionField<T>& f, T& value) {
+  if constexpr (std::is_same_v<T, bool>) {
+    ImGui::Checkbox(f.label, &value);
+  } else if constexpr (std::is_same_v<T, int>) {
+    if (ImGui::InputInt(f.label, &value))
+      value = std::clamp(value, static_cast<int>(f.min), static_cast<int>(f.max));
+  } else if constexpr (std::is_same_v<T, double>) {
+    if (ImGui::InputDouble(f.label, &value, 0.0, 0.0, "%.4g"))
+      value = std::clamp(value, f.min, f.max);
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    ImGui::InputText(f.label, &value);  // checked when applied (editScene)
+  } else {
+    pickNamed(f.label, value);
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("solver.%s", f.key);
+}
+
+// Every solver option; a preset picked sets the options in which the presets differ.
+void editSolverOptions(SolverOptions& v) {
+  SolverPreset preset = v.preset;
+  pickNamed("solver preset", preset);
+  if (preset != v.preset) {
+    v.preset = preset;
+    forEachSolverOption([&](const auto& f) {
+      if (!(f.converged == f.paper)) v.*f.member = f.presetValue(preset);
+    });
+  }
+  forEachSolverOption([&](const auto& f) { editOption(f, v.*f.member); });
 }
 
 // Wrap width of the overlay's free text, in pixels (its figures' lines are about this wide).
@@ -184,9 +221,9 @@ void SculptApp::drawOverlay() {
                 sim.model().numTets());
     ImGui::Text("material: %s (%s)", scene.material.preset.c_str(),
                 materialModelName(scene.material.model));
-    ImGui::Text("solver: %s (%s) %s on the %s backend, %d threads",
-                solverTypeName(scene.solver.type), solverPresetName(scene.solver.preset),
-                scene.solver.grid.c_str(), shown_.backendName.c_str(), threadCount());
+    ImGui::Text("solver: %s (%s) %s on the %s backend, %d threads", enumName(scene.solver.type),
+                enumName(scene.solver.preset), scene.solver.grid.c_str(),
+                shown_.backendName.c_str(), threadCount());
     ImGui::Separator();
     ImGui::Text("frame %d  (%s)", m.frame, playing_ ? "playing" : "paused");
     ImGui::Text("ms: total %.1f  elements %.1f  solve %.1f", m.msTotal, m.msElements, m.msSolve);
@@ -253,24 +290,11 @@ void SculptApp::drawScenePanel() {
     ImGui::InputDouble("threshold (Pa, 0: material's)", &editing_.fractureThreshold, 0.0, 0.0,
                        "%.4g");
   ImGui::Separator();
-  SolverDesc& v = editing_.solver;
-  pickEnum("solver", v.type, {SolverType::Multigrid, SolverType::Reference}, solverTypeName);
-  ImGui::InputText("grid (e.g. 50/1000/all)", grid_, sizeof grid_);
-  ImGui::InputInt("fine sweeps", &v.fineSweeps);
-  ImGui::InputInt("coarse iterations", &v.coarseIterations);
-  pickEnum("smoother", v.smoother, {Smoother::Auto, Smoother::GaussSeidel, Smoother::Jacobi},
-           smootherName);
-  pickEnum("coarse solver", v.coarseSolver, {CoarseSolver::Cg, CoarseSolver::Cholesky},
-           coarseSolverName);
-  pickEnum("energy guard", v.energyGuard, {EnergyGuard::Vertex, EnergyGuard::Body},
-           energyGuardName);
-  pickEnum("backend", v.backend, {BackendRequest::Auto, BackendRequest::Cpu, BackendRequest::Cuda},
-           backendRequestName);
+  editSolverOptions(editing_.solver);
   if (ImGui::Button("Apply (restarts the simulation)")) applySettings_ = true;  // between frames
   ImGui::SameLine();
   if (ImGui::Button("Revert")) {
     editing_ = sceneSettings(session_->scene());
-    std::snprintf(grid_, sizeof grid_, "%s", editing_.solver.grid.c_str());
   }
   ImGui::End();
 }

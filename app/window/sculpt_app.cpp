@@ -104,7 +104,7 @@ void SculptApp::fail(const std::string& message) {
 }
 
 void SculptApp::startLoading(const fs::path& file) {
-  opener_.start(file, options_.backend);
+  opener_.start(file, options_.solver);
 }
 
 void SculptApp::finishLoading() {
@@ -133,7 +133,6 @@ void SculptApp::adopt(OpenedSession opened, const fs::path& file) {
   shown_ = FrameView{};  // the new body is drawn at once (updateScene)
   frameInput_.reset();
   editing_ = sceneSettings(session_->scene());
-  std::snprintf(grid_, sizeof grid_, "%s", editing_.solver.grid.c_str());
   const std::string title = "Galsculpt - " + session_->scene().name;
   glfwSetWindowTitle(window_, title.c_str());
   report("opened " + file.string() + " (" +
@@ -388,8 +387,8 @@ void SculptApp::finish() {
   } else {
     recovery_->remove(recovery_->ownFile());  // a normal exit leaves nothing to recover
   }
-  // What the run cost, measured (docs/benchmarks.md, "Threads and the window"): the window's draws, the
-  // simulation's frames in the window, and input to screen.
+  // What the run cost, measured (docs/benchmarks.md, "Threads and the window"): the window's draws,
+  // the simulation's frames in the window, and input to screen.
   const double seconds = std::chrono::duration<double>(Clock::now() - runStart_).count();
   char line[768];
   std::snprintf(line, sizeof line,

@@ -142,7 +142,6 @@ class SculptApp {
   SurfaceStyle style_;
   bool wireframe_ = false;
   SceneSettings editing_;  // the Scene panel's values, applied by restarting the simulation
-  char grid_[64] = {};
   bool playing_ = true;
   bool stepOnce_ = false;
   bool applySettings_ = false;  // the Scene panel's Apply, done between frames

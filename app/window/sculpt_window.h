@@ -8,7 +8,7 @@
 #include <ostream>
 #include <string>
 
-#include "engine/scene/scene.h"
+#include "engine/scene/solver_options_json.h"
 
 namespace galsculpt {
 
@@ -22,7 +22,7 @@ struct SculptWindowOptions {
   double autosaveSeconds = 60.0;  // 0: never
   bool offerRecovery = true;      // ask about files left by a crash
   bool startPlaying = true;
-  std::optional<BackendRequest> backend;  // for every file opened; none: the scene's own
+  SolverOverrides solver;  // set over every opened file's solver (--solver-option, --backend)
 };
 
 // Runs until the window closes; returns false (with a reason) when no window can be opened.

@@ -34,21 +34,21 @@ bool OpenWorker::ready() const {
   return finished(opening_);
 }
 
-void OpenWorker::start(const std::filesystem::path& file, std::optional<BackendRequest> backend) {
+void OpenWorker::start(const std::filesystem::path& file, const SolverOverrides& solver) {
   if (busy()) return;
   file_ = file;
   {
     std::lock_guard<std::mutex> lock(progressMutex_);
     progress_ = "opening " + file.string();
   }
-  opening_ = std::async(std::launch::async, [this, file, backend] {
+  opening_ = std::async(std::launch::async, [this, file, solver] {
     return openSession(
         file,
         [this](const std::string& line) {
           std::lock_guard<std::mutex> lock(progressMutex_);
           progress_ = line;
         },
-        20000, backend);
+        20000, solver);
   });
 }
 

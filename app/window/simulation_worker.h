@@ -36,7 +36,7 @@ class OpenWorker {
   bool busy() const { return opening_.valid(); }
   bool ready() const;  // busy and finished
   // Does nothing while busy.
-  void start(const std::filesystem::path& file, std::optional<BackendRequest> backend);
+  void start(const std::filesystem::path& file, const SolverOverrides& solver);
   // The opened session; throws what opening threw. Busy no more either way.
   OpenedSession take();
   void wait() const;

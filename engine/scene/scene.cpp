@@ -5,9 +5,9 @@
 #include <stdexcept>
 
 #include "engine/scene/json_reader.h"
+#include "engine/scene/solver_options_json.h"
 #include "solver/fem/material_table.h"
 #include "solver/io/input_error.h"
-#include "solver/multigrid/multigrid.h"
 
 namespace galsculpt {
 
@@ -38,17 +38,6 @@ struct Named {
   E value;
   const char* name;
 };
-constexpr Named<SolverType> kSolverTypeNames[] = {{SolverType::Multigrid, "multigrid"},
-                                                  {SolverType::Reference, "reference"}};
-constexpr Named<SolverPreset> kSolverPresetNames[] = {{SolverPreset::Converged, "converged"},
-                                                      {SolverPreset::Paper, "paper"}};
-constexpr Named<Smoother> kSmootherNames[] = {{Smoother::Auto, "auto"},
-                                              {Smoother::GaussSeidel, "gauss_seidel"},
-                                              {Smoother::Jacobi, "jacobi"}};
-constexpr Named<CoarseSolver> kCoarseSolverNames[] = {{CoarseSolver::Cg, "cg"},
-                                                      {CoarseSolver::Cholesky, "cholesky"}};
-constexpr Named<EnergyGuard> kEnergyGuardNames[] = {{EnergyGuard::Vertex, "vertex"},
-                                                    {EnergyGuard::Body, "body"}};
 constexpr Named<Generator> kGeneratorNames[] = {
     {Generator::Sphere, "sphere"}, {Generator::Charpy, "charpy"}, {Generator::Steak, "steak"}};
 constexpr Named<DebrisRule> kDebrisRuleNames[] = {{DebrisRule::Remove, "remove"},
@@ -57,8 +46,6 @@ constexpr Named<FractureCriterion> kCriterionNames[] = {
     {FractureCriterion::Stress, "stress"},
     {FractureCriterion::Strain, "strain"},
     {FractureCriterion::StressOrStrain, "stress_or_strain"}};
-constexpr Named<BackendRequest> kBackendNames[] = {
-    {BackendRequest::Auto, "auto"}, {BackendRequest::Cpu, "cpu"}, {BackendRequest::Cuda, "cuda"}};
 
 // The value of a row of a names table: Named<E>, or a material model's row of the solver's table
 // (solver/fem/material_table.h).
@@ -91,15 +78,6 @@ E readEnum(JsonObject& o, const std::string& key, E fallback, const Row (&names)
   std::vector<std::string> allowed;
   for (const Row& n : names) allowed.push_back(n.name);
   return valueOf(names, o.string(key, nameOf(names, fallback), allowed)).value_or(fallback);
-}
-
-// "50/1000/all": coarse to fine, counts strictly increasing, ending in "all".
-void checkGrid(JsonObject& o, const std::string& key, const std::string& grid) {
-  try {
-    parseGridSetup(grid);
-  } catch (const std::invalid_argument& e) {
-    o.fail(key, e.what());
-  }
 }
 
 MeshSource readMesh(JsonObject o, const fs::path& sceneDir) {
@@ -283,68 +261,8 @@ FractureDesc readFracture(JsonObject o) {
   return f;
 }
 
-SolverDesc readSolver(JsonObject o) {
-  SolverDesc s = solverPreset(readEnum(o, "preset", SolverPreset::Converged, kSolverPresetNames));
-  s.type = readEnum(o, "type", s.type, kSolverTypeNames);
-  s.grid = o.string("grid", s.grid);
-  checkGrid(o, "grid", s.grid);
-  s.fineSweeps = o.integer("fine_sweeps", s.fineSweeps, 0, 10000);
-  s.coarseIterations = o.integer("coarse_iters", s.coarseIterations, 0, 100000);
-  s.smoother = readEnum(o, "smoother", s.smoother, kSmootherNames);
-  s.coarseSolver = readEnum(o, "coarse_solver", s.coarseSolver, kCoarseSolverNames);
-  s.newtonIterations = o.integer("newton_iters", s.newtonIterations, 1, 100);
-  s.cycles = o.integer("cycles", s.cycles, 1, 1000);
-  s.pcgTolerance = o.number("pcg_tolerance", s.pcgTolerance, 0.0, 0.5);
-  s.residualTolerance = o.number("residual_tolerance", s.residualTolerance, 1e-12, 10.0);
-  s.frameBudgetMs = o.number("frame_budget_ms", s.frameBudgetMs, 0.0, 1e6);
-  s.reuseStiffness = o.boolean("reuse_stiffness", s.reuseStiffness);
-  s.predictedStart = o.boolean("predicted_start", s.predictedStart);
-  s.acceleratedStart = o.boolean("accelerated_start", s.acceleratedStart);
-  s.convergePieces = o.boolean("converge_pieces", s.convergePieces);
-  s.energyGuard = readEnum(o, "energy_guard", s.energyGuard, kEnergyGuardNames);
-  s.stiffnessTolerance = o.number("stiffness_tolerance", s.stiffnessTolerance, 0.0, 0.1);
-  s.backend = readEnum(o, "backend", s.backend, kBackendNames);
-  s.splitAggregates = o.boolean("split_aggregates", s.splitAggregates);
-  o.rejectUnknownKeys();
-  return s;
-}
-
 }  // namespace
 
-const char* solverTypeName(SolverType t) {
-  return nameOf(kSolverTypeNames, t);
-}
-const char* solverPresetName(SolverPreset p) {
-  return nameOf(kSolverPresetNames, p);
-}
-
-SolverDesc solverPreset(SolverPreset preset) {
-  SolverDesc s;  // the converged preset
-  s.preset = preset;
-  if (preset == SolverPreset::Paper) {
-    s.coarseSolver = CoarseSolver::Cg;
-    s.newtonIterations = 1;
-    s.pcgTolerance = 0.0;
-    s.reuseStiffness = false;
-    s.predictedStart = false;
-    s.acceleratedStart = false;
-    s.convergePieces = false;
-    s.stiffnessTolerance = 0.0;  // every element's stiffness, every step
-  }
-  return s;
-}
-const char* smootherName(Smoother s) {
-  return nameOf(kSmootherNames, s);
-}
-const char* coarseSolverName(CoarseSolver c) {
-  return nameOf(kCoarseSolverNames, c);
-}
-const char* energyGuardName(EnergyGuard g) {
-  return nameOf(kEnergyGuardNames, g);
-}
-const char* backendRequestName(BackendRequest b) {
-  return nameOf(kBackendNames, b);
-}
 const char* materialModelName(MaterialModel m) {
   return nameOf(kMaterialModels, m);
 }
@@ -354,17 +272,11 @@ const char* generatorName(Generator g) {
 std::optional<Generator> generatorFromName(const std::string& name) {
   return valueOf(kGeneratorNames, name);
 }
-std::optional<BackendRequest> backendRequestFromName(const std::string& name) {
-  return valueOf(kBackendNames, name);
-}
 const char* debrisRuleName(DebrisRule rule) {
   return nameOf(kDebrisRuleNames, rule);
 }
 std::optional<DebrisRule> debrisRuleFromName(const std::string& name) {
   return valueOf(kDebrisRuleNames, name);
-}
-std::optional<SolverPreset> solverPresetFromName(const std::string& name) {
-  return valueOf(kSolverPresetNames, name);
 }
 
 const std::vector<std::string>& materialPresetNames() {
@@ -496,7 +408,7 @@ SceneDescription parseScene(const nlohmann::json& root, const fs::path& file) {
       s.fracture.compressiveThreshold = s.material.compressiveThreshold;
     if (!f.has("energy")) s.fracture.energy = s.material.fractureEnergy;
   }
-  if (o.has("solver")) s.solver = readSolver(o.object("solver"));
+  if (o.has("solver")) s.solver = readSolverOptions(o.object("solver"));
   if (o.has("measure")) {
     JsonObject m = o.object("measure");
     if (m.has("opening")) {

@@ -14,6 +14,7 @@
 #include "engine/scene/json_reader.h"
 #include "solver/fem/colliders.h"
 #include "solver/fem/material_types.h"
+#include "solver/frame/solver_options.h"
 
 namespace galsculpt {
 
@@ -106,64 +107,14 @@ struct FractureDesc {
   DebrisRule debris = DebrisRule::Keep;
 };
 
-// The solver's choices, parsed once from their names (scene files, the command line, the Scene
-// settings panel); nothing compares their names after loading.
-enum class SolverType { Multigrid, Reference };
-// The multigrid's defaults: `converged` (Newton with multigrid-preconditioned CG until the
-// residual is within tolerance) or `paper` (the paper's one linearized step, one V-cycle).
-enum class SolverPreset { Converged, Paper };
-// Auto: Gauss-Seidel on the CPU, Jacobi on a GPU (MultigridSettings::jacobiOnDevice).
-enum class Smoother { Auto, GaussSeidel, Jacobi };
-enum class CoarseSolver { Cg, Cholesky };
-// What a Newton step that raised the potential shortens first (StepSettings::vertexGuard).
-enum class EnergyGuard { Vertex, Body };
-enum class BackendRequest { Auto, Cpu, Cuda };
-
-// Names as written in scene files: "multigrid", "gauss_seidel", "cholesky", "cuda", ...
-const char* solverTypeName(SolverType t);
-const char* solverPresetName(SolverPreset p);
-const char* smootherName(Smoother s);
-const char* coarseSolverName(CoarseSolver c);
-const char* energyGuardName(EnergyGuard g);
-const char* backendRequestName(BackendRequest b);
 // "corotational", "stvk", "stable_neo_hookean".
 const char* materialModelName(MaterialModel m);
-// The request named `name`, or none for an unknown name.
-std::optional<BackendRequest> backendRequestFromName(const std::string& name);
 // "keep", "remove" (fracture.debris); debrisRuleFromName: none for another name.
 const char* debrisRuleName(DebrisRule rule);
 std::optional<DebrisRule> debrisRuleFromName(const std::string& name);
-// The solver preset named `name` ("converged", "paper"), or none for another name.
-std::optional<SolverPreset> solverPresetFromName(const std::string& name);
 
-// Defaults are the converged preset's (solverPreset below).
-struct SolverDesc {
-  SolverType type = SolverType::Multigrid;
-  SolverPreset preset = SolverPreset::Converged;
-  std::string grid = "50/all";
-  int fineSweeps = 3;
-  int coarseIterations = 20;
-  Smoother smoother = Smoother::Auto;
-  CoarseSolver coarseSolver = CoarseSolver::Cholesky;
-  int newtonIterations = 40;        // the most per sub-step
-  int cycles = 1;                   // V-cycles per linear solve (without PCG)
-  double pcgTolerance = 1e-2;       // > 0: CG preconditioned by V-cycles, to this relative residual
-  double residualTolerance = 1e-2;  // converged: residual / weight of the body
-  double frameBudgetMs = 0.0;       // > 0: Newton stops when a frame has taken this long
-  bool reuseStiffness = true;       // chord steps after a sub-step's first Newton iteration
-  bool predictedStart = true;       // Newton starts from x_n + h v_n (StepSettings)
-  bool acceleratedStart = true;     // pieces start with their acceleration (StepSettings)
-  bool convergePieces = true;       // every piece solved to the tolerance (StepSettings)
-  EnergyGuard energyGuard = EnergyGuard::Body;  // StepSettings::vertexGuard
-  double stiffnessTolerance = 1e-3;             // StepSettings::stiffnessTolerance
-  BackendRequest backend = BackendRequest::Auto;
-  bool splitAggregates = true;  // crack-aware coarse levels
-
-  bool operator==(const SolverDesc&) const = default;
-};
-
-// The solver settings a preset stands for (keys a scene gives override them).
-SolverDesc solverPreset(SolverPreset preset);
+// The solver's options: solver/frame/solver_options.h (one table drives the struct, its
+// presets, the scene reader, the command line and the panel).
 
 // Optional measurements written as metrics columns.
 struct MeasureDesc {
@@ -190,7 +141,7 @@ struct SceneDescription {
   std::vector<AnchorDesc> anchors;
   std::vector<ColliderDesc> colliders;
   FractureDesc fracture;
-  SolverDesc solver;
+  SolverOptions solver;
   MeasureDesc measure;
 };
 

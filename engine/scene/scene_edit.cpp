@@ -1,5 +1,7 @@
 #include "engine/scene/scene_edit.h"
 
+#include "engine/scene/solver_options_json.h"
+
 namespace galsculpt {
 
 namespace fs = std::filesystem;
@@ -43,22 +45,7 @@ SceneDescription editScene(const SceneDescription& base, const SceneSettings& s)
   if (base.fracture.criterion != FractureCriterion::Strain)
     fracture["threshold"] = s.fractureThreshold;
   j["fracture"] = fracture;
-  const SolverDesc& v = s.solver;
-  nlohmann::json solver = j.contains("solver") ? j["solver"] : nlohmann::json::object();
-  solver["type"] = solverTypeName(v.type);
-  solver["preset"] = solverPresetName(v.preset);
-  solver["grid"] = v.grid;
-  solver["fine_sweeps"] = v.fineSweeps;
-  solver["coarse_iters"] = v.coarseIterations;
-  solver["smoother"] = smootherName(v.smoother);
-  solver["coarse_solver"] = coarseSolverName(v.coarseSolver);
-  solver["newton_iters"] = v.newtonIterations;
-  solver["pcg_tolerance"] = v.pcgTolerance;
-  solver["residual_tolerance"] = v.residualTolerance;
-  solver["energy_guard"] = energyGuardName(v.energyGuard);
-  solver["stiffness_tolerance"] = v.stiffnessTolerance;
-  solver["backend"] = backendRequestName(v.backend);
-  j["solver"] = solver;
+  j["solver"] = solverOptionsJson(s.solver);
   return parseScene(j, base.file.parent_path() / (base.file.stem().string() + ".edited.json"));
 }
 

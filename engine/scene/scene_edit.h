@@ -12,7 +12,7 @@ struct SceneSettings {
   MaterialDesc material;
   bool fracture = false;
   double fractureThreshold = 0.0;  // Pa; 0: the material's
-  SolverDesc solver;
+  SolverOptions solver;
 };
 
 SceneSettings sceneSettings(const SceneDescription& scene);

@@ -24,7 +24,7 @@ SceneDescription sceneForMesh(const fs::path& mesh, int importTets) {
 }
 
 OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int importTets,
-                          std::optional<BackendRequest> backend) {
+                          const SolverOverrides& solver) {
   requirePathExists(file);
   OpenedSession opened;
   // By content, or by name: a .gsproj whose magic is broken is a broken project, not an
@@ -32,7 +32,7 @@ OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int 
   if (looksLikeProject(file) || file.extension() == ".gsproj") {
     if (progress) progress("reading project " + file.string());
     Project project = readProject(file);
-    if (backend) project.scene.solver.backend = *backend;
+    project.scene = withSolverOverrides(project.scene, solver);
     opened.camera = project.camera;
     opened.session = sessionFromProject(project, file);
     return opened;
@@ -42,7 +42,7 @@ OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int 
   if (json.contains("events")) {
     // A playback script: its scene, replayed to the script's end, then sculpted on.
     PlaybackScript script = parsePlaybackScript(json, file);
-    if (backend) script.scene.solver.backend = *backend;
+    script.scene = withSolverOverrides(script.scene, solver);
     const TetMesh mesh = loadSceneMesh(script.scene, progress);
     opened.session = std::make_unique<SculptSession>(script.scene, mesh);
     opened.session->replay(script, [&](int frame, int frames) {
@@ -55,7 +55,7 @@ OpenedSession openSession(const fs::path& file, const ProgressFn& progress, int 
   SceneDescription scene = ext == ".json" ? parseScene(json, file) : sceneForMesh(file, importTets);
   if (ext != ".json" && meshFileKind(file) == MeshFileKind::Unknown)
     throw InputError(file.string() + ": not a project, scene or mesh file this version reads");
-  if (backend) scene.solver.backend = *backend;
+  scene = withSolverOverrides(scene, solver);
   const TetMesh mesh = loadSceneMesh(scene, progress);
   if (progress) progress("building the simulation (" + std::to_string(mesh.numTets()) + " tets)");
   opened.session = std::make_unique<SculptSession>(scene, mesh);

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "engine/scene/scene_mesh.h"
+#include "engine/scene/solver_options_json.h"
 #include "engine/session/sculpt_session.h"
 
 namespace galsculpt {
@@ -23,9 +24,8 @@ struct OpenedSession {
 SceneDescription sceneForMesh(const std::filesystem::path& mesh, int importTets);
 
 // Throws InputError for a file that cannot be opened (naming it and the problem).
-// `backend`, when given, replaces the scene's solver.backend.
+// `solver`: solver keys set over the scene's own (withSolverOverrides: --solver-option, --backend).
 OpenedSession openSession(const std::filesystem::path& file, const ProgressFn& progress = {},
-                          int importTets = 20000,
-                          std::optional<BackendRequest> backend = std::nullopt);
+                          int importTets = 20000, const SolverOverrides& solver = {});
 
 }  // namespace galsculpt

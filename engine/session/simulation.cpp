@@ -76,20 +76,12 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
                            materialFromScene(scene.material, scene.fracture.compressionResists))),
       state_(initialState(model_)),
       surfaceBuilder_(model_) {
-  settings_.dt = scene.timeStep;
-  settings_.substeps = scene.substeps;
+  SolverOptions options = scene.solver;
+  if (choice == SolverChoice::Reference) options.type = SolverType::Reference;
+  settings_ = stepSettings(options, scene.timeStep, scene.substeps);
   model_.gravity = scene.gravity;
   model_.material.dampingMass = scene.dampingMass;
   model_.material.dampingStiffness = scene.dampingStiffness;
-  settings_.newtonIterations = scene.solver.newtonIterations;
-  settings_.residualTolerance = scene.solver.residualTolerance;
-  settings_.frameBudgetMs = scene.solver.frameBudgetMs;
-  settings_.reuseStiffness = scene.solver.reuseStiffness;
-  settings_.predictedStart = scene.solver.predictedStart;
-  settings_.acceleratedStart = scene.solver.acceleratedStart;
-  settings_.convergePieces = scene.solver.convergePieces;
-  settings_.vertexGuard = scene.solver.energyGuard == EnergyGuard::Vertex;
-  settings_.stiffnessTolerance = scene.solver.stiffnessTolerance;
   for (size_t i = 0; i < scene.anchors.size(); ++i) {
     AnchorConstraint a;
     a.vertices = selectAnchorVertices(scene.anchors[i], mesh, scene.file.string(),
@@ -103,22 +95,6 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     state_.colliders.push_back(initialColliderState(model_.colliders.back()));
     if (c.friction > 0.0 && notes_.empty())
       notes_.push_back("collider friction is not modelled yet: contacts are frictionless");
-  }
-  if (choice == SolverChoice::Reference || scene.solver.type == SolverType::Reference) {
-    settings_ = referenceSettings(settings_);
-  } else {
-    settings_.multigrid = true;
-    settings_.gridHandles = parseGridSetup(scene.solver.grid);
-    MultigridSettings& mg = settings_.multigridSettings;
-    mg.preSweeps = mg.postSweeps = scene.solver.fineSweeps;
-    mg.jacobi = scene.solver.smoother == Smoother::Jacobi;
-    mg.jacobiOnDevice = scene.solver.smoother == Smoother::Auto;
-    mg.coarseCholesky = scene.solver.coarseSolver == CoarseSolver::Cholesky;
-    mg.coarseIterations = scene.solver.coarseIterations;
-    mg.cycles = scene.solver.cycles;
-    mg.splitAggregates = scene.solver.splitAggregates;
-    mg.pcg = scene.solver.pcgTolerance > 0.0;
-    if (mg.pcg) mg.pcgTolerance = scene.solver.pcgTolerance;
   }
   if (scene.fracture.enabled) {
     FractureSettings f;
@@ -540,26 +516,13 @@ FrameMetrics Simulation::advance() {
   FrameMetrics m;
   m.frame = frame_;
   m.timeS = state_.time;
-  m.msElements = r.msElements;
-  m.msSolve = r.msSolve;
-  m.msPlastic = r.msPlastic;
-  m.residual = r.residual;
-  m.pieceResidual = r.pieceResidual;
-  m.elasticEnergy = r.elasticEnergy;
-  m.converged = r.converged;
-  m.retries = r.retries;
-  m.invertedElements = r.invertedElements;
+  static_cast<FrameStatistics&>(m) = r;  // the solver's figures, as the frame reported them
   m.warnings =
       r.retries + (r.converged ? 0 : 1) + (r.invertedElements > 0 ? 1 : 0) + (diverged ? 1 : 0);
-  m.newtonIterations = r.newtonIterations;
-  m.cgIterations = r.cgIterations;
-  m.backtracks = r.backtracks;
-  m.energyPasses = r.energyPasses;
   Vec3 contact = Vec3::Zero();
   for (const Vec3& f : r.contactForces) contact += f;
   m.contactForceN = contact.norm();
-  m.msFracture = r.msFracture;
-  m.newlyDamaged = r.newlyDamaged + toolDamage_;
+  m.newlyDamaged += toolDamage_;  // edges broken this frame: fracture and tools
   if (loadCollider_ >= 0 && loadCollider_ < static_cast<int>(r.contactForces.size())) {
     m.loadN = r.contactForces[loadCollider_].norm();
     const Collider& c = model_.colliders[loadCollider_];

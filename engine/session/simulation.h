@@ -36,25 +36,21 @@ struct SimulationSnapshot {
   std::size_t bytes() const;
 };
 
-struct FrameMetrics {
+// A frame's figures: the solver's (FrameStatistics, solver/frame/frame_statistics.h; msTotal
+// here is the whole frame's, with the pieces and the surface) and the engine's own.
+struct FrameMetrics : FrameStatistics {
   int frame = 0;
   double timeS = 0.0;
-  double msTotal = 0.0, msElements = 0.0, msSolve = 0.0, msPlastic = 0.0, msOther = 0.0;
+  double msOther = 0.0;  // msTotal less the elements, the solve, plasticity and fracture
   double volume = 0.0, volumeChangePct = 0.0;
-  double kineticEnergy = 0.0, elasticEnergy = 0.0;
-  double residual = 0.0;
-  double pieceResidual = 0.0;  // the worst piece's of more than 10 vertices (StepReport)
+  double kineticEnergy = 0.0;
   double maxDisplacement = 0.0;
-  int damagedEdges = 0, pieces = 0, warnings = 0, newtonIterations = 0;
+  int damagedEdges = 0, pieces = 0;
+  // Retries, a frame not converged, elements inside out and a divergence, counted.
+  int warnings = 0;
   double contactForceN = 0.0;  // magnitude of the summed collider forces
-  double msFracture = 0.0;     // the fracture pass (part of ms_other before it had a column)
-  int newlyDamaged = 0;        // edges broken this frame (fracture and tools)
   double openingM = 0.0;       // scene measure.opening: distance change of its two vertices, m
   double loadN = 0.0;  // measure.load_collider / load_anchor: that collider's or grip's force, N
-  int backtracks = 0;  // Newton steps shortened by the energy guard / line search
-  double energyPasses = 0.0;  // their energy evaluations in whole-body passes (StepReport)
-  int cgIterations = 0;       // PCG iterations of the frame's linear solves
-  int retries = 0;            // rolled-back and halved sub-steps (part of warnings)
   // Pieces under fracture.debris_fraction of the body's rest volume (a piece's rest volume is
   // its vertices' corner cells', what its surface encloses at rest: docs/surface.md), the rest
   // volume they hold (% of the body's), and pieces whose surface encloses no positive volume
@@ -68,10 +64,6 @@ struct FrameMetrics {
   // what the body absorbed; 0 for a kinematic collider).
   double strikerDisplacementM = 0.0;
   double absorbedEnergyJ = 0.0;
-  int invertedElements = 0;  // intact elements inside out at the frame's end (a warning)
-  // Whether the frame solved its equations: every sub-step's residual within the solver's
-  // tolerance (solver.residual_tolerance). A frame that did not is one warning.
-  bool converged = true;
 };
 
 // Whether the frame left a piece of the body above `tolerance` of its own loads (the metrics'

@@ -23,21 +23,10 @@
 
 namespace galsculpt {
 
-struct SubstepOutcome {
+// One sub-step's figures (FrameStatistics: its Newton iterations, residual, ...); `ok` false
+// when it failed (NaN, no descent) and is rolled back.
+struct SubstepOutcome : StepReport {
   bool ok = true;
-  bool converged = false;
-  int iterations = 0;
-  int cgIterations = 0;
-  int backtracks = 0;
-  double energyPasses = 0.0;     // StepReport::energyPasses
-  double keptStiffnesses = 0.0;  // StepReport::keptStiffnesses
-  int invertedElements = 0;      // intact elements inside out at the accepted positions
-  double residual = 0.0;
-  double pieceResidual = 0.0;  // StepReport::pieceResidual
-  double energy = 0.0;
-  double msElements = 0.0, msSolve = 0.0;
-  double linearResidualReduction = 0.0;
-  std::vector<Vec3> contactForces;
 };
 
 template <typename Ops>
@@ -82,27 +71,14 @@ StepReport runFrame(Ops& ops, const StepSettings& settings) {
         // damage (kept), until no edge breaks or the iterations are spent.
         ++redo;
         ++report.fractureRedos;
-        report.msElements += r.msElements;
-        report.msSolve += r.msSolve;
+        report.addTimes(r);
         ops.restore(saved, true);
         continue;
       }
     }
     redo = 0;
     report.contactForces = r.contactForces;
-    report.linearResidualReduction = r.linearResidualReduction;
-    report.newtonIterations += r.iterations;
-    report.cgIterations += r.cgIterations;
-    report.converged = report.converged && r.converged;
-    report.backtracks += r.backtracks;
-    report.energyPasses += r.energyPasses;
-    report.keptStiffnesses += r.keptStiffnesses;
-    report.invertedElements = r.invertedElements;
-    report.residual = r.residual;
-    report.pieceResidual = r.pieceResidual;
-    report.elasticEnergy = r.energy;
-    report.msElements += r.msElements;
-    report.msSolve += r.msSolve;
+    report.addSubstep(r);
   }
   report.msTotal = msSince(start);
   return report;

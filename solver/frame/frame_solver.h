@@ -374,7 +374,7 @@ class FrameSolver {
       if constexpr (Exec::kHostMemory) result.msSolve -= result.msElements - elementsBefore;
       return NewtonOutcome::Restart;
     }
-    ++result.iterations;
+    ++result.newtonIterations;
     if (!reuse && s.stiffnessTolerance > 0.0) result.keptStiffnesses += read.kept;
     const double stepLength = lineSearch_.search(result, read, linear_.reduction());
     switchedCracks_ = s.reuseStiffness ? read.switched : 0.0;
@@ -383,14 +383,14 @@ class FrameSolver {
     if (stepLength < 0.0) return NewtonOutcome::Failed;
     if (stepLength <
         LineSearch<Exec>::kShortestStep)  // no descent: a failure only before any progress
-      return result.iterations == 1 ? NewtonOutcome::Failed : NewtonOutcome::Stalled;
+      return result.newtonIterations == 1 ? NewtonOutcome::Failed : NewtonOutcome::Stalled;
     // Accept: the trial just evaluated is the new iterate (its energy and gradient too).
     ex_.copy(d_.x.data(), d_.trial.data(), 3 * d_.n);
     ex_.copy(d_.acceptedGrad.data(), d_.trialGrad.data(), 3 * d_.n);
     ex_.copy(d_.elemEnergy.data(), d_.trialEnergy.data(), d_.tets);
     ex_.copy(d_.elemInverted.data(), d_.trialInverted.data(), d_.tets);
     gradientAtX_ = true;  // the line search's last trial is the accepted one
-    result.energy = read.trialElastic;
+    result.elasticEnergy = read.trialElastic;
     // Newton's step test on the full step: a step shortened to nothing says nothing about
     // stationarity.
     return read.deltaMax < s.tolerance * modelSize_ ? NewtonOutcome::Converged
@@ -495,7 +495,7 @@ class FrameSolver {
     result.invertedElements = static_cast<int>(read.trialInverted);  // the accepted trial's
     contact_.readForces(result.contactForces, contactMoments_);
     // Otherwise the caller restores x and v.
-    if (read.bad > 0.0 || !std::isfinite(result.energy)) result.ok = false;
+    if (read.bad > 0.0 || !std::isfinite(result.elasticEnergy)) result.ok = false;
   }
 
   void finishSubstep(double h) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "solver/fracture/fracture.h"
+#include "solver/frame/frame_statistics.h"
 #include "solver/model/sim_model.h"
 #include "solver/multigrid/multigrid.h"
 
@@ -94,38 +95,9 @@ struct StepSettings {
 // The reference solver's settings: Newton with line search to a tight tolerance.
 StepSettings referenceSettings(StepSettings base);
 
-struct StepReport {
-  int newtonIterations = 0;
-  double residual = 0.0;  // |grad E| at the new positions, free DOFs, over the force scale
-  // The largest such residual of a piece of more than 10 vertices over its own force scale
-  // (piece_residual.h): what the body's norm can hide in a body in pieces. The body's residual
-  // while fewer than two pieces are that large. Measured only: convergence is the body's.
-  double pieceResidual = 0.0;
-  double elasticEnergy = 0.0;  // J
-  int retries = 0;             // step halvings (warnings)
-  int backtracks = 0;          // Newton steps shortened because the full step raised the energy
-  // Energy evaluations of shortened steps, in whole-body passes (a vertex-guard round that
-  // evaluates a tenth of the elements counts 0.1).
-  double energyPasses = 0.0;
-  // Element stiffnesses kept rather than evaluated (StepSettings::stiffnessTolerance), summed
-  // over the frame's stiffness passes.
-  double keptStiffnesses = 0.0;
-  double msElements = 0.0, msSolve = 0.0, msPlastic = 0.0, msTotal = 0.0;
-  std::vector<Vec3> contactForces;       // (nColliders) force of each collider on the body, N
-  int plasticElements = 0;               // elements that flowed this frame
-  double linearResidualReduction = 0.0;  // |r_final| / |r_initial| of the last linear solve
-  int newlyDamaged = 0;                  // edges the fracture pass broke this frame
-  double maxStressRatio = 0.0;           // largest edge stress over its threshold (last pass)
-  double msFracture = 0.0;
-  int fractureRedos = 0;  // sub-steps solved again after new damage
-  // Whether every sub-step ended converged: residual within residualTolerance (with none,
-  // Newton's step-length test met).
-  bool converged = true;
-  int cgIterations = 0;  // PCG iterations of the frame's linear solves
-  // Intact elements inside out at the frame's end (a warning): Newton's line search refuses
-  // steps that invert more of them, unless no step that descends avoids it (then the body keeps
-  // moving rather than freezing).
-  int invertedElements = 0;
+// One frame's figures (frame_statistics.h) and the colliders' forces.
+struct StepReport : FrameStatistics {
+  std::vector<Vec3> contactForces;  // (nColliders) force of each collider on the body, N
 };
 
 // Elastic energy of positions `x`; the gradient (3 nVerts) and, when `hessian` is given, the

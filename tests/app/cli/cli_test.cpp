@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -611,6 +612,58 @@ TEST(Cli, BackendFlag) {
     EXPECT_NE(r.err.find("--backend must be auto, cpu or cuda"), std::string::npos)
         << args[0] << ": " << r.err;
   }
+}
+
+// --solver-option sets the scene's solver keys (run, play, bench, open): the frames take them;
+// an unknown key or a malformed list is a usage error naming the keys, a value out of range an
+// input error naming the option.
+TEST(Cli, SolverOptionFlag) {
+  test::TempDir dir;
+  const fs::path scene = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
+  const CliRun one = run({"run", scene.string(), "--frames", "3", "--out", (dir / "a").string(),
+                          "--solver-option", "newton_iters=1,pcg_tolerance=0", "--backend", "cpu"});
+  ASSERT_EQ(one.code, kExitOk) << one.err;
+  std::istringstream csv(test::readText(dir / "a" / "metrics.csv"));
+  std::string header, line;
+  std::getline(csv, header);
+  std::vector<std::string> names;
+  for (std::istringstream h(header); std::getline(h, line, ',');) names.push_back(line);
+  const size_t column = std::find(names.begin(), names.end(), "newton_iterations") - names.begin();
+  ASSERT_LT(column, names.size());
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> cells;
+    for (std::istringstream r(line); std::getline(r, header, ',');) cells.push_back(header);
+    ASSERT_EQ(cells.size(), names.size());
+    EXPECT_EQ(cells[column], "1") << "newton_iters=1: one Newton iteration a frame";
+    ++rows;
+  }
+  EXPECT_EQ(rows, 3);
+  const fs::path script = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scripts" / "sphere_cut.json";
+  const std::vector<std::vector<std::string>> commands = {
+      {"run", scene.string(), "--frames", "1", "--out", (dir / "c").string()},
+      {"play", script.string(), "--out", (dir / "c").string()},
+      {"bench"},
+      {"open", scene.string(), "--headless", "--out", (dir / "c").string()}};
+  for (std::vector<std::string> args : commands) {
+    args.insert(args.end(), {"--solver-option", "newton_iters=2,sweeps=3"});
+    const CliRun r = run(args);
+    EXPECT_EQ(r.code, kExitUsage) << args[0];
+    EXPECT_NE(r.err.find("--solver-option: unknown solver option 'sweeps' (options: preset, "),
+              std::string::npos)
+        << args[0] << ": " << r.err;
+  }
+  const CliRun malformed = run({"run", scene.string(), "--frames", "1", "--out",
+                                (dir / "d").string(), "--solver-option", "newton_iters"});
+  EXPECT_EQ(malformed.code, kExitUsage);
+  EXPECT_NE(malformed.err.find("'newton_iters' is not KEY=VALUE"), std::string::npos)
+      << malformed.err;
+  const CliRun outOfRange = run({"run", scene.string(), "--frames", "1", "--out",
+                                 (dir / "e").string(), "--solver-option=newton_iters=500"});
+  EXPECT_EQ(outOfRange.code, kExitBadInput);
+  EXPECT_NE(outOfRange.err.find("solver options newton_iters=500: "), std::string::npos)
+      << outOfRange.err;
+  EXPECT_NE(outOfRange.err.find("$.solver.newton_iters"), std::string::npos) << outOfRange.err;
 }
 
 TEST(Cli, SceneCheck) {

@@ -302,22 +302,21 @@ TEST(Scene, SolverChoicesAreTypedAndKeepTheirNames) {
   EXPECT_EQ(s.solver.coarseSolver, CoarseSolver::Cholesky);
   EXPECT_EQ(s.solver.backend, BackendRequest::Cpu);
   EXPECT_EQ(s.solver.energyGuard, EnergyGuard::Vertex);
-  EXPECT_STREQ(energyGuardName(EnergyGuard::Body), "body");
+  EXPECT_STREQ(enumName(EnergyGuard::Body), "body");
   EXPECT_EQ(solverPreset(SolverPreset::Converged).energyGuard, EnergyGuard::Body);
   EXPECT_EQ(solverPreset(SolverPreset::Paper).energyGuard, EnergyGuard::Body);
   EXPECT_EQ(solverPreset(SolverPreset::Converged).stiffnessTolerance, 1e-3);
   EXPECT_EQ(solverPreset(SolverPreset::Paper).stiffnessTolerance, 0.0);
   EXPECT_STREQ(materialModelName(s.material.model), "stvk");
-  EXPECT_STREQ(solverTypeName(s.solver.type), "reference");
-  EXPECT_STREQ(smootherName(s.solver.smoother), "jacobi");
-  EXPECT_STREQ(coarseSolverName(s.solver.coarseSolver), "cholesky");
-  EXPECT_STREQ(backendRequestName(s.solver.backend), "cpu");
-  EXPECT_EQ(backendRequestFromName("cuda"), BackendRequest::Cuda);
-  EXPECT_FALSE(backendRequestFromName("gpu").has_value());
-  EXPECT_EQ(solverPresetFromName("paper"), SolverPreset::Paper);
-  EXPECT_EQ(solverPresetFromName(solverPresetName(SolverPreset::Converged)),
-            SolverPreset::Converged);
-  EXPECT_FALSE(solverPresetFromName("fast").has_value());
+  EXPECT_STREQ(enumName(s.solver.type), "reference");
+  EXPECT_STREQ(enumName(s.solver.smoother), "jacobi");
+  EXPECT_STREQ(enumName(s.solver.coarseSolver), "cholesky");
+  EXPECT_STREQ(enumName(s.solver.backend), "cpu");
+  EXPECT_EQ(enumFromName<BackendRequest>("cuda"), BackendRequest::Cuda);
+  EXPECT_FALSE(enumFromName<BackendRequest>("gpu").has_value());
+  EXPECT_EQ(enumFromName<SolverPreset>("paper"), SolverPreset::Paper);
+  EXPECT_EQ(enumFromName<SolverPreset>(enumName(SolverPreset::Converged)), SolverPreset::Converged);
+  EXPECT_FALSE(enumFromName<SolverPreset>("fast").has_value());
 }
 
 TEST(Scene, MissingMeshFileIsReportedWhenLoading) {

@@ -48,6 +48,31 @@ TEST(SessionLoader, OpensScenesScriptsProjectsAndMeshes) {
   EXPECT_EQ(mesh.session->simulation().model().numTets(), test::gridBar(3, 2, 2, 0.1).numTets());
 }
 
+// Solver keys given on opening (--solver-option, --backend) hold for a scene, a script and a
+// project alike, and a project saved afterwards keeps them.
+TEST(SessionLoader, SolverOverridesHoldForEveryKindOfFile) {
+  test::TempDir dir;
+  const SolverOverrides overrides = {{"newton_iters", 3}, {"backend", "cpu"}};
+  const OpenedSession scene =
+      openSession(kAssets / "scenes" / "default.json", {}, 20000, overrides);
+  EXPECT_EQ(scene.session->scene().solver.newtonIterations, 3);
+  EXPECT_EQ(scene.session->simulation().settings().newtonIterations, 3);
+  test::writeText(dir / "s.json", "{\"scene\": \"" +
+                                      (kAssets / "scenes" / "default.json").string() +
+                                      "\", \"frames\": 2, \"events\": []}");
+  const OpenedSession script = openSession(dir / "s.json", {}, 20000, overrides);
+  EXPECT_EQ(script.session->scene().solver.newtonIterations, 3);
+  EXPECT_EQ(script.session->simulation().frame(), 2);
+  writeProject(dir / "p.gsproj", *script.session, std::nullopt);
+  const OpenedSession project = openSession(dir / "p.gsproj");
+  EXPECT_EQ(project.session->scene().solver.newtonIterations, 3);
+  const OpenedSession again = openSession(dir / "p.gsproj", {}, 20000, {{"newton_iters", 5}});
+  EXPECT_EQ(again.session->scene().solver.newtonIterations, 5);
+  EXPECT_EQ(again.session->simulation().frame(), 2);
+  EXPECT_THROW_WITH(openSession(dir / "p.gsproj", {}, 20000, {{"newton_iters", "many"}}),
+                    InputError, "solver options newton_iters=\"many\"");
+}
+
 TEST(SessionLoader, WhatCannotBeOpenedIsNamed) {
   test::TempDir dir;
   EXPECT_THROW_WITH(openSession(dir / "missing.json"), InputError, "missing.json: no such file");
