@@ -109,10 +109,26 @@ void SculptSession::setCamera(const CameraPose& pose) {
   record(e);
 }
 
+void SculptSession::apply(ToolEvent event) {
+  beginAction("apply");
+  record(event);
+  acting_.push_back(recording_.back());
+}
+
 FrameMetrics SculptSession::step() {
-  tools_->prepareFrame({}, sim_->frame());  // the user's events were applied as they came
+  // The user's events were applied as they came; those given to apply() act as in a script.
+  tools_->prepareFrame(acting_, sim_->frame());
   dirty_ = true;
-  return sim_->advance();
+  FrameMetrics m = sim_->advance();
+  // The last frame before which each event acts (ToolApplier::apply); a brush's release is the
+  // applier's own.
+  auto lastFrame = [](const ToolEvent& e) {
+    if (e.tool == ToolEvent::Tool::Knife) return e.frame + e.duration - 1;
+    if (e.tool == ToolEvent::Tool::Stroke) return e.end;
+    return e.frame;
+  };
+  std::erase_if(acting_, [&](const ToolEvent& e) { return lastFrame(e) < sim_->frame(); });
+  return m;
 }
 
 void SculptSession::reset() {
@@ -122,6 +138,7 @@ void SculptSession::reset() {
   step.append = std::move(recording_);
   historyBytes_ += step.append.size() * sizeof(ToolEvent);
   tools_ = std::make_unique<ToolApplier>(*sim_, scene_.file.string());
+  acting_.clear();
   sim_->restore(initial_);
   recording_.clear();
   dirty_ = true;
@@ -148,6 +165,7 @@ SculptSession::Step SculptSession::travel(Step target) {
                     std::make_move_iterator(target.append.end()));
   sim_->restore(target.state);
   tools_ = std::make_unique<ToolApplier>(*sim_, scene_.file.string());
+  acting_.clear();
   dirty_ = true;
   return back;
 }
@@ -209,6 +227,7 @@ void SculptSession::saveRecording(const std::filesystem::path& file) const {
 void SculptSession::replay(const PlaybackScript& script,
                            const std::function<void(int, int)>& progress) {
   tools_ = std::make_unique<ToolApplier>(*sim_, script.file.string());
+  acting_.clear();
   checkScriptAnchors(script, *sim_);
   while (sim_->frame() < script.frames) {
     throwIfStopRequested();  // Ctrl-C or SIGTERM during `open --headless`
@@ -225,6 +244,7 @@ void SculptSession::load(const SimulationSnapshot& state, std::vector<ToolEvent>
   strokeEvent_ = -1;
   sim_->restore(state);
   tools_ = std::make_unique<ToolApplier>(*sim_, scene_.file.string());
+  acting_.clear();
   recording_ = std::move(recording);
   undo_.clear();
   redo_.clear();

@@ -44,6 +44,10 @@ class SculptSession {
   void endStroke();
   bool strokeActive() const { return strokeEvent_ >= 0; }
   int paint(const Vec3& center, double radius, int seed, bool erase, const Symmetry& symmetry);
+  // A playback script's event (docs/scripts.md), acting from the next frame on as it would in
+  // the script: an undoable action, recorded. Undo, redo and reset end the events still acting
+  // (a drag stops where it is), as they end a held stroke.
+  void apply(ToolEvent event);
   // The view, recorded once per frame (the last pose of each frame).
   void setCamera(const CameraPose& pose);
 
@@ -98,6 +102,7 @@ class SculptSession {
   std::unique_ptr<ToolApplier> tools_;
   SimulationSnapshot initial_;
   std::vector<ToolEvent> recording_;
+  std::vector<ToolEvent> acting_;  // events given to apply() whose effect may still run
   int strokeEvent_ = -1;  // index of the open stroke's event in recording_
   std::deque<Step> undo_, redo_;
   std::size_t historyBytes_ = 0, historyBudget_ = std::size_t(1) << 30;

@@ -126,6 +126,47 @@ TEST(SculptSession, ARecordedSessionReplaysExactly) {
   EXPECT_EQ(playback.camera()->distance, 0.4);
 }
 
+// A script's events given to the session (the Python module's apply) act from the next frame as
+// the script would, are recorded so that the saved recording replays to the same state, and
+// undo ends them.
+TEST(SculptSession, AppliedScriptEventsActAsInAScriptAndReplay) {
+  test::TempDir dir;
+  SculptSession s(clayBall().scene, clayBall().mesh);
+  s.step();
+  ToolEvent drag =
+      parseToolEvent(nlohmann::json::parse(R"({"frame": 1, "tool": "brush", "center": [0, 0.1, 0],
+                                "radius": 0.03, "offset": [0, 0.02, 0], "duration": 4})"),
+                     "event", "test");
+  const std::vector<Vec3> before = s.simulation().state().x;
+  s.apply(drag);
+  EXPECT_EQ(s.simulation().state().x, before) << "nothing moves before the next step";
+  EXPECT_EQ(s.undoLabel(), "apply");
+  ToolEvent knife =
+      parseToolEvent(nlohmann::json::parse(R"({"frame": 1, "tool": "knife", "duration": 2,
+          "from": [[-0.2, 0.2, 0.02], [0.2, 0.2, 0.02]], "to": [[-0.2, -0.2, 0.02], [0.2, -0.2, 0.02]]})"),
+                     "event", "test");
+  s.apply(knife);
+  for (int f = 0; f < 6; ++f) s.step();
+  const SimulationSnapshot after = s.simulation().snapshot();
+  EXPECT_GT(std::count(after.damaged.begin(), after.damaged.end(), 1), 0);
+  EXPECT_EQ(s.recording().size(), 2u);
+  s.saveRecording(dir / "applied.json");
+  const PlaybackScript script = loadPlaybackScript(dir / "applied.json");
+  Simulation replay(script.scene, clayBall().mesh);
+  Playback playback(script, replay);
+  while (!playback.finished()) playback.advance();
+  expectSameState(replay.snapshot(), after);
+  // Undo returns to before the knife; its events no longer act on the frames after.
+  ASSERT_TRUE(s.undo());
+  EXPECT_EQ(s.recording().size(), 1u);
+  const SimulationSnapshot undone = s.simulation().snapshot();
+  EXPECT_EQ(std::count(undone.damaged.begin(), undone.damaged.end(), 1), 0);
+  for (int f = 0; f < 3; ++f) s.step();
+  EXPECT_EQ(
+      std::count(s.simulation().state().damaged.begin(), s.simulation().state().damaged.end(), 1),
+      0);
+}
+
 // A script replayed into a session (opening it in the app) reaches the state `play` reaches,
 // keeps its events - hand-written anchor events too - and saves them back replayable.
 TEST(SculptSession, AReplayedScriptContinuesAndSavesBackExactly) {

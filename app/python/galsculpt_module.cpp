@@ -1,0 +1,342 @@
+// The Python module `galsculpt` (docs/python.md): the engine's own session driven from Python.
+// Arrays view the engine's memory (read-only, kept alive by the Simulation object); a step runs
+// without the GIL. Errors become ValueError (bad content: the reader's message, file and JSON
+// path) or OSError (files).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "app/cli/cli.h"
+#include "app/cli/cli_args.h"
+#include "engine/scene/solver_options_json.h"
+#include "engine/session/project_file.h"
+#include "engine/session/session_loader.h"
+#include "engine/surface/surface_io.h"
+#include "solver/io/input_error.h"
+
+namespace py = pybind11;
+namespace fs = std::filesystem;
+
+namespace galsculpt {
+namespace {
+
+// Raises a Python exception of `type`.
+[[noreturn]] void raise(PyObject* type, const std::string& message) {
+  PyErr_SetString(type, message.c_str());
+  throw py::error_already_set();
+}
+
+// Python values through JSON: the readers' own format, so that they validate what Python gives.
+nlohmann::json toJson(const py::handle& value) {
+  const std::string text = py::module_::import("json").attr("dumps")(value).cast<std::string>();
+  return nlohmann::json::parse(text);
+}
+py::object fromJson(const nlohmann::json& value) {
+  return py::module_::import("json").attr("loads")(value.dump());
+}
+
+// A frame's figures by their metrics columns (engine/session/simulation.h: the same names as
+// the CSV's).
+py::dict metricsDict(const FrameMetrics& m) {
+  py::dict d;
+  for (const MetricsColumn& c : metricsColumns())
+    std::visit([&](auto field) { d[c.name] = m.*field; }, c.field);
+  return d;
+}
+
+// A read-only array over memory `owner` keeps alive.
+template <typename T>
+py::array view(const T* data, std::vector<py::ssize_t> shape, std::vector<py::ssize_t> strides,
+               const py::handle& owner) {
+  py::array_t<T> a(std::move(shape), std::move(strides), data, owner);
+  reinterpret_cast<py::detail::PyArray_Proxy*>(a.ptr())->flags &=
+      ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+py::array vec3View(const std::vector<Vec3>& v, const py::handle& owner) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(double));
+  return view(v.empty() ? nullptr : v.front().data(), {static_cast<py::ssize_t>(v.size()), 3},
+              {sizeof(Vec3), sizeof(double)}, owner);
+}
+
+class PySimulation {
+ public:
+  PySimulation(const std::string& path, const py::object& solverOptions) {
+    if (!fs::exists(path)) raise(PyExc_FileNotFoundError, path + ": no such file");
+    SolverOverrides overrides;
+    if (!solverOptions.is_none())
+      for (const auto& [key, value] : solverOptions.cast<py::dict>())
+        overrides.emplace_back(py::str(key).cast<std::string>(), toJson(value));
+    OpenedSession opened = openSession(path, {}, 20000, overrides);
+    session_ = std::move(opened.session);
+  }
+
+  py::dict step(int frames) {
+    if (frames < 1)
+      throw py::value_error("frames must be at least 1, got " + std::to_string(frames));
+    FrameMetrics m;
+    {
+      py::gil_scoped_release released;
+      std::lock_guard<std::mutex> lock(busy_);
+      for (int f = 0; f < frames; ++f) m = session_->step();
+    }
+    return metricsDict(m);
+  }
+
+  void apply(const py::dict& event) {
+    Guard guard(*this);
+    nlohmann::json e = toJson(event);
+    const int frame = session_->simulation().frame();
+    if (!e.is_object()) throw py::value_error("an event is a dict");
+    if (!e.contains("frame")) e["frame"] = frame;
+    if (e["frame"] != frame)
+      throw py::value_error(
+          "event.frame: an applied event acts from the next step: leave it out "
+          "or give the current frame (" +
+          std::to_string(frame) + ")");
+    session_->apply(parseToolEvent(e, "event", "<python>"));
+  }
+
+  bool undo() {
+    Guard guard(*this);
+    return session_->undo();
+  }
+  bool redo() {
+    Guard guard(*this);
+    return session_->redo();
+  }
+
+  int frame() {
+    Guard guard(*this);
+    return session_->simulation().frame();
+  }
+  int pieces() {
+    Guard guard(*this);
+    return session_->simulation().pieceStats().pieces;
+  }
+
+  py::tuple surface() {
+    Guard guard(*this);
+    const Simulation& sim = session_->simulation();
+    const VisualSurface& s = sim.surface();
+    const auto faces = static_cast<py::ssize_t>(s.mesh.faces.size());
+    py::array_t<double> vertices(
+        {static_cast<py::ssize_t>(s.mesh.vertices.size()), py::ssize_t(3)});
+    py::array_t<int> triangles({faces, py::ssize_t(3)});
+    py::array_t<int> piece(faces);
+    auto v = vertices.mutable_unchecked<2>();
+    for (py::ssize_t i = 0; i < v.shape(0); ++i)
+      for (int k = 0; k < 3; ++k) v(i, k) = s.mesh.vertices[i][k];
+    auto t = triangles.mutable_unchecked<2>();
+    auto p = piece.mutable_unchecked<1>();
+    for (py::ssize_t f = 0; f < faces; ++f) {
+      for (int k = 0; k < 3; ++k) t(f, k) = s.mesh.faces[f][k];
+      p(f) = sim.pieceOf(s.cellVertex[f]);
+    }
+    return py::make_tuple(vertices, triangles, piece);
+  }
+
+  void exportSurface(const std::string& path) {
+    Guard guard(*this);
+    writeVisualSurface(path, session_->simulation().surface());
+  }
+  void exportTets(const std::string& path) {
+    Guard guard(*this);
+    fs::path stem = path;
+    if (stem.extension() == ".node") stem.replace_extension();
+    session_->simulation().writeTetsWithDamage(stem);
+  }
+  void saveProject(const std::string& path) {
+    Guard guard(*this);
+    writeProject(path, *session_, std::nullopt);
+  }
+
+  py::object options() {
+    Guard guard(*this);
+    return fromJson(solverOptionsJson(session_->scene().solver));
+  }
+
+  // The arrays: views of the engine's memory, valid while the simulation lives.
+  static py::array positions(const py::object& self) { return vec3View(state(self).x, self); }
+  static py::array velocities(const py::object& self) { return vec3View(state(self).v, self); }
+  static py::array restPositions(const py::object& self) {
+    return vec3View(self.cast<PySimulation&>().sim().model().mesh.vertices, self);
+  }
+  static py::array tets(const py::object& self) {
+    const std::vector<Tet>& t = self.cast<PySimulation&>().sim().model().mesh.tets;
+    static_assert(sizeof(Tet) == 4 * sizeof(int));
+    return view(t.empty() ? nullptr : t.front().data(), {static_cast<py::ssize_t>(t.size()), 4},
+                {sizeof(Tet), sizeof(int)}, self);
+  }
+  static py::array damage(const py::object& self) {
+    const std::vector<std::uint8_t>& d = state(self).damaged;
+    return view(d.data(), {static_cast<py::ssize_t>(d.size())}, {1}, self);
+  }
+
+ private:
+  // Every call but step takes the simulation while no step runs in another thread.
+  struct Guard {
+    std::unique_lock<std::mutex> lock;
+    explicit Guard(PySimulation& s) : lock(s.busy_, std::try_to_lock) {
+      if (!lock.owns_lock())
+        throw std::runtime_error("the simulation is stepping in another thread");
+    }
+  };
+  const Simulation& sim() {
+    Guard guard(*this);
+    return session_->simulation();
+  }
+  static const SimState& state(const py::object& self) {
+    return self.cast<PySimulation&>().sim().state();
+  }
+
+  std::unique_ptr<SculptSession> session_;
+  std::mutex busy_;
+};
+
+// A CLI command in this process, without the GIL: its standard output, or the error it exits
+// with as an exception.
+std::string runCommandLine(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  int code = 0;
+  {
+    py::gil_scoped_release released;
+    code = runCli(args, out, err);
+  }
+  if (code == kExitOk) return out.str();
+  // The command's last words, less its "galsculpt: error: " prefix.
+  std::string message = err.str();
+  for (const std::string prefix : {"galsculpt: error: ", "galsculpt: "})
+    if (const size_t at = message.rfind(prefix); at != std::string::npos) {
+      message = message.substr(at + prefix.size());
+      break;
+    }
+  while (!message.empty() && message.back() == '\n') message.pop_back();
+  if (code == kExitOutput) raise(PyExc_OSError, message);
+  if (code == kExitUsage || code == kExitBadInput) throw py::value_error(message);
+  throw std::runtime_error(message);
+}
+
+// A metrics CSV as a list of dicts (numbers as numbers).
+py::list readMetrics(const fs::path& file) {
+  py::list rows;
+  std::ifstream in(file);
+  std::string header, line;
+  if (!std::getline(in, header)) return rows;
+  std::vector<std::string> names;
+  for (std::istringstream h(header); std::getline(h, line, ',');) names.push_back(line);
+  while (std::getline(in, line)) {
+    py::dict row;
+    std::istringstream cells(line);
+    std::string cell;
+    for (const std::string& name : names) {
+      std::getline(cells, cell, ',');
+      row[name.c_str()] = fromJson(nlohmann::json::parse(cell, nullptr, false).is_discarded()
+                                       ? nlohmann::json(cell)
+                                       : nlohmann::json::parse(cell));
+    }
+    rows.append(row);
+  }
+  return rows;
+}
+
+}  // namespace
+}  // namespace galsculpt
+
+PYBIND11_MODULE(galsculpt, m) {
+  using namespace galsculpt;
+  m.doc() = "Galsculpt: graph-based FEM sculpting and fracture (docs/python.md)";
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const OutputError& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
+    } catch (const UsageError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const fs::filesystem_error& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
+    }
+  });
+
+  py::class_<PySimulation>(m, "Simulation")
+      .def(py::init<const std::string&, const py::object&>(), py::arg("path"),
+           py::arg("solver_options") = py::none(),
+           "A scene (.json), a playback script (replayed), a project (.gsproj) or a mesh; "
+           "solver_options: solver keys over the scene's (docs/scenes.md)")
+      .def("step", &PySimulation::step, py::arg("frames") = 1,
+           "Runs frames; returns the last one's figures (the metrics CSV's columns)")
+      .def("apply", &PySimulation::apply, py::arg("event"),
+           "A playback script's event (docs/scripts.md), acting from the next step")
+      .def("undo", &PySimulation::undo)
+      .def("redo", &PySimulation::redo)
+      .def_property_readonly("frame", &PySimulation::frame)
+      .def_property_readonly("pieces", &PySimulation::pieces)
+      .def_property_readonly("options", &PySimulation::options,
+                             "The solver options as the scene's \"solver\" object holds them")
+      .def_property_readonly("positions", &PySimulation::positions)
+      .def_property_readonly("velocities", &PySimulation::velocities)
+      .def_property_readonly("rest_positions", &PySimulation::restPositions)
+      .def_property_readonly("tets", &PySimulation::tets)
+      .def_property_readonly("damage", &PySimulation::damage)
+      .def("surface", &PySimulation::surface,
+           "(vertices (k, 3), triangles (t, 3), piece of each triangle (t,))")
+      .def("export", &PySimulation::exportSurface, py::arg("path"),
+           "The surface, by extension: obj, ply, stl, gltf, glb")
+      .def("export_tets", &PySimulation::exportTets, py::arg("path"),
+           "The tet mesh at the current positions with its damage (stem.node/.ele/.face, "
+           ".damage, .vtk)")
+      .def("save_project", &PySimulation::saveProject, py::arg("path"));
+
+  m.def(
+      "play",
+      [](const std::string& script, const std::string& out) {
+        const std::string printed = runCommandLine({"play", script, "--out", out});
+        py::dict result;
+        result["output"] = printed;
+        result["metrics"] = readMetrics(fs::path(out) / "metrics.csv");
+        result["final_surface"] = (fs::path(out) / "final.obj").string();
+        return result;
+      },
+      py::arg("script"), py::arg("out"),
+      "`galsculpt play SCRIPT --out OUT`: what it prints, its metrics rows, its final surface");
+  m.def(
+      "bench",
+      [](const std::vector<std::string>& scenes, int frames, bool quick,
+         const std::string& preset) {
+        const fs::path json =
+            fs::temp_directory_path() / ("galsculpt-bench-" + std::to_string(::getpid()) + ".json");
+        std::vector<std::string> args = {"bench", "--json", json.string()};
+        if (!scenes.empty()) {
+          std::string list;
+          for (const std::string& s : scenes) list += (list.empty() ? "" : ",") + s;
+          args.insert(args.end(), {"--scene", list});
+        }
+        if (frames != 0) args.insert(args.end(), {"--frames", std::to_string(frames)});
+        if (quick) args.push_back("--quick");
+        if (!preset.empty()) args.insert(args.end(), {"--preset", preset});
+        const std::string printed = runCommandLine(args);
+        std::ifstream in(json);
+        nlohmann::json j = nlohmann::json::parse(in);
+        in.close();
+        fs::remove(json);
+        py::dict result = fromJson(j).cast<py::dict>();
+        result["output"] = printed;
+        return result;
+      },
+      py::arg("scenes") = std::vector<std::string>{}, py::arg("frames") = 0,
+      py::arg("quick") = false, py::arg("preset") = "",
+      "`galsculpt bench --json`: its JSON (machine, results) and what it prints");
+}

@@ -1,0 +1,193 @@
+"""The Python module (app/python/galsculpt_module.cpp, docs/python.md): every entry of its
+contract, the arrays as views of the engine's memory, errors as exceptions with the readers'
+messages, the GIL released during a step, and a script played from Python as `galsculpt play`
+plays it."""
+import json
+import os
+import pathlib
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import galsculpt
+
+SOURCE = pathlib.Path(__file__).resolve().parents[3]
+BALL = str(SOURCE / "assets" / "scenes" / "default.json")
+SCRIPT = str(SOURCE / "assets" / "scripts" / "sphere_cut.json")
+# A horizontal blade swept down through the clay ball: two pieces.
+KNIFE = {"tool": "knife", "from": [[-0.2, 0.2, 0.02], [0.2, 0.2, 0.02]],
+         "to": [[-0.2, -0.2, 0.02], [0.2, -0.2, 0.02]]}
+
+
+@pytest.fixture(scope="module")
+def ball():
+    return galsculpt.Simulation(BALL)
+
+
+def test_step_returns_the_frames_figures(ball):
+    start = ball.frame
+    report = ball.step(2)
+    assert ball.frame == start + 2
+    for key in ("residual", "converged", "newton_iterations", "cg_iterations", "ms_total"):
+        assert key in report
+    assert isinstance(report["converged"], bool)
+    assert isinstance(report["newton_iterations"], int)
+    assert report["ms_total"] > 0.0
+    assert report["frame"] == ball.frame
+    with pytest.raises(ValueError, match="frames must be at least 1"):
+        ball.step(0)
+
+
+def test_arrays_view_the_engines_memory_read_only(ball):
+    x = ball.positions
+    assert x.shape == (ball.rest_positions.shape[0], 3) and x.dtype == np.float64
+    assert ball.velocities.shape == x.shape
+    tets = ball.tets
+    assert tets.dtype == np.int32 and tets.shape[1] == 4
+    assert tets.max() == x.shape[0] - 1
+    assert ball.damage.dtype == np.uint8
+    for array in (x, ball.velocities, ball.rest_positions, tets, ball.damage):
+        assert not array.flags.writeable
+        assert not array.flags.owndata, "a view, not a copy"
+    with pytest.raises(ValueError):
+        x[0, 0] = 1.0
+    # The same memory every time, and it moves with the simulation.
+    assert ball.positions.__array_interface__["data"][0] == x.__array_interface__["data"][0]
+    before = x.copy()
+    ball.apply({"tool": "brush", "center": x[0].tolist(), "radius": 0.05,
+                "offset": [0.0, 0.03, 0.0], "duration": 3})
+    ball.step(3)
+    assert not np.array_equal(before, x), "the view shows the new positions"
+
+
+def test_apply_undo_redo_and_the_pieces():
+    sim = galsculpt.Simulation(BALL)
+    sim.step()
+    assert sim.pieces == 1
+    sim.apply(KNIFE)
+    assert int(sim.damage.sum()) == 0, "an event acts from the next step"
+    sim.step()
+    cut = int(sim.damage.sum())
+    assert cut > 0
+    assert sim.pieces == 2
+    assert sim.undo()
+    assert int(sim.damage.sum()) == 0 and sim.frame == 1
+    assert sim.redo()
+    assert int(sim.damage.sum()) == cut and sim.frame == 2
+    vertices, triangles, piece = sim.surface()
+    assert vertices.shape[1] == 3 and triangles.shape[1] == 3
+    assert triangles.dtype == np.int32 and piece.shape == (triangles.shape[0],)
+    assert set(np.unique(piece)) == {0, 1}
+    assert triangles.max() < vertices.shape[0]
+
+
+def test_bad_events_name_their_key(ball):
+    with pytest.raises(ValueError, match=r"event\.tool"):
+        ball.apply({"tool": "chisel"})
+    with pytest.raises(ValueError, match="radius"):
+        ball.apply({"tool": "brush", "center": [0, 0, 0], "radius": -1, "offset": [0, 0, 0]})
+    with pytest.raises(ValueError, match="acts from the next step"):
+        ball.apply(dict(KNIFE, frame=ball.frame + 5))
+
+
+def test_errors_are_exceptions_with_the_readers_messages(tmp_path):
+    with pytest.raises(FileNotFoundError, match="nothing.json: no such file"):
+        galsculpt.Simulation(str(tmp_path / "nothing.json"))
+    scene = tmp_path / "bad.json"
+    scene.write_text(json.dumps({"mesh": {"generate": "sphere", "tets": 500},
+                                 "solver": {"newton_iters": 500}}))
+    with pytest.raises(ValueError, match=r"bad\.json: \$\.solver\.newton_iters"):
+        galsculpt.Simulation(str(scene))
+    with pytest.raises(ValueError, match="newton_iters"):
+        galsculpt.Simulation(BALL, solver_options={"newton_iters": 0})
+
+
+def test_solver_options_are_the_tables(ball):
+    assert ball.options["newton_iters"] == 40 and ball.options["preset"] == "converged"
+    paper = galsculpt.Simulation(BALL, solver_options={"preset": "paper"})
+    assert paper.options["newton_iters"] == 1
+    assert paper.step()["newton_iterations"] == 1
+
+
+def test_exports_and_projects(tmp_path):
+    sim = galsculpt.Simulation(BALL)
+    sim.apply(KNIFE)
+    sim.step(2)
+    for ext in ("obj", "ply", "stl", "glb"):
+        sim.export(str(tmp_path / ("s." + ext)))
+        assert (tmp_path / ("s." + ext)).stat().st_size > 0
+    sim.export_tets(str(tmp_path / "t.node"))
+    for ext in ("node", "ele", "face", "damage", "vtk"):
+        assert (tmp_path / ("t." + ext)).exists()
+    sim.save_project(str(tmp_path / "p.gsproj"))
+    again = galsculpt.Simulation(str(tmp_path / "p.gsproj"))
+    assert again.frame == 2 and again.pieces == 2
+    assert np.array_equal(again.positions, sim.positions)
+    assert np.array_equal(again.damage, sim.damage)
+    with pytest.raises(OSError):
+        sim.export(str(tmp_path / "no" / "such" / "folder" / "s.obj"))
+
+
+def test_a_step_runs_without_the_gil():
+    sim = galsculpt.Simulation(BALL)
+    ticks = []
+    done = threading.Event()
+
+    def tick():
+        while not done.is_set():
+            ticks.append(time.monotonic())
+            time.sleep(0.001)
+
+    thread = threading.Thread(target=tick)
+    thread.start()
+    time.sleep(0.01)
+    start = time.monotonic()
+    sim.step(5)
+    end = time.monotonic()
+    done.set()
+    thread.join()
+    during = [t for t in ticks if start < t < end]
+    assert len(during) >= 3, f"{len(during)} ticks in {end - start:.3f} s of stepping"
+
+
+def test_a_script_played_from_python_is_the_commands_bit_for_bit(tmp_path):
+    played = galsculpt.play(SCRIPT, str(tmp_path / "py"))
+    assert "frames" in played["output"] or played["metrics"]
+    assert len(played["metrics"]) == json.loads(pathlib.Path(SCRIPT).read_text())["frames"]
+    assert {"residual", "converged"} <= set(played["metrics"][0])
+    binary = os.environ.get("GALSCULPT_BINARY")
+    if binary:
+        subprocess.run([binary, "play", SCRIPT, "--out", str(tmp_path / "cli")], check=True,
+                       capture_output=True)
+        assert (tmp_path / "cli" / "final.obj").read_bytes() == \
+            pathlib.Path(played["final_surface"]).read_bytes()
+    # The script opened as a Simulation is replayed to its end: the same surface.
+    sim = galsculpt.Simulation(SCRIPT)
+    sim.export(str(tmp_path / "sim.obj"))
+    assert (tmp_path / "sim.obj").read_bytes() == \
+        pathlib.Path(played["final_surface"]).read_bytes()
+    with pytest.raises(ValueError, match=r"^\S*missing\.json: file not found$"):
+        galsculpt.play(str(tmp_path / "missing.json"), str(tmp_path / "x"))
+    with pytest.raises(ValueError, match=r"--frames must be in \[1, 100000\], got -1"):
+        galsculpt.bench(frames=-1)
+    with pytest.raises(ValueError, match="unknown scene 'nosuch'"):
+        galsculpt.bench(scenes=["nosuch"])
+
+
+def test_bench_returns_what_the_command_writes(tmp_path, monkeypatch):
+    # A small hanging sphere in place of the 35k-tet one (as the command's own test does).
+    (tmp_path / "scenes").mkdir()
+    (tmp_path / "scenes" / "hanging_sphere.json").write_text(json.dumps({
+        "mesh": {"file": str(SOURCE / "assets" / "meshes" / "sphere_small.node")},
+        "material": {"youngs_modulus": 8000, "poisson_ratio": 0.48, "density": 1000},
+        "anchors": [{"box": {"min": [-1, 0.08, -1]}}]}))
+    monkeypatch.setenv("GALSCULPT_ASSETS", str(tmp_path))
+    result = galsculpt.bench(scenes=["sphere"], frames=2)
+    assert result["frames"] == 2 and "machine" in result
+    solvers = [row["solver"] for row in result["results"]]
+    assert "reference" in solvers and "multigrid" in solvers
+    assert all(row["ms_per_frame"] > 0 for row in result["results"])
+    assert "sphere" in result["output"]
