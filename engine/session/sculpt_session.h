@@ -103,7 +103,7 @@ class SculptSession {
   SimulationSnapshot initial_;
   std::vector<ToolEvent> recording_;
   std::vector<ToolEvent> acting_;  // events given to apply() whose effect may still run
-  int strokeEvent_ = -1;  // index of the open stroke's event in recording_
+  int strokeEvent_ = -1;           // index of the open stroke's event in recording_
   std::deque<Step> undo_, redo_;
   std::size_t historyBytes_ = 0, historyBudget_ = std::size_t(1) << 30;
   bool dirty_ = false;
