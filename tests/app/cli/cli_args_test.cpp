@@ -3,13 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cmath>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "engine/surface/surface_io.h"
 #include "gpu/cuda_step_backend.h"
-#include "solver/mesh/shape_generators.h"
 #include "tests/app/cli/cli_run.h"
 #include "tests/test_util.h"
 
@@ -19,9 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::CliRun;
-CliRun run(const std::vector<std::string>& args) {
-  return test::runCliCapture(args);
-}
+using test::run;
 
 // --backend on run (and play, bench, open): cpu runs without a note; cuda runs on the GPU or
 // says why not; anything else is a usage error.

@@ -20,4 +20,9 @@ inline CliRun runCliCapture(const std::vector<std::string>& args) {
   return {code, out.str(), err.str()};
 }
 
+// The command line's tests call it `run`.
+inline CliRun run(const std::vector<std::string>& args) {
+  return runCliCapture(args);
+}
+
 }  // namespace galsculpt::test

@@ -2,16 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cmath>
-#include <nlohmann/json.hpp>
-#include <sstream>
+#include <filesystem>
 
-#include "engine/surface/surface_io.h"
-#include "gpu/cuda_step_backend.h"
-#include "solver/mesh/shape_generators.h"
 #include "tests/app/cli/cli_run.h"
-#include "tests/test_util.h"
 
 namespace galsculpt {
 namespace {
@@ -19,9 +12,7 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::CliRun;
-CliRun run(const std::vector<std::string>& args) {
-  return test::runCliCapture(args);
-}
+using test::run;
 
 TEST(Cli, HelpAndVersion) {
   EXPECT_EQ(run({"--help"}).code, kExitOk);

@@ -4,27 +4,20 @@
 
 #include <Eigen/SparseCholesky>
 
-#include "solver/frame/cpu_executor.h"
-#include "solver/frame/step.h"
-#include "solver/model/sim_model.h"
-#include "solver/multigrid/multigrid_cycle.h"
-#include "solver/multigrid/multigrid_layout.h"
-#include "tests/gpu/device_like_executor.h"
 #include "tests/solver/multigrid/multigrid_fixture.h"
-#include "tests/test_util.h"
 
 namespace galsculpt {
 namespace {
 
 using test::Cycle;
 using test::elasticitySystem;
-using test::gridBar;
 using test::System;
 
 // Under PCG the fine smoother keeps its own single-precision copy of the fine operator, taken
 // at each refresh: its product agrees with the double one to float precision, and a cycle after
-// a new refresh solves the new operator, not the old one. (The V-cycle tests above run the
-// double-precision smoother; PCG still reaches the direct solution with the float one.)
+// a new refresh solves the new operator, not the old one. (The V-cycle tests of
+// multigrid_cycle_test.cpp run the double-precision smoother; PCG still reaches the direct
+// solution with the float one.)
 TEST(Multigrid, TheSmoothersCopyOfTheFineOperatorFollowsEachRefresh) {
   const System s = elasticitySystem();
   Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {60});

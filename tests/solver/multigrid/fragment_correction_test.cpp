@@ -2,23 +2,13 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/SparseCholesky>
-
-#include "solver/frame/cpu_executor.h"
-#include "solver/frame/step.h"
-#include "solver/model/sim_model.h"
-#include "solver/multigrid/multigrid_cycle.h"
-#include "solver/multigrid/multigrid_layout.h"
-#include "tests/gpu/device_like_executor.h"
 #include "tests/solver/multigrid/multigrid_fixture.h"
-#include "tests/test_util.h"
 
 namespace galsculpt {
 namespace {
 
 using test::Cycle;
 using test::elasticitySystem;
-using test::gridBar;
 using test::System;
 
 // Slices cut off the top of a bar of elasticitySystem(3, 200, 3): 90 cuts between vertex

@@ -2,23 +2,15 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/SparseCholesky>
-
 #include "solver/frame/cpu_executor.h"
-#include "solver/frame/step.h"
-#include "solver/model/sim_model.h"
 #include "solver/multigrid/multigrid_cycle.h"
-#include "solver/multigrid/multigrid_layout.h"
-#include "tests/gpu/device_like_executor.h"
 #include "tests/solver/multigrid/multigrid_fixture.h"
-#include "tests/test_util.h"
 
 namespace galsculpt {
 namespace {
 
 using test::Cycle;
 using test::elasticitySystem;
-using test::gridBar;
 using test::System;
 
 // The coarsest level's direct solve, dense up to 64 handles and sparse on the host above

@@ -5,8 +5,6 @@
 #include <Eigen/SparseCholesky>
 
 #include "solver/frame/cpu_executor.h"
-#include "solver/frame/step.h"
-#include "solver/model/sim_model.h"
 #include "solver/multigrid/multigrid_cycle.h"
 #include "solver/multigrid/multigrid_layout.h"
 #include "tests/gpu/device_like_executor.h"
