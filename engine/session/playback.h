@@ -62,6 +62,9 @@ struct ToolEvent {
   Symmetry symmetry;  // knife, stroke and paint
   CameraPose camera;
   nlohmann::json source;  // the event as read from a file (anchor events are written back so)
+  // Given to a session as a script's event (SculptSession::apply), not made by the app's tools:
+  // it acts through the frames as in a script, also after an undo or redo lands before its end.
+  bool scripted = false;
 };
 
 struct PlaybackScript {

@@ -109,8 +109,21 @@ void SculptSession::setCamera(const CameraPose& pose) {
   record(e);
 }
 
+namespace {
+
+// The last frame before which a script's event acts (ToolApplier::apply); a brush's release is
+// the applier's own.
+int lastActingFrame(const ToolEvent& e) {
+  if (e.tool == ToolEvent::Tool::Knife) return e.frame + e.duration - 1;
+  if (e.tool == ToolEvent::Tool::Stroke) return e.end;
+  return e.frame;
+}
+
+}  // namespace
+
 void SculptSession::apply(ToolEvent event) {
   beginAction("apply");
+  event.scripted = true;
   record(event);
   acting_.push_back(recording_.back());
 }
@@ -120,14 +133,7 @@ FrameMetrics SculptSession::step() {
   tools_->prepareFrame(acting_, sim_->frame());
   dirty_ = true;
   FrameMetrics m = sim_->advance();
-  // The last frame before which each event acts (ToolApplier::apply); a brush's release is the
-  // applier's own.
-  auto lastFrame = [](const ToolEvent& e) {
-    if (e.tool == ToolEvent::Tool::Knife) return e.frame + e.duration - 1;
-    if (e.tool == ToolEvent::Tool::Stroke) return e.end;
-    return e.frame;
-  };
-  std::erase_if(acting_, [&](const ToolEvent& e) { return lastFrame(e) < sim_->frame(); });
+  std::erase_if(acting_, [&](const ToolEvent& e) { return lastActingFrame(e) < sim_->frame(); });
   return m;
 }
 
@@ -165,7 +171,11 @@ SculptSession::Step SculptSession::travel(Step target) {
                     std::make_move_iterator(target.append.end()));
   sim_->restore(target.state);
   tools_ = std::make_unique<ToolApplier>(*sim_, scene_.file.string());
+  // The script's events of the recording that still act after the frame travelled to, as a
+  // replay of the recording would apply them.
   acting_.clear();
+  for (const ToolEvent& e : recording_)
+    if (e.scripted && lastActingFrame(e) >= sim_->frame()) acting_.push_back(e);
   dirty_ = true;
   return back;
 }

@@ -45,8 +45,9 @@ class SculptSession {
   bool strokeActive() const { return strokeEvent_ >= 0; }
   int paint(const Vec3& center, double radius, int seed, bool erase, const Symmetry& symmetry);
   // A playback script's event (docs/scripts.md), acting from the next frame on as it would in
-  // the script: an undoable action, recorded. Undo, redo and reset end the events still acting
-  // (a drag stops where it is), as they end a held stroke.
+  // the script: an undoable action, recorded. After an undo or redo, such events of the
+  // recording that have not finished act on as a replay would; a brush drag already under way
+  // keeps holding its vertices (its release is the tool applier's, not the saved state's).
   void apply(ToolEvent event);
   // The view, recorded once per frame (the last pose of each frame).
   void setCamera(const CameraPose& pose);
