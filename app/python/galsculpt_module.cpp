@@ -242,9 +242,14 @@ py::list readMetrics(const fs::path& file) {
     std::string cell;
     for (const std::string& name : names) {
       std::getline(cells, cell, ',');
-      row[name.c_str()] = fromJson(nlohmann::json::parse(cell, nullptr, false).is_discarded()
-                                       ? nlohmann::json(cell)
-                                       : nlohmann::json::parse(cell));
+      // Every column is a number (integers stay integers); anything else stays text.
+      const nlohmann::json value = nlohmann::json::parse(cell, nullptr, false);
+      if (value.is_number_integer())
+        row[name.c_str()] = value.get<long long>();
+      else if (value.is_number())
+        row[name.c_str()] = value.get<double>();
+      else
+        row[name.c_str()] = cell;
     }
     rows.append(row);
   }
