@@ -1,5 +1,6 @@
 // element_lanes_body.h for AVX2 (compiled with -mavx2, without FMA: see element_lanes.h).
 #include "solver/fem/element_lanes.h"
+#include "solver/fem/material_dispatch.h"
 
 #define GALSCULPT_LANES_NAMESPACE avx2
 #include "solver/fem/element_lanes_body.h"

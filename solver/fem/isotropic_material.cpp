@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "solver/fem/element_kernels.h"
+#include "solver/fem/material_kernels.h"
 
 namespace galsculpt {
 

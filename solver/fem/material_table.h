@@ -1,22 +1,15 @@
 // The material models, one row each: the table the scene reader, the Scene panel and
-// docs/scenes.md list (names and summaries), and withMaterial, the one place in the solver that
-// names the models case by case. Each model is a file under solver/fem/materials/: its energy
-// density, gradient and Hessian in the singular values of F, templated on the number type
-// (double in the scalar and CUDA kernels, a SIMD lane of doubles in element_lanes_body.h) so
-// that every path runs the same source, and, where Psi and P have a closed form in F (kDirect),
-// `direct` for the energy-only evaluations. Adding a model: its file, its value in
-// material_types.h, its row below and its case in withMaterial
-// (tests/solver/fem/material_table_test.cpp checks every row by finite differences).
+// docs/scenes.md list (names and summaries). Each model is a file under solver/fem/materials/:
+// its energy density, gradient and Hessian in the singular values of F, templated on the number
+// type (double in the scalar and CUDA kernels, a SIMD lane of doubles in element_lanes_body.h)
+// so that every path runs the same source, and, where Psi and P have a closed form in F
+// (kDirect), `direct` for the energy-only evaluations. Adding a model: its file, its value in
+// material_types.h, its row below and its case in material_dispatch.h's withMaterial
+// (tests/solver/fem/material_table_test.cpp checks every row by finite differences). The rows
+// name no model's file: the reader and the panel do not recompile when a model changes.
 #pragma once
 
-#include <cmath>
-
-#include "solver/fem/kernel_math.h"
 #include "solver/fem/material_types.h"
-#include "solver/fem/materials/corotational.h"
-#include "solver/fem/materials/fixed_corotated.h"
-#include "solver/fem/materials/stable_neo_hookean.h"
-#include "solver/fem/materials/stvk.h"
 
 namespace galsculpt {
 
@@ -45,29 +38,3 @@ inline const MaterialInfo& materialInfo(MaterialModel model) {
 }
 
 }  // namespace galsculpt
-
-namespace galsculpt::kernels {
-
-// The number type double's operations the models ask for (a lane type has its own).
-struct ScalarMath {
-  GALSCULPT_HD static double all(double x) { return x; }
-  GALSCULPT_HD static double log(double x) { return ::log(x); }
-};
-
-// f(Model{}) for the model's type.
-template <typename F>
-GALSCULPT_HD decltype(auto) withMaterial(MaterialModel model, F&& f) {
-  switch (model) {
-    case MaterialModel::Corotational:
-      return f(Corotational{});
-    case MaterialModel::StVK:
-      return f(StVK{});
-    case MaterialModel::FixedCorotated:
-      return f(FixedCorotated{});
-    case MaterialModel::StableNeoHookean:
-      break;
-  }
-  return f(StableNeoHookean{});
-}
-
-}  // namespace galsculpt::kernels

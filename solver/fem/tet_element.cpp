@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "solver/fem/element_kernels.h"
+#include "solver/fem/material_kernels.h"
 
 // Every function here converts to plain arrays and calls the shared element kernels
 // (element_kernels.h), which the CUDA backend runs too.

@@ -39,12 +39,14 @@
 
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "solver/fem/collider_kernels.h"
 #include "solver/fem/dense_kernels.h"
 #include "solver/fem/element_kernels.h"
 #include "solver/fracture/debris.h"
+#include "solver/frame/element_pass.h"
 #include "solver/model/sim_model.h"
 
 namespace galsculpt {
@@ -194,6 +196,24 @@ struct AcceleratedPiece {
   }
 };
 
+// The elements between pieces at x_n (tets[i]) that a piece starting on its own reads: all but
+// those whose four corners lie in held pieces.
+struct SharedElements {
+  const int* tets;
+  const int* cornerPiece;  // (4 per element) each corner's piece
+  const std::uint8_t* heldPiece;
+  GALSCULPT_HD bool read(int i) const {
+    const int* p = cornerPiece + 4 * i;
+    return !(heldPiece[p[0]] && heldPiece[p[1]] && heldPiece[p[2]] && heldPiece[p[3]]);
+  }
+};
+
+// out[12 i..] = the energy gradient at y of each element the frame's pieces read
+// (shared.read(i), i < count), by the frame's element kernel (element_launches.h).
+template <typename Exec>
+void launchElementGradients(const Exec& ex, const ElementModel& element,
+                            const SharedElements& shared, int count, const double* y, double* out);
+
 // The accelerated start on an executor: the pieces' layout in its memory (rebuilt when the
 // damage changes) and a sub-step's launches. Held vertices, held pieces (a thread per small
 // piece, reductions for a large one) spread to those pressing on them round by round, then the
@@ -217,8 +237,10 @@ class AcceleratedStart {
 
   // `gradientsAtXn`: every element's energy gradient at x_n (12 per element) where the frame
   // still has them from its last accepted trial, or null: the elements between pieces are then
-  // evaluated with `elementGradient`, the same kernel, to the same bits. `layout`: the body's
-  // pieces (pieceLayout; the device copy is rebuilt when its revision changes).
+  // evaluated with `elementGradient`, the same kernel, to the same bits: the frame's
+  // ElementModel (launchElementGradients) or any `gradient(t, y, gradient12)` (the tests').
+  // `layout`: the body's pieces (pieceLayout; the device copy is rebuilt when its revision
+  // changes).
   template <typename Gradient>
   void start(const Exec& ex, const SimModel& model, const PieceLayout& layout,
              const SubstepInputs& in, const Gradient& elementGradient, const double* gradientsAtXn,
@@ -259,19 +281,20 @@ class AcceleratedStart {
     spreadHeld(ex, heldPieces, in.xn, nullptr, nullptr);
     // The elements between pieces at x_n (how hard each piece's neighbours push on it), where a
     // corner is in a piece that starts on its own: only such a piece reads them.
-    const int* shared = sharedTets_.data();
-    const int* cornerPiece = sharedCornerPieces_.data();
+    const SharedElements shared{sharedTets_.data(), sharedCornerPieces_.data(), heldPiece};
     double* sharedGradient = sharedGradient_.data();
-    ex.forEach(sharedTetCount_, [=] GALSCULPT_LAMBDA(int i) {
-      const int* pieces = cornerPiece + 4 * i;
-      if (heldPiece[pieces[0]] && heldPiece[pieces[1]] && heldPiece[pieces[2]] &&
-          heldPiece[pieces[3]])
-        return;
-      if (gradientsAtXn)
-        for (int j = 0; j < 12; ++j) sharedGradient[12 * i + j] = gradientsAtXn[12 * shared[i] + j];
-      else
-        elementGradient(shared[i], xn, sharedGradient + 12 * i);
-    });
+    if (gradientsAtXn)
+      ex.forEach(sharedTetCount_, [=] GALSCULPT_LAMBDA(int i) {
+        if (!shared.read(i)) return;
+        for (int j = 0; j < 12; ++j)
+          sharedGradient[12 * i + j] = gradientsAtXn[12 * shared.tets[i] + j];
+      });
+    else if constexpr (std::is_same_v<Gradient, ElementModel>)
+      launchElementGradients(ex, elementGradient, shared, sharedTetCount_, xn, sharedGradient);
+    else
+      ex.forEach(sharedTetCount_, [=] GALSCULPT_LAMBDA(int i) {
+        if (shared.read(i)) elementGradient(shared.tets[i], xn, sharedGradient + 12 * i);
+      });
     for (size_t j = 0; j < large_.size(); ++j) {
       const int cBegin = large_[j].couplingBegin;
       double* out = sums + 5 * j;

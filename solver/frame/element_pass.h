@@ -1,7 +1,9 @@
 // One element pass's per-element work (FrameSolver::elementPass): what a thread needs to set an
-// element up (ElementInputs), the pass's inputs and outputs with the scalar kernel's evaluation
-// (ElementPass, the same on the CPU and the GPU), and on the CPU the pass over the SIMD lanes
-// of element_lanes.h (elementPassInLanes).
+// element up (ElementInputs), the pass's inputs and outputs (ElementPass, the same on the CPU and
+// the GPU), and the launches that evaluate the material model. Those are only declared here:
+// element_launches.h defines them, and each executor's own translation unit instantiates them
+// (cpu_element_launches.cpp, gpu/cuda_element_launches.cu), so the frame's translation units do
+// not include a material model and an edit of one recompiles the launches, not the frame.
 #pragma once
 
 #include <algorithm>
@@ -56,19 +58,13 @@ struct ElementInputs {
   }
 };
 
-// One element's gradient at positions y, without its stiffness (the pieces' start).
-struct ElementGradient {
+// What evaluating an element's model takes besides its positions: the pieces' start's gradients
+// (accelerated_start.h's launchElementGradients) and the fracture pass's edge stresses.
+struct ElementModel {
   ElementInputs in;
   MaterialModel model;
   Lame lame;
   bool resists;
-  GALSCULPT_HD void operator()(int t, const double* y, double* gradient) const {
-    double x12[12], energy;
-    std::uint8_t intact;
-    const kernels::RestData& r = in.load(t, y, x12, intact);
-    kernels::evaluateElement(model, lame, r, x12, intact, in.resists(t, resists),
-                             kernels::Hessian::None, energy, gradient, nullptr);
-  }
 };
 
 // One element pass's inputs and outputs (IncrementalPotential::elementPass), copied into its
@@ -129,16 +125,6 @@ struct ElementPass {
   // (crackedStrainState). The state after many cuts of a crumb's interior.
   GALSCULPT_HD static bool zeroStiffness(std::uint8_t opened) { return opened == kernels::kIntact; }
 
-  // Element t by the scalar kernel.
-  GALSCULPT_HD void evaluate(int t, const double x12[12], std::uint8_t intact,
-                             const kernels::RestData& r, kernels::Hessian elementMode) const {
-    double hess[144];
-    kernels::evaluateElement(model, lame, r, x12, intact, in.resists(t, resists), elementMode,
-                             energy[t], gradient + 12 * t, hess, opened + t);
-    if (elementMode != kernels::Hessian::None && !zeroStiffness(opened[t]))
-      pack(hess, packedHessian + kPackedHessian * static_cast<size_t>(t));
-  }
-
   // An element's 12x12 stiffness is kept as its ten upper 3x3 blocks (a <= c, each
   // column-major): the gathers read 72 contiguous bytes per block and the buffer is 90 doubles
   // per element, not 144, which is most of what a frame moves through memory. (Floats were
@@ -154,80 +140,16 @@ struct ElementPass {
   }
 };
 
-// The pass on the CPU's SIMD lanes: sixteen consecutive elements per item; the intact ones whose
-// stiffness is wanted go through `lanes` four at a time, the damaged ones (but those holding two
-// pieces) through `crackedLanes`; the rest, and those the lanes hand back, through the scalar
-// kernel. Either kernel may be null (its elements then take the scalar kernel). The lanes
-// compute the scalar kernel's bits, so which elements share a group changes nothing.
+// The launches that evaluate the material model (element_launches.h). Every element's energy,
+// gradient and, as `pass.mode` asks, stiffness: on a host executor through the SIMD lanes where
+// `lanes` or `crackedLanes` is given, otherwise (and for what the lanes hand back) through the
+// scalar kernel, the same bits either way.
 template <typename Exec>
-void elementPassInLanes(Exec& ex, const ElementPass& pass, int tets, kernels::LaneKernel lanes,
-                        kernels::CrackedLaneKernel crackedLanes) {
-  constexpr int kGroup = 4 * kernels::kLanes;
-  constexpr int kPacked = ElementPass::kPackedHessian;
-  const int groups = (tets + kGroup - 1) / kGroup;
-  ex.forEach(
-      groups,
-      [=](int g) {
-        kernels::LaneInputs intactIn;
-        kernels::LaneOutputs intactOut;
-        int intactTet[kernels::kLanes];
-        kernels::CrackedLaneInputs crackedIn;
-        kernels::LaneOutputs crackedOut;
-        int crackedTet[kernels::kLanes];
-        auto flushIntact = [&] {
-          const unsigned back = lanes(pass.model, pass.lame, intactIn, intactOut);
-          for (int l = 0; l < intactIn.count; ++l)
-            if (back >> l & 1u)
-              pass.evaluate(intactTet[l], intactIn.x[l], kernels::kIntact, *intactIn.rest[l],
-                            kernels::Hessian::ProjectedSpd);
-          intactIn.count = 0;
-        };
-        auto flushCracked = [&] {
-          const unsigned back = crackedLanes(pass.lame, crackedIn, crackedOut);
-          for (int l = 0; l < crackedIn.count; ++l)
-            if (back >> l & 1u)
-              pass.evaluate(crackedTet[l], crackedIn.x[l], crackedIn.intact[l], *crackedIn.rest[l],
-                            kernels::Hessian::ProjectedSpd);
-          crackedIn.count = 0;
-        };
-        const int end = std::min(tets, kGroup * (g + 1));
-        for (int t = kGroup * g; t < end; ++t) {
-          double x12[12];
-          std::uint8_t intact;
-          const kernels::RestData* r;
-          kernels::Hessian mode;
-          if (!pass.prepare(t, x12, intact, r, mode)) continue;
-          const bool stiffness = mode == kernels::Hessian::ProjectedSpd;
-          if (intact == kernels::kIntact && lanes && stiffness) {
-            const int l = intactIn.count++;
-            intactTet[l] = t;
-            intactIn.rest[l] = r;
-            std::memcpy(intactIn.x[l], x12, sizeof x12);
-            intactOut.energy[l] = pass.energy + t;
-            intactOut.gradient[l] = pass.gradient + 12 * t;
-            intactOut.packedHessian[l] = pass.packedHessian + kPacked * static_cast<size_t>(t);
-            if (intactIn.count == kernels::kLanes) flushIntact();
-          } else if (intact != kernels::kIntact && crackedLanes && stiffness &&
-                     !kernels::holdsTwoPieces(intact)) {
-            const int l = crackedIn.count++;
-            crackedTet[l] = t;
-            crackedIn.rest[l] = r;
-            std::memcpy(crackedIn.x[l], x12, sizeof x12);
-            crackedIn.intact[l] = intact;
-            crackedIn.resists[l] = pass.in.resists(t, pass.resists);
-            crackedOut.energy[l] = pass.energy + t;
-            crackedOut.gradient[l] = pass.gradient + 12 * t;
-            crackedOut.packedHessian[l] = pass.packedHessian + kPacked * static_cast<size_t>(t);
-            crackedOut.opened[l] = pass.opened + t;
-            if (crackedIn.count == kernels::kLanes) flushCracked();
-          } else {
-            pass.evaluate(t, x12, intact, *r, mode);
-          }
-        }
-        if (intactIn.count > 0) flushIntact();
-        if (crackedIn.count > 0) flushCracked();
-      },
-      kGroup);
-}
+void launchElementPass(const Exec& ex, const ElementPass& pass, int tets, kernels::LaneKernel lanes,
+                       kernels::CrackedLaneKernel crackedLanes);
+// slot[6 t + k] = the normal stress along edge k of element t at x (the fracture pass).
+template <typename Exec>
+void launchEdgeNormalStress(const Exec& ex, const ElementModel& element, int tets, const double* x,
+                            double* slot);
 
 }  // namespace galsculpt

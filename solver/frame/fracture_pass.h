@@ -138,15 +138,9 @@ class FracturePass {
     }
     // Element edge stresses into slots 6 t + k.
     double* slot = slotStress_.data();
-    const MaterialModel model = model_.material.model;
-    const Lame lame = model_.material.lame;
-    const bool resists = model_.material.compressionResists;
-    ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
-      double x12[12];
-      std::uint8_t intact;
-      const kernels::RestData& r = in.load(t, x, x12, intact);
-      kernels::edgeNormalStress(model, lame, r, x12, intact, in.resists(t, resists), slot + 6 * t);
-    });
+    const ElementModel element{in, model_.material.model, model_.material.lame,
+                               model_.material.compressionResists};
+    launchEdgeNormalStress(ex_, element, tets_, x, slot);
     const int* slotStart = edgeSlotStart_.data();
     const int* slots = edgeSlots_.data();
     double* local = localStress_.data();

@@ -306,8 +306,8 @@ class FrameSolver {
   // Called once the held vertices and the colliders are placed (fixed and the poses are the
   // sub-step's).
   void startPiecesAccelerated(double h, bool gradientAtXn) {
-    const ElementGradient elementGradient{potential_.elementInputs(), model_.material.model,
-                                          model_.material.lame, model_.material.compressionResists};
+    const ElementModel element{potential_.elementInputs(), model_.material.model,
+                               model_.material.lame, model_.material.compressionResists};
     const typename AcceleratedStart<Exec>::SubstepInputs inputs{
         d_.anchorCount > 0,
         d_.fixed.data(),
@@ -326,7 +326,7 @@ class FrameSolver {
     // the state alone. nvcc contracts them as each kernel's inlining allows, so on the GPU the
     // two could differ in their last bits; there the elements are evaluated, in parallel.
     const bool copy = gradientAtXn && Exec::kHostMemory;
-    accelerated_.start(ex_, model_, damage_.pieces(), inputs, elementGradient,
+    accelerated_.start(ex_, model_, damage_.pieces(), inputs, element,
                        copy ? d_.elemGrad.data() : nullptr, d_.x.data());
   }
 

@@ -67,26 +67,18 @@ class IncrementalPotential {
                            d_.stiffnessFresh.data(),
                            withHessian ? d_.stiffnessOpened.data() : d_.trialOpened.data(),
                            only};
-    bool laned = false;
+    kernels::LaneKernel lanes = nullptr;
+    kernels::CrackedLaneKernel crackedLanes = nullptr;
     if constexpr (Exec::kHostMemory) {
       const kernels::LaneBuild build = kernels::chosenLaneBuild();
       // (Without stiffness the damaged elements' lanes were no faster than the scalar kernel:
       // what they take over is mostly the stiffness.)
-      const kernels::LaneKernel lanes = withHessian ? kernels::laneKernel(build) : nullptr;
-      const kernels::CrackedLaneKernel crackedLanes =
-          withHessian ? kernels::crackedLaneKernel(build) : nullptr;
-      laned = lanes != nullptr || crackedLanes != nullptr;
-      if (laned) elementPassInLanes(ex_, pass, d_.tets, lanes, crackedLanes);
+      if (withHessian) {
+        lanes = kernels::laneKernel(build);
+        crackedLanes = kernels::crackedLaneKernel(build);
+      }
     }
-    if (!laned)
-      ex_.forEach(d_.tets, [=] GALSCULPT_LAMBDA(int t) {
-        double x12[12];
-        std::uint8_t intact;
-        const kernels::RestData* r;
-        kernels::Hessian elementMode;
-        if (pass.prepare(t, x12, intact, r, elementMode))
-          pass.evaluate(t, x12, intact, *r, elementMode);
-      });
+    launchElementPass(ex_, pass, d_.tets, lanes, crackedLanes);
     const std::uint8_t* fresh = d_.stiffnessFresh.data();
     if (keep > 0.0)
       ex_.sum(

@@ -2,11 +2,16 @@
 // backend's tests, everywhere, so that a defect of those paths shows without a GPU.
 #include <gtest/gtest.h>
 
+#include "solver/frame/element_launches.h"
 #include "solver/frame/executor_step_backend.h"
 #include "tests/gpu/backend_comparison.h"
 #include "tests/gpu/device_like_executor.h"
 
 namespace galsculpt {
+
+// The element launches for this test's executor, as each backend has its own.
+GALSCULPT_INSTANTIATE_ELEMENT_LAUNCHES(DeviceLikeExecutor);
+
 namespace {
 
 void expectDevicePathsSolveAsTheCpuDoes(const Simulation& sim, int frames) {

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <random>
 
+#include "solver/fem/material_kernels.h"
 #include "solver/fem/material_table.h"
 
 namespace galsculpt::kernels {

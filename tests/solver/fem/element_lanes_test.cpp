@@ -12,8 +12,9 @@
 #include <random>
 #include <vector>
 
+#include "solver/fem/material_kernels.h"
 #include "solver/fem/material_table.h"
-#include "solver/frame/frame_solver.h"
+#include "solver/frame/element_pass.h"
 #include "solver/frame/step.h"
 #include "tests/test_util.h"
 

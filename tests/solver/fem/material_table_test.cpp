@@ -12,8 +12,8 @@
 #include <sstream>
 #include <string>
 
-#include "solver/fem/element_kernels.h"
 #include "solver/fem/isotropic_material.h"
+#include "solver/fem/material_kernels.h"
 
 namespace galsculpt {
 namespace {

@@ -1,0 +1,39 @@
+// withMaterial: the one place in the solver that names the material models case by case, and
+// the number type double's operations the models ask for. Included only where a model is
+// evaluated (material_kernels.h, element_lanes_body.h); the names are material_table.h's.
+#pragma once
+
+#include <cmath>
+
+#include "solver/fem/kernel_math.h"
+#include "solver/fem/material_types.h"
+#include "solver/fem/materials/corotational.h"
+#include "solver/fem/materials/fixed_corotated.h"
+#include "solver/fem/materials/stable_neo_hookean.h"
+#include "solver/fem/materials/stvk.h"
+
+namespace galsculpt::kernels {
+
+// The number type double's operations the models ask for (a lane type has its own).
+struct ScalarMath {
+  GALSCULPT_HD static double all(double x) { return x; }
+  GALSCULPT_HD static double log(double x) { return ::log(x); }
+};
+
+// f(Model{}) for the model's type.
+template <typename F>
+GALSCULPT_HD decltype(auto) withMaterial(MaterialModel model, F&& f) {
+  switch (model) {
+    case MaterialModel::Corotational:
+      return f(Corotational{});
+    case MaterialModel::StVK:
+      return f(StVK{});
+    case MaterialModel::FixedCorotated:
+      return f(FixedCorotated{});
+    case MaterialModel::StableNeoHookean:
+      break;
+  }
+  return f(StableNeoHookean{});
+}
+
+}  // namespace galsculpt::kernels
