@@ -6,6 +6,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -228,6 +230,38 @@ std::string runCommandLine(const std::vector<std::string>& args) {
   throw std::runtime_error(message);
 }
 
+// Keyword arguments as the command line's flags: `threads=2` is `--threads 2`, `solver_option=
+// {"newton_iters": 3}` is `--solver-option newton_iters=3`, `export_tets=True` is the bare flag
+// (False and None leave it out), a list is comma-separated. The command checks them as it
+// checks its own (an unknown one is a ValueError naming it).
+std::vector<std::string> commandFlags(const py::kwargs& flags) {
+  std::vector<std::string> args;
+  const auto text = [](const py::handle& v) -> std::string {
+    if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
+    return py::str(v).cast<std::string>();
+  };
+  for (const auto& [key, value] : flags) {
+    std::string flag = "--" + key.cast<std::string>();
+    std::replace(flag.begin() + 2, flag.end(), '_', '-');
+    if (value.is_none() || (py::isinstance<py::bool_>(value) && !value.cast<bool>())) continue;
+    if (py::isinstance<py::bool_>(value)) {
+      args.push_back(flag);
+      continue;
+    }
+    std::string joined;
+    if (py::isinstance<py::dict>(value)) {
+      for (const auto& [k, v] : value.cast<py::dict>())
+        joined += (joined.empty() ? "" : ",") + text(k) + "=" + text(v);
+    } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+      for (const py::handle& v : value) joined += (joined.empty() ? "" : ",") + text(v);
+    } else {
+      joined = text(value);
+    }
+    args.insert(args.end(), {flag, joined});
+  }
+  return args;
+}
+
 // A metrics CSV as a list of dicts (numbers as numbers).
 py::list readMetrics(const fs::path& file) {
   py::list rows;
@@ -307,8 +341,11 @@ PYBIND11_MODULE(galsculpt, m) {
 
   m.def(
       "play",
-      [](const std::string& script, const std::string& out) {
-        const std::string printed = runCommandLine({"play", script, "--out", out});
+      [](const std::string& script, const std::string& out, const py::kwargs& flags) {
+        std::vector<std::string> args = {"play", script, "--out", out};
+        const std::vector<std::string> more = commandFlags(flags);
+        args.insert(args.end(), more.begin(), more.end());
+        const std::string printed = runCommandLine(args);
         py::dict result;
         result["output"] = printed;
         result["metrics"] = readMetrics(fs::path(out) / "metrics.csv");
@@ -316,13 +353,18 @@ PYBIND11_MODULE(galsculpt, m) {
         return result;
       },
       py::arg("script"), py::arg("out"),
-      "`galsculpt play SCRIPT --out OUT`: what it prints, its metrics rows, its final surface");
+      "`galsculpt play SCRIPT --out OUT [flags]`: what it prints, its metrics rows, its final "
+      "surface; keyword arguments are play's flags (threads=2, solver_option={...}, ...)");
   m.def(
       "bench",
-      [](const std::vector<std::string>& scenes, int frames, bool quick,
-         const std::string& preset) {
+      [](const std::vector<std::string>& scenes, int frames, bool quick, const std::string& preset,
+         const py::kwargs& flags) {
+        if (flags.contains("json"))
+          throw py::value_error("json: bench's JSON is what this function returns");
+        static std::atomic<int> calls{0};
         const fs::path json =
-            fs::temp_directory_path() / ("galsculpt-bench-" + std::to_string(::getpid()) + ".json");
+            fs::temp_directory_path() / ("galsculpt-bench-" + std::to_string(::getpid()) + "-" +
+                                         std::to_string(calls++) + ".json");
         std::vector<std::string> args = {"bench", "--json", json.string()};
         if (!scenes.empty()) {
           std::string list;
@@ -332,6 +374,8 @@ PYBIND11_MODULE(galsculpt, m) {
         if (frames != 0) args.insert(args.end(), {"--frames", std::to_string(frames)});
         if (quick) args.push_back("--quick");
         if (!preset.empty()) args.insert(args.end(), {"--preset", preset});
+        const std::vector<std::string> more = commandFlags(flags);
+        args.insert(args.end(), more.begin(), more.end());
         const std::string printed = runCommandLine(args);
         std::ifstream in(json);
         nlohmann::json j = nlohmann::json::parse(in);
@@ -343,5 +387,6 @@ PYBIND11_MODULE(galsculpt, m) {
       },
       py::arg("scenes") = std::vector<std::string>{}, py::arg("frames") = 0,
       py::arg("quick") = false, py::arg("preset") = "",
-      "`galsculpt bench --json`: its JSON (machine, results) and what it prints");
+      "`galsculpt bench --json [flags]`: its JSON (machine, results) and what it prints; "
+      "keyword arguments are bench's other flags (threads=2, cracks=True, settle=[0, 40], ...)");
 }

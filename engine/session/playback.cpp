@@ -238,10 +238,14 @@ nlohmann::json toolEventJson(const ToolEvent& e) {
       j["offset"] = vec3Json(e.offset);
       if (e.hold) j["hold"] = true;
       break;
-    case ToolEvent::Tool::Anchor:
-      // Written by hand in a script the app replayed: kept as written.
+    case ToolEvent::Tool::Anchor: {
+      // Written by hand in a script the app replayed or given to SculptSession::apply: kept as
+      // written, at the frame where it acted.
       if (e.source.is_null()) throw std::invalid_argument("an anchor event with no source");
-      return e.source;
+      nlohmann::json source = e.source;
+      source["frame"] = e.frame;
+      return source;
+    }
     case ToolEvent::Tool::Stroke: {
       j["tool"] = brushName(e.brush);
       j["center"] = vec3Json(e.center);
@@ -304,7 +308,7 @@ Playback::Playback(const PlaybackScript& script, Simulation& sim)
 }
 
 void ToolApplier::prepareFrame(const std::vector<ToolEvent>& events, int frame) {
-  releaseExpired(frame);
+  sim_.releaseAnchorsDue(frame);
   for (const ToolEvent& e : events) apply(e, frame);
   sculptor_.beforeFrame();
 }
@@ -312,17 +316,6 @@ void ToolApplier::prepareFrame(const std::vector<ToolEvent>& events, int frame) 
 void ToolApplier::applyTrailing(const std::vector<ToolEvent>& events, int lastFrame) {
   for (const ToolEvent& e : events) {
     if (e.tool == ToolEvent::Tool::Knife && e.frame == lastFrame) apply(e, lastFrame);
-  }
-}
-
-void ToolApplier::releaseExpired(int frame) {
-  for (auto it = releases_.begin(); it != releases_.end();) {
-    if (it->first <= frame) {
-      sim_.removeAnchor(it->second);
-      it = releases_.erase(it);
-    } else {
-      ++it;
-    }
   }
 }
 
@@ -345,18 +338,20 @@ int ToolApplier::apply(const ToolEvent& e, int frame) {
       if (step != 0) break;
       const std::vector<int> grabbed = sim_.verticesNear(e.center, e.radius);
       if (grabbed.empty()) break;  // a brush stroke in empty space moves nothing
-      const int id = sim_.addAnchor(grabbed, {{0.0, Vec3::Zero()}, {e.duration * dt, e.offset}});
-      if (!e.hold) releases_.push_back({e.frame + e.duration, id});
+      sim_.addAnchor(grabbed, {{0.0, Vec3::Zero()}, {e.duration * dt, e.offset}},
+                     e.hold ? -1 : e.frame + e.duration);
       break;
     }
     case ToolEvent::Tool::Anchor: {
       if (step != 0) break;
       if (e.add) {
-        const int id = sim_.addAnchor(sim_.selectVertices(e.shape, file_, e.path + ".anchor"));
-        if (!e.name.empty()) namedAnchors_[e.name] = id;
+        sim_.addAnchor(sim_.selectVertices(e.shape, file_, e.path + ".anchor"), {}, -1, e.name);
       } else if (!e.name.empty()) {
-        sim_.removeAnchor(namedAnchors_.at(e.name));
-        namedAnchors_.erase(e.name);
+        const std::optional<int> id = sim_.namedAnchor(e.name);
+        if (!id)
+          throw InputError(file_, 0,
+                           e.path + ".name: no anchor named \"" + e.name + "\" holds now");
+        sim_.removeAnchor(*id);
       } else {
         sim_.removeAnchor(-e.sceneAnchor - 1);
       }

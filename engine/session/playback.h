@@ -4,7 +4,6 @@
 #pragma once
 
 #include <filesystem>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -114,10 +113,7 @@ class ToolApplier {
   Simulation& sim_;
   Sculptor sculptor_;
   std::string file_;
-  std::map<std::string, int> namedAnchors_;
-  std::vector<std::pair<int, int>> releases_;  // (frame, anchor id) for brushes
   std::optional<CameraPose> camera_;
-  void releaseExpired(int frame);
 };
 
 // Checks up front that every anchor a script adds selects something and that every brush or

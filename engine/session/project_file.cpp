@@ -97,7 +97,10 @@ void writeProject(const fs::path& file, const SceneDescription& scene, const Sim
   for (size_t i = 0; i < state.anchors.size(); ++i) {
     const AnchorConstraint& a = state.anchors[i];
     nlohmann::json j;
-    j["id"] = state.anchorIds[i];
+    const AnchorTag& tag = state.anchorTags[i];
+    j["id"] = tag.id;
+    if (tag.releaseFrame >= 0) j["release_frame"] = tag.releaseFrame;
+    if (!tag.name.empty()) j["name"] = tag.name;
     j["vertices"] = a.vertices;
     nlohmann::json origin = nlohmann::json::array(), path = nlohmann::json::array();
     for (const Vec3& p : a.origin) origin.push_back(vec3Json(p));
@@ -187,11 +190,14 @@ int readProjectVersion(const std::string& data, const std::string& name, std::si
   return version;
 }
 
-// One anchor of the header's "anchors" list (its id into `id`), checked against the mesh.
+// One anchor of the header's "anchors" list (its id, release frame and name into `tag`),
+// checked against the mesh.
 AnchorConstraint readAnchor(const nlohmann::json& json, const std::string& where, int nv,
-                            const std::string& name, int& id) {
+                            const std::string& name, AnchorTag& tag) {
   JsonObject a(json, where, name);
-  id = a.integer("id", 0, -2000000000, 2000000000);
+  tag.id = a.integer("id", 0, -2000000000, 2000000000);
+  tag.releaseFrame = a.integer("release_frame", -1, -1, 2000000000);
+  tag.name = a.string("name", "");
   AnchorConstraint c;
   const nlohmann::json& vertices = a.raw("vertices");
   if (!vertices.is_array()) a.fail("vertices", "must be a list of vertex indices");
@@ -343,10 +349,10 @@ Project readProject(const fs::path& file) {
   s.nextAnchorId = o.integer("next_anchor_id", 0, 0, 2000000000);
   const auto anchors = o.array("anchors");
   for (size_t i = 0; i < anchors.size(); ++i) {
-    int id = 0;
+    AnchorTag tag;
     s.anchors.push_back(
-        readAnchor(anchors[i], "$.anchors[" + std::to_string(i) + "]", nv, name, id));
-    s.anchorIds.push_back(id);
+        readAnchor(anchors[i], "$.anchors[" + std::to_string(i) + "]", nv, name, tag));
+    s.anchorTags.push_back(std::move(tag));
   }
   const auto events = o.array("recording");
   for (size_t i = 0; i < events.size(); ++i)

@@ -112,7 +112,7 @@ void SculptSession::setCamera(const CameraPose& pose) {
 namespace {
 
 // The last frame before which a script's event acts (ToolApplier::apply); a brush's release is
-// the applier's own.
+// its anchor's, in the state.
 int lastActingFrame(const ToolEvent& e) {
   if (e.tool == ToolEvent::Tool::Knife) return e.frame + e.duration - 1;
   if (e.tool == ToolEvent::Tool::Stroke) return e.end;

@@ -46,8 +46,8 @@ class SculptSession {
   int paint(const Vec3& center, double radius, int seed, bool erase, const Symmetry& symmetry);
   // A playback script's event (docs/scripts.md), acting from the next frame on as it would in
   // the script: an undoable action, recorded. After an undo or redo, such events of the
-  // recording that have not finished act on as a replay would; a brush drag already under way
-  // keeps holding its vertices (its release is the tool applier's, not the saved state's).
+  // recording that have not finished act on as a replay would (a brush drag under way lets go
+  // at its end: its release frame is part of the state, Simulation::addAnchor).
   void apply(ToolEvent event);
   // The view, recorded once per frame (the last pose of each frame).
   void setCamera(const CameraPose& pose);

@@ -86,7 +86,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     AnchorConstraint a;
     a.vertices = selectAnchorVertices(scene.anchors[i], mesh, scene.file.string(),
                                       "$.anchors[" + std::to_string(i) + "]");
-    anchorIds_.push_back(-static_cast<int>(i) - 1);
+    anchorTags_.push_back({-static_cast<int>(i) - 1, -1, {}});
     for (const PathKey& k : scene.anchors[i].path) a.path.push_back({k.time, k.offset});
     state_.anchors.push_back(std::move(a));
   }
@@ -189,10 +189,11 @@ double Simulation::currentVolume() const {
 }
 
 double Simulation::anchorLoad(int id) const {
-  const auto it = std::find(anchorIds_.begin(), anchorIds_.end(), id);
-  if (it == anchorIds_.end()) return 0.0;  // removed
+  const auto it = std::find_if(anchorTags_.begin(), anchorTags_.end(),
+                               [&](const AnchorTag& t) { return t.id == id; });
+  if (it == anchorTags_.end()) return 0.0;  // removed
   return elasticGradientSum(model_, state_.x, state_,
-                            state_.anchors[it - anchorIds_.begin()].vertices)
+                            state_.anchors[it - anchorTags_.begin()].vertices)
       .norm();
 }
 
@@ -359,7 +360,7 @@ SimulationSnapshot Simulation::snapshot() const {
   s.time = state_.time;
   s.frame = frame_;
   s.anchors = state_.anchors;
-  s.anchorIds = anchorIds_;
+  s.anchorTags = anchorTags_;
   s.nextAnchorId = nextAnchorId_;
   s.toolDamage = toolDamage_;
   return s;
@@ -370,7 +371,7 @@ void Simulation::restore(const SimulationSnapshot& s) {
       s.damaged.size() != state_.damaged.size() || s.crossing.size() != state_.crossing.size() ||
       s.plasticInverse.size() != state_.plasticInverse.size() ||
       s.plasticStrain.size() != state_.plasticStrain.size() ||
-      s.colliders.size() != state_.colliders.size() || s.anchors.size() != s.anchorIds.size())
+      s.colliders.size() != state_.colliders.size() || s.anchors.size() != s.anchorTags.size())
     throw std::invalid_argument(
         "the saved state does not fit this model (" + std::to_string(s.x.size()) + " vertices, " +
         std::to_string(s.damaged.size()) + " edges, " +
@@ -391,7 +392,7 @@ void Simulation::restore(const SimulationSnapshot& s) {
   state_.time = s.time;
   frame_ = s.frame;
   state_.anchors = s.anchors;
-  anchorIds_ = s.anchorIds;
+  anchorTags_ = s.anchorTags;
   nextAnchorId_ = s.nextAnchorId;
   toolDamage_ = s.toolDamage;
   surfaceFrame_ = -1;  // positions changed without a frame
@@ -406,19 +407,38 @@ int Simulation::cut(const std::vector<BladeTriangle>& surface) {
   return n;
 }
 
-int Simulation::addAnchor(const std::vector<int>& vertices, const std::vector<AnchorKey>& path) {
+int Simulation::addAnchor(const std::vector<int>& vertices, const std::vector<AnchorKey>& path,
+                          int releaseFrame, const std::string& name) {
   AnchorConstraint a;
   a.vertices = vertices;
   for (int v : vertices) a.origin.push_back(state_.x[v]);
   for (const AnchorKey& k : path) a.path.push_back({state_.time + k.time, k.offset});
   state_.anchors.push_back(std::move(a));
-  anchorIds_.push_back(nextAnchorId_);
+  anchorTags_.push_back({nextAnchorId_, releaseFrame, name});
   return nextAnchorId_++;
 }
 
+void Simulation::releaseAnchorsDue(int frame) {
+  for (size_t i = 0; i < anchorTags_.size();) {
+    const int release = anchorTags_[i].releaseFrame;
+    if (release >= 0 && release <= frame) {
+      anchorTags_.erase(anchorTags_.begin() + static_cast<long>(i));
+      state_.anchors.erase(state_.anchors.begin() + static_cast<long>(i));
+    } else {
+      ++i;
+    }
+  }
+}
+
+std::optional<int> Simulation::namedAnchor(const std::string& name) const {
+  for (auto t = anchorTags_.rbegin(); t != anchorTags_.rend(); ++t)
+    if (!name.empty() && t->name == name) return t->id;
+  return std::nullopt;
+}
+
 void Simulation::setAnchorTargets(int id, const std::vector<Vec3>& targets) {
-  for (size_t i = 0; i < anchorIds_.size(); ++i) {
-    if (anchorIds_[i] != id) continue;
+  for (size_t i = 0; i < anchorTags_.size(); ++i) {
+    if (anchorTags_[i].id != id) continue;
     AnchorConstraint& a = state_.anchors[i];
     if (targets.size() != a.vertices.size())
       throw std::invalid_argument("anchor targets: one per anchored vertex");
@@ -460,9 +480,9 @@ std::vector<int> Simulation::anchoredVertices() const {
 }
 
 void Simulation::removeAnchor(int id) {
-  for (size_t i = 0; i < anchorIds_.size(); ++i) {
-    if (anchorIds_[i] != id) continue;
-    anchorIds_.erase(anchorIds_.begin() + static_cast<long>(i));
+  for (size_t i = 0; i < anchorTags_.size(); ++i) {
+    if (anchorTags_[i].id != id) continue;
+    anchorTags_.erase(anchorTags_.begin() + static_cast<long>(i));
     state_.anchors.erase(state_.anchors.begin() + static_cast<long>(i));
     return;
   }

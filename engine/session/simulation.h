@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -20,6 +21,14 @@ enum class SolverChoice { FromScene, Reference };
 
 // Everything a sculpting action can change, for undo: positions, velocities, damage, plastic
 // state, time and the anchors (with their ids). Restoring one gives back that state exactly.
+// What the session knows of each anchor of SimState::anchors besides what the solver reads.
+struct AnchorTag {
+  int id = 0;             // addAnchor's id; a scene's anchor i: -i - 1
+  int releaseFrame = -1;  // the frame from which it lets go (a script brush's drag), -1: never
+  std::string name;       // a script's named anchor ("anchor" events with "name"), or empty
+  bool operator==(const AnchorTag&) const = default;
+};
+
 struct SimulationSnapshot {
   std::vector<Vec3> x, v;                       // (nVerts)
   std::vector<std::uint8_t> damaged;            // (nEdges)
@@ -30,7 +39,7 @@ struct SimulationSnapshot {
   double time = 0.0;
   int frame = 0;
   std::vector<AnchorConstraint> anchors;
-  std::vector<int> anchorIds;
+  std::vector<AnchorTag> anchorTags;  // (one per anchor)
   int nextAnchorId = 0;
   int toolDamage = 0;
   std::size_t bytes() const;
@@ -108,8 +117,16 @@ class Simulation {
   // Damages every edge crossing the blade surface (current positions); returns how many.
   int cut(const std::vector<BladeTriangle>& surface);
   // Holds `vertices` where they are now, moved by `path` offsets (times from now); returns an
-  // id for removeAnchor.
-  int addAnchor(const std::vector<int>& vertices, const std::vector<AnchorKey>& path = {});
+  // id for removeAnchor. `releaseFrame` (>= 0): releaseAnchorsDue lets it go from that frame
+  // on. `name`: found by namedAnchor. Both are part of the state (snapshots, projects): after
+  // an undo or in a reopened project a brush lets go and a name is found as before.
+  int addAnchor(const std::vector<int>& vertices, const std::vector<AnchorKey>& path = {},
+                int releaseFrame = -1, const std::string& name = {});
+  // Removes the anchors whose release frame is at or before `frame`.
+  void releaseAnchorsDue(int frame);
+  // The id of the latest anchor named `name` still holding (names stack as a script's adds and
+  // removes do), or nullopt.
+  std::optional<int> namedAnchor(const std::string& name) const;
   // Moves an anchor's vertices to `targets` (same order as its vertices) from the next frame
   // on: brushes drag what they hold this way. Throws std::out_of_range for an unknown id.
   void setAnchorTargets(int id, const std::vector<Vec3>& targets);
@@ -192,7 +209,7 @@ class Simulation {
   mutable int surfaceFrame_ = -1;  // the state the surface was last brought up to
   mutable std::uint64_t surfaceRevision_ = 0;
   mutable SurfaceUpdateStats lastSurfaceUpdate_;
-  std::vector<int> anchorIds_;  // id of each entry of state_.anchors (scene anchors: -i - 1)
+  std::vector<AnchorTag> anchorTags_;  // one per entry of state_.anchors
   int nextAnchorId_ = 0;
   int toolDamage_ = 0;  // edges cut by tools since the last frame
   void updatePieces();  // pieces and counted tets, when the damage changed

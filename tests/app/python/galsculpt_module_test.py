@@ -169,6 +169,11 @@ def test_a_script_played_from_python_is_the_commands_bit_for_bit(tmp_path):
     sim.export(str(tmp_path / "sim.obj"))
     assert (tmp_path / "sim.obj").read_bytes() == \
         pathlib.Path(played["final_surface"]).read_bytes()
+    # play's flags as keyword arguments: one thread gives the same bits.
+    threaded = galsculpt.play(SCRIPT, str(tmp_path / "one"), threads=1, export_tets=True)
+    assert pathlib.Path(threaded["final_surface"]).read_bytes() == \
+        pathlib.Path(played["final_surface"]).read_bytes()
+    assert (tmp_path / "one" / "final.node").exists()
     with pytest.raises(ValueError, match=r"^\S*missing\.json: file not found$"):
         galsculpt.play(str(tmp_path / "missing.json"), str(tmp_path / "x"))
     with pytest.raises(ValueError, match=r"--frames must be in \[1, 100000\], got -1"):
@@ -191,3 +196,11 @@ def test_bench_returns_what_the_command_writes(tmp_path, monkeypatch):
     assert "reference" in solvers and "multigrid" in solvers
     assert all(row["ms_per_frame"] > 0 for row in result["results"])
     assert "sphere" in result["output"]
+    # Every other flag of the command as a keyword argument.
+    one = galsculpt.bench(scenes=["sphere"], frames=2, threads=1,
+                          solver_option={"newton_iters": 3}, debris="keep")
+    assert all(row["threads"] == 1 for row in one["results"])
+    with pytest.raises(ValueError, match="nosuch"):
+        galsculpt.bench(scenes=["sphere"], frames=2, nosuch_flag=3)
+    with pytest.raises(ValueError, match="json"):
+        galsculpt.bench(json="x.json")

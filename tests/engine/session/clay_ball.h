@@ -68,7 +68,7 @@ inline void expectSameState(const SimulationSnapshot& a, const SimulationSnapsho
     EXPECT_EQ(a.anchors[i].vertices, b.anchors[i].vertices);
     EXPECT_TRUE(a.anchors[i].origin == b.anchors[i].origin);
   }
-  EXPECT_EQ(a.anchorIds, b.anchorIds);
+  EXPECT_EQ(a.anchorTags, b.anchorTags);
 }
 
 // A blade that passes through the whole ball in the plane x = planeX.

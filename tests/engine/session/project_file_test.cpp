@@ -65,7 +65,7 @@ TEST(ProjectFile, RoundTripRestoresTheSessionExactlyAndItRunsOnIdentically) {
   ASSERT_FALSE(a.plasticInverse.empty()) << "the clay ball has a plastic state to save";
   for (size_t t = 0; t < a.plasticInverse.size(); ++t)
     ASSERT_TRUE(a.plasticInverse[t] == b.plasticInverse[t]);
-  EXPECT_EQ(a.anchorIds, b.anchorIds);
+  EXPECT_EQ(a.anchorTags, b.anchorTags);
   EXPECT_EQ(reopened->simulation().anchoredVertices(),
             ball.session.simulation().anchoredVertices());
   for (int f = 0; f < 3; ++f) {

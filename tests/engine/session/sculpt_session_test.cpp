@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/session/project_file.h"
 #include "tests/engine/session/clay_ball.h"
 
 namespace galsculpt {
@@ -171,6 +172,56 @@ TEST(SculptSession, AppliedScriptEventsActAsInAScriptAndReplay) {
   Playback undonePlayback(undoneScript, replayUndone);
   while (!undonePlayback.finished()) undonePlayback.advance();
   expectSameState(replayUndone.snapshot(), undone);
+}
+
+// The session after an undo to the middle of a script brush's drag, and a project saved there
+// and reopened, go on as the recording replays: the drag lets go at its end (its release is in
+// the state, not in the tool applier an undo or a reopening starts afresh), and a named anchor
+// added before is still found by its name. An anchor event is recorded at the frame where it
+// acted, whatever frame it was given with.
+TEST(SculptSession, ABrushDragUnderWayAtAnUndoOrInAProjectLetsGoAtItsEnd) {
+  test::TempDir dir;
+  SculptSession s(clayBall().scene, clayBall().mesh);
+  const auto event = [](const char* json) {
+    return parseToolEvent(nlohmann::json::parse(json), "event", "test");
+  };
+  s.apply(event(R"({"frame": 0, "tool": "anchor", "name": "side",
+                    "anchor": {"sphere": {"center": [0.1, 0, 0], "radius": 0.03}}})"));
+  s.apply(event(R"({"frame": 0, "tool": "brush", "center": [0, 0.1, 0], "radius": 0.03,
+                    "offset": [0, 0.02, 0], "duration": 4})"));
+  for (int f = 0; f < 2; ++f) s.step();
+  const std::size_t anchorsDuringTheDrag = s.simulation().state().anchors.size();
+  writeProject(dir / "mid.gsproj", s, std::nullopt);
+  s.apply(event(R"({"frame": 2, "tool": "knife", "from": [[-0.2, 0.2, 0.02], [0.2, 0.2, 0.02]],
+                    "to": [[-0.2, -0.2, 0.02], [0.2, -0.2, 0.02]]})"));
+  s.step();
+  ASSERT_TRUE(s.undo());  // back to frame 2, the drag half done
+  ASSERT_EQ(s.simulation().frame(), 2);
+  const auto goOn = [&](SculptSession& session) {
+    for (int f = 0; f < 3; ++f) session.step();
+    session.apply(event(R"({"frame": 0, "tool": "anchor", "action": "remove", "name": "side"})"));
+    for (int f = 0; f < 2; ++f) session.step();
+  };
+  goOn(s);
+  EXPECT_LT(s.simulation().state().anchors.size(), anchorsDuringTheDrag - 1)
+      << "the drag let go and the named anchor was removed";
+  s.saveRecording(dir / "undone.json");
+  const PlaybackScript script = loadPlaybackScript(dir / "undone.json");
+  ASSERT_EQ(script.frames, 7);
+  Simulation replay(script.scene, clayBall().mesh);
+  Playback playback(script, replay);
+  while (!playback.finished()) playback.advance();
+  {
+    SCOPED_TRACE("the recording replayed");
+    expectSameState(replay.snapshot(), s.simulation().snapshot());
+  }
+  // Reopened at frame 2 and given the same later event, the project ends in the same state.
+  std::unique_ptr<SculptSession> reopened =
+      sessionFromProject(readProject(dir / "mid.gsproj"), dir / "mid.gsproj");
+  ASSERT_EQ(reopened->simulation().frame(), 2);
+  goOn(*reopened);
+  SCOPED_TRACE("the project reopened");
+  expectSameState(reopened->simulation().snapshot(), s.simulation().snapshot());
 }
 
 // A script replayed into a session (opening it in the app) reaches the state `play` reaches,
