@@ -1,6 +1,6 @@
 // The element kernels shared by the CPU and CUDA backends, called directly (plain arrays), as
-// the device runs them: SVD and eigen-solves on hard matrices, the two Hessian paths against
-// each other, the rest data, and the plastic return.
+// the device runs them: the two Hessian paths against each other, the cracks' opening, the rest
+// data, and the plastic return (the 3x3 algebra's tests are kernel_math_test.cpp's).
 #include "solver/fem/element_kernels.h"
 
 #include <gtest/gtest.h>
@@ -22,70 +22,6 @@ M3 fromEigen(const Eigen::Matrix3d& m) {
   M3 out;
   for (int i = 0; i < 9; ++i) out.a[i] = m.data()[i];
   return out;
-}
-
-// Matrices that break naive SVDs: repeated, zero and negative singular values, huge ranges.
-std::vector<Eigen::Matrix3d> hardMatrices() {
-  std::mt19937 gen(7);
-  std::normal_distribution<double> n(0.0, 1.0);
-  auto rotation = [&] {
-    Eigen::Quaterniond q(n(gen), n(gen), n(gen), n(gen));
-    return q.normalized().toRotationMatrix();
-  };
-  std::vector<Eigen::Matrix3d> out;
-  for (int i = 0; i < 200; ++i) out.push_back(Eigen::Matrix3d::NullaryExpr([&] { return n(gen); }));
-  const Eigen::Vector3d diagonals[] = {
-      {1, 1, 1},    {2, 2, 0.5},    {1, 1, -1},   {3, 0, 0},         {0, 0, 0},
-      {1, 1e-9, 0}, {1e6, 1, 1e-6}, {-1, -1, -1}, {1, 1 + 1e-12, 1}, {5, -5, 1e-3}};
-  for (const Eigen::Vector3d& d : diagonals) {
-    out.push_back(d.asDiagonal());
-    out.push_back(rotation() * d.asDiagonal() * rotation().transpose());
-  }
-  return out;
-}
-
-TEST(ElementKernels, RotationVariantSvdReconstructsHardMatrices) {
-  for (const Eigen::Matrix3d& f : hardMatrices()) {
-    M3 u, v;
-    double s[3];
-    rotationVariantSvd(fromEigen(f), u, s, v);
-    const Eigen::Matrix3d ue = toEigen(u), ve = toEigen(v);
-    const double scale = std::max(f.cwiseAbs().maxCoeff(), 1e-300);
-    EXPECT_LT((ue * Eigen::Vector3d(s[0], s[1], s[2]).asDiagonal() * ve.transpose() - f)
-                  .cwiseAbs()
-                  .maxCoeff(),
-              1e-11 * scale)
-        << f;
-    EXPECT_LT((ue.transpose() * ue - Eigen::Matrix3d::Identity()).norm(), 1e-12);
-    EXPECT_LT((ve.transpose() * ve - Eigen::Matrix3d::Identity()).norm(), 1e-12);
-    EXPECT_NEAR(ue.determinant(), 1.0, 1e-12);
-    EXPECT_NEAR(ve.determinant(), 1.0, 1e-12);
-    EXPECT_GE(s[0], std::abs(s[1]) - 1e-12 * scale);
-    EXPECT_GE(s[1], std::abs(s[2]) - 1e-12 * scale);
-    EXPECT_EQ(s[2] < -1e-12 * scale, f.determinant() < -1e-12 * scale * scale * scale) << f;
-  }
-}
-
-TEST(ElementKernels, ClosedFormEigenAgreesWithJacobiOrRefuses) {
-  int accepted = 0;
-  for (const Eigen::Matrix3d& m : hardMatrices()) {
-    const Eigen::Matrix3d a = m.transpose() * m;
-    double w[3], wj[3];
-    M3 q, qj;
-    symmetricEigen(fromEigen(a), wj, qj);
-    const Eigen::Matrix3d qe = toEigen(qj);
-    const double scale = std::max(a.cwiseAbs().maxCoeff(), 1e-300);
-    EXPECT_LT((qe * Eigen::Vector3d(wj[0], wj[1], wj[2]).asDiagonal() * qe.transpose() - a)
-                  .cwiseAbs()
-                  .maxCoeff(),
-              1e-13 * scale);
-    if (!closedFormSymmetricEigen(fromEigen(a), w, q)) continue;
-    ++accepted;
-    std::sort(w, w + 3);
-    std::sort(wj, wj + 3);
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(w[i], wj[i], 1e-10 * scale);
-  }
-  EXPECT_GT(accepted, 150) << "the closed form is the fast path: it must take most matrices";
 }
 
 RestData restOf(const double p[12]) {
@@ -202,22 +138,6 @@ TEST(ElementKernels, RestDataOfADegenerateTetIsRefused) {
   EXPECT_DOUBLE_EQ(r.volume, 1.0);
   EXPECT_DOUBLE_EQ(r.restLengthSq[0], 4.0);
   EXPECT_DOUBLE_EQ(r.restLengthSq[5], 10.0);
-}
-
-TEST(ElementKernels, Invert6MatchesEigenAndRefusesSingular) {
-  std::mt19937 gen(5);
-  std::normal_distribution<double> n(0.0, 1.0);
-  Eigen::Matrix<double, 6, 6> m = Eigen::Matrix<double, 6, 6>::NullaryExpr([&] { return n(gen); });
-  double inv[36];
-  ASSERT_TRUE(invert6(m.data(), inv));
-  EXPECT_LT(
-      (Eigen::Map<Eigen::Matrix<double, 6, 6>>(inv) * m - Eigen::Matrix<double, 6, 6>::Identity())
-          .cwiseAbs()
-          .maxCoeff(),
-      1e-12);
-  m.row(4) = m.row(2);
-  m.col(1).setZero();
-  EXPECT_FALSE(invert6(m.data(), inv));
 }
 
 // The opening problem's elimination: for every set of edges, the solution on the set, the
