@@ -287,7 +287,10 @@ MaterialDesc materialPreset(const std::string& name) {
   MaterialDesc m;
   m.preset = name;
   if (name == "clay") {  // modelling clay: soft, nearly incompressible, yields early
-    m.model = MaterialModel::StVK;
+    // Stable neo-Hookean: brushes press clay hard, and StVK softens in compression until an
+    // element can invert under load; this model stays well posed through inversion, so the
+    // converged solver's Newton steps need no backtracking under the strokes (docs/physics.md).
+    m.model = MaterialModel::StableNeoHookean;
     m.youngsModulus = 2.0e5;
     m.poissonRatio = 0.45;
     m.density = 1800.0;
