@@ -127,6 +127,16 @@ TEST(SculptSession, ARecordedSessionReplaysExactly) {
   EXPECT_EQ(playback.camera()->distance, 0.4);
 }
 
+// The state a session's saved recording replays to through `play`'s Playback.
+SimulationSnapshot replayOf(const SculptSession& session, const fs::path& file) {
+  session.saveRecording(file);
+  const PlaybackScript script = loadPlaybackScript(file);
+  Simulation replay(script.scene, clayBall().mesh);
+  Playback playback(script, replay);
+  while (!playback.finished()) playback.advance();
+  return replay.snapshot();
+}
+
 // A script's events given to the session (the Python module's apply) act from the next frame as
 // the script would and are recorded, so that the saved recording replays to the same state,
 // also after an undo.
@@ -152,12 +162,7 @@ TEST(SculptSession, AppliedScriptEventsActAsInAScriptAndReplay) {
   const SimulationSnapshot after = s.simulation().snapshot();
   EXPECT_GT(std::count(after.damaged.begin(), after.damaged.end(), 1), 0);
   EXPECT_EQ(s.recording().size(), 2u);
-  s.saveRecording(dir / "applied.json");
-  const PlaybackScript script = loadPlaybackScript(dir / "applied.json");
-  Simulation replay(script.scene, clayBall().mesh);
-  Playback playback(script, replay);
-  while (!playback.finished()) playback.advance();
-  expectSameState(replay.snapshot(), after);
+  expectSameState(replayOf(s, dir / "applied.json"), after);
   // Undo returns to before the knife: the knife no longer acts, the drag (applied before it,
   // not begun yet) still does, and the session stays what its recording replays to.
   ASSERT_TRUE(s.undo());
@@ -166,12 +171,7 @@ TEST(SculptSession, AppliedScriptEventsActAsInAScriptAndReplay) {
   const SimulationSnapshot undone = s.simulation().snapshot();
   EXPECT_EQ(std::count(undone.damaged.begin(), undone.damaged.end(), 1), 0);
   EXPECT_GT(undone.x[top].y() - before[top].y(), 0.002) << "the drag acted";
-  s.saveRecording(dir / "undone.json");
-  const PlaybackScript undoneScript = loadPlaybackScript(dir / "undone.json");
-  Simulation replayUndone(undoneScript.scene, clayBall().mesh);
-  Playback undonePlayback(undoneScript, replayUndone);
-  while (!undonePlayback.finished()) undonePlayback.advance();
-  expectSameState(replayUndone.snapshot(), undone);
+  expectSameState(replayOf(s, dir / "undone.json"), undone);
 }
 
 // The session after an undo to the middle of a script brush's drag, and a project saved there
@@ -205,15 +205,10 @@ TEST(SculptSession, ABrushDragUnderWayAtAnUndoOrInAProjectLetsGoAtItsEnd) {
   goOn(s);
   EXPECT_LT(s.simulation().state().anchors.size(), anchorsDuringTheDrag - 1)
       << "the drag let go and the named anchor was removed";
-  s.saveRecording(dir / "undone.json");
-  const PlaybackScript script = loadPlaybackScript(dir / "undone.json");
-  ASSERT_EQ(script.frames, 7);
-  Simulation replay(script.scene, clayBall().mesh);
-  Playback playback(script, replay);
-  while (!playback.finished()) playback.advance();
+  ASSERT_EQ(s.simulation().frame(), 7);
   {
     SCOPED_TRACE("the recording replayed");
-    expectSameState(replay.snapshot(), s.simulation().snapshot());
+    expectSameState(replayOf(s, dir / "undone.json"), s.simulation().snapshot());
   }
   // Reopened at frame 2 and given the same later event, the project ends in the same state.
   std::unique_ptr<SculptSession> reopened =
