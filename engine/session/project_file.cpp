@@ -108,6 +108,7 @@ void writeProject(const fs::path& file, const SceneDescription& scene, const Sim
       path.push_back({{"time", k.time}, {"offset", vec3Json(k.offset)}});
     j["origin"] = origin;
     j["path"] = path;
+    if (!a.springWeights.empty()) j["spring_weights"] = a.springWeights;
     anchors.push_back(j);
   }
   h["anchors"] = anchors;
@@ -215,6 +216,15 @@ AnchorConstraint readAnchor(const nlohmann::json& json, const std::string& where
   }
   if (!c.origin.empty() && c.origin.size() != c.vertices.size())
     a.fail("origin", "must hold one point per vertex");
+  const auto weights = a.array("spring_weights");
+  for (size_t k = 0; k < weights.size(); ++k) {
+    const double w = weights[k].is_number() ? weights[k].get<double>() : -1.0;
+    if (!(w >= 0.0 && w <= 1.0))
+      a.fail("spring_weights", "holds " + weights[k].dump() + ", not a weight in [0, 1]");
+    c.springWeights.push_back(w);
+  }
+  if (!c.springWeights.empty() && c.springWeights.size() != c.vertices.size())
+    a.fail("spring_weights", "must hold one weight per vertex");
   const auto path = a.array("path");
   for (size_t k = 0; k < path.size(); ++k) {
     JsonObject key(path[k], a.childPath("path") + "[" + std::to_string(k) + "]", name);

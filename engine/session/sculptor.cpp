@@ -150,13 +150,20 @@ void Sculptor::beforeFrame() {
     if (side.vertices.empty()) continue;
     const std::vector<Vec3>& x = sim_.state().x;
     std::vector<Vec3> targets(side.vertices.size());
+    std::map<int, Vec3> kept;
     for (size_t i = 0; i < side.vertices.size(); ++i) {
-      const Vec3& p = x[side.vertices[i]];
+      const int v = side.vertices[i];
+      const Vec3& p = x[v];
+      const auto was = side.targets.find(v);
       const Vec3 nearest = closestOnSegment(from, side.center, p);
-      targets[i] = p + side.weights[i] * step * brushDirection(side, p, nearest);
+      targets[i] = (was == side.targets.end() ? p : was->second) +
+                   side.weights[i] * step * brushDirection(side, p, nearest);
+      kept.emplace(v, targets[i]);
     }
+    side.targets = std::move(kept);
     side.anchor = sim_.addAnchor(side.vertices);
     sim_.setAnchorTargets(side.anchor, targets);
+    sim_.setAnchorSprings(side.anchor, side.weights);
   }
 }
 

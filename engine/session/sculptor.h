@@ -4,10 +4,12 @@
 // calls at the same frames, so a recorded session replays exactly (engine/session/playback.h).
 //
 // Brushes act through the physics, never on the surface alone: they hold the vertices under
-// the brush (Dirichlet anchors) and move them; the solver moves the rest, so volume is kept
-// where the material keeps it, clay keeps a dent and rubber springs back once the brush lets
-// go. The shaping brushes weigh each vertex by w = (1 - (d / r)^2)^2 of its distance d from
-// the centre.
+// the brush and move them; the solver moves the rest, so volume is kept where the material
+// keeps it, clay keeps a dent and rubber springs back once the brush lets go. The shaping
+// brushes weigh each vertex by w = (1 - (d / r)^2)^2 of its distance d from the centre, and
+// hold it by a spring of that weight (a soft anchor, AnchorConstraint::springWeights): stiff
+// at the centre, nothing at the rim, so the vertices they select anew each frame are not
+// switched between held and free. The grab holds its vertices exactly (Dirichlet).
 //   - grab: the vertices within the radius (of the piece under the cursor) follow the cursor
 //     together, as if held in a hand; the falloff around them is the physics' (a falloff imposed
 //     inside the held region would strain it and, on a brittle body, tear it there);
@@ -19,6 +21,7 @@
 // capsule around it), so fast strokes are interpolated, never dropped.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -83,6 +86,10 @@ class Sculptor {
     std::vector<int> vertices;
     std::vector<double> weights;
     std::vector<Vec3> start;  // grab: where the held vertices were when it began
+    // Push, pull, inflate, pinch: each vertex under the brush's target, moved on by its step every
+    // frame from where it was, not from where the vertex lags behind it (a spring's lag does not
+    // add up frame after frame); a vertex that leaves the brush drops its target.
+    std::map<int, Vec3> targets;
     int anchor = -1;
   };
   Vec3 brushDirection(const Side& side, const Vec3& x, const Vec3& nearest) const;

@@ -449,6 +449,18 @@ void Simulation::setAnchorTargets(int id, const std::vector<Vec3>& targets) {
   throw std::out_of_range("no anchor with id " + std::to_string(id));
 }
 
+void Simulation::setAnchorSprings(int id, const std::vector<double>& weights) {
+  for (size_t i = 0; i < anchorTags_.size(); ++i) {
+    if (anchorTags_[i].id != id) continue;
+    AnchorConstraint& a = state_.anchors[i];
+    if (weights.size() != a.vertices.size())
+      throw std::invalid_argument("anchor springs: one weight per anchored vertex");
+    a.springWeights = weights;
+    return;
+  }
+  throw std::out_of_range("no anchor with id " + std::to_string(id));
+}
+
 int Simulation::unanchor(const std::vector<int>& vertices) {
   std::vector<char> drop(model_.numVertices(), 0);
   for (int v : vertices) drop[v] = 1;
@@ -461,10 +473,12 @@ int Simulation::unanchor(const std::vector<int>& vertices) {
         continue;
       }
       if (!a.origin.empty()) a.origin[kept] = a.origin[i];
+      if (!a.springWeights.empty()) a.springWeights[kept] = a.springWeights[i];
       a.vertices[kept++] = a.vertices[i];
     }
     a.vertices.resize(kept);
     if (!a.origin.empty()) a.origin.resize(kept);
+    if (!a.springWeights.empty()) a.springWeights.resize(kept);
   }
   return dropped;
 }

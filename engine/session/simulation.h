@@ -130,6 +130,10 @@ class Simulation {
   // Moves an anchor's vertices to `targets` (same order as its vertices) from the next frame
   // on: brushes drag what they hold this way. Throws std::out_of_range for an unknown id.
   void setAnchorTargets(int id, const std::vector<Vec3>& targets);
+  // Makes an anchor soft: each vertex pulled toward its target by a spring of weight `weights[i]`
+  // in [0, 1] (AnchorConstraint::springWeights) instead of held there. Throws std::out_of_range
+  // for an unknown id, std::invalid_argument unless one weight per vertex.
+  void setAnchorSprings(int id, const std::vector<double>& weights);
   // Frees the given vertices from every anchor (scene, script and painted ones alike);
   // returns how many anchor entries were dropped.
   int unanchor(const std::vector<int>& vertices);

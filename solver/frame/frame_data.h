@@ -57,6 +57,8 @@ struct FrameData {
       b->resize(3 * n);
     fixed.resize(n);
     removed.resize(n);
+    springK.resize(n);
+    springTarget.resize(3 * n);
     damaged.resize(edges);
     for (Buffer<double>* b : {&elemEnergy, &elemInverted, &trialEnergy, &trialInverted})
       b->resize(tets);
@@ -119,6 +121,9 @@ struct FrameData {
   Buffer<int> anchorVertices;
   Buffer<double> anchorTargets;
   size_t anchorCount = 0;
+  // Soft anchors (AnchorConstraint::springWeights): each vertex's spring stiffness (0: none) and
+  // its target at the sub-step's end; terms of the potential, not held vertices.
+  Buffer<double> springK, springTarget;
 
   // The sub-step's, set by the frame.
   const StepSettings* settings = nullptr;

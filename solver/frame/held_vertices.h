@@ -4,6 +4,7 @@
 // the removed flags, and the anchored and removed vertices' targets in the frame's data.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -44,20 +45,40 @@ class HeldVertexSet {
                              {state.x[v].x(), state.x[v].y(), state.x[v].z()});
   }
 
-  // The held vertices and their targets at `time` (the sub-step's end).
+  // The held vertices and their targets at `time` (the sub-step's end), and the soft anchors'
+  // springs: a vertex two springs pull goes to their stiffness-weighted target.
   void prepare(const std::vector<AnchorConstraint>& anchors, double time) {
     std::vector<std::uint8_t> fixed(d_.n, 0);
     std::vector<int> vertices;
     std::vector<double> targets;
+    std::vector<double> springK(d_.n, 0.0), springTarget(3 * static_cast<size_t>(d_.n), 0.0);
     for (const AnchorConstraint& a : anchors) {
       const Vec3 offset = anchorOffset(a, time);
       for (size_t i = 0; i < a.vertices.size(); ++i) {
         const int v = a.vertices[i];
-        fixed[v] = 1;
         const Vec3 p = (a.origin.empty() ? model_.mesh.vertices[v] : a.origin[i]) + offset;
+        if (!a.springWeights.empty()) {
+          const double k = a.springWeights[i] * kAnchorSpring * model_.material.lame.mu *
+                           std::cbrt(model_.mass[v] / model_.material.density);
+          springK[v] += k;
+          for (int c = 0; c < 3; ++c) springTarget[3 * v + c] += k * p[c];
+          continue;
+        }
+        fixed[v] = 1;
         vertices.push_back(v);
         targets.insert(targets.end(), {p.x(), p.y(), p.z()});
       }
+    }
+    for (int v = 0; v < d_.n; ++v)
+      if (springK[v] > 0.0)
+        for (int c = 0; c < 3; ++c) springTarget[3 * v + c] /= springK[v];
+    if (springK != hostSpringK_) {
+      hostSpringK_ = springK;
+      d_.springK.upload(springK);
+    }
+    if (springTarget != hostSpringTarget_) {
+      hostSpringTarget_ = springTarget;
+      d_.springTarget.upload(springTarget);
     }
     for (size_t i = 0; i < removedVertices_.size(); ++i) {
       const int v = removedVertices_[i];
@@ -100,6 +121,7 @@ class HeldVertexSet {
   std::vector<std::uint8_t> hostFixed_, hostRemoved_;
   std::vector<int> hostAnchorVertices_;
   std::vector<double> hostAnchorTargets_;
+  std::vector<double> hostSpringK_, hostSpringTarget_;
   std::vector<int> removedVertices_;    // ascending
   std::vector<double> removedTargets_;  // (3 per removed vertex) where each is held
 };

@@ -6,7 +6,8 @@
 // scalars (frame_scalars.h), never read: the frame decides when to synchronize.
 //
 //   E(y) = sum_i m_i/(2h^2) |y_i - xhat_i|^2 - m_i g.y_i + 1/(2h) (alpha m_i |y_i - x_n,i|^2
-//          + (y - x_n).beta K0 (y - x_n)) + elastic(y) + contact(y)
+//          + (y - x_n).beta K0 (y - x_n)) + k_i/2 |y_i - t_i|^2 + elastic(y) + contact(y)
+// (k_i, t_i: the soft anchors' springs, held_vertices.h; zero on most vertices)
 #pragma once
 
 #include <cmath>
@@ -180,23 +181,31 @@ class IncrementalPotential {
     contact_.energy(y, d_.fixed.data(), d_.mass.data(), d_.h, gradient, energyOut);
   }
 
-  // The terms of the incremental potential that belong to one coordinate: inertia, gravity and
-  // damping (dampedK: beta K0 (y - x_n)).
+  // The terms of the incremental potential that belong to one coordinate: inertia, gravity,
+  // damping (dampedK: beta K0 (y - x_n)) and a soft anchor's spring.
   struct DofPotential {
-    const double *xhat, *xn, *mass;
+    const double *xhat, *xn, *mass, *springK, *springTarget;
     double h, alpha, gravity[3];
     GALSCULPT_HD double operator()(int i, const double* y, const double* dampedK) const {
       const double m = mass[i / 3];
       const double g = gravity[i % 3];
       const double inertia = y[i] - xhat[i], dx = y[i] - xn[i];
-      return 0.5 / (h * h) * inertia * (m * inertia) - m * g * y[i] +
-             0.5 / h * (alpha * dx * (m * dx) + dx * dampedK[i]);
+      double e = 0.5 / (h * h) * inertia * (m * inertia) - m * g * y[i] +
+                 0.5 / h * (alpha * dx * (m * dx) + dx * dampedK[i]);
+      const double k = springK[i / 3];
+      if (k > 0.0) {
+        const double s = y[i] - springTarget[i];
+        e += 0.5 * k * s * s;
+      }
+      return e;
     }
   };
   DofPotential dofPotential() const {
     return {d_.xhat.data(),
             d_.xn.data(),
             d_.mass.data(),
+            d_.springK.data(),
+            d_.springTarget.data(),
             d_.h,
             model_.material.dampingMass,
             {model_.gravity.x(), model_.gravity.y(), model_.gravity.z()}};
@@ -228,14 +237,16 @@ class IncrementalPotential {
     });
   }
 
-  // g = M (y - xhat)/h^2 + grad - f_ext + (alpha M dx + dampedK)/h (+ contact, already in
-  // grad), zero on anchored vertices.
+  // g = M (y - xhat)/h^2 + grad - f_ext + (alpha M dx + dampedK)/h + k (y - t) (+ contact,
+  // already in grad), zero on anchored vertices.
   void backwardEulerGradient(const double* y, const double* grad, const double* dampedK,
                              double* g) {
     const double* xhat = d_.xhat.data();
     const double* xn = d_.xn.data();
     const double* mass = d_.mass.data();
     const std::uint8_t* fixed = d_.fixed.data();
+    const double* springK = d_.springK.data();
+    const double* springTarget = d_.springTarget.data();
     const double h = d_.h;
     const double alpha = model_.material.dampingMass;
     const double gx = model_.gravity.x(), gy = model_.gravity.y(), gz = model_.gravity.z();
@@ -248,10 +259,13 @@ class IncrementalPotential {
       const double gravity = i % 3 == 0 ? gx : (i % 3 == 1 ? gy : gz);
       g[i] = m * (y[i] - xhat[i]) / (h * h) + grad[i] - m * gravity +
              (alpha * (m * (y[i] - xn[i])) + dampedK[i]) / h;
+      const double k = springK[i / 3];
+      if (k > 0.0) g[i] += k * (y[i] - springTarget[i]);
     });
   }
 
-  // H = K + beta/h K0 + contact + M (1/h^2 + alpha/h), anchored rows and columns identity-scaled.
+  // H = K + beta/h K0 + contact + M (1/h^2 + alpha/h) + the springs' k I, anchored rows and
+  // columns identity-scaled.
   void buildSystem(const double* y) {
     const double* kb = d_.stiffness.data();
     const double* frozen = d_.frozenBlocks();
@@ -260,6 +274,7 @@ class IncrementalPotential {
     const int* columns = d_.columns.data();
     const std::uint8_t* fixed = d_.fixed.data();
     const double* mass = d_.mass.data();
+    const double* springK = d_.springK.data();
     const double h = d_.h;
     const auto contactStiffness = contact_.stiffness(mass, h);
     const double betaOverH = model_.material.dampingStiffness / h;
@@ -272,6 +287,8 @@ class IncrementalPotential {
         if (!fixed[r]) contactStiffness.add(r, y, out);
         const double m = mass[r] * (1.0 / (h * h) + alpha / h);
         for (int i = 0; i < 3; ++i) out[4 * i] += m;
+        if (springK[r] > 0.0)
+          for (int i = 0; i < 3; ++i) out[4 * i] += springK[r];
       }
       if (fixed[r] || fixed[c]) {
         const double diag = r == c ? mass[r] / (h * h) : 0.0;

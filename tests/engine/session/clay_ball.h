@@ -67,6 +67,7 @@ inline void expectSameState(const SimulationSnapshot& a, const SimulationSnapsho
   for (size_t i = 0; i < a.anchors.size(); ++i) {
     EXPECT_EQ(a.anchors[i].vertices, b.anchors[i].vertices);
     EXPECT_TRUE(a.anchors[i].origin == b.anchors[i].origin);
+    EXPECT_EQ(a.anchors[i].springWeights, b.anchors[i].springWeights);
   }
   EXPECT_EQ(a.anchorTags, b.anchorTags);
 }

@@ -255,5 +255,36 @@ TEST(ProjectFile, SavingDuringAStrokeWritesAReadableProject) {
             ball.session.simulation().frame());
 }
 
+// A push under way holds by springs (soft anchors): the project keeps their weights, and a
+// weight out of [0, 1] is an error naming its key.
+TEST(ProjectFile, APushUnderWayKeepsItsSpringsAndBadWeightsAreRefused) {
+  test::TempDir dir;
+  SculptedBall ball;
+  BrushStroke push;
+  push.kind = BrushKind::Push;
+  push.center = Vec3(0.0, 0.1, 0.0);
+  push.radius = 0.03;
+  ball.session.beginStroke(push);
+  ball.session.step();
+  const SimulationSnapshot held = ball.session.simulation().snapshot();
+  bool soft = false;
+  for (const AnchorConstraint& a : held.anchors) soft = soft || !a.springWeights.empty();
+  ASSERT_TRUE(soft) << "the push holds by springs";
+  writeProject(dir / "push.gsproj", ball.session, std::nullopt);
+  const SimulationSnapshot read = readProject(dir / "push.gsproj").state;
+  ASSERT_EQ(read.anchors.size(), held.anchors.size());
+  for (size_t i = 0; i < held.anchors.size(); ++i)
+    EXPECT_EQ(read.anchors[i].springWeights, held.anchors[i].springWeights) << "anchor " << i;
+  const std::string good = test::readText(dir / "push.gsproj");
+  int soft_anchor = -1;
+  for (size_t i = 0; i < held.anchors.size(); ++i)
+    if (!held.anchors[i].springWeights.empty()) soft_anchor = static_cast<int>(i);
+  test::writeText(dir / "bad.gsproj", test::withProjectHeader(good, [&](nlohmann::json& h) {
+                    h["anchors"][soft_anchor]["spring_weights"][0] = 1.5;
+                  }));
+  EXPECT_THROW_WITH(readProject(dir / "bad.gsproj"), InputError,
+                    "$.anchors[" + std::to_string(soft_anchor) + "].spring_weights: holds 1.5");
+}
+
 }  // namespace
 }  // namespace galsculpt

@@ -61,7 +61,9 @@ TEST(Sculptor, PushDentsClayForGoodWhileRubberSpringsBack) {
   EXPECT_LT(rubberDent, 0.05 * rubberPushed) << "rubber springs back";
 }
 
-// One frame of each shaping brush moves the held vertices the way the brush says.
+// One frame of each shaping brush moves the vertices under it the way the brush says: those
+// held by its stiffer springs (weight at least 1/2) within a tenth of their step; the rim, held
+// by weaker ones, goes with the clay around it.
 TEST(Sculptor, PullInflateAndPinchMoveTheHeldVerticesTheirWay) {
   const Vec3 top(0.0, 0.1, 0.0);
   const double radius = 0.05;
@@ -77,20 +79,22 @@ TEST(Sculptor, PullInflateAndPinchMoveTheHeldVerticesTheirWay) {
   const double step = 0.6 * clayBall().scene.timeStep;
   {
     const auto [start, d] = motion(BrushKind::Pull);
+    int checked = 0;
     for (size_t i = 0; i < start.size(); ++i) {
       const double w = weightAt((start[i] - top).norm(), radius);
-      if (w > 0.0) {
-        EXPECT_NEAR((d[i] - w * step * Vec3::UnitY()).norm(), 0.0, 1e-12) << i;
-      }
+      if (w < 0.5) continue;
+      EXPECT_LT((d[i] - w * step * Vec3::UnitY()).norm(), 0.1 * step) << i;
+      ++checked;
     }
+    EXPECT_GT(checked, 5);
   }
   {
     const auto [start, d] = motion(BrushKind::Inflate);
     int checked = 0;
     for (size_t i = 0; i < start.size(); ++i) {
-      if (weightAt((start[i] - top).norm(), radius) < 0.05) continue;
+      if (weightAt((start[i] - top).norm(), radius) < 0.5) continue;
       const Vec3 away = (start[i] - (top - radius * Vec3::UnitY())).normalized();
-      EXPECT_GT(d[i].normalized().dot(away), 1.0 - 1e-9)
+      EXPECT_GT(d[i].normalized().dot(away), 0.95)
           << "inflate moves vertex " << i << " away from below the surface";
       ++checked;
     }
@@ -101,9 +105,10 @@ TEST(Sculptor, PullInflateAndPinchMoveTheHeldVerticesTheirWay) {
     int checked = 0;
     for (size_t i = 0; i < start.size(); ++i) {
       const Vec3 radial(start[i].x() - top.x(), 0.0, start[i].z() - top.z());
-      if (weightAt((start[i] - top).norm(), radius) < 0.05 || radial.norm() < 0.01) continue;
+      const double w = weightAt((start[i] - top).norm(), radius);
+      if (w < 0.5 || radial.norm() < 0.01) continue;
       EXPECT_LT(d[i].dot(radial), 0.0) << "pinch draws vertex " << i << " towards the axis";
-      EXPECT_NEAR(d[i].y(), 0.0, 1e-12) << "pinch does not push into the surface";
+      EXPECT_LT(std::abs(d[i].y()), 0.1 * w * step) << "pinch does not push into the surface";
       ++checked;
     }
     EXPECT_GT(checked, 5);

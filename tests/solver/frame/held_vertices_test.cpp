@@ -2,6 +2,7 @@
 // removed debris held where the state has it (an anchor's path winning over it).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 #include "solver/fracture/debris.h"
@@ -56,6 +57,39 @@ TEST(HeldVertexSet, AnchorsFollowTheirPathsAndDebrisStaysWhereTheStateHasIt) {
   }
   EXPECT_EQ(debris, 9);
   EXPECT_EQ(d.anchorCount, static_cast<size_t>(2 + debris - 1));
+}
+
+// A soft anchor holds nothing: its vertices stay free, each pulled by a spring of its weight
+// toward its target; two springs on one vertex pull it toward their stiffness-weighted target.
+TEST(HeldVertexSet, SoftAnchorsAreSpringsNotHeldVertices) {
+  const SimModel m = buildSimModel(test::gridBar(2, 1, 1, 0.01), rubber());
+  CpuExecutor ex;
+  FrameData<CpuExecutor> d(m);
+  HeldVertexSet<CpuExecutor> held(ex, m, d);
+  AnchorConstraint a, b;
+  a.vertices = {1, 2};
+  a.origin = {Vec3(0.1, 0, 0), Vec3(0.2, 0, 0)};
+  a.springWeights = {1.0, 0.25};
+  b.vertices = {2};
+  b.origin = {Vec3(0.4, 0, 0)};
+  b.springWeights = {0.75};
+  held.prepare({a, b}, 0.0);
+  const int n = m.numVertices();
+  std::vector<std::uint8_t> fixed(n);
+  std::vector<double> k(n), target(3 * n);
+  d.fixed.download(fixed.data(), n);
+  d.springK.download(k.data(), n);
+  d.springTarget.download(target.data(), 3 * n);
+  for (int v = 0; v < n; ++v) EXPECT_EQ(fixed[v], 0) << "vertex " << v;
+  const auto stiffness = [&](int v, double w) {
+    return w * kAnchorSpring * m.material.lame.mu * std::cbrt(m.mass[v] / m.material.density);
+  };
+  EXPECT_DOUBLE_EQ(k[1], stiffness(1, 1.0));
+  EXPECT_DOUBLE_EQ(k[2], stiffness(2, 0.25) + stiffness(2, 0.75));
+  EXPECT_DOUBLE_EQ(target[3], 0.1);
+  EXPECT_NEAR(target[6], 0.25 * 0.2 + 0.75 * 0.4, 1e-15);
+  EXPECT_EQ(k[0], 0.0);
+  EXPECT_EQ(d.anchorCount, 0u);
 }
 
 }  // namespace

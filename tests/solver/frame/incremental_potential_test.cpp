@@ -1,5 +1,6 @@
 // The incremental potential (solver/frame/incremental_potential.h) on the CPU executor, on a
-// small bar under gravity with mass damping, a plane collider under it and one vertex held:
+// small bar under gravity with mass damping, a plane collider under it, one vertex held and two
+// pulled by soft anchors' springs:
 // the backward-Euler gradient g against central differences of the potential, the Newton system
 // H against central differences of g (stretched, where the projected stiffness is the exact
 // one), the potential whole against the sum of the vertices' shares, and the trial's scalars.
@@ -66,6 +67,13 @@ struct Potential {
     std::vector<std::uint8_t> fixed(n, 0);
     fixed[0] = 1;
     d.fixed.upload(fixed);
+    std::vector<double> springK(n, 0.0), springTarget(3 * n, 0.0);
+    springK[3] = 500.0;
+    springK[7] = 1200.0;
+    for (const int v : {3, 7})
+      for (int k = 0; k < 3; ++k) springTarget[3 * v + k] = x[3 * v + k] + 0.002 * (k + 1);
+    d.springK.upload(springK);
+    d.springTarget.upload(springTarget);
   }
 
   // The potential at y (the elements, damping and contact evaluated there).
