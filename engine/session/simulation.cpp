@@ -436,29 +436,25 @@ std::optional<int> Simulation::namedAnchor(const std::string& name) const {
   return std::nullopt;
 }
 
-void Simulation::setAnchorTargets(int id, const std::vector<Vec3>& targets) {
-  for (size_t i = 0; i < anchorTags_.size(); ++i) {
-    if (anchorTags_[i].id != id) continue;
-    AnchorConstraint& a = state_.anchors[i];
-    if (targets.size() != a.vertices.size())
-      throw std::invalid_argument("anchor targets: one per anchored vertex");
-    a.origin = targets;
-    a.path.clear();
-    return;
-  }
+AnchorConstraint& Simulation::anchorWithId(int id) {
+  for (size_t i = 0; i < anchorTags_.size(); ++i)
+    if (anchorTags_[i].id == id) return state_.anchors[i];
   throw std::out_of_range("no anchor with id " + std::to_string(id));
 }
 
+void Simulation::setAnchorTargets(int id, const std::vector<Vec3>& targets) {
+  AnchorConstraint& a = anchorWithId(id);
+  if (targets.size() != a.vertices.size())
+    throw std::invalid_argument("anchor targets: one per anchored vertex");
+  a.origin = targets;
+  a.path.clear();
+}
+
 void Simulation::setAnchorSprings(int id, const std::vector<double>& weights) {
-  for (size_t i = 0; i < anchorTags_.size(); ++i) {
-    if (anchorTags_[i].id != id) continue;
-    AnchorConstraint& a = state_.anchors[i];
-    if (weights.size() != a.vertices.size())
-      throw std::invalid_argument("anchor springs: one weight per anchored vertex");
-    a.springWeights = weights;
-    return;
-  }
-  throw std::out_of_range("no anchor with id " + std::to_string(id));
+  AnchorConstraint& a = anchorWithId(id);
+  if (weights.size() != a.vertices.size())
+    throw std::invalid_argument("anchor springs: one weight per anchored vertex");
+  a.springWeights = weights;
 }
 
 int Simulation::unanchor(const std::vector<int>& vertices) {

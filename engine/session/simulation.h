@@ -213,7 +213,8 @@ class Simulation {
   mutable int surfaceFrame_ = -1;  // the state the surface was last brought up to
   mutable std::uint64_t surfaceRevision_ = 0;
   mutable SurfaceUpdateStats lastSurfaceUpdate_;
-  std::vector<AnchorTag> anchorTags_;  // one per entry of state_.anchors
+  std::vector<AnchorTag> anchorTags_;      // one per entry of state_.anchors
+  AnchorConstraint& anchorWithId(int id);  // throws std::out_of_range for an unknown id
   int nextAnchorId_ = 0;
   int toolDamage_ = 0;  // edges cut by tools since the last frame
   void updatePieces();  // pieces and counted tets, when the damage changed

@@ -72,14 +72,8 @@ class HeldVertexSet {
     for (int v = 0; v < d_.n; ++v)
       if (springK[v] > 0.0)
         for (int c = 0; c < 3; ++c) springTarget[3 * v + c] /= springK[v];
-    if (springK != hostSpringK_) {
-      hostSpringK_ = springK;
-      d_.springK.upload(springK);
-    }
-    if (springTarget != hostSpringTarget_) {
-      hostSpringTarget_ = springTarget;
-      d_.springTarget.upload(springTarget);
-    }
+    uploadChanged(springK, hostSpringK_, d_.springK);
+    uploadChanged(springTarget, hostSpringTarget_, d_.springTarget);
     for (size_t i = 0; i < removedVertices_.size(); ++i) {
       const int v = removedVertices_[i];
       if (fixed[v]) continue;  // an anchor keeps it on its path
@@ -88,19 +82,10 @@ class HeldVertexSet {
       targets.insert(targets.end(), removedTargets_.begin() + 3 * i,
                      removedTargets_.begin() + 3 * i + 3);
     }
-    if (fixed != hostFixed_) {
-      hostFixed_ = fixed;
-      d_.fixed.upload(hostFixed_);
-    }
+    uploadChanged(fixed, hostFixed_, d_.fixed);
     d_.anchorCount = vertices.size();
-    if (vertices != hostAnchorVertices_) {
-      hostAnchorVertices_ = vertices;
-      d_.anchorVertices.upload(vertices);
-    }
-    if (targets != hostAnchorTargets_) {
-      hostAnchorTargets_ = targets;
-      d_.anchorTargets.upload(targets);
-    }
+    uploadChanged(vertices, hostAnchorVertices_, d_.anchorVertices);
+    uploadChanged(targets, hostAnchorTargets_, d_.anchorTargets);
   }
 
   // The anchored vertices on their paths at the sub-step's end (in x).
@@ -114,6 +99,14 @@ class HeldVertexSet {
   }
 
  private:
+  // Uploads `values` to the executor's `buffer` when they differ from its host shadow.
+  template <typename T, typename Buffer>
+  static void uploadChanged(const std::vector<T>& values, std::vector<T>& shadow, Buffer& buffer) {
+    if (values == shadow) return;
+    shadow = values;
+    buffer.upload(shadow);
+  }
+
   Exec& ex_;
   const SimModel& model_;
   FrameData<Exec>& d_;
