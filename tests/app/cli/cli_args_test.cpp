@@ -21,7 +21,7 @@ using test::run;
 // says why not; anything else is a usage error.
 TEST(Cli, BackendFlag) {
   test::TempDir dir;
-  const fs::path scene = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
+  const fs::path scene = test::kDefaultSceneFile;
   const CliRun cpu = run(
       {"run", scene.string(), "--frames", "1", "--out", (dir / "a").string(), "--backend", "cpu"});
   ASSERT_EQ(cpu.code, kExitOk) << cpu.err;
@@ -58,7 +58,7 @@ TEST(Cli, BackendFlag) {
 // input error naming the option.
 TEST(Cli, SolverOptionFlag) {
   test::TempDir dir;
-  const fs::path scene = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
+  const fs::path scene = test::kDefaultSceneFile;
   const CliRun one = run({"run", scene.string(), "--frames", "3", "--out", (dir / "a").string(),
                           "--solver-option", "newton_iters=1,pcg_tolerance=0", "--backend", "cpu"});
   ASSERT_EQ(one.code, kExitOk) << one.err;

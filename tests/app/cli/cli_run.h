@@ -1,6 +1,7 @@
 // Runs the command line in-process for tests: exit code, standard output and standard error.
 #pragma once
 
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -8,6 +9,10 @@
 #include "app/cli/cli.h"
 
 namespace galsculpt::test {
+
+// The default scene, which most of the command line's tests run.
+inline const std::filesystem::path kDefaultSceneFile =
+    std::filesystem::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
 
 struct CliRun {
   int code;

@@ -19,7 +19,7 @@ using test::run;
 
 TEST(Cli, RunWritesMetricsAndSurfaces) {
   test::TempDir dir;
-  const fs::path scene = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
+  const fs::path scene = test::kDefaultSceneFile;
   const CliRun r = run({"run", scene.string(), "--frames", "4", "--out", (dir / "out").string(),
                         "--metrics", (dir / "m.csv").string(), "--export-every", "2"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
@@ -115,7 +115,7 @@ CutBallRun playTenStrokesThroughTheClayBall(const test::TempDir& dir, const fs::
   return played;
 }
 
-const fs::path kClayBall = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
+const fs::path kClayBall = test::kDefaultSceneFile;
 
 // With the body's residual alone deciding (solver.converge_pieces false), some frames of the cut
 // ball leave a piece above the residual tolerance of its own loads while the body's residual is

@@ -15,7 +15,7 @@ using test::CliRun;
 using test::run;
 
 TEST(Cli, SceneCheck) {
-  const fs::path scene = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json";
+  const fs::path scene = test::kDefaultSceneFile;
   const CliRun r = run({"scene", "check", scene.string(), "--load-mesh"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   EXPECT_NE(r.out.find("material: clay"), std::string::npos);
