@@ -287,10 +287,10 @@ MaterialDesc materialPreset(const std::string& name) {
   MaterialDesc m;
   m.preset = name;
   if (name == "clay") {  // modelling clay: soft, nearly incompressible, yields early
-    // Stable neo-Hookean: brushes press clay hard, and StVK softens in compression until an
-    // element can invert under load; this model stays well posed through inversion, so the
-    // converged solver's Newton steps need no backtracking under the strokes (docs/physics.md).
-    m.model = MaterialModel::StableNeoHookean;
+    // Hencky: its flow is part of each Newton iteration's energy, so a converged frame is in
+    // equilibrium after the clay has flowed, and its continued logarithm keeps the equations
+    // well posed however hard a brush presses, through inversion (docs/physics.md).
+    m.model = MaterialModel::Hencky;
     m.youngsModulus = 2.0e5;
     m.poissonRatio = 0.45;
     m.density = 1800.0;
@@ -304,7 +304,7 @@ MaterialDesc materialPreset(const std::string& name) {
     m.density = 1100.0;
     m.fractureThreshold = 1.5e6;
   } else if (name == "flesh") {  // soft tissue; plastic before it tears (ductile)
-    m.model = MaterialModel::StableNeoHookean;
+    m.model = MaterialModel::Hencky;
     m.youngsModulus = 5.0e4;
     m.poissonRatio = 0.45;
     m.density = 1060.0;

@@ -19,6 +19,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "solver/fem/hencky_strain.h"
 #include "solver/fem/kernel_math.h"
 #include "solver/fem/material_types.h"
 
@@ -528,11 +529,20 @@ GALSCULPT_HD bool plasticRest(const RestData& rest, const M3& fpInverse, RestDat
 struct PlasticParamsData {
   double yieldStress = 0.0;  // Pa (von Mises); 0 disables plasticity
   double hardening = 0.0;    // Pa
+  // Whether a collapsed or inverted elastic part flows (by the continued logarithm): where the
+  // model's energy includes the flow (MaterialInfo::flowInEnergy), the commit must flow as the
+  // energy did. Another model's flow after the step leaves such an element alone: its energy
+  // does not measure Hencky strain, and flowing a crushed element by it reshapes its rest shape
+  // without bound.
+  bool flowsCollapsed = false;
 };
 
-// Radial return of F Fp^-1 onto the von Mises yield surface in principal Hencky strains;
-// updates fpInverse and the accumulated plastic strain, true when the element flowed. A
-// collapsed or inverted elastic part does not flow.
+// Commits a step's flow: the radial return of F Fp^-1 onto the von Mises yield surface in its
+// Hencky strains (hencky_strain.h), the same flow the Hencky model's energy minimized over in
+// the step (so a converged step is in equilibrium after it). Updates fpInverse and the
+// accumulated plastic strain; true when the element flowed. The flow is isochoric and coaxial:
+// with F Fp^-1 = U diag(s) V^T and dEp the plastic part of the deviator, Fp^-1 becomes
+// Fp^-1 V diag(exp(-dEp)) V^T, so the elastic part's stretches are s exp(-dEp).
 GALSCULPT_HD bool plasticReturn(const Lame& lame, const PlasticParamsData& params, const M3& f,
                                 M3& fpInverse, double& plasticStrain) {
   if (params.yieldStress <= 0.0) return false;
@@ -540,28 +550,16 @@ GALSCULPT_HD bool plasticReturn(const Lame& lame, const PlasticParamsData& param
   M3 u, v;
   double sigma[3];
   rotationVariantSvd(fe, u, sigma, v);
-  if (fmin(sigma[0], fmin(sigma[1], sigma[2])) <= 1e-6) return false;
-  double logStrain[3], deviator[3];
-  for (int i = 0; i < 3; ++i) logStrain[i] = log(sigma[i]);
-  const double mean = (logStrain[0] + logStrain[1] + logStrain[2]) / 3.0;
-  double deviatorNorm = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    deviator[i] = logStrain[i] - mean;
-    deviatorNorm += deviator[i] * deviator[i];
-  }
-  deviatorNorm = sqrt(deviatorNorm);
-  // Deviatoric Kirchhoff stress 2 mu e_dev; von Mises q = sqrt(3/2) |s|.
-  const double q = sqrt(1.5) * 2.0 * lame.mu * deviatorNorm;
+  if (!params.flowsCollapsed && fmin(sigma[0], fmin(sigma[1], sigma[2])) <= 1e-6) return false;
+  const HenckyStrain h = henckyStrain(sigma);
   const double yield = params.yieldStress + params.hardening * plasticStrain;
-  if (q <= yield || deviatorNorm <= 0.0) return false;
-  const double gamma = (q - yield) / (3.0 * lame.mu + params.hardening);
-  plasticStrain += gamma;
-  double newSigma[3];
-  for (int i = 0; i < 3; ++i)
-    newSigma[i] = exp(deviator[i] * (1.0 - 3.0 * lame.mu * gamma / q) + mean);
-  // F = Fe Fp  =>  Fp^-1 = F^-1 Fe; rescaled to det 1 against round-off.
-  fpInverse = multiply(inverse(f), scaledProduct(u, newSigma, v));
-  const double det = determinant(fpInverse);
+  const DeviatoricFlow g = deviatoricFlow(lame.mu, yield, params.hardening, h.deviatorNorm);
+  if (!(g.plasticStrain > 0.0)) return false;
+  plasticStrain += g.plasticStrain;
+  double stretch[3];
+  for (int i = 0; i < 3; ++i) stretch[i] = exp(-(1.0 - g.keptFraction) * h.deviator[i]);
+  fpInverse = multiply(fpInverse, scaledProduct(v, stretch, v));
+  const double det = determinant(fpInverse);  // 1 but for round-off
   if (det > 0.0) {
     const double scale = 1.0 / cbrt(det);
     for (double& a : fpInverse.a) a *= scale;

@@ -32,6 +32,7 @@ struct LaneInputs {
   int count = 0;                      // lanes in use, 1..kLanes
   const RestData* rest[kLanes] = {};  // each lane's rest data
   double x[kLanes][12] = {};          // each lane's corner positions
+  double yield[kLanes] = {};          // each lane's yield stress (Lame::yield)
 };
 
 // Where each lane writes: its energy (J), its force gradient (12) and its stiffness as the ten

@@ -319,12 +319,32 @@ struct LaneMath {
   }
 };
 
-// singularValueEnergy: the same model source as the scalar kernel, in lanes.
-Energy singularValueEnergy(MaterialModel model, const Lame& lame, const D s[3]) {
+// singularValueEnergy: the same model source as the scalar kernel, in lanes. A model whose
+// energy depends on the element's own state (kLaneByLane: its yield stress, `yield`, one per
+// lane) is evaluated one lane at a time; the SVD and the stiffness around it stay in lanes.
+Energy singularValueEnergy(MaterialModel model, const Lame& lame, const D s[3],
+                           const double yield[kLanes]) {
   Energy out;
   D hessian[3][3];
   withMaterial(model, [&](auto m) {
-    decltype(m)::template singularValues<D, LaneMath>(lame, s, out.energy, out.gradient, hessian);
+    using Model = decltype(m);
+    if constexpr (requires { Model::kLaneByLane; }) {
+      for (int l = 0; l < kLanes; ++l) {
+        Lame laneLame = lame;
+        laneLame.yield = yield[l];
+        const double laneS[3] = {s[0][l], s[1][l], s[2][l]};
+        double energy, gradient[3], laneHessian[3][3];
+        Model::template singularValues<double, ScalarMath>(laneLame, laneS, energy, gradient,
+                                                           laneHessian);
+        out.energy[l] = energy;
+        for (int i = 0; i < 3; ++i) {
+          out.gradient[i][l] = gradient[i];
+          for (int j = 0; j < 3; ++j) hessian[i][j][l] = laneHessian[i][j];
+        }
+      }
+    } else {
+      Model::template singularValues<D, LaneMath>(lame, s, out.energy, out.gradient, hessian);
+    }
   });
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) out.hessian(i, j) = hessian[i][j];
@@ -401,7 +421,9 @@ unsigned evaluateIntactLanes(MaterialModel model, const Lame& lame, const LaneIn
   Mat u, v;
   D s[3];
   svd(f, u, s, v, ok);
-  const Energy e = singularValueEnergy(model, lame, s);
+  double yield[kLanes];
+  for (int l = 0; l < kLanes; ++l) yield[l] = in.yield[l < in.count ? l : 0];
+  const Energy e = singularValueEnergy(model, lame, s, yield);
   const Mat p = scaledProduct(u, e.gradient, v);
   const D energy = volume * e.energy;
   D gradient[12];

@@ -9,6 +9,7 @@
 #include "solver/fem/material_types.h"
 #include "solver/fem/materials/corotational.h"
 #include "solver/fem/materials/fixed_corotated.h"
+#include "solver/fem/materials/hencky.h"
 #include "solver/fem/materials/stable_neo_hookean.h"
 #include "solver/fem/materials/stvk.h"
 
@@ -30,6 +31,8 @@ GALSCULPT_HD decltype(auto) withMaterial(MaterialModel model, F&& f) {
       return f(StVK{});
     case MaterialModel::FixedCorotated:
       return f(FixedCorotated{});
+    case MaterialModel::Hencky:
+      return f(Hencky{});
     case MaterialModel::StableNeoHookean:
       break;
   }

@@ -17,6 +17,10 @@ struct MaterialInfo {
   MaterialModel model;
   const char* name;     // in scenes ("material": {"model": NAME}) and the Scene panel
   const char* summary;  // one line for the panel's tooltip and docs/scenes.md
+  // Whether the model's energy includes von Mises flow (a yield stress then makes each Newton
+  // iteration minimize over the step's flow); with another model the flow is applied after the
+  // step converged.
+  bool flowInEnergy = false;
 };
 
 inline constexpr MaterialInfo kMaterialModels[] = {
@@ -28,6 +32,9 @@ inline constexpr MaterialInfo kMaterialModels[] = {
      "stable neo-Hookean (Smith et al. 2018): well posed in compression and through inversion"},
     {MaterialModel::FixedCorotated, "fixed_corotated",
      "fixed corotated (Stomakhin et al. 2012): corotational with a volume term in J"},
+    {MaterialModel::Hencky, "hencky",
+     "Hencky (logarithmic strain): its plastic flow solved with the step, for clay and flesh",
+     true},
 };
 
 // The row of `model` (every model has one).

@@ -5,11 +5,16 @@
 namespace galsculpt {
 
 // The models (solver/fem/material_table.h lists them; solver/fem/materials/ defines them).
-enum class MaterialModel { Corotational, StVK, StableNeoHookean, FixedCorotated };
+enum class MaterialModel { Corotational, StVK, StableNeoHookean, FixedCorotated, Hencky };
 
 struct Lame {
   double mu = 0.0;      // shear modulus (Pa)
   double lambda = 0.0;  // first Lame parameter (Pa)
+  // For a model whose energy includes its plastic flow (materialInfo(model).flowInEnergy): the
+  // element's von Mises yield stress at the step's start (Pa; 0: elastic) and the hardening
+  // modulus. The frame sets them per element from its plastic strain (ElementInputs::lame).
+  double yield = 0.0;
+  double hardening = 0.0;
 };
 
 }  // namespace galsculpt

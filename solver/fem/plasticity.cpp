@@ -8,15 +8,15 @@ namespace galsculpt {
 
 // Both run the shared element kernels (element_kernels.h), as the CUDA backend does.
 bool plasticReturn(const Lame& lame, const PlasticParams& params, const Eigen::Matrix3d& f,
-                   Eigen::Matrix3d& fpInverse, double& plasticStrain) {
+                   Eigen::Matrix3d& fpInverse, double& plasticStrain, bool flowsCollapsed) {
   kernels::M3 fk, fp;
   for (int i = 0; i < 9; ++i) {
     fk.a[i] = f.data()[i];
     fp.a[i] = fpInverse.data()[i];
   }
-  const bool flowed =
-      kernels::plasticReturn(lame, kernels::PlasticParamsData{params.yieldStress, params.hardening},
-                             fk, fp, plasticStrain);
+  const bool flowed = kernels::plasticReturn(
+      lame, kernels::PlasticParamsData{params.yieldStress, params.hardening, flowsCollapsed}, fk,
+      fp, plasticStrain);
   if (flowed) fpInverse = Eigen::Map<const Eigen::Matrix3d>(fp.a);
   return flowed;
 }

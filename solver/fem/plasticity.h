@@ -19,9 +19,10 @@ struct PlasticParams {
 };
 
 // Projects F Fp^-1 onto the yield surface; updates fpInverse and the accumulated plastic
-// strain. Returns true when the element flowed.
+// strain. Returns true when the element flowed. `flowsCollapsed`: as
+// kernels::PlasticParamsData's (true for a model whose energy includes the flow).
 bool plasticReturn(const Lame& lame, const PlasticParams& params, const Eigen::Matrix3d& f,
-                   Eigen::Matrix3d& fpInverse, double& plasticStrain);
+                   Eigen::Matrix3d& fpInverse, double& plasticStrain, bool flowsCollapsed = false);
 
 // The rest data of an element whose rest shape has been deformed plastically by Fp.
 TetRest plasticRest(const TetRest& rest, const Eigen::Matrix3d& fpInverse);

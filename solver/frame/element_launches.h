@@ -21,9 +21,9 @@ GALSCULPT_HD void evaluateInPass(const ElementPass& pass, int t, const double x1
                                  std::uint8_t intact, const kernels::RestData& r,
                                  kernels::Hessian elementMode) {
   double hess[144];
-  kernels::evaluateElement(pass.model, pass.lame, r, x12, intact, pass.in.resists(t, pass.resists),
-                           elementMode, pass.energy[t], pass.gradient + 12 * t, hess,
-                           pass.opened + t);
+  kernels::evaluateElement(pass.model, pass.in.lame(t, pass.lame), r, x12, intact,
+                           pass.in.resists(t, pass.resists), elementMode, pass.energy[t],
+                           pass.gradient + 12 * t, hess, pass.opened + t);
   if (elementMode != kernels::Hessian::None && !ElementPass::zeroStiffness(pass.opened[t]))
     ElementPass::pack(hess,
                       pass.packedHessian + ElementPass::kPackedHessian * static_cast<size_t>(t));
@@ -77,6 +77,7 @@ void elementPassInLanes(Exec& ex, const ElementPass& pass, int tets, kernels::La
             const int l = intactIn.count++;
             intactTet[l] = t;
             intactIn.rest[l] = r;
+            intactIn.yield[l] = pass.in.lame(t, pass.lame).yield;
             std::memcpy(intactIn.x[l], x12, sizeof x12);
             intactOut.energy[l] = pass.energy + t;
             intactOut.gradient[l] = pass.gradient + 12 * t;
@@ -133,7 +134,7 @@ void launchElementGradients(const Exec& ex, const ElementModel& element,
     std::uint8_t intact;
     const int t = shared.tets[i];
     const kernels::RestData& r = element.in.load(t, y, x12, intact);
-    kernels::evaluateElement(element.model, element.lame, r, x12, intact,
+    kernels::evaluateElement(element.model, element.in.lame(t, element.lame), r, x12, intact,
                              element.in.resists(t, element.resists), kernels::Hessian::None, energy,
                              out + 12 * i, nullptr);
   });
@@ -146,7 +147,7 @@ void launchEdgeNormalStress(const Exec& ex, const ElementModel& element, int tet
     double x12[12];
     std::uint8_t intact;
     const kernels::RestData& r = element.in.load(t, x, x12, intact);
-    kernels::edgeNormalStress(element.model, element.lame, r, x12, intact,
+    kernels::edgeNormalStress(element.model, element.in.lame(t, element.lame), r, x12, intact,
                               element.in.resists(t, element.resists), slot + 6 * t);
   });
 }

@@ -28,6 +28,7 @@ struct ElementInputs {
   const kernels::RestData* plasticShape;  // (nTets) or null: elastic
   const std::uint8_t* plasticShaped;      // (nTets): 1 where plasticShape is the rest shape
   const std::uint8_t* removed;            // (nVerts) or null: 1 on removed debris
+  const double* plasticStrain = nullptr;  // (nTets) or null: each element's accumulated strain
 
   // The rest data is returned by reference, not copied: an intact element reads 80 of its 416
   // bytes. A flowed element's plastic rest shape is computed when it flows
@@ -41,6 +42,13 @@ struct ElementInputs {
       if (!damaged[tetEdges[6 * t + e]]) intact |= static_cast<std::uint8_t>(1u << e);
     if (plasticShaped && plasticShaped[t]) return plasticShape[t];
     return rest[t];
+  }
+  // The material constants element t is evaluated with: `base` (the material's, its yield
+  // stress set where the model's energy includes the flow) with the yield raised by the element's
+  // hardening so far.
+  GALSCULPT_HD Lame lame(int t, Lame base) const {
+    if (plasticStrain && base.yield > 0.0) base.yield += base.hardening * plasticStrain[t];
+    return base;
   }
   // Whether element t's damaged edges push back when compressed: not where a corner is removed
   // debris (the rest of the body passes through where it was).

@@ -138,7 +138,7 @@ class FracturePass {
     }
     // Element edge stresses into slots 6 t + k.
     double* slot = slotStress_.data();
-    const ElementModel element{in, model_.material.model, model_.material.lame,
+    const ElementModel element{in, model_.material.model, model_.material.elementLame(),
                                model_.material.compressionResists};
     launchEdgeNormalStress(ex_, element, tets_, x, slot);
     const int* slotStart = edgeSlotStart_.data();

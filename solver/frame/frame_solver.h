@@ -307,7 +307,7 @@ class FrameSolver {
   // sub-step's).
   void startPiecesAccelerated(double h, bool gradientAtXn) {
     const ElementModel element{potential_.elementInputs(), model_.material.model,
-                               model_.material.lame, model_.material.compressionResists};
+                               model_.material.elementLame(), model_.material.compressionResists};
     const typename AcceleratedStart<Exec>::SubstepInputs inputs{
         d_.anchorCount > 0,
         d_.fixed.data(),

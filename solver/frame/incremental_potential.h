@@ -45,7 +45,7 @@ class IncrementalPotential {
     double* eg = d_.elemGrad.data();
     double* eh = d_.elemHess.data();
     const MaterialModel model = model_.material.model;
-    const Lame lame = model_.material.lame;
+    const Lame lame = model_.material.elementLame();
     const bool resists = model_.material.compressionResists;
     const kernels::Hessian mode =
         withHessian ? kernels::Hessian::ProjectedSpd : kernels::Hessian::None;
@@ -152,7 +152,7 @@ class IncrementalPotential {
 
   ElementInputs elementInputs() const {
     return {d_.tetVertices.data(), d_.tetEdges.data(), d_.damaged.data(), d_.rest.data(),
-            plastic_.shapes(),     plastic_.shaped(),  d_.removed.data()};
+            plastic_.shapes(),     plastic_.shaped(),  d_.removed.data(), plastic_.strain()};
   }
 
   // out = beta K0 (y - x_n).

@@ -10,6 +10,7 @@
 
 #include "solver/fem/dense_kernels.h"
 #include "solver/fem/element_kernels.h"
+#include "solver/fem/material_table.h"
 #include "solver/frame/element_pass.h"
 #include "solver/frame/host_shadow.h"
 #include "solver/model/sim_model.h"
@@ -74,6 +75,8 @@ class PlasticState {
   // What the element pass reads (null when not active).
   const kernels::RestData* shapes() const { return active_ ? shape_.data() : nullptr; }
   const std::uint8_t* shaped() const { return active_ ? shaped_.data() : nullptr; }
+  // Each element's accumulated plastic strain (null when not active).
+  const double* strain() const { return active_ ? strain_.data() : nullptr; }
   // Fp^-1 in the executor's memory (what captured sections bake in).
   const double* inverse() const { return fp_.data(); }
 
@@ -101,7 +104,8 @@ class PlasticState {
     double* strain = strain_.data();
     const Lame lame = model_.material.lame;
     const kernels::PlasticParamsData params{model_.material.plastic.yieldStress,
-                                            model_.material.plastic.hardening};
+                                            model_.material.plastic.hardening,
+                                            materialInfo(model_.material.model).flowInEnergy};
     ex_.forEach(tets_, [=] GALSCULPT_LAMBDA(int t) {
       flowed[t] = 0.0;
       for (int k = 0; k < 6; ++k)

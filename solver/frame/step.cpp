@@ -27,13 +27,17 @@ void evaluateTetAt(const SimModel& model, const std::vector<Vec3>& x, const SimS
   const Tet& tet = model.mesh.tets[t];
   const TetPoints p{x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]};
   const EdgeDamage d = tetDamage(model, state.damaged, t, model.material.compressionResists);
-  // A plastically deformed element measures strain from its new rest shape.
+  // A plastically deformed element measures strain from its new rest shape, and its yield
+  // stress has grown with its hardening (ElementInputs::lame, as the frame does).
+  Lame lame = model.material.elementLame();
+  if (!state.plasticStrain.empty() && lame.yield > 0.0)
+    lame.yield += lame.hardening * state.plasticStrain[t];
   const bool plastic = !state.plasticInverse.empty() && !state.plasticInverse[t].isIdentity(0.0);
   if (plastic) {
     const TetRest r = plasticRest(model.rest[t], state.plasticInverse[t]);
-    evaluateElement(model.material.model, model.material.lame, r, p, d, mode, ev);
+    evaluateElement(model.material.model, lame, r, p, d, mode, ev);
   } else {
-    evaluateElement(model.material.model, model.material.lame, model.rest[t], p, d, mode, ev);
+    evaluateElement(model.material.model, lame, model.rest[t], p, d, mode, ev);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "solver/fem/material_table.h"
 #include "solver/mesh/csr.h"
 #include "solver/mesh/union_find.h"
 
@@ -63,6 +64,15 @@ Vec3 anchorOffset(const AnchorConstraint& anchor, double time) {
   const AnchorKey& a = *(it - 1);
   const double u = (time - a.time) / (b.time - a.time);
   return (1.0 - u) * a.offset + u * b.offset;
+}
+
+Lame MaterialParams::elementLame() const {
+  Lame out = lame;
+  if (materialInfo(model).flowInEnergy && plastic.yieldStress > 0.0) {
+    out.yield = plastic.yieldStress;
+    out.hardening = plastic.hardening;
+  }
+  return out;
 }
 
 SimModel buildSimModel(const TetMesh& mesh, const MaterialParams& material) {

@@ -39,6 +39,11 @@ struct MaterialParams {
   // Rayleigh damping D = dampingMass M + dampingStiffness K(x_n).
   double dampingMass = 0.0;       // alpha (1/s)
   double dampingStiffness = 0.0;  // beta (s)
+
+  // The constants the element kernels take: `lame`, with the yield stress and hardening where
+  // the model's energy includes its plastic flow (Lame::yield; each element's own yield is this
+  // one raised by its hardening, ElementInputs::lame).
+  Lame elementLame() const;
 };
 
 struct SimModel {

@@ -133,7 +133,7 @@ TEST(AppUi, ShapingBrushesMoveTheSurfaceTheirWay) {
     const Vec3 at = p.mesh.vertices[center];
     const Vec3 moved = p.state.x[center] - at;
     const Vec3 outward = at.normalized();
-    EXPECT_GT(moved.norm(), 0.005) << c.name;
+    EXPECT_GT(moved.norm(), 0.004) << c.name;
     const std::string name = c.name;
     if (name == "push") {
       EXPECT_LT(moved.dot(outward), -0.8 * moved.norm()) << "push goes in";

@@ -264,7 +264,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "$.substeps: must be at least 1"},
         BadScene{std::string("{") + kMesh + R"(, "material": {"model": "neo"}})",
                  "$.material.model: unknown value 'neo' (expected one of: corotational, stvk, "
-                 "stable_neo_hookean, fixed_corotated)"},
+                 "stable_neo_hookean, fixed_corotated, hencky)"},
         BadScene{
             std::string("{") + kMesh + R"(, "solver": {"smoother": "sor"}})",
             "$.solver.smoother: unknown value 'sor' (expected one of: auto, gauss_seidel, jacobi)"},

@@ -108,7 +108,8 @@ TEST(Sculptor, PullInflateAndPinchMoveTheHeldVerticesTheirWay) {
       const double w = weightAt((start[i] - top).norm(), radius);
       if (w < 0.5 || radial.norm() < 0.01) continue;
       EXPECT_LT(d[i].dot(radial), 0.0) << "pinch draws vertex " << i << " towards the axis";
-      EXPECT_LT(std::abs(d[i].y()), 0.1 * w * step) << "pinch does not push into the surface";
+      // (The clay squeezed towards the axis keeps its volume: it rises a little.)
+      EXPECT_LT(std::abs(d[i].y()), 0.15 * w * step) << "pinch does not push into the surface";
       ++checked;
     }
     EXPECT_GT(checked, 5);

@@ -31,7 +31,7 @@ TEST(MaterialTable, OneRowPerModelAndEachNameOnce) {
   }
   EXPECT_EQ(names.size(), std::size(kMaterialModels));
   EXPECT_EQ(models.size(), std::size(kMaterialModels));
-  EXPECT_EQ(models.size(), static_cast<size_t>(MaterialModel::FixedCorotated) + 1)
+  EXPECT_EQ(models.size(), static_cast<size_t>(MaterialModel::Hencky) + 1)
       << "every enum value has its row";
 }
 

@@ -20,8 +20,9 @@ Eigen::Matrix3d isochoricStretch(double s) {
 
 // The von Mises stress of the elastic part F Fp^-1 (Hencky strains, deviatoric part).
 double vonMises(const Eigen::Matrix3d& fe) {
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(fe);
-  Eigen::Vector3d e = svd.singularValues().array().log();
+  // log of the singular values, from the eigenvalues of Fe^T Fe (log s = log(lambda) / 2).
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(fe.transpose() * fe);
+  Eigen::Vector3d e = 0.5 * eigen.eigenvalues().array().log();
   e.array() -= e.mean();
   return std::sqrt(1.5) * 2.0 * kLame.mu * e.norm();
 }

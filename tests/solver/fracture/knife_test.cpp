@@ -161,7 +161,7 @@ TEST(Knife, CutHalvesMoveIndependentlyUnderReferenceAndMultigrid) {
     Bar b = makeBar();
     cutAlongSurface(b.model, b.state, planarCut(0.4));
     StepSettings s;
-    b.state.anchors.push_back({anchorTop(b.model), {}, {}});
+    b.state.anchors.push_back({anchorTop(b.model), {}, {}, {}});
     s.multigrid = multigrid;
     s.gridHandles = {12};
     s.multigridSettings.splitAggregates = split;
@@ -199,7 +199,7 @@ TEST(Knife, CutHalvesMoveIndependentlyUnderReferenceAndMultigrid) {
 TEST(Knife, FiftyRandomCutsStayFiniteAndSolvable) {
   Bar b = makeBar();
   StepSettings s;
-  b.state.anchors.push_back({anchorTop(b.model), {}, {}});
+  b.state.anchors.push_back({anchorTop(b.model), {}, {}, {}});
   s.multigrid = true;
   s.gridHandles = {12};
   std::mt19937 rng(5);
