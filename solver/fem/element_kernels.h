@@ -537,6 +537,10 @@ struct PlasticParamsData {
   bool flowsCollapsed = false;
 };
 
+// The closed-form test's margin: its eigenvalues' round-off (about 1e-8 of the strain) is far
+// below a tenth of any yield strain, so an element it passes would not flow by the SVD either.
+constexpr double kClearlyElasticMargin = 0.9;
+
 // Commits a step's flow: the radial return of F Fp^-1 onto the von Mises yield surface in its
 // Hencky strains (hencky_strain.h), the same flow the Hencky model's energy minimized over in
 // the step (so a converged step is in equilibrium after it). Updates fpInverse and the
@@ -547,12 +551,13 @@ GALSCULPT_HD bool plasticReturn(const Lame& lame, const PlasticParamsData& param
                                 M3& fpInverse, double& plasticStrain) {
   if (params.yieldStress <= 0.0) return false;
   const M3 fe = multiply(f, fpInverse);
+  const double yield = params.yieldStress + params.hardening * plasticStrain;
+  if (clearlyElastic(fe, lame.mu, yield, kClearlyElasticMargin)) return false;
   M3 u, v;
   double sigma[3];
   rotationVariantSvd(fe, u, sigma, v);
   if (!params.flowsCollapsed && fmin(sigma[0], fmin(sigma[1], sigma[2])) <= 1e-6) return false;
   const HenckyStrain h = henckyStrain(sigma);
-  const double yield = params.yieldStress + params.hardening * plasticStrain;
   const DeviatoricFlow g = deviatoricFlow(lame.mu, yield, params.hardening, h.deviatorNorm);
   if (!(g.plasticStrain > 0.0)) return false;
   plasticStrain += g.plasticStrain;

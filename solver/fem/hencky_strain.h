@@ -76,4 +76,38 @@ GALSCULPT_HD HenckyStrain henckyStrain(const double s[3]) {
   return h;
 }
 
+// Whether the elastic part `fe` is clearly inside the yield surface: its Hencky deviator's norm
+// under `margin` of the yield strain yield / (sqrt(6) mu). The return map's first test, from the
+// eigenvalues of fe^T fe in closed form (Cardano) instead of an SVD: most elements of a body do
+// not flow, and the SVD was most of the return's cost. False (not decided: take the SVD) for a
+// collapsed or inverted element, whose strain is the continued logarithm's.
+GALSCULPT_HD bool clearlyElastic(const M3& fe, double mu, double yield, double margin) {
+  if (!(yield > 0.0)) return true;
+  if (!(determinant(fe) > 0.0)) return false;
+  const M3 c = multiply(transpose(fe), fe);
+  const double shift = (c(0, 0) + c(1, 1) + c(2, 2)) / 3.0;
+  const double off = c(0, 1) * c(0, 1) + c(0, 2) * c(0, 2) + c(1, 2) * c(1, 2);
+  double b[3] = {c(0, 0) - shift, c(1, 1) - shift, c(2, 2) - shift};
+  const double p = (b[0] * b[0] + b[1] * b[1] + b[2] * b[2] + 2.0 * off) / 6.0;
+  double lambda[3] = {shift, shift, shift};
+  if (p > 0.0) {
+    const double sq = sqrt(p);
+    M3 shifted = c;
+    for (int i = 0; i < 3; ++i) shifted(i, i) = b[i];
+    const double half = determinant(shifted) / (2.0 * p * sq);
+    const double phi = acos(fmin(1.0, fmax(-1.0, half))) / 3.0;
+    lambda[2] = shift + 2.0 * sq * cos(phi);
+    lambda[0] = shift + 2.0 * sq * cos(phi + 2.0943951023931954923);
+    lambda[1] = 3.0 * shift - lambda[0] - lambda[2];
+  }
+  constexpr double floorSquared = kLogStretchFloor * kLogStretchFloor;
+  if (!(fmin(lambda[0], fmin(lambda[1], lambda[2])) > floorSquared)) return false;
+  double e[3];
+  for (int i = 0; i < 3; ++i) e[i] = 0.5 * log(lambda[i]);
+  const double mean = (e[0] + e[1] + e[2]) / 3.0;
+  double norm2 = 0.0;
+  for (int i = 0; i < 3; ++i) norm2 += (e[i] - mean) * (e[i] - mean);
+  return sqrt(6.0) * mu * sqrt(norm2) < margin * yield;
+}
+
 }  // namespace galsculpt::kernels

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 namespace galsculpt::kernels {
 namespace {
@@ -85,6 +86,51 @@ TEST(HenckyStrain, TheDeviatoricEnergyIsTheLeastOverTheFlowAndItsDerivativesTheR
   const DeviatoricFlow elastic = deviatoricFlow(mu, 0.0, 1e4, 0.5);
   EXPECT_DOUBLE_EQ(elastic.energy, mu * 0.25);
   EXPECT_EQ(elastic.plasticStrain, 0.0);
+}
+
+// The return map's closed-form first test agrees with the SVD's strain on which side of the
+// margin an elastic part lies (near-repeated stretches included), and leaves collapsed and
+// inverted elements to the SVD.
+TEST(HenckyStrain, TheClosedFormTestAgreesWithTheSvdsStrain) {
+  const double mu = 7e4, yield = 1e3;
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int inside = 0, outside = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const double size = std::pow(10.0, -4.0 + 3.0 * (trial % 1000) / 1000.0);
+    M3 f = identity3();
+    for (double& a : f.a) a += size * u(gen);
+    if (trial % 7 == 0) {  // two stretches equal: a rotation of diag(a, a, b)
+      const double a = 1.0 + size * u(gen), b = 1.0 + size * u(gen);
+      M3 d{};
+      d(0, 0) = d(1, 1) = a;
+      d(2, 2) = b;
+      M3 r, unused;
+      double s[3];
+      rotationVariantSvd(f, r, s, unused);
+      f = multiply(r, d);
+    }
+    M3 uu, vv;
+    double s[3];
+    rotationVariantSvd(f, uu, s, vv);
+    const double q = std::sqrt(6.0) * mu * henckyStrain(s).deviatorNorm;
+    const bool clear = clearlyElastic(f, mu, yield, 0.9);
+    if (q < 0.9 * yield * (1.0 - 1e-6)) {
+      EXPECT_TRUE(clear) << trial;
+      ++inside;
+    } else if (q > 0.9 * yield * (1.0 + 1e-6)) {
+      EXPECT_FALSE(clear) << trial;
+      ++outside;
+    }
+  }
+  EXPECT_GT(inside, 1000);
+  EXPECT_GT(outside, 1000);
+  M3 crushed = identity3();
+  crushed(2, 2) = 0.05;
+  EXPECT_FALSE(clearlyElastic(crushed, mu, 1e9, 0.9)) << "collapsed: the SVD decides";
+  crushed(2, 2) = -0.5;
+  EXPECT_FALSE(clearlyElastic(crushed, mu, 1e9, 0.9)) << "inverted: the SVD decides";
+  EXPECT_TRUE(clearlyElastic(crushed, mu, 0.0, 0.9)) << "no yield stress: nothing flows";
 }
 
 TEST(HenckyStrain, TheStrainOfAVolumeChangeHasNoDeviator) {
