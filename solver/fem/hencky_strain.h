@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "solver/fem/kernel_math.h"
+#include "solver/fem/material_types.h"
 
 namespace galsculpt::kernels {
 
@@ -15,6 +16,13 @@ namespace galsculpt::kernels {
 // the strain, its slope and its curvature stay finite for a crushed or inverted element (a
 // negative singular value) and still push it back: the extension keeps growing in magnitude.
 constexpr double kLogStretchFloor = 0.1;
+
+// `base` for an element whose accumulated plastic strain is `plasticStrain`: its yield stress
+// raised by the hardening (where the model's energy includes the flow, base.yield > 0).
+GALSCULPT_HD Lame hardenedLame(Lame base, double plasticStrain) {
+  if (base.yield > 0.0) base.yield += base.hardening * plasticStrain;
+  return base;
+}
 
 struct ExtendedLog {
   double value;      // l(s): log s above the floor
@@ -84,22 +92,10 @@ GALSCULPT_HD HenckyStrain henckyStrain(const double s[3]) {
 GALSCULPT_HD bool clearlyElastic(const M3& fe, double mu, double yield, double margin) {
   if (!(yield > 0.0)) return true;
   if (!(determinant(fe) > 0.0)) return false;
-  const M3 c = multiply(transpose(fe), fe);
-  const double shift = (c(0, 0) + c(1, 1) + c(2, 2)) / 3.0;
-  const double off = c(0, 1) * c(0, 1) + c(0, 2) * c(0, 2) + c(1, 2) * c(1, 2);
-  double b[3] = {c(0, 0) - shift, c(1, 1) - shift, c(2, 2) - shift};
-  const double p = (b[0] * b[0] + b[1] * b[1] + b[2] * b[2] + 2.0 * off) / 6.0;
-  double lambda[3] = {shift, shift, shift};
-  if (p > 0.0) {
-    const double sq = sqrt(p);
-    M3 shifted = c;
-    for (int i = 0; i < 3; ++i) shifted(i, i) = b[i];
-    const double half = determinant(shifted) / (2.0 * p * sq);
-    const double phi = acos(fmin(1.0, fmax(-1.0, half))) / 3.0;
-    lambda[2] = shift + 2.0 * sq * cos(phi);
-    lambda[0] = shift + 2.0 * sq * cos(phi + 2.0943951023931954923);
-    lambda[1] = 3.0 * shift - lambda[0] - lambda[2];
-  }
+  CardanoRoots roots;
+  if (!cardanoRoots(multiply(transpose(fe), fe), roots)) return false;
+  double lambda[3];  // the eigenvalues of fe^T fe: the squared stretches
+  for (int i = 0; i < 3; ++i) lambda[i] = roots.shift + roots.scale * roots.t[i];
   constexpr double floorSquared = kLogStretchFloor * kLogStretchFloor;
   if (!(fmin(lambda[0], fmin(lambda[1], lambda[2])) > floorSquared)) return false;
   double e[3];

@@ -170,31 +170,51 @@ GALSCULPT_HD void symmetricEigen(const M3& input, double w[3], M3& q) {
   for (int i = 0; i < 3; ++i) w[i] = a[i][i];
 }
 
-// The same eigen-solve in closed form (Cardano's roots, eigenvectors from cross products of the
-// rows of A - w I), several times cheaper than Jacobi; false where it is not accurate (nearly
-// repeated eigenvalues), checked by the reconstruction |q diag(w) q^T - a| as the caller asks.
-GALSCULPT_HD bool closedFormSymmetricEigen(const M3& a, double w[3], M3& q) {
-  const double shift = (a(0, 0) + a(1, 1) + a(2, 2)) / 3.0;
-  M3 b = a;
-  for (int i = 0; i < 3; ++i) b(i, i) -= shift;
-  const double scale = maxAbs(b);
-  if (!(scale > 0.0)) {
-    if (!(scale == 0.0)) return false;  // NaN
-    w[0] = w[1] = w[2] = shift;
-    q = identity3();
-    return true;
+// The eigenvalues of a symmetric matrix a in closed form (Cardano's trigonometric roots):
+// shift + scale t_i, t the roots of b = (a - shift I) / scale (trace 0, largest entry 1), t[0]
+// the smallest and t[2] the largest. scale 0: a = shift I (t zero). False for a NaN entry.
+struct CardanoRoots {
+  M3 b;
+  double shift, scale, t[3];
+};
+
+GALSCULPT_HD bool cardanoRoots(const M3& a, CardanoRoots& r) {
+  r.shift = (a(0, 0) + a(1, 1) + a(2, 2)) / 3.0;
+  r.b = a;
+  M3& b = r.b;
+  for (int i = 0; i < 3; ++i) b(i, i) -= r.shift;
+  r.scale = maxAbs(b);
+  if (!(r.scale > 0.0)) {
+    r.t[0] = r.t[1] = r.t[2] = 0.0;
+    return r.scale == 0.0;  // false: NaN
   }
-  for (double& x : b.a) x /= scale;
+  for (double& x : b.a) x /= r.scale;
   // Roots of det(b - t I) = 0 with tr b = 0: t = 2 sqrt(p/3) cos(phi - 2 pi k / 3).
   const double off = b(0, 1) * b(0, 1) + b(0, 2) * b(0, 2) + b(1, 2) * b(1, 2);
   const double p = (b(0, 0) * b(0, 0) + b(1, 1) * b(1, 1) + b(2, 2) * b(2, 2) + 2.0 * off) / 6.0;
   const double sq = sqrt(p);
   const double half = determinant(b) / (2.0 * p * sq);
   const double phi = acos(fmin(1.0, fmax(-1.0, half))) / 3.0;
-  double t[3];
-  t[2] = 2.0 * sq * cos(phi);                          // largest
-  t[0] = 2.0 * sq * cos(phi + 2.0943951023931954923);  // smallest (2 pi / 3)
-  t[1] = -t[0] - t[2];
+  r.t[2] = 2.0 * sq * cos(phi);                          // largest
+  r.t[0] = 2.0 * sq * cos(phi + 2.0943951023931954923);  // smallest (2 pi / 3)
+  r.t[1] = -r.t[0] - r.t[2];
+  return true;
+}
+
+// The same eigen-solve in closed form (Cardano's roots, eigenvectors from cross products of the
+// rows of A - w I), several times cheaper than Jacobi; false where it is not accurate (nearly
+// repeated eigenvalues), checked by the reconstruction |q diag(w) q^T - a| as the caller asks.
+GALSCULPT_HD bool closedFormSymmetricEigen(const M3& a, double w[3], M3& q) {
+  CardanoRoots roots;
+  if (!cardanoRoots(a, roots)) return false;
+  const double shift = roots.shift, scale = roots.scale;
+  if (scale == 0.0) {
+    w[0] = w[1] = w[2] = shift;
+    q = identity3();
+    return true;
+  }
+  const M3& b = roots.b;
+  const double* t = roots.t;
   // The most isolated eigenvalue first: its kernel is well conditioned.
   const int k = (t[2] - t[1]) > (t[1] - t[0]) ? 2 : 0;
   auto kernelOf = [&](double value, double out[3]) {

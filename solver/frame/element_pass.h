@@ -47,8 +47,7 @@ struct ElementInputs {
   // stress set where the model's energy includes the flow) with the yield raised by the element's
   // hardening so far.
   GALSCULPT_HD Lame lame(int t, Lame base) const {
-    if (plasticStrain && base.yield > 0.0) base.yield += base.hardening * plasticStrain[t];
-    return base;
+    return plasticStrain ? kernels::hardenedLame(base, plasticStrain[t]) : base;
   }
   // Whether element t's damaged edges push back when compressed: not where a corner is removed
   // debris (the rest of the body passes through where it was).

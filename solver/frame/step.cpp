@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "solver/fem/hencky_strain.h"
 #include "solver/fem/tet_element.h"
 #include "solver/frame/parallel.h"
 
@@ -29,9 +30,10 @@ void evaluateTetAt(const SimModel& model, const std::vector<Vec3>& x, const SimS
   const EdgeDamage d = tetDamage(model, state.damaged, t, model.material.compressionResists);
   // A plastically deformed element measures strain from its new rest shape, and its yield
   // stress has grown with its hardening (ElementInputs::lame, as the frame does).
-  Lame lame = model.material.elementLame();
-  if (!state.plasticStrain.empty() && lame.yield > 0.0)
-    lame.yield += lame.hardening * state.plasticStrain[t];
+  const Lame lame =
+      state.plasticStrain.empty()
+          ? model.material.elementLame()
+          : kernels::hardenedLame(model.material.elementLame(), state.plasticStrain[t]);
   const bool plastic = !state.plasticInverse.empty() && !state.plasticInverse[t].isIdentity(0.0);
   if (plastic) {
     const TetRest r = plasticRest(model.rest[t], state.plasticInverse[t]);
