@@ -624,6 +624,7 @@ const std::vector<MetricsColumn>& metricsColumns() {
       {"absorbed_energy_j", &M::absorbedEnergyJ},
       {"debris_mass_kg", &M::debrisMassKg},
       {"piece_residual", &M::pieceResidual},
+      {"local_iterations", &M::localIterations},
   };
   return columns;
 }

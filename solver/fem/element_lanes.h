@@ -1,5 +1,6 @@
 // Elements evaluated four at a time, one element per SIMD lane: the CPU's fast path for what
-// dominates an element pass. Intact elements: the energy, force and projected stiffness.
+// dominates an element pass. Intact elements: the energy, force and projected stiffness, or
+// the energy and force alone (a line search's trial).
 // Damaged elements (the edge-strain form with cracks that open one way): the energy, force,
 // open cracks and projected stiffness (after many cuts most of the body's elements).
 //
@@ -33,6 +34,7 @@ struct LaneInputs {
   const RestData* rest[kLanes] = {};  // each lane's rest data
   double x[kLanes][12] = {};          // each lane's corner positions
   double yield[kLanes] = {};          // each lane's yield stress (Lame::yield)
+  bool stiffness = true;  // false: the energy and the force only (packedHessian not written)
 };
 
 // Where each lane writes: its energy (J), its force gradient (12) and its stiffness as the ten

@@ -383,6 +383,24 @@ struct PackedFromUpper {
 };
 constexpr PackedFromUpper kPackedFromUpper;
 
+// Each lane's energy and force (`count` lanes in use); returns the lanes handed back: those
+// whose results are not finite (the scalar kernel's to report) or that `ok` leaves out.
+unsigned writeEnergyAndForce(int count, Mask ok, const D& energy, const D gradient[12],
+                             const LaneOutputs& out) {
+  ok &= absolute(energy) < 1e300;
+  unsigned handedBack = 0;
+  for (int l = 0; l < count; ++l) {
+    if (!ok[l]) {
+      handedBack |= 1u << l;
+      continue;
+    }
+    *out.energy[l] = energy[l];
+  }
+  // Lanes to elements: four entries of the four lanes at a time, transposed.
+  writeTransposed(gradient, 12, out.gradient, count, handedBack);
+  return handedBack;
+}
+
 }  // namespace
 
 unsigned evaluateIntactLanes(MaterialModel model, const Lame& lame, const LaneInputs& in,
@@ -430,6 +448,7 @@ unsigned evaluateIntactLanes(MaterialModel model, const Lame& lame, const LaneIn
   for (int a = 0; a < 4; ++a)
     for (int r = 0; r < 3; ++r)
       gradient[3 * a + r] = volume * (p(r, 0) * c[a][0] + p(r, 1) * c[a][1] + p(r, 2) * c[a][2]);
+  if (!in.stiffness) return writeEnergyAndForce(in.count, ok, energy, gradient, out);
   // forEachStressMode with the projection, its nine modes first collected: mode m's 12-vector
   // w and its scaled copy (volume lambda) w. A clamped mode (lambda 0) adds zeros, which leave
   // each sum's bits as the scalar kernel's skip does (a sum that starts at +0 is never -0).
@@ -491,18 +510,7 @@ unsigned evaluateIntactLanes(MaterialModel model, const Lame& lame, const LaneIn
   D packed[92];
   for (int i = 0; i < 90; ++i) packed[i] = hessian[kPackedFromUpper[i]];
   packed[90] = packed[91] = all(0.0);
-  // A lane whose results are not finite is the scalar kernel's to report.
-  ok &= absolute(energy) < 1e300;
-  unsigned handedBack = 0;
-  for (int l = 0; l < in.count; ++l) {
-    if (!ok[l]) {
-      handedBack |= 1u << l;
-      continue;
-    }
-    *out.energy[l] = energy[l];
-  }
-  // Lanes to elements: four entries of the four lanes at a time, transposed.
-  writeTransposed(gradient, 12, out.gradient, in.count, handedBack);
+  const unsigned handedBack = writeEnergyAndForce(in.count, ok, energy, gradient, out);
   writeTransposed(packed, 90, out.packedHessian, in.count, handedBack);
   return handedBack;
 }

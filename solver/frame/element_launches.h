@@ -29,33 +29,42 @@ GALSCULPT_HD void evaluateInPass(const ElementPass& pass, int t, const double x1
                       pass.packedHessian + ElementPass::kPackedHessian * static_cast<size_t>(t));
 }
 
-// The pass on the CPU's SIMD lanes: sixteen consecutive elements per item; the intact ones whose
-// stiffness is wanted go through `lanes` four at a time, the damaged ones (but those holding two
-// pieces) through `crackedLanes`; the rest, and those the lanes hand back, through the scalar
-// kernel. Either kernel may be null (its elements then take the scalar kernel). The lanes
-// compute the scalar kernel's bits, so which elements share a group changes nothing.
+// The pass on the CPU's SIMD lanes: sixteen consecutive elements per item; the intact ones go
+// through `lanes` four at a time (those whose stiffness is wanted apart from those whose is not,
+// where the model has no closed-form stress),
+// the damaged ones whose stiffness is wanted (but those holding two pieces) through
+// `crackedLanes`; the rest, and those the lanes hand back, through the scalar kernel. Either kernel
+// may be null (its elements then take the scalar kernel). The lanes compute the scalar kernel's
+// bits, so which elements share a group changes nothing.
 template <typename Exec>
 void elementPassInLanes(Exec& ex, const ElementPass& pass, int tets, kernels::LaneKernel lanes,
                         kernels::CrackedLaneKernel crackedLanes) {
   constexpr int kGroup = 4 * kernels::kLanes;
   constexpr int kPacked = ElementPass::kPackedHessian;
   const int groups = (tets + kGroup - 1) / kGroup;
+  // Without the stiffness a model with its stress in closed form in F takes that, not the SVD
+  // the lanes take (material_kernels.h: another algorithm, other bits): the scalar kernel's.
+  const bool forceLanes = !kernels::hasDirectStress(pass.model);
   ex.forEach(
       groups,
       [=](int g) {
-        kernels::LaneInputs intactIn;
-        kernels::LaneOutputs intactOut;
-        int intactTet[kernels::kLanes];
+        // Intact elements in two sets of lanes: [1] with their stiffness, [0] without (a trial's,
+        // or a kept stiffness's).
+        kernels::LaneInputs intactIn[2];
+        kernels::LaneOutputs intactOut[2];
+        int intactTet[2][kernels::kLanes];
+        intactIn[0].stiffness = false;
         kernels::CrackedLaneInputs crackedIn;
         kernels::LaneOutputs crackedOut;
         int crackedTet[kernels::kLanes];
-        auto flushIntact = [&] {
-          const unsigned back = lanes(pass.model, pass.lame, intactIn, intactOut);
-          for (int l = 0; l < intactIn.count; ++l)
+        auto flushIntact = [&](int k) {
+          const unsigned back = lanes(pass.model, pass.lame, intactIn[k], intactOut[k]);
+          for (int l = 0; l < intactIn[k].count; ++l)
             if (back >> l & 1u)
-              evaluateInPass(pass, intactTet[l], intactIn.x[l], kernels::kIntact, *intactIn.rest[l],
-                             kernels::Hessian::ProjectedSpd);
-          intactIn.count = 0;
+              evaluateInPass(pass, intactTet[k][l], intactIn[k].x[l], kernels::kIntact,
+                             *intactIn[k].rest[l],
+                             k ? kernels::Hessian::ProjectedSpd : kernels::Hessian::None);
+          intactIn[k].count = 0;
         };
         auto flushCracked = [&] {
           const unsigned back = crackedLanes(pass.lame, crackedIn, crackedOut);
@@ -73,16 +82,20 @@ void elementPassInLanes(Exec& ex, const ElementPass& pass, int tets, kernels::La
           kernels::Hessian mode;
           if (!pass.prepare(t, x12, intact, r, mode)) continue;
           const bool stiffness = mode == kernels::Hessian::ProjectedSpd;
-          if (intact == kernels::kIntact && lanes && stiffness) {
-            const int l = intactIn.count++;
-            intactTet[l] = t;
-            intactIn.rest[l] = r;
-            intactIn.yield[l] = pass.in.lame(t, pass.lame).yield;
-            std::memcpy(intactIn.x[l], x12, sizeof x12);
-            intactOut.energy[l] = pass.energy + t;
-            intactOut.gradient[l] = pass.gradient + 12 * t;
-            intactOut.packedHessian[l] = pass.packedHessian + kPacked * static_cast<size_t>(t);
-            if (intactIn.count == kernels::kLanes) flushIntact();
+          if (intact == kernels::kIntact && lanes && (stiffness || forceLanes)) {
+            const int k = stiffness ? 1 : 0;
+            kernels::LaneInputs& in = intactIn[k];
+            kernels::LaneOutputs& out = intactOut[k];
+            const int l = in.count++;
+            intactTet[k][l] = t;
+            in.rest[l] = r;
+            in.yield[l] = pass.in.lame(t, pass.lame).yield;
+            std::memcpy(in.x[l], x12, sizeof x12);
+            out.energy[l] = pass.energy + t;
+            out.gradient[l] = pass.gradient + 12 * t;
+            out.packedHessian[l] =
+                stiffness ? pass.packedHessian + kPacked * static_cast<size_t>(t) : nullptr;
+            if (in.count == kernels::kLanes) flushIntact(k);
           } else if (intact != kernels::kIntact && crackedLanes && stiffness &&
                      !kernels::holdsTwoPieces(intact)) {
             const int l = crackedIn.count++;
@@ -100,7 +113,8 @@ void elementPassInLanes(Exec& ex, const ElementPass& pass, int tets, kernels::La
             evaluateInPass(pass, t, x12, intact, *r, mode);
           }
         }
-        if (intactIn.count > 0) flushIntact();
+        for (int k = 0; k < 2; ++k)
+          if (intactIn[k].count > 0) flushIntact(k);
         if (crackedIn.count > 0) flushCracked();
       },
       kGroup);

@@ -65,6 +65,10 @@ struct FrameData {
     guardDirty.resize(tets);
     for (Buffer<double>* b : {&guardLength, &potentialAtX, &potentialAtTrial}) b->resize(n);
     guardChanged.resize(n);
+    for (Buffer<std::uint8_t>* b : {&regionVertex, &regionScratch, &regionFixed, &regionTouched})
+      b->resize(n);
+    regionElement.resize(tets);
+    vertexResidual.resize(n);
     stiffnessF.resize(9 * static_cast<size_t>(tets));
     stiffnessFresh.resize(tets);
     stiffnessOpened.resize(tets);
@@ -79,6 +83,14 @@ struct FrameData {
   // iterations, otherwise the current one.
   const double* frozenBlocks() const { return frozenIsK ? stiffness.data() : frozen.data(); }
   FrameScalars* sc() { return scalars.data(); }
+  // What the Newton system holds still: the held vertices, and in a local iteration
+  // (local_region.h) every vertex outside the region too. The residual is always the body's.
+  const std::uint8_t* solveFixed() const { return local ? regionFixed.data() : fixed.data(); }
+  // The elements an iteration evaluates: all (null), or in a local iteration the region's.
+  const std::uint8_t* evaluated() const { return local ? regionElement.data() : nullptr; }
+  // The vertices whose gathered sums such an iteration changes: all (null), or the corners of the
+  // region's elements.
+  const std::uint8_t* touched() const { return local ? regionTouched.data() : nullptr; }
 
   const int n, tets, edges, blocks;
 
@@ -124,11 +136,17 @@ struct FrameData {
   // Soft anchors (AnchorConstraint::springWeights): each vertex's spring stiffness (0: none) and
   // its target at the sub-step's end; terms of the potential, not held vertices.
   Buffer<double> springK, springTarget;
+  // The local iteration's region (local_region.h): its vertices, a scratch for growing it, the
+  // elements that touch it and their corners (touched), what its solve holds still, and each
+  // vertex's |g|^2 it was chosen by.
+  Buffer<std::uint8_t> regionVertex, regionScratch, regionFixed, regionElement, regionTouched;
+  Buffer<double> vertexResidual;
 
   // The sub-step's, set by the frame.
   const StepSettings* settings = nullptr;
   double h = 0.0;
   bool frozenIsK = true;
+  bool local = false;  // this Newton iteration solves only in the region (local_region.h)
 };
 
 }  // namespace galsculpt

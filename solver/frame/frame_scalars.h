@@ -25,6 +25,8 @@ struct FrameScalars {
   // vertices shortened, and per level the rises above it (the last: every rise).
   double guardSlope = 0.0, guardElements = 0.0, guardCount = 0.0;
   double guardLevel[kGuardLevels + 1] = {};
+  // The local iteration's region (local_region.h): its vertices, and the body's free vertices.
+  double regionVertices = 0.0, freeVertices = 0.0;
 };
 
 }  // namespace galsculpt

@@ -8,6 +8,7 @@
 //   incremental_potential.h the potential, its gradient g and the Newton system H (the element
 //                           pass in element_pass.h, the contact term in contact_term.h)
 //   linear_solve.h          delta = H^-1 (-g): the Galerkin multigrid, or CHOLMOD for the reference
+//   local_region.h          where an iteration after the first solves: the region of the residual
 //   line_search.h           backtracking, lengthening and the vertex guard
 //   piece_residual.h        the residual piece by piece; piece_tracker.h the pieces themselves
 //   plastic_state.h         the plastic rest shapes and their return map
@@ -38,6 +39,7 @@
 #include "solver/frame/incremental_potential.h"
 #include "solver/frame/line_search.h"
 #include "solver/frame/linear_solve.h"
+#include "solver/frame/local_region.h"
 #include "solver/frame/piece_residual.h"
 #include "solver/frame/plastic_state.h"
 #include "solver/frame/step.h"
@@ -61,6 +63,7 @@ class FrameSolver {
         lineSearch_(ex, d_, potential_),
         linear_(ex, model, d_),
         held_(ex, model, d_),
+        region_(ex, d_),
         damage_(model, d_) {
     if (model.fracture.enabled) fracture_ = std::make_unique<FracturePass<Exec>>(ex, model);
     modelSize_ = std::max(boundingBox(model.mesh.vertices).size().norm(), 1e-12);
@@ -167,9 +170,13 @@ class FrameSolver {
     bool stationary = false;
     bool reuse = false;  // solve with the last iteration's stiffness (a chord step)
     bool chordFailed = false;
+    bool local = false;  // this iteration solves only in the region (local_region.h)
     double lastResidual = 0.0;
     for (int it = 0; it < s.newtonIterations; ++it) {
+      d_.local = local;
       const NewtonOutcome n = newtonIteration(h, it, reuse, result);
+      d_.local = false;
+      if (local) ++result.localIterations;
       if (n == NewtonOutcome::Restart) {
         --it;
         continue;
@@ -201,6 +208,16 @@ class FrameSolver {
       // with the wrong one.
       reuse = s.reuseStiffness && !chordFailed && switchedCracks_ <= kChordSwitchedElements &&
               !systemSkipped_;
+      // Where the body is within the tolerance but for a region, the next iteration solves only
+      // there (local_region.h), unless the last local iteration failed to halve the residual
+      // (then the whole body again). Not where only a piece is above its own tolerance: its
+      // residual is a small share of the body's. A local system holds the other rows still: no
+      // chord is taken on it, nor after it.
+      const bool wasLocal = local;
+      local = s.localNewton && residual > s.residualTolerance &&
+              !(wasLocal && !(residual < 0.5 * lastResidual)) &&
+              region_.choose(s.residualTolerance * std::max(weight(), forceScale_));
+      if (local || wasLocal) reuse = false;
       lastResidual = residual;
     }
     endSubstep(h, result);
@@ -363,7 +380,7 @@ class FrameSolver {
     // The Newton step and its full-length trial: launches only, captured as one graph and
     // replayed, unless a dense Cholesky, PCG or the direct solve needs host reads in between.
     const bool capturable =
-        s.multigrid && !s.multigridSettings.coarseCholesky && !s.multigridSettings.pcg;
+        s.multigrid && !s.multigridSettings.coarseCholesky && !s.multigridSettings.pcg && !d_.local;
     if (capturable) {
       ex_.captured(0, graphKey(h, it) ^ (reuse ? 0x9e3779b97f4a7c15ull : 0),
                    [&] { newtonStep(it, reuse, result); });
@@ -416,6 +433,8 @@ class FrameSolver {
     } else {
       const bool frozenCopy = it == 0 && s.newtonIterations > 1;
       const auto tElements = Clock::now();
+      // A local pass gathers the region's corners only: the rest of the gradient is x's.
+      if (d_.local) ex_.copy(d_.grad.data(), d_.acceptedGrad.data(), 3 * d_.n);
       potential_.elementPass(x, true, d_.grad.data(), &d_.sc()->elastic, &d_.sc()->inverted);
       // Phases are timed where launches run as they are issued (the CPU); on the GPU they run
       // as one graph and all of it counts as solve.
@@ -425,7 +444,8 @@ class FrameSolver {
     }
     // Under PCG a fresh iteration may find the gradient already within the solve's target: the
     // step is null, and nothing past the gradient is needed (takeNullStep).
-    const bool mayBeNull = !reuse && s.multigrid && s.multigridSettings.pcg && s.skipNullSolves;
+    const bool mayBeNull =
+        !reuse && !d_.local && s.multigrid && s.multigridSettings.pcg && s.skipNullSolves;
     potential_.contact(x, d_.grad.data(), &d_.sc()->contact);
     potential_.dampedProduct(x, d_.dampedK.data());
     potential_.backwardEulerGradient(x, d_.grad.data(), d_.dampedK.data(), d_.g.data());
@@ -440,7 +460,7 @@ class FrameSolver {
     systemSkipped_ = false;
     if (!reuse) potential_.buildSystem(x);
     if (s.multigrid) {
-      if (!reuse) linear_.refresh(s);
+      if (!reuse && !d_.local) linear_.refresh(s);  // (a local solve has no multigrid)
       linear_.solve(s, pcgTarget());
     } else {
       linear_.solveDirect(s);
@@ -529,6 +549,7 @@ class FrameSolver {
         .mixPointer(contact_.poses())
         .mixPointer(plastic_.inverse())
         .mix(plastic_.active())
+        .mix(d_.local)
         .value();
   }
 
@@ -575,6 +596,7 @@ class FrameSolver {
   LineSearch<Exec> lineSearch_;
   LinearSolve<Exec> linear_;
   HeldVertexSet<Exec> held_;
+  LocalRegion<Exec> region_;
   FrameDamage<Exec> damage_;
   AcceleratedStart<Exec> accelerated_;            // the pieces' starts (startPiecesAccelerated)
   PieceResidual<Exec> pieceResidual_;             // the residual piece by piece

@@ -47,6 +47,8 @@ enum class FrameStatisticRule { Sum, Time, Last, All, Frame };
     "every sub-step ended with its residual within residualTolerance (with none, Newton's "        \
     "step-length test met)")                                                                       \
   X(int, cgIterations, 0, Sum, "PCG iterations of the frame's linear solves")                      \
+  X(int, localIterations, 0, Sum,                                                                  \
+    "Newton iterations that solved only where the residual was (StepSettings::localNewton)")       \
   X(int, invertedElements, 0, Last,                                                                \
     "intact elements inside out at the frame's end (a warning): the line search refuses steps "    \
     "that invert more of them unless no descending step avoids it")

@@ -37,8 +37,16 @@ class IncrementalPotential {
   // At a trial (not withHessian) the per-element energies and inversions go to trialEnergy and
   // trialInverted, otherwise to elemEnergy and elemInverted. With `only`, just the elements
   // flagged there are evaluated (the vertex guard's rounds); the others keep their last values.
+  // In a local iteration (local_region.h) only the region's elements are evaluated, and only
+  // their corners' sums gathered again: `gradient` must hold the others' already (the stiffness
+  // blocks always do: a block is gathered again whenever one of its elements was evaluated).
   void elementPass(const double* y, bool withHessian, double* gradient, double* energyOut,
                    double* invertedOut, const std::uint8_t* only = nullptr) {
+    const std::uint8_t* touched = nullptr;
+    if (!only) {
+      only = d_.evaluated();
+      touched = d_.touched();
+    }
     const ElementInputs in = elementInputs();
     double* energy = withHessian ? d_.elemEnergy.data() : d_.trialEnergy.data();
     double* inverted = withHessian ? d_.elemInverted.data() : d_.trialInverted.data();
@@ -53,6 +61,11 @@ class IncrementalPotential {
     // (every entry) since its stiffness was evaluated keeps it (its energy and force are new).
     // (beginSubstep marks every record stale: nothing is kept across sub-steps.)
     const double keep = withHessian ? d_.settings->stiffnessTolerance : 0.0;
+    const std::uint8_t* fresh = d_.stiffnessFresh.data();
+    if (keep > 0.0 && only) {  // what this pass does not evaluate it keeps
+      std::uint8_t* clear = d_.stiffnessFresh.data();
+      ex_.forEach(d_.tets, [=] GALSCULPT_LAMBDA(int t) { clear[t] = 0; });
+    }
     const ElementPass pass{in,
                            y,
                            energy,
@@ -72,18 +85,17 @@ class IncrementalPotential {
     kernels::CrackedLaneKernel crackedLanes = nullptr;
     if constexpr (Exec::kHostMemory) {
       const kernels::LaneBuild build = kernels::chosenLaneBuild();
+      lanes = kernels::laneKernel(build);
       // (Without stiffness the damaged elements' lanes were no faster than the scalar kernel:
       // what they take over is mostly the stiffness.)
-      if (withHessian) {
-        lanes = kernels::laneKernel(build);
-        crackedLanes = kernels::crackedLaneKernel(build);
-      }
+      if (withHessian) crackedLanes = kernels::crackedLaneKernel(build);
     }
     launchElementPass(ex_, pass, d_.tets, lanes, crackedLanes);
-    const std::uint8_t* fresh = d_.stiffnessFresh.data();
     if (keep > 0.0)
       ex_.sum(
-          d_.tets, [=] GALSCULPT_LAMBDA(int t) { return fresh[t] ? 0.0 : 1.0; }, &d_.sc()->kept);
+          d_.tets,
+          [=] GALSCULPT_LAMBDA(int t) { return fresh[t] || (only && !only[t]) ? 0.0 : 1.0; },
+          &d_.sc()->kept);
     ex_.sum(
         d_.tets, [=] GALSCULPT_LAMBDA(int t) { return energy[t]; }, energyOut);
     ex_.sum(
@@ -99,6 +111,7 @@ class IncrementalPotential {
     const int* vStart = d_.vertexSlotStart.data();
     const int* vSlots = d_.vertexSlots.data();
     ex_.forEach(d_.n, [=] GALSCULPT_LAMBDA(int v) {
+      if (touched && !touched[v]) return;
       double acc[3] = {0.0, 0.0, 0.0};
       for (int i = vStart[v]; i < vStart[v + 1]; ++i) {
         const int slot = vSlots[i], t = slot / 4, a = slot % 4;
@@ -110,7 +123,8 @@ class IncrementalPotential {
     const int* bStart = d_.blockSlotStart.data();
     const int* bSlots = d_.blockSlots.data();
     double* kb = d_.stiffness.data();
-    const std::uint8_t* freshOnly = keep > 0.0 ? fresh : nullptr;
+    // Only the blocks of an element whose stiffness this pass evaluated change (null: all).
+    const std::uint8_t* freshOnly = keep > 0.0 ? fresh : only;
     const int* blockRow = d_.blockRow.data();
     const int* columns = d_.columns.data();
     const int* transposed = d_.transposedBlock.data();
@@ -118,9 +132,11 @@ class IncrementalPotential {
     // The blocks on and above the diagonal from the elements' packed upper blocks, then those
     // below as their partners' transposes: an element's stiffness is read once, not its six
     // lower blocks again (the gather reads scattered elements: a sixth of a 100-cut frame).
+    // (An element's blocks join two of its corners: none without both touched changes.)
     ex_.forEach(d_.blocks, [=] GALSCULPT_LAMBDA(int b) {
       if (blockRow[b] > columns[b]) return;
-      if (freshOnly) {  // a block of kept stiffnesses only is what it was
+      if (touched && !(touched[blockRow[b]] && touched[columns[b]])) return;
+      if (freshOnly) {  // a block of kept (or not evaluated) stiffnesses only is what it was
         bool any = false;
         for (int i = bStart[b]; i < bStart[b + 1] && !any; ++i) any = freshOnly[bSlots[i] / 16];
         if (!any) return;
@@ -144,6 +160,7 @@ class IncrementalPotential {
     });
     ex_.forEach(d_.blocks, [=] GALSCULPT_LAMBDA(int b) {
       if (blockRow[b] <= columns[b]) return;
+      if (touched && !(touched[blockRow[b]] && touched[columns[b]])) return;
       const double* upper = kb + 9 * static_cast<size_t>(transposed[b]);
       for (int j = 0; j < 3; ++j)
         for (int r = 0; r < 3; ++r) kb[9 * b + r + 3 * j] = upper[j + 3 * r];
@@ -265,14 +282,16 @@ class IncrementalPotential {
   }
 
   // H = K + beta/h K0 + contact + M (1/h^2 + alpha/h) + the springs' k I, anchored rows and
-  // columns identity-scaled.
+  // columns identity-scaled (and in a local iteration those outside the region).
   void buildSystem(const double* y) {
     const double* kb = d_.stiffness.data();
     const double* frozen = d_.frozenBlocks();
     double* hb = d_.system.data();
     const int* blockRow = d_.blockRow.data();
     const int* columns = d_.columns.data();
-    const std::uint8_t* fixed = d_.fixed.data();
+    const std::uint8_t* fixed = d_.solveFixed();
+    // A local iteration's solve reads the region's rows only.
+    const std::uint8_t* rows = d_.local ? d_.regionVertex.data() : nullptr;
     const double* mass = d_.mass.data();
     const double* springK = d_.springK.data();
     const double h = d_.h;
@@ -281,6 +300,7 @@ class IncrementalPotential {
     const double alpha = model_.material.dampingMass;
     ex_.forEach(d_.blocks, [=] GALSCULPT_LAMBDA(int b) {
       const int r = blockRow[b], c = columns[b];
+      if (rows && !rows[r]) return;
       double out[9];
       for (int i = 0; i < 9; ++i) out[i] = kb[9 * b + i] + betaOverH * frozen[9 * b + i];
       if (r == c) {

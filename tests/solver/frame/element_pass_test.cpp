@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -111,6 +112,42 @@ TEST(ElementPass, EveryElementIsTheScalarKernelsAndTheLanesGiveItsBits) {
           for (int r = 0; r < 3; ++r)
             ASSERT_EQ(scalar.packed[90 * t + 9 * ElementPass::packedBlock(a, c) + r + 3 * j],
                       e.hessian(3 * a + r, 3 * c + j));
+  }
+}
+
+// A trial's pass (no stiffness) through the lanes, and a pass where only some elements are
+// evaluated: the scalar kernel's bits, and the elements left out untouched. For a model with its
+// stress in closed form (the bar's) and one without (Hencky, whose trials take the lanes).
+TEST(ElementPass, ATrialsLanesGiveTheScalarKernelsBitsAndOnlyTheFlaggedElementsAreEvaluated) {
+  const Bar bar;
+  const int tets = bar.model.numTets();
+  CpuExecutor ex;
+  const kernels::LaneBuild build = kernels::chosenLaneBuild();
+  ASSERT_NE(kernels::laneKernel(build), nullptr) << "this test needs the lanes";
+  std::vector<std::uint8_t> only(tets);
+  for (int t = 0; t < tets; ++t) only[t] = t % 3 != 0;
+  for (MaterialModel model : {bar.model.material.model, MaterialModel::Hencky}) {
+    PassBuffers scalar(tets), laned(tets);
+    ElementPass reference = scalar.pass(bar, kernels::Hessian::None, 0.0);
+    reference.model = model;
+    launchElementPass(ex, reference, tets, nullptr, nullptr);
+    const double sentinel = -7.0;
+    std::fill(laned.energy.begin(), laned.energy.end(), sentinel);
+    std::fill(laned.packed.begin(), laned.packed.end(), sentinel);
+    ElementPass pass = laned.pass(bar, kernels::Hessian::None, 0.0);
+    pass.model = model;
+    pass.only = only.data();
+    launchElementPass(ex, pass, tets, kernels::laneKernel(build), nullptr);
+    for (int t = 0; t < tets; ++t) {
+      if (!only[t]) {
+        ASSERT_EQ(laned.energy[t], sentinel) << "element " << t << " was left out";
+        continue;
+      }
+      ASSERT_EQ(laned.energy[t], scalar.energy[t]) << "element " << t;
+      for (int i = 0; i < 12; ++i)
+        ASSERT_EQ(laned.gradient[12 * t + i], scalar.gradient[12 * t + i]) << "element " << t;
+    }
+    for (double v : laned.packed) ASSERT_EQ(v, sentinel) << "a trial writes no stiffness";
   }
 }
 

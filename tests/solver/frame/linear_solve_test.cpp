@@ -1,7 +1,7 @@
 // The Newton system's solve (solver/frame/linear_solve.h) on a bar's backward-Euler system with
 // one vertex held: PCG with the Galerkin multigrid to a tight tolerance gives CHOLMOD's step,
-// a V-cycle reduces the residual it reports, the held vertex's step is zero, and the null-step
-// test says yes for g = 0 only.
+// a V-cycle reduces the residual it reports, the held vertex's step is zero, the null-step
+// test says yes for g = 0 only, and a local iteration's solve is the direct solve of its rows.
 #include "solver/frame/linear_solve.h"
 
 #include <gtest/gtest.h>
@@ -85,6 +85,55 @@ TEST(LinearSolve, PcgWithTheMultigridGivesTheDirectSolvesStep) {
   ASSERT_GT(largest, 0.0);
   EXPECT_LT(difference, 1e-9 * largest);
   for (int k = 0; k < 3; ++k) EXPECT_EQ(pcg[k], 0.0) << "the held vertex";
+}
+
+// A local iteration's solve (region_solve.h): block-Jacobi PCG on the region's rows gives the
+// direct solve of the system that holds every other vertex still, and moves nothing outside.
+TEST(LinearSolve, ALocalSolveIsTheDirectSolveOfTheRegionsRows) {
+  System s;
+  std::vector<std::uint8_t> region(s.n, 0), regionFixed(s.n, 1);
+  int inside = 0;
+  for (int v = 1; v < s.n; ++v)
+    if (s.model.mesh.vertices[v].x() < 0.035) {
+      region[v] = 1;
+      regionFixed[v] = 0;
+      ++inside;
+    }
+  ASSERT_GT(inside, 10);
+  ASSERT_LT(inside, s.n / 2);
+  // The direct solve of the system that holds every vertex outside the region as an anchor.
+  std::vector<std::uint8_t> held(s.n);
+  s.d.fixed.download(held.data(), held.size());
+  s.d.fixed.upload(regionFixed);
+  s.potential.buildSystem(s.d.x.data());
+  s.linear.solveDirect(s.settings);
+  const std::vector<double> direct = s.step();
+  s.d.fixed.upload(held);
+  s.d.regionVertex.upload(region);
+  s.d.regionFixed.upload(regionFixed);
+  s.d.local = true;
+  s.potential.buildSystem(s.d.x.data());
+  s.settings.multigridSettings.pcg = true;
+  s.settings.multigridSettings.pcgTolerance = 1e-11;
+  s.linear.resetIterations();
+  s.linear.solve(s.settings, 0.0);
+  const std::vector<double> local = s.step();
+  EXPECT_GT(s.linear.iterations(), 0);
+  EXPECT_LT(s.linear.reduction(), 1e-10);
+  double largest = 0.0, difference = 0.0;
+  for (int v = 0; v < s.n; ++v)
+    for (int k = 0; k < 3; ++k) {
+      const int i = 3 * v + k;
+      if (!region[v]) {
+        ASSERT_EQ(local[i], 0.0) << "vertex " << v << " is held still";
+        ASSERT_EQ(direct[i], 0.0) << "vertex " << v;
+        continue;
+      }
+      largest = std::max(largest, std::abs(direct[i]));
+      difference = std::max(difference, std::abs(local[i] - direct[i]));
+    }
+  ASSERT_GT(largest, 0.0);
+  EXPECT_LT(difference, 1e-8 * largest);
 }
 
 TEST(LinearSolve, AVCycleReducesTheResidualItReports) {

@@ -19,7 +19,7 @@ TEST(SolverOptions, KeysAndLabelsAreUniqueAndEveryRowIsVisited) {
     EXPECT_TRUE(labels.insert(f.label).second) << f.label;
     EXPECT_NE(std::string(f.key), "preset") << "the preset chooses the columns; it is no row";
   });
-  EXPECT_EQ(rows, 19);
+  EXPECT_EQ(rows, 20);
 }
 
 // The struct's defaults are the converged column; each preset sets every row to its column.
@@ -33,17 +33,19 @@ TEST(SolverOptions, PresetsAreTheTablesColumns) {
     EXPECT_EQ(paper.*f.member, f.paper) << f.key;
     differing += !(f.converged == f.paper);
   });
-  // The paper's one linearized step: one Newton iteration, one V-cycle, no chords, no kept
+  // The paper's one linearized step: one Newton iteration, one V-cycle, no chords, no local
+  // iterations, no kept
   // stiffness, no predicted start, nothing held to a tolerance, CG on the coarsest level.
   EXPECT_EQ(paper.newtonIterations, 1);
   EXPECT_EQ(paper.pcgTolerance, 0.0);
   EXPECT_EQ(paper.coarseSolver, CoarseSolver::Cg);
   EXPECT_FALSE(paper.reuseStiffness);
+  EXPECT_FALSE(paper.localNewton);
   EXPECT_FALSE(paper.predictedStart);
   EXPECT_FALSE(paper.acceleratedStart);
   EXPECT_FALSE(paper.convergePieces);
   EXPECT_EQ(paper.stiffnessTolerance, 0.0);
-  EXPECT_EQ(differing, 8);
+  EXPECT_EQ(differing, 9);
 }
 
 // Every number's preset values lie in the range a scene may give.

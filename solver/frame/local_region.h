@@ -1,0 +1,130 @@
+// Newton iterations where the residual is (StepSettings::localNewton). A brush moves a small part
+// of a body: after a sub-step's first Newton iteration the residual left is the flow and the
+// springs under the brush, while the rest of the body is already within a small share of the
+// tolerance. The next iteration then solves only in the region that holds the residual: the
+// vertices outside it are held still (their rows of the Newton system are the held vertices',
+// multigrid.h leaves them out of the coarse levels), and only the elements that touch the region
+// are evaluated; every other element keeps its energy, gradient and stiffness, which are exact
+// because none of its corners moves. The residual checked after the iteration is still the
+// whole body's (every vertex's, from every element's gradient at the accepted positions): the
+// rest of the body is checked, not solved again, and a region chosen too small only costs
+// another iteration.
+//
+// The region: the fewest vertices, by their |g_v|^2 in powers of two, outside which the residual
+// is at most kOutsideShare of the tolerance (so that the region's own solve, to half the
+// tolerance, leaves the body within it), grown by kRings rings of neighbours, where the step's
+// effect on the residual fades. A region of more than kMostShare of the free vertices is no
+// saving: the iteration solves the whole body.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "solver/fem/dense_kernels.h"
+#include "solver/frame/frame_data.h"
+
+namespace galsculpt {
+
+template <typename Exec>
+class LocalRegion {
+ public:
+  static constexpr double kOutsideShare = 0.5;
+  static constexpr int kRings = 2;
+  static constexpr double kMostShare = 0.5;
+
+  LocalRegion(Exec& ex, FrameData<Exec>& data) : ex_(ex), d_(data), host_(data.n) {}
+
+  // Chooses the next iteration's region from g at the accepted positions, `target` the
+  // residual the sub-step must reach (absolute, N). True when the region is small enough to be
+  // solved alone (its masks are then in FrameData: regionVertex, regionElement, regionFixed,
+  // regionTouched).
+  bool choose(double target) {
+    const int n = d_.n;
+    const double* g = d_.g.data();
+    double* r2 = d_.vertexResidual.data();
+    const std::uint8_t* fixed = d_.fixed.data();
+    const int* rowStart = d_.rowStart.data();
+    const int* columns = d_.columns.data();
+    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) {
+      r2[v] = g[3 * v] * g[3 * v] + g[3 * v + 1] * g[3 * v + 1] + g[3 * v + 2] * g[3 * v + 2];
+    });
+    ex_.download(r2, host_.data(), static_cast<size_t>(n));
+    const double seedAbove = threshold(kOutsideShare * kOutsideShare * target * target);
+    if (!(seedAbove >= 0.0)) return false;  // a NaN or infinity: the whole body
+    std::uint8_t* in = d_.regionVertex.data();
+    std::uint8_t* out = d_.regionScratch.data();
+    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) { in[v] = !fixed[v] && r2[v] >= seedAbove; });
+    for (int ring = 0; ring < kRings; ++ring) {
+      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) {
+        bool near = in[v];
+        for (int k = rowStart[v]; k < rowStart[v + 1] && !near; ++k) near = in[columns[k]];
+        out[v] = near && !fixed[v];
+      });
+      std::swap(in, out);
+    }
+    if (in != d_.regionVertex.data()) ex_.copy(d_.regionVertex.data(), in, n);
+    const std::uint8_t* region = d_.regionVertex.data();
+    // The corners of the region's elements, held ones too: one ring more.
+    std::uint8_t* touched = d_.regionTouched.data();
+    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) {
+      bool near = region[v];
+      for (int k = rowStart[v]; k < rowStart[v + 1] && !near; ++k) near = region[columns[k]];
+      touched[v] = near;
+    });
+    std::uint8_t* regionFixed = d_.regionFixed.data();
+    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) { regionFixed[v] = fixed[v] || !region[v]; });
+    FrameScalars* sc = d_.sc();
+    ex_.sum(
+        n, [=] GALSCULPT_LAMBDA(int v) { return region[v] ? 1.0 : 0.0; }, &sc->regionVertices);
+    ex_.sum(
+        n, [=] GALSCULPT_LAMBDA(int v) { return fixed[v] ? 0.0 : 1.0; }, &sc->freeVertices);
+    FrameScalars read;
+    ex_.read(sc, &read, 1);
+    vertices_ = static_cast<int>(read.regionVertices);
+    if (!(read.regionVertices <= kMostShare * read.freeVertices) || vertices_ == 0) return false;
+    const int* tv = d_.tetVertices.data();
+    std::uint8_t* element = d_.regionElement.data();
+    ex_.forEach(d_.tets, [=] GALSCULPT_LAMBDA(int t) {
+      element[t] =
+          region[tv[4 * t]] | region[tv[4 * t + 1]] | region[tv[4 * t + 2]] | region[tv[4 * t + 3]];
+    });
+    return true;
+  }
+
+  // The last region's vertex count.
+  int vertices() const { return vertices_; }
+
+ private:
+  // The smallest power of two at or above which the vertices' |g_v|^2 (host_) must be seeds so
+  // that those below it add up to at most `outside` (infinity when they all do; -1 for a NaN or
+  // an infinity). Binned by exponent: the sum left outside is within a factor of two of the
+  // largest allowed, and the pass is linear in the vertices.
+  double threshold(double outside) const {
+    constexpr int kBins = 2200, kOffset = 1100;  // frexp's exponents of doubles, and subnormals
+    std::array<double, kBins> bins{};
+    for (double r : host_) {
+      if (!std::isfinite(r)) return -1.0;
+      if (!(r > 0.0)) continue;
+      int e = 0;
+      std::frexp(r, &e);  // r in [2^(e-1), 2^e)
+      bins[std::clamp(e + kOffset, 0, kBins - 1)] += r;
+    }
+    double below = 0.0;
+    for (int b = 0; b < kBins; ++b) {
+      if (below + bins[b] > outside) return std::ldexp(1.0, b - kOffset - 1);
+      below += bins[b];
+    }
+    return std::numeric_limits<double>::infinity();  // everything is within `outside`
+  }
+
+  Exec& ex_;
+  FrameData<Exec>& d_;
+  std::vector<double> host_;
+  int vertices_ = 0;
+};
+
+}  // namespace galsculpt
