@@ -229,8 +229,9 @@ void SculptApp::drawOverlay() {
     ImGui::Text("ms: total %.1f  elements %.1f  solve %.1f", m.msTotal, m.msElements, m.msSolve);
     ImGui::Text("    fracture %.1f  plastic %.1f  surface %.1f", m.msFracture, m.msPlastic,
                 shown_.msSurface);
-    ImGui::Text("residual %.2e   Newton %d   CG %d", m.residual, m.newtonIterations,
-                m.cgIterations);
+    // (local: of the Newton iterations, those that solved only where the residual was)
+    ImGui::Text("residual %.2e   Newton %d (local %d)   CG %d", m.residual, m.newtonIterations,
+                m.localIterations, m.cgIterations);
     if (!m.converged)
       ImGui::TextColored(ImVec4(1, 0.35f, 0.2f, 1),
                          "NOT CONVERGED: a residual above %.0e of its loads",
