@@ -214,7 +214,7 @@ class FrameSolver {
       // residual is a small share of the body's. A local system holds the other rows still: no
       // chord is taken on it, nor after it.
       const bool wasLocal = local;
-      local = s.localNewton && residual > s.residualTolerance &&
+      local = s.localNewton && s.multigrid && residual > s.residualTolerance &&
               !(wasLocal && !(residual < 0.5 * lastResidual)) &&
               region_.choose(s.residualTolerance * std::max(weight(), forceScale_));
       if (local || wasLocal) reuse = false;

@@ -58,10 +58,10 @@ class LinearSolve {
     }
   }
 
-  // The multigrid's operators for the system just built (its fixed rows: the held vertices, and
-  // in a local iteration those outside the region).
+  // The multigrid's operators for the system just built (its fixed rows: the held vertices).
+  // Not in a local iteration: its solve has no multigrid.
   void refresh(const StepSettings& s) {
-    mg_.setFixed(d_.solveFixed());
+    mg_.setFixed(d_.fixed.data());
     // Under PCG the V-cycle only preconditions: its smoother may read floats.
     mg_.refresh(d_.system.data(), s.multigridSettings.coarseCholesky, s.multigridSettings.pcg);
   }
@@ -100,7 +100,7 @@ class LinearSolve {
     mgs.jacobi = ms.jacobi || (!Exec::kHostMemory && ms.jacobiOnDevice && ms.pcg);
     double* delta = d_.delta.data();
     double* b = d_.rhs.data();
-    const std::uint8_t* fixed = d_.solveFixed();
+    const std::uint8_t* fixed = d_.fixed.data();
     startFromZero();
     const double* a = d_.system.data();
     FrameScalars* sc = d_.sc();

@@ -2,10 +2,10 @@
 // of a body: after a sub-step's first Newton iteration the residual left is the flow and the
 // springs under the brush, while the rest of the body is already within a small share of the
 // tolerance. The next iteration then solves only in the region that holds the residual: the
-// vertices outside it are held still (their rows of the Newton system are the held vertices',
-// multigrid.h leaves them out of the coarse levels), and only the elements that touch the region
-// are evaluated; every other element keeps its energy, gradient and stiffness, which are exact
-// because none of its corners moves. The residual checked after the iteration is still the
+// vertices outside it are held still (their rows and columns of the Newton system take the held
+// vertices' form; region_solve.h solves the region's rows), and only the elements that touch the
+// region are evaluated; every other element keeps its energy, gradient and stiffness, which are
+// exact because none of its corners moves. The residual checked after the iteration is still the
 // whole body's (every vertex's, from every element's gradient at the accepted positions): the
 // rest of the body is checked, not solved again, and a region chosen too small only costs
 // another iteration.

@@ -60,6 +60,7 @@ struct StepSettings {
   // neighbours), holding the rest of the body still, when that region is at most kMostShare of
   // the free vertices; its elements alone are evaluated. The residual checked after it is the
   // whole body's. A frame where a brush moves a small part of a body costs in proportion to it.
+  // With the multigrid only (the reference's direct solve takes the whole system).
   bool localNewton = false;
   // Newton starts from the inertial prediction x_n + h v_n instead of x_n: for a body in motion
   // it is much nearer the solution (a free fall is off by h^2 g only), which saves Newton and CG
