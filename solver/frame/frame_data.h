@@ -47,6 +47,7 @@ struct FrameData {
     rest.mirror(model.rest);
     mass.mirror(model.mass);
     rowStart.mirror(model.pattern.rowStart);
+    diagonal.mirror(model.pattern.diagonal);
     columns.mirror(model.pattern.columns);
     vertexSlotStart.mirror(model.vertexSlotStart);
     vertexSlots.mirror(model.vertexSlots);
@@ -96,6 +97,7 @@ struct FrameData {
 
   // The model's arrays.
   Mirror<int> tetVertices, tetEdges, rowStart, columns;
+  Mirror<int> diagonal;  // (n) each row's diagonal block
   Mirror<int> vertexSlotStart, vertexSlots, blockSlotStart, blockSlots;  // the gathers' lists
   Mirror<kernels::RestData> rest;
   Mirror<double> mass;

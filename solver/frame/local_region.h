@@ -47,8 +47,6 @@ class LocalRegion {
     const double* g = d_.g.data();
     double* r2 = d_.vertexResidual.data();
     const std::uint8_t* fixed = d_.fixed.data();
-    const int* rowStart = d_.rowStart.data();
-    const int* columns = d_.columns.data();
     ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) {
       r2[v] = g[3 * v] * g[3 * v] + g[3 * v + 1] * g[3 * v + 1] + g[3 * v + 2] * g[3 * v + 2];
     });
@@ -59,22 +57,12 @@ class LocalRegion {
     std::uint8_t* out = d_.regionScratch.data();
     ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) { in[v] = !fixed[v] && r2[v] >= seedAbove; });
     for (int ring = 0; ring < kRings; ++ring) {
-      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) {
-        bool near = in[v];
-        for (int k = rowStart[v]; k < rowStart[v + 1] && !near; ++k) near = in[columns[k]];
-        out[v] = near && !fixed[v];
-      });
+      grow(in, out, fixed);
       std::swap(in, out);
     }
     if (in != d_.regionVertex.data()) ex_.copy(d_.regionVertex.data(), in, n);
     const std::uint8_t* region = d_.regionVertex.data();
-    // The corners of the region's elements, held ones too: one ring more.
-    std::uint8_t* touched = d_.regionTouched.data();
-    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) {
-      bool near = region[v];
-      for (int k = rowStart[v]; k < rowStart[v + 1] && !near; ++k) near = region[columns[k]];
-      touched[v] = near;
-    });
+    grow(region, d_.regionTouched.data(), nullptr);  // its elements' corners, held ones too
     std::uint8_t* regionFixed = d_.regionFixed.data();
     ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) { regionFixed[v] = fixed[v] || !region[v]; });
     FrameScalars* sc = d_.sc();
@@ -93,6 +81,19 @@ class LocalRegion {
           region[tv[4 * t]] | region[tv[4 * t + 1]] | region[tv[4 * t + 2]] | region[tv[4 * t + 3]];
     });
     return true;
+  }
+
+  // to[v] = whether v or a neighbour of v (a vertex of an element around it) is in `from`, and
+  // v not `excluded` (null: none). Public only because nvcc refuses extended lambdas in private
+  // member functions.
+  void grow(const std::uint8_t* from, std::uint8_t* to, const std::uint8_t* excluded) {
+    const int* rowStart = d_.rowStart.data();
+    const int* columns = d_.columns.data();
+    ex_.forEach(d_.n, [=] GALSCULPT_LAMBDA(int v) {
+      bool near = from[v];
+      for (int k = rowStart[v]; k < rowStart[v + 1] && !near; ++k) near = from[columns[k]];
+      to[v] = near && !(excluded && excluded[v]);
+    });
   }
 
   // The last region's vertex count.

@@ -34,15 +34,12 @@ class RegionSolve {
   typename MultigridPcg<Exec>::Result solve(const double* a, const double* b, double* x,
                                             double tolerance, double target) {
     const std::uint8_t* region = d_.regionVertex.data();
-    const int* rowStart = d_.rowStart.data();
-    const int* columns = d_.columns.data();
+    const int* diagonal = d_.diagonal.data();
     double* inverse = inverse_.data();
     ex_.forEach(d_.n, [=] GALSCULPT_LAMBDA(int r) {
       if (!region[r]) return;
-      int diagonal = rowStart[r];
-      while (columns[diagonal] != r) ++diagonal;
       kernels::M3 m;
-      for (int k = 0; k < 9; ++k) m.a[k] = a[9 * static_cast<size_t>(diagonal) + k];
+      for (int k = 0; k < 9; ++k) m.a[k] = a[9 * static_cast<size_t>(diagonal[r]) + k];
       const kernels::M3 inv = kernels::inverse(m);
       for (int k = 0; k < 9; ++k) inverse[9 * static_cast<size_t>(r) + k] = inv.a[k];
     });
