@@ -201,6 +201,46 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   EXPECT_EQ(run({"bench", "--scene", "moon"}).code, kExitUsage);
 }
 
+// charpy_after_break: Charpy's scene measured from frame 40 on, in every run (the reference's
+// too), --settle counted from there; named in the unknown-scene message.
+TEST(Cli, BenchMeasuresCharpyAfterTheBreakFromItsStartFrame) {
+  test::TempDir dir;
+  useSmallSphereAssets(dir);
+  test::writeText(dir / "scenes" / "charpy.json",
+                  std::string(R"({"mesh": {"file": ")") + GALSCULPT_SOURCE_DIR +
+                      R"(/assets/meshes/sphere_small.node"}, "material": {"youngs_modulus": 8000,
+                      "poisson_ratio": 0.48, "density": 1000}})");
+  const CliRun broken = run({"bench", "--scene", "charpy_after_break", "--frames", "1", "--json",
+                             (dir / "b.json").string()});
+  const CliRun settled = run({"bench", "--scene", "charpy", "--frames", "1", "--settle", "40",
+                              "--json", (dir / "s.json").string()});
+  const CliRun later = run({"bench", "--scene", "charpy_after_break", "--frames", "1", "--settle",
+                            "2", "--json", (dir / "l.json").string()});
+  const CliRun unknown = run({"bench", "--scene", "charpy_broken"});
+  unsetenv("GALSCULPT_ASSETS");
+  ASSERT_EQ(broken.code, kExitOk) << broken.err;
+  ASSERT_EQ(settled.code, kExitOk) << settled.err;
+  ASSERT_EQ(later.code, kExitOk) << later.err;
+  const auto b = nlohmann::json::parse(test::readText(dir / "b.json"))["results"];
+  const auto s = nlohmann::json::parse(test::readText(dir / "s.json"))["results"];
+  const auto l = nlohmann::json::parse(test::readText(dir / "l.json"))["results"];
+  ASSERT_EQ(b.size(), 3u) << "the reference, the paper's setting and the converged default";
+  ASSERT_EQ(s.size(), 3u);
+  ASSERT_EQ(l.size(), 3u);
+  for (size_t i = 0; i < b.size(); ++i) {
+    EXPECT_EQ(b[i]["scene"], "charpy_after_break") << i;
+    EXPECT_EQ(b[i]["settle_frames"], 40) << i;
+    EXPECT_EQ(l[i]["settle_frames"], 42) << i;
+    // The frames are Charpy's from frame 40 on: the same state as --settle 40 reaches.
+    EXPECT_EQ(b[i]["volume_change_pct"], s[i]["volume_change_pct"]) << i;
+    EXPECT_NE(b[i]["volume_change_pct"], l[i]["volume_change_pct"]) << i;
+  }
+  EXPECT_EQ(b[0]["solver"], "reference");
+  EXPECT_EQ(b[1]["rel_position_error"], s[1]["rel_position_error"]) << "the reference ran them too";
+  EXPECT_EQ(unknown.code, kExitUsage);
+  EXPECT_NE(unknown.err.find("charpy_after_break"), std::string::npos) << unknown.err;
+}
+
 TEST(Cli, BenchRunsTheScenesWithTheSolverPresetAsked) {
   test::TempDir dir;
   useSmallSphereAssets(dir);
