@@ -40,22 +40,30 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A scene of the bench: its file and the frames run untimed before every measured window (added
-// to --settle's counts, in the reference as in the others).
+// A scene of the bench: its file, the frames run untimed before every measured window (added
+// to --settle's counts) and the random knife cuts made before those (applyRandomCuts), in the
+// reference as in the others.
 struct BenchScene {
   const char* name;
   const char* file;
   int startFrame = 0;
+  int cuts = 0;
 };
 // Charpy after the break: the same scene measured from frame 40 on. Its bar breaks in two at
 // frame 31 and the striker leaves it by frame 36 (the converged default, 28k tets,
 // docs/benchmarks.md): the window is the halves in flight, whose crack faces still touch, the
 // frames a user waits on once something has broken.
 constexpr int kCharpyBrokenFrame = 40;
-const BenchScene kScenes[] = {
-    {"sphere", "hanging_sphere.json"}, {"charpy", "charpy.json"},
-    {"human", "human.json"},           {"armadillo", "armadillo.json"},
-    {"steak", "steak.json"},           {"charpy_after_break", "charpy.json", kCharpyBrokenFrame}};
+// The cut body: the hanging sphere after --cracks's largest count of cuts, its error in motion
+// measured against a reference cut the same way.
+constexpr int kSphereCuts = 100;
+const BenchScene kScenes[] = {{"sphere", "hanging_sphere.json"},
+                              {"charpy", "charpy.json"},
+                              {"human", "human.json"},
+                              {"armadillo", "armadillo.json"},
+                              {"steak", "steak.json"},
+                              {"charpy_after_break", "charpy.json", kCharpyBrokenFrame},
+                              {"sphere_cut", "hanging_sphere.json", 0, kSphereCuts}};
 
 // The scenes' names, for messages: "sphere, charpy, ...".
 std::string sceneNames() {
@@ -68,7 +76,8 @@ std::string sceneNames() {
 struct Setting {
   bool reference = false;
   SolverOptions solver;
-  int cuts = -1;  // >= 0: that many random knife cuts before the frames (the --cracks series)
+  int cuts = -1;      // >= 0: that many random knife cuts before the frames (the --cracks series)
+  int sceneCuts = 0;  // the scene's own cuts (BenchScene::cuts): a scene, with its reference
 };
 
 Setting paperSetting(const std::string& grid, int sweeps, int coarse) {
@@ -241,6 +250,7 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
   r["pieces"] = last.pieces;
   r["debris_pieces"] = last.debrisPieces;
   r["debris_volume_pct"] = last.debrisVolumePct;
+  if (setting.sceneCuts > 0) r["scene_cuts"] = setting.sceneCuts;
   if (setting.cuts >= 0) {
     r["cuts"] = setting.cuts;
     r["ms_surface_cut"] = msCut.empty() ? 0.0 : msCut[msCut.size() / 2];
@@ -273,8 +283,9 @@ nlohmann::json measure(const SceneDescription& baseScene, const TetMesh& mesh,
   // does: what a cut costs the surface is measured here, what a frame costs it below.
   sim.surface();
   std::vector<double> msCut;
-  if (setting.cuts > 0) {
-    applyRandomCuts(sim, setting.cuts, [&] {
+  const int cuts = setting.cuts > 0 ? setting.cuts : setting.sceneCuts;
+  if (cuts > 0) {
+    applyRandomCuts(sim, cuts, [&] {
       sim.surface();
       const SurfaceUpdateStats& st = sim.lastSurfaceUpdate();
       msCut.push_back(st.msTopology + st.msPositions);
@@ -354,19 +365,23 @@ std::optional<DebrisRule> debrisOption(const CliArgs& args) {
   return namedOption(args, "--debris", debrisRuleFromName, "keep or remove");
 }
 
+// The scene column's width: the longest name and a space.
+constexpr int kSceneColumn = 19;
+
 std::string row(const nlohmann::json& r) {
   std::ostringstream s;
   if (r.contains("error")) return "  error: " + r["error"].get<std::string>();
   if (r.contains("cuts")) {
-    s << std::left << std::setw(10) << r.value("scene", "") << std::setw(8) << r["tets"].get<int>()
-      << "cuts " << std::right << std::setw(4) << r["cuts"].get<int>() << std::fixed
-      << std::setprecision(2) << std::setw(10) << r["ms_per_frame"].get<double>() << " ms/frame"
-      << std::setw(8) << std::setprecision(1) << r["fps"].get<double>() << " fps" << std::setw(8)
-      << r["damaged_edges"].get<int>() << " damaged edges" << std::setw(6) << r["pieces"].get<int>()
-      << " pieces" << std::setw(8) << std::setprecision(2) << r["ms_surface"].get<double>()
-      << " ms surface" << std::setw(8) << r.value("ms_surface_cut", 0.0) << " ms surface per cut"
-      << std::setw(7) << std::setprecision(1) << r["newton_iters_mean"].get<double>() << " newton"
-      << std::setw(7) << r["cg_iters_mean"].get<double>() << " cg" << std::setw(5)
+    s << std::left << std::setw(kSceneColumn) << r.value("scene", "") << std::setw(8)
+      << r["tets"].get<int>() << "cuts " << std::right << std::setw(4) << r["cuts"].get<int>()
+      << std::fixed << std::setprecision(2) << std::setw(10) << r["ms_per_frame"].get<double>()
+      << " ms/frame" << std::setw(8) << std::setprecision(1) << r["fps"].get<double>() << " fps"
+      << std::setw(8) << r["damaged_edges"].get<int>() << " damaged edges" << std::setw(6)
+      << r["pieces"].get<int>() << " pieces" << std::setw(8) << std::setprecision(2)
+      << r["ms_surface"].get<double>() << " ms surface" << std::setw(8)
+      << r.value("ms_surface_cut", 0.0) << " ms surface per cut" << std::setw(7)
+      << std::setprecision(1) << r["newton_iters_mean"].get<double>() << " newton" << std::setw(7)
+      << r["cg_iters_mean"].get<double>() << " cg" << std::setw(5)
       << r["unconverged_frames"].get<int>() << " unconverged" << std::setw(6)
       << r["debris_pieces"].get<int>() << " debris" << std::setw(7) << std::setprecision(2)
       << r["debris_volume_pct"].get<double>() << " % debris volume" << std::setw(7)
@@ -400,23 +415,23 @@ std::string row(const nlohmann::json& r) {
   auto percent = [](const nlohmann::json& v) {
     return v.is_number() ? 100.0 * v.get<double>() : -1.0;
   };
-  s << std::left << std::setw(10) << r.value("scene", "") << std::setw(8) << r["tets"].get<int>()
-    << std::setw(10) << r["solver"].get<std::string>() << std::setw(24) << grid << std::right
-    << std::setw(4) << r["fine_sweeps"].get<int>() << std::setw(6) << r["coarse_iters"].get<int>()
-    << std::fixed << std::setprecision(2) << std::setw(10) << r["ms_per_frame"].get<double>()
-    << std::setw(9) << std::setprecision(1) << r["fps"].get<double>() << std::setw(9)
-    << std::setprecision(0) << r["peak_rss_mb"].get<double>() << std::setw(11)
-    << std::setprecision(3) << percent(r["rel_position_error"]) << std::setw(10)
-    << std::setprecision(3) << r["volume_change_pct"].get<double>() << std::setw(8)
-    << std::setprecision(2) << r["ms_surface"].get<double>() << std::setw(8)
-    << r["ms_surface_max"].get<double>() << "  " << std::left << std::setw(6)
-    << r.value("backend", std::string("cpu")) << std::right << std::setw(12) << std::setprecision(3)
-    << percent(r["rel_position_error_motion"]) << std::setw(9) << std::setprecision(1)
-    << r["ms_p95"].get<double>() << std::setw(8) << std::setprecision(1)
-    << r["newton_iters_mean"].get<double>() << std::setw(8) << r["cg_iters_mean"].get<double>()
-    << std::setw(11) << std::scientific << std::setprecision(1) << r["residual_max"].get<double>()
-    << std::fixed << std::setw(8) << r["unconverged_frames"].get<int>() << std::setw(8)
-    << r.value("threads", 0);
+  s << std::left << std::setw(kSceneColumn) << r.value("scene", "") << std::setw(8)
+    << r["tets"].get<int>() << std::setw(10) << r["solver"].get<std::string>() << std::setw(24)
+    << grid << std::right << std::setw(4) << r["fine_sweeps"].get<int>() << std::setw(6)
+    << r["coarse_iters"].get<int>() << std::fixed << std::setprecision(2) << std::setw(10)
+    << r["ms_per_frame"].get<double>() << std::setw(9) << std::setprecision(1)
+    << r["fps"].get<double>() << std::setw(9) << std::setprecision(0)
+    << r["peak_rss_mb"].get<double>() << std::setw(11) << std::setprecision(3)
+    << percent(r["rel_position_error"]) << std::setw(10) << std::setprecision(3)
+    << r["volume_change_pct"].get<double>() << std::setw(8) << std::setprecision(2)
+    << r["ms_surface"].get<double>() << std::setw(8) << r["ms_surface_max"].get<double>() << "  "
+    << std::left << std::setw(6) << r.value("backend", std::string("cpu")) << std::right
+    << std::setw(12) << std::setprecision(3) << percent(r["rel_position_error_motion"])
+    << std::setw(9) << std::setprecision(1) << r["ms_p95"].get<double>() << std::setw(8)
+    << std::setprecision(1) << r["newton_iters_mean"].get<double>() << std::setw(8)
+    << r["cg_iters_mean"].get<double>() << std::setw(11) << std::scientific << std::setprecision(1)
+    << r["residual_max"].get<double>() << std::fixed << std::setw(8)
+    << r["unconverged_frames"].get<int>() << std::setw(8) << r.value("threads", 0);
   return s.str();
 }
 
@@ -435,6 +450,9 @@ std::vector<BenchScene> benchScenes(const CliArgs& a) {
         throw UsageError("unknown scene '" + name + "' (" + sceneNames() + ")");
     }
     if (scenes.empty()) throw UsageError("--scene names no scene");
+    for (const BenchScene& s : scenes)
+      if (s.cuts > 0 && a.has("--cracks"))
+        throw UsageError(std::string("--cracks makes its own cuts: not with ") + s.name);
   } else if (a.has("--quick") || a.has("--cracks")) {
     scenes = a.has("--cracks") ? std::vector<BenchScene>{kScenes[0]}
                                : std::vector<BenchScene>{kScenes[0], kScenes[1]};
@@ -525,7 +543,7 @@ void printWindowSummary(const std::vector<nlohmann::json>& rows, std::ostream& o
 // What a scene's reference run depends on: the scene as read and as modified by the options
 // (its solver keys, debris rule), the mesh, and the frames measured. FNV-1a, as the mesh cache.
 std::uint64_t referenceKey(const SceneDescription& scene, const TetMesh& mesh, int frames,
-                           const std::vector<int>& settles) {
+                           const std::vector<int>& settles, int cuts) {
   std::uint64_t h = 1469598103934665603ull;
   auto mix = [&h](const void* data, size_t bytes) {
     for (size_t i = 0; i < bytes; ++i) {
@@ -540,6 +558,7 @@ std::uint64_t referenceKey(const SceneDescription& scene, const TetMesh& mesh, i
   mix(mesh.tets.data(), mesh.tets.size() * sizeof(mesh.tets[0]));
   mix(&frames, sizeof frames);
   mix(settles.data(), settles.size() * sizeof(int));
+  if (cuts > 0) mix(&cuts, sizeof cuts);  // (uncut scenes keep the keys they had)
   return h;
 }
 
@@ -614,7 +633,8 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
   const fs::path scratch = pattern;
 
   nlohmann::json results = nlohmann::json::array();
-  out << "scene     tets    solver    grid                     fine coarse  ms/frame      fps  "
+  out << "scene" << std::string(kSceneColumn - 5, ' ')
+      << "tets    solver    grid                     fine coarse  ms/frame      fps  "
          "peak MB  pos err %  vol chg %  surf ms    max  backend  motion err %   p95 ms  newton"
          "      cg  max resid  unconv threads\n";
   for (const BenchScene& bs : scenes) {
@@ -636,10 +656,12 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
     std::map<int, double> uncutMs;  // per window start: the uncut frame (--cracks)
     const size_t sceneFirst = results.size();
     const std::optional<ReferenceCache> cache =
-        referenceDir ? std::optional<ReferenceCache>(ReferenceCache(
-                           *referenceDir, bs.name, referenceKey(scene, mesh, frames, sceneSettles)))
-                     : std::nullopt;
-    for (const Setting& s : settings) {
+        referenceDir
+            ? std::optional<ReferenceCache>(ReferenceCache(
+                  *referenceDir, bs.name, referenceKey(scene, mesh, frames, sceneSettles, bs.cuts)))
+            : std::nullopt;
+    for (Setting s : settings) {
+      s.sceneCuts = bs.cuts;
       nlohmann::json rows;
       if (s.reference && cache && cache->load(refFile, rows)) {
         for (nlohmann::json& r : rows) r["reference_cached"] = true;

@@ -241,6 +241,41 @@ TEST(Cli, BenchMeasuresCharpyAfterTheBreakFromItsStartFrame) {
   EXPECT_NE(unknown.err.find("charpy_after_break"), std::string::npos) << unknown.err;
 }
 
+// sphere_cut: the hanging sphere after --cracks's 100 cuts, measured as a scene: its reference is
+// cut the same way, so its rows have errors; --cracks (its own cuts) does not take it.
+TEST(Cli, BenchMeasuresTheCutSphereAgainstACutReference) {
+  test::TempDir dir;
+  useSmallSphereAssets(dir);
+  const CliRun cut =
+      run({"bench", "--scene", "sphere_cut", "--frames", "2", "--json", (dir / "c.json").string()});
+  const CliRun cracks =
+      run({"bench", "--cracks", "--frames", "2", "--json", (dir / "k.json").string()});
+  const CliRun both = run({"bench", "--cracks", "--scene", "sphere_cut"});
+  unsetenv("GALSCULPT_ASSETS");
+  ASSERT_EQ(cut.code, kExitOk) << cut.err;
+  ASSERT_EQ(cracks.code, kExitOk) << cracks.err;
+  const auto c = nlohmann::json::parse(test::readText(dir / "c.json"))["results"];
+  const auto k = nlohmann::json::parse(test::readText(dir / "k.json"))["results"];
+  ASSERT_EQ(c.size(), 3u);
+  ASSERT_EQ(k.size(), 3u);
+  for (size_t i = 0; i < c.size(); ++i) {
+    EXPECT_EQ(c[i]["scene"], "sphere_cut") << i;
+    EXPECT_EQ(c[i]["scene_cuts"], 100) << i;
+    EXPECT_FALSE(c[i].contains("cuts")) << i << ": a scene's row, not --cracks's";
+    // The same cuts as --cracks's 100-cut row.
+    EXPECT_EQ(c[i]["damaged_edges"], k[2]["damaged_edges"]) << i;
+    EXPECT_EQ(c[i]["pieces"], k[2]["pieces"]) << i;
+    EXPECT_TRUE(c[i]["rel_position_error_motion"].is_number()) << i;
+  }
+  EXPECT_EQ(c[0]["solver"], "reference");
+  EXPECT_EQ(c[0]["rel_position_error"].get<double>(), 0.0);
+  EXPECT_GT(c[1]["rel_position_error"].get<double>(), 0.0)
+      << "the paper's setting off the reference";
+  EXPECT_LT(c[2]["rel_position_error"].get<double>(), c[1]["rel_position_error"].get<double>());
+  EXPECT_EQ(both.code, kExitUsage);
+  EXPECT_NE(both.err.find("--cracks makes its own cuts"), std::string::npos) << both.err;
+}
+
 TEST(Cli, BenchRunsTheScenesWithTheSolverPresetAsked) {
   test::TempDir dir;
   useSmallSphereAssets(dir);
