@@ -1,5 +1,7 @@
 #include "engine/scene/scene_mesh.h"
 
+#include "solver/mesh/locality_order.h"
+
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -77,7 +79,9 @@ std::vector<TriMesh> generatorSurfaces(Generator generator, double radius, int t
 
 namespace {
 
-// `surfaces` makes the surfaces to mesh, only when the cache has no entry for `key`.
+// `surfaces` makes the surfaces to mesh, only when the cache has no entry for `key`. The mesh
+// comes in locality order (locality_order.h), read or made: entries TetGen's order left in a
+// cache are put in it on reading.
 using SurfaceMaker = std::function<std::vector<TriMesh>()>;
 
 TetMesh cachedTetrahedralization(const SurfaceMaker& surfaces, const std::string& key,
@@ -88,7 +92,9 @@ TetMesh cachedTetrahedralization(const SurfaceMaker& surfaces, const std::string
   if (fs::exists(fs::path(stem).concat(".node"), ec) &&
       fs::exists(fs::path(stem).concat(".ele"), ec)) {
     try {
-      return readTetGen(stem);
+      TetMesh mesh = readTetGen(stem);
+      orderForLocality(mesh);  // (a no-op on an entry written in this order)
+      return mesh;
     } catch (const InputError& e) {
       // A damaged entry (a disk that filled, a copy cut short) is made again, and said.
       if (progress)
@@ -106,6 +112,7 @@ TetMesh cachedTetrahedralization(const SurfaceMaker& surfaces, const std::string
   options.surfaceName = name;
   options.progress = progress;
   TetrahedralizeResult result = tetrahedralizeAny(surfaces(), options);
+  orderForLocality(result.mesh);
   writeTetGen(stem, result.mesh);
   return std::move(result.mesh);
 }
