@@ -18,6 +18,8 @@ import os
 import subprocess
 import tempfile
 
+from speed_error_plot import gnuplot_header
+
 AFTER_BREAK_FRAME = 40  # bench's kCharpyBrokenFrame
 # ms a frame the converged-frames issue asks for (drawn at the new build's error: the gap).
 TARGET_MS = {"sphere": 33.0, "charpy_after_break": 100.0, "human": 50.0, "armadillo": 150.0}
@@ -122,19 +124,9 @@ def plot(old, new, labels, out):
             if a and motion_percent(a) is not None and motion_percent(b) is not None:
                 arrows.append((a["ms_per_frame"], max(motion_percent(a), 1e-5),
                                b["ms_per_frame"], max(motion_percent(b), 1e-5)))
-        arrow_cmds = "\n".join(
-            f"set arrow from {x0},{y0} to {x1},{y1} lc rgb '#888888' dt 2" for x0, y0, x1, y1 in arrows)
-        script = f"""
-set terminal pngcairo size 1000,650 font ',10'
-set output '{out}'
-set logscale xy
-set format y '10^{{%L}}'
-set xlabel 'ms per frame (median, converged default, 2-core CPU)'
-set ylabel 'position error in motion vs reference (% of its largest displacement)'
-set title 'Converged frames, {labels[0]} beside {labels[1]}: speed against error in motion'
-set grid
-set key top right
-{arrow_cmds}
+        title = f"Converged frames, {labels[0]} beside {labels[1]}: speed against error in motion"
+        script = gnuplot_header(out, "ms per frame (median, converged default, 2-core CPU)", title,
+                                arrows) + f"""
 plot '{files["old"]}' using 1:2 with points pt 6 ps 1.8 lc rgb '#c0392b' title "{labels[0]}", \\
      '{files["new"]}' using 1:2 with points pt 7 ps 1.8 lc rgb '#1f77b4' title "{labels[1]}", \\
      '{files["new"]}' using 1:2:3 with labels offset 1.5,0.8 font ',8' noenhanced notitle, \\

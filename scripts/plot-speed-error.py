@@ -15,6 +15,8 @@ import subprocess
 import sys
 import tempfile
 
+from speed_error_plot import gnuplot_header
+
 
 def rows_of(paths):
     rows = []
@@ -79,19 +81,8 @@ def plot(rows, out):
         plots = ", ".join(
             f"'{p}' using 1:2 with points {styles[k]} title \"{titles[k]}\", "
             f"'{p}' using 1:2:3 with labels offset 1.2,0.7 font ',8' notitle" for k, p in files)
-        arrow_cmds = "\n".join(
-            f"set arrow from {x0},{y0} to {x1},{y1} lc rgb '#888888' dt 2" for x0, y0, x1, y1 in arrows)
-        script = f"""
-set terminal pngcairo size 1000,650 font ',10'
-set output '{out}'
-set logscale xy
-set format y '10^{{%L}}'
-set xlabel 'ms per frame (median, 2-core CPU)'
-set ylabel 'position error in motion vs reference (% of its largest displacement)'
-set title 'Speed against error in motion: the paper preset and the converged default'
-set grid
-set key top right
-{arrow_cmds}
+        title = "Speed against error in motion: the paper preset and the converged default"
+        script = gnuplot_header(out, "ms per frame (median, 2-core CPU)", title, arrows) + f"""
 plot {plots}
 """
         subprocess.run(["gnuplot"], input=script, text=True, check=True)
