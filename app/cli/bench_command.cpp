@@ -50,7 +50,7 @@ struct BenchScene {
   int cuts = 0;
 };
 // Charpy after the break: the same scene measured from frame 40 on. Its bar breaks in two at
-// frame 31 and the striker leaves it by frame 36 (the converged default, 28k tets,
+// frame 31 and the striker has left it by frame 36-38 (the converged default, 28k tets,
 // docs/benchmarks.md): the window is the halves in flight, whose crack faces still touch, the
 // frames a user waits on once something has broken.
 constexpr int kCharpyBrokenFrame = 40;
