@@ -60,14 +60,18 @@ void orderForLocality(TetMesh& mesh) {
   for (Tet& t : mesh.tets)
     for (int& v : t) v = newIndex[v];
 
-  // Tets by their corners, smallest first (a copy sorted, so that equal sets keep their order).
-  auto sortedCorners = [](const Tet& t) {
-    Tet s = t;
-    std::sort(s.begin(), s.end());
-    return s;
-  };
-  std::stable_sort(mesh.tets.begin(), mesh.tets.end(),
-                   [&](const Tet& a, const Tet& b) { return sortedCorners(a) < sortedCorners(b); });
+  // Tets by their corners, smallest first (each tet's corners sorted once, as its key; a stable
+  // sort, so that equal sets keep their order).
+  const int m = mesh.numTets();
+  std::vector<Tet> corners(mesh.tets);
+  for (Tet& c : corners) std::sort(c.begin(), c.end());
+  std::vector<int> tetOrder(m);
+  std::iota(tetOrder.begin(), tetOrder.end(), 0);
+  std::stable_sort(tetOrder.begin(), tetOrder.end(),
+                   [&](int a, int b) { return corners[a] < corners[b]; });
+  std::vector<Tet> tets(m);
+  for (int i = 0; i < m; ++i) tets[i] = mesh.tets[tetOrder[i]];
+  mesh.tets = std::move(tets);
 }
 
 }  // namespace galsculpt
