@@ -1,13 +1,16 @@
 // The coarsest level's direct solve in host memory: a sparse Cholesky by 12x12 blocks (block
 // CSR in), with a fill-reducing (AMD) ordering of the handle graph analysed once per pattern.
 //
-// Why not the dense factorization the device uses: cracks split the coarse handles (a handle
-// whose aggregate a crack divides becomes one per part), and the dense factorization grows with
-// the cube of their number. On the hanging sphere (35,540 tets) 10 random cuts took the coarsest
-// level from 50 to 110 handles and 100 cuts to 199, so the dense factorization, refreshed with
-// every Newton matrix, went from a few milliseconds to hundreds and was what made a cut body's
-// frame cost several times the uncut one's. The handles of a cracked body are coupled only to
-// their neighbours, so the sparse factor costs a fraction of the dense one.
+// Why not the dense factorization the device uses: the handles are coupled only to their
+// neighbours, so the sparse factor costs a fraction of the dense one, and the dense one grows
+// with the cube of their number. Cracks split the coarse handles (a handle whose aggregate a
+// crack divides becomes one per part): on the hanging sphere (35,540 tets) 10 random cuts took
+// the coarsest level from 50 to 110 handles and 100 cuts to 199, and the dense factorization,
+// refreshed with every Newton matrix, went from a few milliseconds to hundreds. Uncut, 50 to 61
+// handles, the dense factorization still took 5-9 ms of each Newton matrix on the human figure
+// and Charpy's bar, whose handle graphs follow their limbs and length, and this one 0.5-0.7 ms
+// (docs/notes/2026-12-05-crack-faces-newton-and-the-coarsest-factor.md): the host factors every
+// coarsest level so.
 //
 // Why by blocks and not Eigen's SimplicialLLT (which this replaced): every handle is twelve
 // affine DOFs coupled as a whole, so the factor's pattern is the handle graph's, block for block.

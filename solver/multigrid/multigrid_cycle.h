@@ -104,7 +104,7 @@ class MultigridCycle {
     }
     fragments_.upload(m, rows_);
     denseSize_ = 12 * c.handles;
-    factored_ = sparseFactored_ = false;
+    factored_ = false;
     kept_.clear();
     coarseFactorsKept_ = 0;
   }
@@ -182,7 +182,7 @@ class MultigridCycle {
       fragments_.factorize(fine, fineRowStart_.data(), fineColumns_.data());
     if (pieceCount_ >= 2) factorPieces();
     if (!coarseCholesky) {
-      factored_ = sparseFactored_ = false;
+      factored_ = false;
       return;
     }
     const Level& c = levels_.back();
@@ -194,15 +194,14 @@ class MultigridCycle {
         return;
       }
     }
-    factored_ = sparseFactored_ = false;
+    factored_ = false;
+    // In host memory by 12x12 blocks along the handle graph, whatever its size
+    // (coarse_cholesky.h); a device factors the dense matrix.
     if constexpr (Exec::kHostMemory) {
-      if (sparseCoarsest(c.handles)) {
-        if (!sparse_) sparse_ = std::make_unique<CoarseCholesky>();
-        factored_ = sparseFactored_ =
-            sparse_->factor(c.handles, c.rowStart.data(), c.columns.data(), c.blocks.data());
-        rememberFactored(c);
-        return;
-      }
+      if (!sparse_) sparse_ = std::make_unique<CoarseCholesky>();
+      factored_ = sparse_->factor(c.handles, c.rowStart.data(), c.columns.data(), c.blocks.data());
+      rememberFactored(c);
+      return;
     }
     dense_.resize(static_cast<size_t>(denseSize_) * denseSize_);
     double* dense = dense_.data();
@@ -222,7 +221,6 @@ class MultigridCycle {
       }
     });
     factored_ = ex_.denseCholesky(n, dense);
-    if constexpr (Exec::kHostMemory) rememberFactored(c);
   }
 
   // The Galerkin product of refresh() on a device, a thread per entry of each coarse block (a
@@ -280,11 +278,6 @@ class MultigridCycle {
 
   // Coarsest factorizations reused since the hierarchy was uploaded (for tests).
   long coarseFactorsKept() const { return coarseFactorsKept_; }
-
-  // Whether the host factors a coarsest level of this many handles sparse (coarse_cholesky.h)
-  // rather than dense: above 64, where the dense factorization stops being the faster
-  // (docs/notes/2026-12-01-frame-cost-against-cracks-coarsest-level-factored.md).
-  static bool sparseCoarsest(int handles) { return handles > 64; }
 
   // The solve's settings are the scene's (multigrid.h); the cycle reads the sweeps, the
   // smoother, the coarsest solve and the cycle count, not the PCG fields (linear_solve.h's).
@@ -612,13 +605,10 @@ class MultigridCycle {
     const int n = 12 * c.handles;
     if (s.coarseCholesky && factored_) {
       ex_.copy(x, b, n);
-      if constexpr (Exec::kHostMemory) {
-        if (sparseFactored_) {
-          sparse_->solve(x);
-          return;
-        }
-      }
-      ex_.denseCholeskySolve(n, dense_.data(), x);
+      if constexpr (Exec::kHostMemory)
+        sparse_->solve(x);
+      else
+        ex_.denseCholeskySolve(n, dense_.data(), x);
       return;
     }
     // CG for a fixed number of iterations; with pieces, from the exact per-piece affine
@@ -762,12 +752,10 @@ class MultigridCycle {
   Buffer<double> pieceMap_, pieceFactor_, pieceSolution_;
   FragmentCorrection<Exec> fragments_;  // the fine level's
   int denseSize_ = 0;
-  Buffer<double> dense_;
-  // The host's sparse factorization of the coarsest level (coarse_cholesky.h), and whether the
-  // last refresh used it.
+  Buffer<double> dense_;  // a device's factorization of the coarsest level
+  // The host's (coarse_cholesky.h).
   std::unique_ptr<CoarseCholesky> sparse_;
-  bool sparseFactored_ = false;
-  bool factored_ = false;
+  bool factored_ = false;  // the last refresh factored the coarsest level
   // The coarsest matrix as last factored (host memory only).
   KeptCoarseFactor kept_;
   long coarseFactorsKept_ = 0;

@@ -118,8 +118,11 @@ std::uint64_t sphereCut() {
 // (materials/hencky.h): another material. Again when an iteration after the first solved only
 // the region where the residual was (StepSettings::localNewton, local_region.h): other iterates
 // within the same tolerance.
-constexpr std::uint64_t kHangingBall = 0x60dc9ab88d791610;
-constexpr std::uint64_t kSphereCut = 0x9303b9d5f2b185fd;
+// Both again when the host factored every coarsest level by 12x12 blocks, not only those of
+// more than 64 handles (solver/multigrid/coarse_cholesky.h): the same coarse solve in another
+// order, round-off.
+constexpr std::uint64_t kHangingBall = 0xeb18ec30d7cb1ccd;
+constexpr std::uint64_t kSphereCut = 0xc36cbcb3e1461623;
 
 TEST(Determinism, PinnedHashesAtOneAndTwoThreads) {
   const int threads = threadCount();

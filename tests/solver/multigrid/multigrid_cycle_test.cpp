@@ -4,6 +4,7 @@
 
 #include "solver/frame/cpu_executor.h"
 #include "solver/multigrid/multigrid_cycle.h"
+#include "tests/gpu/device_like_executor.h"
 #include "tests/solver/multigrid/multigrid_fixture.h"
 
 namespace galsculpt {
@@ -13,26 +14,43 @@ using test::Cycle;
 using test::elasticitySystem;
 using test::System;
 
-// The coarsest level's direct solve, dense up to 64 handles and sparse on the host above
-// (coarse_cholesky.h; a cracked body's split handles), is exact either way.
-TEST(Multigrid, TheCoarsestLevelIsSolvedExactlyDenseOrSparse) {
+// The coarsest level's direct solve is exact on either side: factored by blocks in host memory
+// (coarse_cholesky.h), whatever the handle count, and dense on a device (the device-like
+// executor takes the device's path on the CPU).
+template <typename Exec>
+void expectCoarsestSolvedExactly(const System& s, const Multigrid& mg, int handles) {
+  Exec ex;
+  MultigridCycle<Exec> cycle(ex, s.model.pattern);
+  cycle.upload(buildMultigridLayout(mg, s.model.pattern));
+  std::vector<double> a;
+  for (const Eigen::Matrix3d& blk : s.a.blocks) a.insert(a.end(), blk.data(), blk.data() + 9);
+  cycle.refresh(a.data(), true);
+  ASSERT_EQ(cycle.numLevels(), 1);
+  const Eigen::MatrixXd coarse = cycle.coarseMatrix(1);
+  ASSERT_EQ(coarse.rows(), 12 * handles);
+  Eigen::VectorXd b(coarse.rows()), x(coarse.rows());
+  for (int i = 0; i < b.size(); ++i) b[i] = std::sin(0.7 * i) * coarse(i, i);
+  typename MultigridCycle<Exec>::Settings st;
+  st.coarseCholesky = true;
+  cycle.solveCoarsest(b.data(), x.data(), st);
+  const Eigen::VectorXd exact = coarse.ldlt().solve(b);
+  EXPECT_LT((x - exact).norm(), 1e-8 * exact.norm());
+  EXPECT_LT((coarse * x - b).norm(), 1e-8 * b.norm());
+}
+
+TEST(Multigrid, TheCoarsestLevelIsSolvedExactlyOnTheHostAndOnADevice) {
   const System s = elasticitySystem();
   for (const int handles : {40, 100}) {
     SCOPED_TRACE(std::to_string(handles) + " handles");
     Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {handles});
-    Cycle c(s, mg, true);
-    ASSERT_EQ(c.cycle.numLevels(), 1);
-    const Eigen::MatrixXd coarse = c.cycle.coarseMatrix(1);
-    ASSERT_EQ(coarse.rows(), 12 * handles);
-    EXPECT_EQ(MultigridCycle<CpuExecutor>::sparseCoarsest(handles), handles > 64);
-    Eigen::VectorXd b(coarse.rows()), x(coarse.rows());
-    for (int i = 0; i < b.size(); ++i) b[i] = std::sin(0.7 * i) * coarse(i, i);
-    MultigridCycle<CpuExecutor>::Settings st = Cycle::settings();
-    st.coarseCholesky = true;
-    c.cycle.solveCoarsest(b.data(), x.data(), st);
-    const Eigen::VectorXd exact = coarse.ldlt().solve(b);
-    EXPECT_LT((x - exact).norm(), 1e-8 * exact.norm());
-    EXPECT_LT((coarse * x - b).norm(), 1e-8 * b.norm());
+    {
+      SCOPED_TRACE("host (blocks)");
+      expectCoarsestSolvedExactly<CpuExecutor>(s, mg, handles);
+    }
+    {
+      SCOPED_TRACE("device-like (dense)");
+      expectCoarsestSolvedExactly<DeviceLikeExecutor>(s, mg, handles);
+    }
   }
 }
 
