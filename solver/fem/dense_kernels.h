@@ -123,19 +123,10 @@ GALSCULPT_HD void ldlt12Solve(const double* a, const int* perm, const double* b,
   for (int i = 0; i < n; ++i) x[perm[i]] = y[i];
 }
 
-// out += (m (4x4, m_ij = yr_i yc_j)) kron A (3x3): the Galerkin block of two fine vertices.
-GALSCULPT_HD void addKron4x3(const double* yr, const double* yc, const double* a, double* out) {
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) {
-      const double m = yr[i] * yc[j];
-      for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) out[(3 * i + r) + 12 * (3 * j + c)] += m * a[r + 3 * c];
-    }
-}
-
-// The same sum over a row's blocks in two steps: row (3x12, row[r + 3 (3 j + c)]) += A (3x3) yc_j
-// for each column vertex, then out += (yr_i row) for the row's modes: sum over c of
-// (yr yc^T) kron A_c, a quarter of the multiply-adds of addKron4x3 once a row has four blocks.
+// The Galerkin blocks of a fine row's blocks A_c (3x3) with affine modes (yr, yc: 4 each), sum
+// over c of (yr yc^T) kron A_c, in two steps: row (3x12, row[r + 3 (3 j + c)]) += A_c yc_j for
+// each column vertex, then out += (yr_i row) for the row's modes once: a quarter of the
+// multiply-adds of each block's Kronecker product once a row has four blocks.
 GALSCULPT_HD void addBlockTimesModes(const double* yc, const double* a, double* row) {
   for (int j = 0; j < 4; ++j)
     for (int c = 0; c < 3; ++c)
@@ -163,6 +154,25 @@ GALSCULPT_HD void addTripleProduct12(const double* tr, const double* b, const do
     for (int r = 0; r < 12; ++r) {
       double s = 0.0;
       for (int k = 0; k < 12; ++k) s += tr[k + 12 * r] * bt[k + 12 * c];
+      out[r + 12 * c] += s;
+    }
+}
+
+// The same in two steps over a finer row's blocks B_c: sum += B_c T_c for each (12x12), then
+// out += T_r^T sum once.
+GALSCULPT_HD void addProduct12(const double* b, const double* tc, double* sum) {
+  for (int c = 0; c < 12; ++c)
+    for (int r = 0; r < 12; ++r) {
+      double s = 0.0;
+      for (int k = 0; k < 12; ++k) s += b[r + 12 * k] * tc[k + 12 * c];
+      sum[r + 12 * c] += s;
+    }
+}
+GALSCULPT_HD void addTransposedProduct12(const double* tr, const double* sum, double* out) {
+  for (int c = 0; c < 12; ++c)
+    for (int r = 0; r < 12; ++r) {
+      double s = 0.0;
+      for (int k = 0; k < 12; ++k) s += tr[k + 12 * r] * sum[k + 12 * c];
       out[r + 12 * c] += s;
     }
 }

@@ -93,8 +93,9 @@ struct ElementPass {
   // (nTets) each element's open cracks (0 when intact). In the pass with stiffness, all six
   // open (zeroStiffness) also says the element's stiffness is zero and was not written.
   std::uint8_t* opened;
-  const std::uint8_t* only;  // (nTets) or null: the elements to evaluate
-  static constexpr int kPackedHessian = 90;
+  const std::uint8_t* only;                 // (nTets) or null: the elements to evaluate
+  static constexpr int kPackedBlocks = 10;  // an element's 3x3 blocks on and above its diagonal
+  static constexpr int kPackedHessian = 9 * kPackedBlocks;
 
   // Loads element t and records whether it is inverted; false when `only` leaves it out.
   // `elementMode`: the stiffness it needs (none when its kept one will do).

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 
 #include "solver/fem/dense_kernels.h"
 #include "solver/fem/element_lanes.h"
@@ -19,6 +20,7 @@
 #include "solver/frame/element_pass.h"
 #include "solver/frame/frame_data.h"
 #include "solver/frame/plastic_state.h"
+#include "solver/frame/stiffness_gather.h"
 #include "solver/model/sim_model.h"
 
 namespace galsculpt {
@@ -120,8 +122,6 @@ class IncrementalPotential {
       for (int k = 0; k < 3; ++k) gradient[3 * v + k] = acc[k];
     });
     if (!withHessian) return;
-    const int* bStart = d_.blockSlotStart.data();
-    const int* bSlots = d_.blockSlots.data();
     double* kb = d_.stiffness.data();
     // Only the blocks of an element whose stiffness this pass evaluated change (null: all).
     const std::uint8_t* freshOnly = keep > 0.0 ? fresh : only;
@@ -133,6 +133,32 @@ class IncrementalPotential {
     // below as their partners' transposes: an element's stiffness is read once, not its six
     // lower blocks again (the gather reads scattered elements: a sixth of a 100-cut frame).
     // (An element's blocks join two of its corners: none without both touched changes.)
+    // In host memory by ranges of rows, element by element (stiffness_gather.h: the same bits).
+    if constexpr (Exec::kHostMemory) {
+      if (!hostGather_)
+        hostGather_ = std::make_unique<StiffnessGather>(model_.pattern, model_.scatter,
+                                                        model_.tetVertexArray());
+      hostGather_->gatherUpper(eh, opened, freshOnly, touched, kb);
+    } else {
+      gatherUpperByBlocks(eh, opened, freshOnly, touched, kb);
+    }
+    ex_.forEach(d_.blocks, [=] GALSCULPT_LAMBDA(int b) {
+      if (blockRow[b] <= columns[b]) return;
+      if (touched && !(touched[blockRow[b]] && touched[columns[b]])) return;
+      const double* upper = kb + 9 * static_cast<size_t>(transposed[b]);
+      for (int j = 0; j < 3; ++j)
+        for (int r = 0; r < 3; ++r) kb[9 * b + r + 3 * j] = upper[j + 3 * r];
+    });
+  }
+
+  // The upper blocks' gather a thread per block (a device's; stiffness_gather.h has the host's).
+  // Public only because nvcc refuses extended lambdas in private member functions.
+  void gatherUpperByBlocks(const double* eh, const std::uint8_t* opened,
+                           const std::uint8_t* freshOnly, const std::uint8_t* touched, double* kb) {
+    const int* bStart = d_.blockSlotStart.data();
+    const int* bSlots = d_.blockSlots.data();
+    const int* blockRow = d_.blockRow.data();
+    const int* columns = d_.columns.data();
     ex_.forEach(d_.blocks, [=] GALSCULPT_LAMBDA(int b) {
       if (blockRow[b] > columns[b]) return;
       if (touched && !(touched[blockRow[b]] && touched[columns[b]])) return;
@@ -157,13 +183,6 @@ class IncrementalPotential {
         }
       }
       for (int i = 0; i < 9; ++i) kb[9 * b + i] = acc[i];
-    });
-    ex_.forEach(d_.blocks, [=] GALSCULPT_LAMBDA(int b) {
-      if (blockRow[b] <= columns[b]) return;
-      if (touched && !(touched[blockRow[b]] && touched[columns[b]])) return;
-      const double* upper = kb + 9 * static_cast<size_t>(transposed[b]);
-      for (int j = 0; j < 3; ++j)
-        for (int r = 0; r < 3; ++r) kb[9 * b + r + 3 * j] = upper[j + 3 * r];
     });
   }
 
@@ -396,6 +415,7 @@ class IncrementalPotential {
   FrameData<Exec>& d_;
   ContactTerm<Exec>& contact_;
   const PlasticState<Exec>& plastic_;
+  std::unique_ptr<StiffnessGather> hostGather_;  // host memory only
 };
 
 }  // namespace galsculpt

@@ -36,17 +36,15 @@ std::vector<std::vector<int>> colorTets(const TetMesh& mesh) {
   return colors;
 }
 
-// Each vertex's and each block's element terms in colour order.
+// Each vertex's element terms in colour order, each block's in element order.
 void buildAssemblyLists(SimModel& m) {
   std::vector<std::vector<int>> perVertex(m.numVertices()), perBlock(m.numBlocks());
-  for (const std::vector<int>& color : m.colors) {
-    for (int t : color) {
-      for (int a = 0; a < 4; ++a) {
-        perVertex[m.mesh.tets[t][a]].push_back(4 * t + a);
-        for (int b = 0; b < 4; ++b) perBlock[m.scatter[t][4 * a + b]].push_back(16 * t + 4 * a + b);
-      }
-    }
-  }
+  for (const std::vector<int>& color : m.colors)
+    for (int t : color)
+      for (int a = 0; a < 4; ++a) perVertex[m.mesh.tets[t][a]].push_back(4 * t + a);
+  for (int t = 0; t < m.numTets(); ++t)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) perBlock[m.scatter[t][4 * a + b]].push_back(16 * t + 4 * a + b);
   flattenGroups(perVertex, m.vertexSlotStart, m.vertexSlots);
   flattenGroups(perBlock, m.blockSlotStart, m.blockSlots);
 }

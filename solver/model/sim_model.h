@@ -59,7 +59,9 @@ struct SimModel {
   std::vector<std::vector<int>> colors;  // tets grouped so that no two in a group share a vertex
   // The assembly's fixed-order lists (race-free without atomics, the same sums on every
   // executor): each vertex's force and each 3x3 stiffness block is one thread's sum over its
-  // own list of element terms, in colour order (colour by colour, tets in colour order).
+  // own list of element terms: a vertex's in colour order (colour by colour, tets in colour
+  // order), a block's in element order (which the host's gather by row ranges keeps,
+  // stiffness_gather.h).
   std::vector<int> vertexSlotStart, vertexSlots;  // (nVerts + 1) CSR: 4 t + a of each corner
   std::vector<int> blockSlotStart, blockSlots;    // (nBlocks + 1) CSR: 16 t + 4 a + b
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);           // m/s^2

@@ -141,19 +141,38 @@ class MultigridCycle {
         galerkinByEntries(d.nnz, start, block, row, finerColumns, first, fixed, y, toParent, finer,
                           out);
       } else {
+        // A block's terms come finer row by finer row (multigrid_layout.h): each row's blocks
+        // times their columns' modes are summed first, then taken into the row's modes once
+        // (addBlockTimesModes, addTransposedProduct12), not each block on both sides.
         ex_.forEach(
             d.nnz,
             [=] GALSCULPT_LAMBDA(int b) {
               double acc[144];
               for (double& a : acc) a = 0.0;
-              for (int i = start[b]; i < start[b + 1]; ++i) {
-                const int k = block[i], r = row[i], c = finerColumns[k];
+              double rowSum[144];
+              for (int i = start[b]; i < start[b + 1];) {
+                const int r = row[i];
+                int end = i + 1;
+                while (end < start[b + 1] && row[end] == r) ++end;
                 if (first) {
-                  if (fixed && (fixed[r] || fixed[c])) continue;
-                  addKron4x3(y + 4 * r, y + 4 * c, finer + 9 * k, acc);
+                  if (!(fixed && fixed[r])) {
+                    for (int e = 0; e < 36; ++e) rowSum[e] = 0.0;
+                    for (int q = i; q < end; ++q) {
+                      const int k = block[q], c = finerColumns[k];
+                      if (!(fixed && fixed[c]))
+                        addBlockTimesModes(y + 4 * c, finer + 9 * k, rowSum);
+                    }
+                    addModesTimesRow(y + 4 * r, rowSum, acc);
+                  }
                 } else {
-                  addTripleProduct12(toParent + 144 * r, finer + 144 * k, toParent + 144 * c, acc);
+                  for (double& e : rowSum) e = 0.0;
+                  for (int q = i; q < end; ++q) {
+                    const int k = block[q];
+                    addProduct12(finer + 144 * k, toParent + 144 * finerColumns[k], rowSum);
+                  }
+                  addTransposedProduct12(toParent + 144 * r, rowSum, acc);
                 }
+                i = end;
               }
               for (int i = 0; i < 144; ++i) out[144 * b + i] = acc[i];
             },
@@ -238,11 +257,14 @@ class MultigridCycle {
         const int rowIn = entry % 12, colIn = entry / 12;  // (3 i + r, 3 j + c)
         const int i = rowIn / 3, r = rowIn % 3, j = colIn / 3, c = colIn % 3;
         double acc = 0.0;
-        for (int q = start[b]; q < start[b + 1]; ++q) {
-          const int k = block[q], vr = row[q], vc = finerColumns[k];
-          if (fixed && (fixed[vr] || fixed[vc])) continue;
-          const double m = y[4 * vr + i] * y[4 * vc + j];
-          acc += m * finer[9 * k + r + 3 * c];
+        for (int q = start[b]; q < start[b + 1];) {
+          const int vr = row[q];
+          double sum = 0.0;  // the finer row's blocks times their columns' modes
+          for (; q < start[b + 1] && row[q] == vr; ++q) {
+            const int k = block[q], vc = finerColumns[k];
+            if (!(fixed && fixed[vc])) sum += y[4 * vc + j] * finer[9 * k + r + 3 * c];
+          }
+          if (!(fixed && fixed[vr])) acc += y[4 * vr + i] * sum;
         }
         out[e] = acc;
       });
@@ -252,17 +274,21 @@ class MultigridCycle {
       const int b = e / 12, c = e % 12;  // a column of the block
       double acc[12];
       for (double& a : acc) a = 0.0;
-      for (int q = start[b]; q < start[b + 1]; ++q) {
-        const int k = block[q];
-        const double* tr = toParent + 144 * row[q];
-        const double* bk = finer + 144 * k;
-        const double* tc = toParent + 144 * finerColumns[k] + 12 * c;
-        double bt[12];  // column c of B T_c
-        for (int r = 0; r < 12; ++r) {
-          double sum = 0.0;
-          for (int m = 0; m < 12; ++m) sum += bk[r + 12 * m] * tc[m];
-          bt[r] = sum;
+      for (int q = start[b]; q < start[b + 1];) {
+        const int vr = row[q];
+        double bt[12];  // column c of the finer row's sum of B T_c
+        for (double& v : bt) v = 0.0;
+        for (; q < start[b + 1] && row[q] == vr; ++q) {
+          const int k = block[q];
+          const double* bk = finer + 144 * k;
+          const double* tc = toParent + 144 * finerColumns[k] + 12 * c;
+          for (int r = 0; r < 12; ++r) {
+            double sum = 0.0;
+            for (int m = 0; m < 12; ++m) sum += bk[r + 12 * m] * tc[m];
+            bt[r] += sum;
+          }
         }
+        const double* tr = toParent + 144 * vr;
         for (int r = 0; r < 12; ++r) {
           double sum = 0.0;
           for (int m = 0; m < 12; ++m) sum += tr[m + 12 * r] * bt[m];
