@@ -140,26 +140,8 @@ GALSCULPT_HD void addModesTimesRow(const double* yr, const double* row, double* 
           out[(3 * i + r) + 12 * (3 * j + c)] += yr[i] * row[r + 3 * (3 * j + c)];
 }
 
-// out += T_r^T B T_c for 12x12 blocks.
-GALSCULPT_HD void addTripleProduct12(const double* tr, const double* b, const double* tc,
-                                     double* out) {
-  double bt[144];  // B T_c
-  for (int c = 0; c < 12; ++c)
-    for (int r = 0; r < 12; ++r) {
-      double s = 0.0;
-      for (int k = 0; k < 12; ++k) s += b[r + 12 * k] * tc[k + 12 * c];
-      bt[r + 12 * c] = s;
-    }
-  for (int c = 0; c < 12; ++c)
-    for (int r = 0; r < 12; ++r) {
-      double s = 0.0;
-      for (int k = 0; k < 12; ++k) s += tr[k + 12 * r] * bt[k + 12 * c];
-      out[r + 12 * c] += s;
-    }
-}
-
-// The same in two steps over a finer row's blocks B_c: sum += B_c T_c for each (12x12), then
-// out += T_r^T sum once.
+// A Galerkin product of 12x12 blocks in two steps, for a finer row's blocks B_c: sum += B_c T_c
+// for each, then out += T_r^T sum once.
 GALSCULPT_HD void addProduct12(const double* b, const double* tc, double* sum) {
   for (int c = 0; c < 12; ++c)
     for (int r = 0; r < 12; ++r) {
@@ -175,6 +157,15 @@ GALSCULPT_HD void addTransposedProduct12(const double* tr, const double* sum, do
       for (int k = 0; k < 12; ++k) s += tr[k + 12 * r] * sum[k + 12 * c];
       out[r + 12 * c] += s;
     }
+}
+
+// out += T_r^T B T_c for 12x12 blocks (one block: the two steps above).
+GALSCULPT_HD void addTripleProduct12(const double* tr, const double* b, const double* tc,
+                                     double* out) {
+  double bt[144];  // B T_c
+  for (double& v : bt) v = 0.0;
+  addProduct12(b, tc, bt);
+  addTransposedProduct12(tr, bt, out);
 }
 
 // y (+)= A x for 12x12 blocks; transposed: y += A^T x.
