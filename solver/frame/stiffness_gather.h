@@ -22,8 +22,9 @@ namespace galsculpt {
 
 class StiffnessGather {
  public:
-  // `tetVertices` (4 per tet) and `scatter` (16 block indices per tet) of the model; `blockRow`
-  // (each block's row). Ranges are rebuilt when the number asked for changes.
+  // From the model's block pattern, `scatter` (each tet's 16 block indices) and `tetVertices`
+  // (4 per tet); the pattern and the vertices must outlive the gather. The row ranges are made
+  // at the first gather, and again when the thread count changes.
   StiffnessGather(const BlockPattern& pattern, const std::vector<TetScatter>& scatter,
                   const int* tetVertices);
 
