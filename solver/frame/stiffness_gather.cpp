@@ -9,9 +9,6 @@ namespace galsculpt {
 StiffnessGather::StiffnessGather(const BlockPattern& pattern,
                                  const std::vector<TetScatter>& scatter, const int* tetVertices)
     : pattern_(pattern), tetVertices_(tetVertices), tets_(static_cast<int>(scatter.size())) {
-  rowOfBlock_.resize(pattern.columns.size());
-  for (int r = 0; r < pattern.rows; ++r)
-    for (int k = pattern.rowStart[r]; k < pattern.rowStart[r + 1]; ++k) rowOfBlock_[k] = r;
   target_.resize(static_cast<size_t>(ElementPass::kPackedBlocks) * tets_);
   for (int t = 0; t < tets_; ++t)
     for (int a = 0; a < 4; ++a)
@@ -40,13 +37,13 @@ void StiffnessGather::buildRanges(int ranges) {
   for (int p = 0; p < ranges; ++p)
     for (int r = rangeRow_[p]; r < rangeRow_[p + 1]; ++r) rangeOfRow[r] = p;
   std::vector<std::vector<int>> lists(ranges);
-  for (int t = 0; t < tets_; ++t)
-    for (int k = 0; k < ElementPass::kPackedBlocks; ++k) {
-      std::vector<int>& list =
-          lists[rangeOfRow[rowOfBlock_[target_[ElementPass::kPackedBlocks * static_cast<size_t>(t) +
-                                               k]]]];
+  for (int t = 0; t < tets_; ++t) {
+    const int* corner = tetVertices_ + 4 * static_cast<size_t>(t);
+    for (int a = 0; a < 4; ++a) {  // the rows of its blocks: its corners
+      std::vector<int>& list = lists[rangeOfRow[corner[a]]];
       if (list.empty() || list.back() != t) list.push_back(t);
     }
+  }
   rangeTetStart_.assign(1, 0);
   rangeTets_.clear();
   for (const std::vector<int>& list : lists) {
@@ -64,11 +61,10 @@ void StiffnessGather::gatherUpper(const double* packed, const std::uint8_t* open
   parallelFor(
       ranges,
       [&](int p) {
-        const int b0 = pattern_.rowStart[rangeRow_[p]], b1 = pattern_.rowStart[rangeRow_[p + 1]];
+        const int r0 = rangeRow_[p], r1 = rangeRow_[p + 1];
+        const int b0 = pattern_.rowStart[r0], b1 = pattern_.rowStart[r1];
         const int* tets = rangeTets_.data() + rangeTetStart_[p];
         const int count = rangeTetStart_[p + 1] - rangeTetStart_[p];
-        const int* columns = pattern_.columns.data();
-        const int* rowOf = rowOfBlock_.data();
         std::uint8_t* dirty = dirty_.data();
         const bool all = !fresh && !touched;
         for (int b = b0; b < b1; ++b) dirty[b] = all;
@@ -78,17 +74,20 @@ void StiffnessGather::gatherUpper(const double* packed, const std::uint8_t* open
             if (fresh && !fresh[t]) continue;
             const int* target =
                 target_.data() + ElementPass::kPackedBlocks * static_cast<size_t>(t);
-            for (int k = 0; k < ElementPass::kPackedBlocks; ++k) {
-              const int b = target[k];
-              if (b < b0 || b >= b1) continue;
-              if (touched && !(touched[rowOf[b]] && touched[columns[b]])) continue;
-              dirty[b] = 1;
-            }
+            const int* corner = tetVertices_ + 4 * static_cast<size_t>(t);
+            for (int a = 0; a < 4; ++a)
+              for (int c = a; c < 4; ++c) {
+                const int b = target[ElementPass::packedBlock(a, c)];
+                if (b < b0 || b >= b1) continue;
+                if (touched && !(touched[corner[a]] && touched[corner[c]])) continue;
+                dirty[b] = 1;
+              }
           }
         }
-        for (int b = b0; b < b1; ++b)
-          if (dirty[b] && rowOf[b] <= columns[b])
-            for (int i = 0; i < 9; ++i) kb[9 * static_cast<size_t>(b) + i] = 0.0;
+        for (int r = r0; r < r1; ++r)  // the blocks on and above the diagonal
+          for (int b = pattern_.rowStart[r]; b < pattern_.rowStart[r + 1]; ++b)
+            if (dirty[b] && pattern_.columns[b] >= r)
+              for (int i = 0; i < 9; ++i) kb[9 * static_cast<size_t>(b) + i] = 0.0;
         for (int i = 0; i < count; ++i) {
           const int t = tets[i];
           if (ElementPass::zeroStiffness(opened[t])) continue;

@@ -47,7 +47,6 @@ class StiffnessGather {
   int tets_ = 0;
   // Each tet's ten packed blocks' targets: the upper block each adds into (packedBlock order).
   std::vector<int> target_;
-  std::vector<int> rowOfBlock_;
   int ranges_ = 0;
   std::vector<int> rangeRow_;                   // (ranges + 1) first row of each range
   std::vector<int> rangeTetStart_, rangeTets_;  // CSR: each range's tets, ascending
