@@ -42,6 +42,7 @@
 #include "solver/frame/local_region.h"
 #include "solver/frame/piece_residual.h"
 #include "solver/frame/plastic_state.h"
+#include "solver/frame/secant_history.h"
 #include "solver/frame/step.h"
 #include "solver/frame/timing.h"
 
@@ -100,6 +101,10 @@ class FrameSolver {
     // (allocated here: never inside a captured section).
     if (settings.newtonIterations > 1 && d_.frozen.size() != d_.stiffness.size())
       d_.frozen.resize(d_.stiffness.size());
+    if (settings.lbfgsPairs <= 0 || !settings.reuseStiffness)
+      secant_.reset();
+    else if (!secant_ || secant_->capacity() != settings.lbfgsPairs)
+      secant_ = std::make_unique<SecantHistory<Exec>>(ex_, 3 * d_.n, settings.lbfgsPairs);
   }
 
   // Writes positions, velocities, damage and plastic state back (positions through the
@@ -288,6 +293,7 @@ class FrameSolver {
   void beginSubstep(double h) {
     d_.h = h;
     pieceTargetCap_ = std::numeric_limits<double>::infinity();
+    if (secant_) secant_->clear();
     linear_.resetIterations();
     held_.prepare(*anchors_, time_ + h);
     contact_.place(colliderStates_, time_ + h, h);
@@ -359,6 +365,7 @@ class FrameSolver {
     if (!(read.inverted > 0.0)) return false;
     ex_.copy(d_.x.data(), d_.xn.data(), 3 * d_.n);
     held_.place();
+    if (secant_) secant_->clear();  // its last point was the prediction
     return true;
   }
 
@@ -449,6 +456,7 @@ class FrameSolver {
     potential_.contact(x, d_.grad.data(), &d_.sc()->contact);
     potential_.dampedProduct(x, d_.dampedK.data());
     potential_.backwardEulerGradient(x, d_.grad.data(), d_.dampedK.data(), d_.g.data());
+    if (secant_) secant_->record(x, d_.g.data());
     double bodyResidual = 0.0;
     // A null step for the body is none for a piece still above its own tolerance: it sets the
     // cap, and this iteration solves (a settled body can hide a piece that still spins).
@@ -461,7 +469,8 @@ class FrameSolver {
     if (!reuse) potential_.buildSystem(x);
     if (s.multigrid) {
       if (!reuse && !d_.local) linear_.refresh(s);  // (a local solve has no multigrid)
-      linear_.solve(s, pcgTarget());
+      // A chord step's direction is L-BFGS's where pairs are kept (a chord is never local).
+      linear_.solve(s, pcgTarget(), reuse ? secant_.get() : nullptr);
     } else {
       linear_.solveDirect(s);
     }
@@ -550,6 +559,7 @@ class FrameSolver {
         .mixPointer(plastic_.inverse())
         .mix(plastic_.active())
         .mix(d_.local)
+        .mix(static_cast<std::uint64_t>(secant_ ? secant_->recorded() : 0))
         .value();
   }
 
@@ -601,6 +611,7 @@ class FrameSolver {
   AcceleratedStart<Exec> accelerated_;            // the pieces' starts (startPiecesAccelerated)
   PieceResidual<Exec> pieceResidual_;             // the residual piece by piece
   std::unique_ptr<FracturePass<Exec>> fracture_;  // with the model's fracture field
+  std::unique_ptr<SecantHistory<Exec>> secant_;   // chord steps' pairs (StepSettings::lbfgsPairs)
   const std::vector<AnchorConstraint>* anchors_ = nullptr;  // the stepped state's
   double time_ = 0.0, modelSize_ = 1.0, massNorm_ = 0.0;
   double forceScale_ = 0.0;      // the last residual's scale (N): the next solves' target

@@ -33,6 +33,7 @@ class GraphKey {
     mix(m.jacobiOnDevice);
     mixDouble(m.jacobiWeight);
     mixDouble(s.stiffnessTolerance);
+    mix(static_cast<std::uint64_t>(s.lbfgsPairs));
     return mix(s.reuseStiffness);  // the trial counts switched cracks only for chord steps
   }
   std::uint64_t value() const { return key_; }

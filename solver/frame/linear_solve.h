@@ -15,6 +15,7 @@
 #include "solver/frame/direct_solver.h"
 #include "solver/frame/frame_data.h"
 #include "solver/frame/region_solve.h"
+#include "solver/frame/secant_history.h"
 #include "solver/frame/step.h"
 #include "solver/model/sim_model.h"
 #include "solver/multigrid/multigrid.h"
@@ -86,7 +87,9 @@ class LinearSolve {
   // delta = H^-1 (-g) by the multigrid: V-cycles (the residual norms go to r0 and r1; no host
   // read) or PCG to `target` (absolute; host reads; its reduction in reduction()). In a local
   // iteration, PCG on the region's rows (region_solve.h; the multigrid is not refreshed).
-  void solve(const StepSettings& s, double target) {
+  // With `secant`, the step is L-BFGS's: the multigrid solves for its recursion's middle
+  // (secant_history.h), never in a local iteration.
+  void solve(const StepSettings& s, double target, SecantHistory<Exec>* secant = nullptr) {
     const MultigridSettings& ms = s.multigridSettings;
     if (d_.local) {
       startFromZero();
@@ -102,6 +105,7 @@ class LinearSolve {
     double* b = d_.rhs.data();
     const std::uint8_t* fixed = d_.fixed.data();
     startFromZero();
+    if (secant) secant->firstLoop(b);
     const double* a = d_.system.data();
     FrameScalars* sc = d_.sc();
     double* ap = d_.product.data();
@@ -118,6 +122,7 @@ class LinearSolve {
       reduction_ = r.reduction;
       iterations_ += r.iterations;
     }
+    if (secant) secant->secondLoop(delta);
     ex_.forEach(3 * d_.n, [=] GALSCULPT_LAMBDA(int i) {
       if (fixed[i / 3]) delta[i] = 0.0;
     });

@@ -60,6 +60,7 @@ StepSettings stepSettings(const SolverOptions& o, double dt, int substeps) {
   s.residualTolerance = o.residualTolerance;
   s.frameBudgetMs = o.frameBudgetMs;
   s.reuseStiffness = o.reuseStiffness;
+  s.lbfgsPairs = o.lbfgsPairs;
   s.localNewton = o.localNewton;
   s.predictedStart = o.predictedStart;
   s.acceleratedStart = o.acceleratedStart;

@@ -55,6 +55,7 @@ void checkGridSetup(const std::string& grid);
   X(double, frameBudgetMs, "frame_budget_ms", "frame budget (ms, 0: none)", 0.0, 0.0, 0.0, 1e6,    \
     nullptr)                                                                                       \
   X(bool, reuseStiffness, "reuse_stiffness", "chord steps", true, false, 0, 0, nullptr)            \
+  X(int, lbfgsPairs, "lbfgs_pairs", "L-BFGS pairs (0: none)", 0, 0, 0, 8, nullptr)                 \
   X(bool, localNewton, "local_newton", "solve where the residual is", true, false, 0, 0, nullptr)  \
   X(bool, predictedStart, "predicted_start", "predicted start", true, false, 0, 0, nullptr)        \
   X(bool, acceleratedStart, "accelerated_start", "accelerated start", true, false, 0, 0, nullptr)  \

@@ -15,6 +15,7 @@ StepSettings referenceSettings(StepSettings base) {
   base.residualTolerance = 0.0;  // Newton runs to its step test, not to the default's residual
   base.frameBudgetMs = 0.0;
   base.reuseStiffness = false;
+  base.lbfgsPairs = 0;
   base.localNewton = false;       // the reference solves the whole body every iteration
   base.vertexGuard = false;       // the reference backs off the whole step (a plain line search)
   base.stiffnessTolerance = 0.0;  // and evaluates every element's stiffness

@@ -43,6 +43,9 @@ struct StepSettings {
   // operators) already built while that still halves the residual each iteration: a chord step
   // costs a gradient and a solve, not an assembly, a projection and a Galerkin refresh.
   bool reuseStiffness = false;
+  // > 0: a chord step's direction is L-BFGS's (secant_history.h): the chord's matrix, solved by
+  // the multigrid, corrected by the sub-step's last lbfgsPairs steps and gradient changes.
+  int lbfgsPairs = 0;
   // Under PCG, a fresh Newton iteration whose gradient is already within the solve's target
   // takes its null step without building the system, refreshing the multigrid or running PCG's
   // first V-cycle: the same step, less work. Off only to compare (tests).

@@ -19,7 +19,7 @@ TEST(SolverOptions, KeysAndLabelsAreUniqueAndEveryRowIsVisited) {
     EXPECT_TRUE(labels.insert(f.label).second) << f.label;
     EXPECT_NE(std::string(f.key), "preset") << "the preset chooses the columns; it is no row";
   });
-  EXPECT_EQ(rows, 20);
+  EXPECT_EQ(rows, 21);
 }
 
 // The struct's defaults are the converged column; each preset sets every row to its column.
