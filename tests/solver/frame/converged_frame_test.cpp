@@ -458,6 +458,18 @@ TEST(ConvergedFrame, NullStepsSkipTheSolveForTheSameBits) {
   EXPECT_GE(solvedFrames, 3);
 }
 
+// The cut bar's halves driven apart and spun against each other about z.
+SimModel spinningCutBar(SimState& start) {
+  SimModel m = cutBar(start);
+  for (int v = 0; v < m.numVertices(); ++v) {
+    const bool left = leftHalf(m, v);
+    const Vec3 centre(left ? 0.02 : 0.06, 0.015, 0.015);
+    start.v[v] = Vec3(left ? 0.1 : -0.1, 0, 0) +
+                 Vec3(0, 0, left ? 20.0 : -20.0).cross(m.mesh.vertices[v] - centre);
+  }
+  return m;
+}
+
 // The halves spin against each other: the cracked layer's faces close, push and open again, and
 // each switch changes the Newton matrix within a sub-step. A chord step (the last iteration's
 // matrix) that has not halved the residual says the matrix moved on: the sub-step's later
@@ -467,13 +479,7 @@ TEST(ConvergedFrame, NullStepsSkipTheSolveForTheSameBits) {
 // and none).
 TEST(ConvergedFrame, ChordStepsStopOnceOneFailsToHalveTheResidual) {
   SimState start;
-  const SimModel m = cutBar(start);
-  for (int v = 0; v < m.numVertices(); ++v) {
-    const bool left = leftHalf(m, v);
-    const Vec3 centre(left ? 0.02 : 0.06, 0.015, 0.015);
-    start.v[v] = Vec3(left ? 0.1 : -0.1, 0, 0) +
-                 Vec3(0, 0, left ? 20.0 : -20.0).cross(m.mesh.vertices[v] - centre);
-  }
+  const SimModel m = spinningCutBar(start);
   StepSettings fresh = converged();
   fresh.reuseStiffness = false;
   const int frames = 40;
@@ -492,13 +498,7 @@ TEST(ConvergedFrame, ChordStepsStopOnceOneFailsToHalveTheResidual) {
 // motion, in no more Newton iterations than the plain chords take.
 TEST(ConvergedFrame, LbfgsChordStepsConvergeToTheSameMotion) {
   SimState start;
-  const SimModel m = cutBar(start);
-  for (int v = 0; v < m.numVertices(); ++v) {
-    const bool left = leftHalf(m, v);
-    const Vec3 centre(left ? 0.02 : 0.06, 0.015, 0.015);
-    start.v[v] = Vec3(left ? 0.1 : -0.1, 0, 0) +
-                 Vec3(0, 0, left ? 20.0 : -20.0).cross(m.mesh.vertices[v] - centre);
-  }
+  const SimModel m = spinningCutBar(start);
   StepSettings lbfgs = converged();
   lbfgs.lbfgsPairs = 5;
   const int frames = 40;
