@@ -31,11 +31,10 @@ class SecantHistory {
   template <typename T>
   using Buffer = typename Exec::template Buffer<T>;
 
-  // Pairs kept beyond this are dropped oldest first; Liu et al. keep 5-7.
-  static constexpr int kMostPairs = 8;
   static constexpr double kCurvature = 1e-8;
 
-  // `dofs`: 3 n. `pairs`: how many to keep (1..kMostPairs).
+  // `dofs`: 3 n. `pairs`: how many to keep, at least 1 (the option allows 8; Liu et al. keep
+  // 5-7); older ones are dropped.
   SecantHistory(Exec& ex, int dofs, int pairs) : ex_(ex), dofs_(dofs), capacity_(pairs) {
     s_.resize(static_cast<size_t>(capacity_) * dofs_);
     y_.resize(static_cast<size_t>(capacity_) * dofs_);
