@@ -8,6 +8,7 @@
 //   incremental_potential.h the potential, its gradient g and the Newton system H (the element
 //                           pass in element_pass.h, the contact term in contact_term.h)
 //   linear_solve.h          delta = H^-1 (-g): the Galerkin multigrid, or CHOLMOD for the reference
+//   secant_history.h        L-BFGS's correction of a chord step (StepSettings::lbfgsPairs)
 //   local_region.h          where an iteration after the first solves: the region of the residual
 //   line_search.h           backtracking, lengthening and the vertex guard
 //   piece_residual.h        the residual piece by piece; piece_tracker.h the pieces themselves

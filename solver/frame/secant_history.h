@@ -40,7 +40,7 @@ class SecantHistory {
     y_.resize(static_cast<size_t>(capacity_) * dofs_);
     lastX_.resize(dofs_);
     lastG_.resize(dofs_);
-    coefficients_.resize(4 * static_cast<size_t>(capacity_));  // rho, a, and two scratch sums
+    coefficients_.resize(4 * static_cast<size_t>(capacity_));
   }
 
   int capacity() const { return capacity_; }
@@ -68,7 +68,7 @@ class SecantHistory {
         s[i] = x[i] - lastX[i];
         y[i] = g[i] - lastG[i];
       });
-      double* c = coefficients_.data() + 4 * slot;  // rho, a, s.y, then |s|^2 |y|^2 parts
+      double* c = coefficients_.data() + 4 * slot;
       ex_.sum(
           dofs_, [=] GALSCULPT_LAMBDA(int i) { return s[i] * y[i]; }, c + 2);
       ex_.sum(
@@ -77,8 +77,7 @@ class SecantHistory {
           dofs_, [=] GALSCULPT_LAMBDA(int i) { return y[i] * y[i]; }, c + 3);
       ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
         const double sy = c[2];
-        const bool curved = sy > kCurvature * sqrt(c[1]) * sqrt(c[3]) && sy > 0.0;
-        c[0] = curved ? 1.0 / sy : 0.0;
+        c[0] = sy > kCurvature * sqrt(c[1]) * sqrt(c[3]) ? 1.0 / sy : 0.0;
       });
       ++recorded_;
       if (count_ < capacity_) ++count_;
@@ -125,7 +124,9 @@ class SecantHistory {
   int count_ = 0, recorded_ = 0;
   bool haveLast_ = false;
   Buffer<double> s_, y_, lastX_, lastG_;
-  Buffer<double> coefficients_;  // per slot: rho, a (first loop), s.y, |y|^2 or y.z
+  // Per slot: rho; |s|^2 while recording, then the first loop's a; s.y; |y|^2 while recording,
+  // then the second loop's y.z.
+  Buffer<double> coefficients_;
 };
 
 }  // namespace galsculpt
