@@ -19,7 +19,8 @@
 // Two builds of the same source: one for AVX2 (four doubles per instruction), chosen at startup
 // where the CPU has it, and a portable one (SSE2 pairs) for every x86-64, slower than the scalar
 // kernel and so never chosen by default (it keeps the lane logic tested on any x86-64). The
-// environment variable GALSCULPT_ELEMENT_LANES (avx2, portable, off) overrides the choice.
+// environment variable GALSCULPT_ELEMENT_LANES (avx2, portable, off) overrides the choice, which
+// also picks the multigrid's fine smoother rows (solver/multigrid/fine_rows.h).
 #pragma once
 
 #include "solver/fem/element_kernels.h"

@@ -11,6 +11,7 @@
 #include "solver/fem/block_sparse.h"
 #include "solver/fem/dense_kernels.h"
 #include "solver/fem/kernel_math.h"
+#include "solver/multigrid/fine_rows.h"
 
 namespace galsculpt {
 
@@ -80,6 +81,15 @@ class FineSmoother {
     const int* rowStart = rowStart_.data();
     const int* columns = columns_.data();
     const float* blocks = blocks_.data();
+    if constexpr (Exec::kHostMemory) {
+      if (const fine_rows::ProductRow row = fine_rows::productRow()) {
+        const fine_rows::Rows m = hostRows(rowOf);
+        ex_.forEach(
+            rows_, [=](int i) { row(m, i, a + 9 * static_cast<size_t>(diagonal[rowOf[i]]), x, y); },
+            kRowCost);
+        return;
+      }
+    }
     ex_.forEach(
         rows_,
         [=] GALSCULPT_LAMBDA(int i) {
@@ -92,6 +102,11 @@ class FineSmoother {
           for (int k = 0; k < 3; ++k) y[3 * r + k] = -acc[k];
         },
         kRowCost);
+  }
+
+  // The operator for fine_rows.h's kernels (host memory, after a single-precision refresh).
+  fine_rows::Rows hostRows(const int* rowOf) const {
+    return {rowStart_.data(), columns_.data(), blocks_.data(), diagonalInverse_.data(), rowOf};
   }
 
   bool single() const { return single_; }

@@ -449,6 +449,16 @@ class MultigridCycle {
             16);
         continue;
       }
+      if constexpr (Exec::kHostMemory) {
+        if (inFloat && sweepRow_) {
+          const fine_rows::Rows m = smoother_.hostRows(rowOf);
+          const fine_rows::SweepRow row = sweepRow_;
+          forEachColour(
+              fineColorStart_, reverse, [=](int i) { row(m, i, b, x); },
+              FineSmoother<Exec>::kRowCost);
+          continue;
+        }
+      }
       forEachColour(
           fineColorStart_, reverse,
           [=] GALSCULPT_LAMBDA(int i) {
@@ -764,6 +774,8 @@ class MultigridCycle {
   const BlockPattern& finePattern_;
   int rows_ = 0;
   FineSmoother<Exec> smoother_;  // the fine level's operator in colour order
+  // The host's fast sweep row (fine_rows.h), or null for the loop in smoothFine.
+  fine_rows::SweepRow sweepRow_ = fine_rows::sweepRow();
   typename Exec::template Mirror<int> fineRowStart_, fineColumns_, fineDiagonal_;
   const std::uint8_t* fixed_ = nullptr;  // anchored fine vertices (setFixed)
   std::vector<int> fineColorStart_;
