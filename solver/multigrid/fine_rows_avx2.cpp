@@ -1,9 +1,10 @@
 // fine_rows.h's AVX2 kernels (compiled with -mavx2, without FMA or contraction: each lane rounds
 // as the portable loops do). Masked loads and stores touch a row's three entries only: the
 // fourth lane carries nothing, and the entry after a row may be another thread's.
-#include <immintrin.h>
-
 #include "solver/multigrid/fine_rows.h"
+
+#if defined(__x86_64__)  // (fine_rows.cpp offers these kernels on x86-64 only)
+#include <immintrin.h>
 
 namespace galsculpt::fine_rows::avx2 {
 namespace {
@@ -61,3 +62,5 @@ void productRow(const Rows& m, int i, const double* diagonal, const double* x, d
 }
 
 }  // namespace galsculpt::fine_rows::avx2
+
+#endif
