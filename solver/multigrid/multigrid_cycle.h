@@ -450,9 +450,9 @@ class MultigridCycle {
         continue;
       }
       if constexpr (Exec::kHostMemory) {
-        if (inFloat && sweepRow_) {
+        const fine_rows::SweepRow row = inFloat ? fine_rows::sweepRow() : nullptr;
+        if (row) {
           const fine_rows::Rows m = smoother_.hostRows(rowOf);
-          const fine_rows::SweepRow row = sweepRow_;
           forEachColour(
               fineColorStart_, reverse, [=](int i) { row(m, i, b, x); },
               FineSmoother<Exec>::kRowCost);
@@ -774,8 +774,6 @@ class MultigridCycle {
   const BlockPattern& finePattern_;
   int rows_ = 0;
   FineSmoother<Exec> smoother_;  // the fine level's operator in colour order
-  // The host's fast sweep row (fine_rows.h), or null for the loop in smoothFine.
-  fine_rows::SweepRow sweepRow_ = fine_rows::sweepRow();
   typename Exec::template Mirror<int> fineRowStart_, fineColumns_, fineDiagonal_;
   const std::uint8_t* fixed_ = nullptr;  // anchored fine vertices (setFixed)
   std::vector<int> fineColorStart_;
