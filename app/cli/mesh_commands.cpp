@@ -15,6 +15,7 @@
 #include "solver/io/tetgen_io.h"
 #include "solver/mesh/mesh_stats.h"
 #include "solver/mesh/surface_checks.h"
+#include "solver/mesh/union_find.h"
 
 namespace galsculpt {
 
@@ -32,7 +33,26 @@ std::string vec(const Vec3& v) {
 struct DamageBeside {
   bool present = false;
   int damaged = 0, crossed = 0;
+  int pieces = 0;  // parts joined by undamaged edges (vertices of no tet aside)
 };
+
+int piecesThroughDamage(const TetMesh& mesh, const std::vector<Edge>& edges,
+                        const std::vector<std::uint8_t>& damaged) {
+  UnionFind parts(mesh.numVertices());
+  for (size_t e = 0; e < edges.size(); ++e)
+    if (!damaged[e]) parts.unite(edges[e][0], edges[e][1]);
+  std::vector<char> used(mesh.numVertices(), 0), root(mesh.numVertices(), 0);
+  for (const Tet& t : mesh.tets)
+    for (int v : t) used[v] = 1;
+  int pieces = 0;
+  for (int v = 0; v < mesh.numVertices(); ++v) {
+    if (!used[v]) continue;
+    char& seen = root[parts.find(v)];
+    pieces += !seen;
+    seen = 1;
+  }
+  return pieces;
+}
 DamageBeside readDamageBeside(const fs::path& file, const TetMesh& mesh,
                               const MeshReadReport& report) {
   DamageBeside d;
@@ -41,13 +61,15 @@ DamageBeside readDamageBeside(const fs::path& file, const TetMesh& mesh,
   const fs::path damagePath = fs::path(stem).concat(".damage");
   std::error_code ec;
   if (!fs::exists(damagePath, ec)) return d;
-  const EdgeDamageState state = readDamage(damagePath, uniqueEdges(mesh));
+  const std::vector<Edge> edges = uniqueEdges(mesh);
+  const EdgeDamageState state = readDamage(damagePath, edges);
   checkSameSet(fs::path(stem).concat(".node"), report.setStamp, damagePath, state.setStamp);
   d.present = true;
   for (size_t e = 0; e < state.damaged.size(); ++e) {
     d.damaged += state.damaged[e];
     d.crossed += hasCrossing(state.crossing[e]);
   }
+  d.pieces = piecesThroughDamage(mesh, edges, state.damaged);
   return d;
 }
 
@@ -71,7 +93,8 @@ int infoTet(const fs::path& file, bool json, std::ostream& out) {
     j["quality_mean"] = s.meanQuality;
     j["quality_histogram"] = s.qualityHistogram;
     j["watertight"] = s.watertight;
-    j["pieces"] = s.pieces;
+    j["pieces"] = damage.present ? damage.pieces : s.pieces;
+    j["mesh_pieces"] = s.pieces;
     j["reoriented_tets"] = report.reorientedTets;
     j["unused_vertices"] = report.unusedVertices;
     if (damage.present) {
@@ -93,7 +116,8 @@ int infoTet(const fs::path& file, bool json, std::ostream& out) {
     out << ' ' << std::fixed << std::setprecision(1) << b / 10.0 << ':' << s.qualityHistogram[b];
   out << std::defaultfloat << std::setprecision(9) << '\n';
   out << "watertight: " << (s.watertight ? "yes" : "no (" + s.boundaryProblem + ")") << '\n';
-  out << "pieces: " << s.pieces << '\n';
+  out << "pieces: " << (damage.present ? damage.pieces : s.pieces) << '\n';
+  out << "mesh_pieces: " << s.pieces << '\n';
   out << "reoriented_tets: " << report.reorientedTets
       << "\nunused_vertices: " << report.unusedVertices << '\n';
   if (damage.present)
@@ -101,16 +125,44 @@ int infoTet(const fs::path& file, bool json, std::ostream& out) {
   return kExitOk;
 }
 
+// What the shells of a surface are: closed pieces (enclosing positive volume) and the rest
+// (cavities, inside-out shells), and which crossing face pairs lie inside one shell
+// (self-intersection) and which between two (pieces in contact through each other).
+struct ShellCensus {
+  int shells = 0, pieces = 0, inwardShells = 0;
+  size_t selfCrossings = 0, contactCrossings = 0;
+  bool capped = false;
+};
+ShellCensus censusOfShells(const TriMesh& mesh) {
+  constexpr size_t kMaxPairs = 1000;
+  ShellCensus c;
+  std::vector<int> shellOfFace;
+  c.shells = countSurfacePieces(mesh, &shellOfFace);
+  std::vector<double> sixVolume(c.shells, 0.0);
+  for (int f = 0; f < mesh.numFaces(); ++f) {
+    const Tri& t = mesh.faces[f];
+    sixVolume[shellOfFace[f]] +=
+        mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+  }
+  for (double v : sixVolume) (v > 0.0 ? c.pieces : c.inwardShells)++;
+  const auto crossings = findSelfIntersections(mesh, kMaxPairs);
+  c.capped = crossings.size() >= kMaxPairs;
+  for (const auto& [f, g] : crossings)
+    (shellOfFace[f] == shellOfFace[g] ? c.selfCrossings : c.contactCrossings)++;
+  return c;
+}
+
 int infoSurface(const fs::path& file, bool json, std::ostream& out) {
   const TriMesh mesh = readSurface(file);
   const SurfaceTopology topo = analyzeSurface(mesh);
-  const auto crossings = findSelfIntersections(mesh, 1000);
+  const ShellCensus shells = censusOfShells(mesh);
   const BoundingBox box = boundingBox(mesh.vertices);
-  const bool watertight = topo.closedManifold() && crossings.empty();
+  const bool watertight = topo.closedManifold() && shells.selfCrossings == 0;
+  const std::string more = shells.capped ? "+" : "";
   std::string problem = topo.describeProblem();
-  if (problem.empty() && !crossings.empty()) {
-    problem = "self-intersecting: " + std::to_string(crossings.size()) +
-              (crossings.size() >= 1000 ? "+" : "") + " crossing face pair(s)";
+  if (problem.empty() && shells.selfCrossings > 0) {
+    problem = "self-intersecting: " + std::to_string(shells.selfCrossings) + more +
+              " crossing face pair(s) inside a shell";
   }
   if (json) {
     nlohmann::json j;
@@ -124,8 +176,11 @@ int infoSurface(const fs::path& file, bool json, std::ostream& out) {
     j["area"] = surfaceArea(mesh);
     j["watertight"] = watertight;
     j["problem"] = problem;
-    j["self_intersections"] = crossings.size();
-    j["pieces"] = topo.pieces;
+    j["self_intersections"] = shells.selfCrossings;
+    j["shells"] = shells.shells;
+    j["pieces"] = shells.pieces;
+    j["inward_shells"] = shells.inwardShells;
+    j["contact_crossings"] = shells.contactCrossings;
     out << j.dump(2) << '\n';
     return kExitOk;
   }
@@ -135,8 +190,15 @@ int infoSurface(const fs::path& file, bool json, std::ostream& out) {
   out << "bbox_min: " << vec(box.min) << "\nbbox_max: " << vec(box.max) << '\n';
   out << "volume: " << enclosedVolume(mesh) << "\narea: " << surfaceArea(mesh) << '\n';
   out << "watertight: " << (watertight ? "yes" : "no (" + problem + ")") << '\n';
-  out << "self_intersections: " << crossings.size() << '\n';
-  out << "pieces: " << topo.pieces << '\n';
+  out << "self_intersections: " << shells.selfCrossings << more << '\n';
+  out << "shells: " << shells.shells << '\n';
+  out << "pieces: " << shells.pieces << '\n';
+  out << "inward_shells: " << shells.inwardShells << '\n';
+  out << "contact: "
+      << (shells.contactCrossings == 0 ? std::string("none (no two shells cross)")
+                                       : std::to_string(shells.contactCrossings) + more +
+                                             " crossing face pair(s) between shells")
+      << '\n';
   return kExitOk;
 }
 

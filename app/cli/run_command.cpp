@@ -32,6 +32,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// An export is written whatever it holds; one that is not clean says so.
+void writeExport(const fs::path& path, const ExportedSurface& exported, std::ostream& err) {
+  writeVisualSurface(path, exported.surface);
+  if (exported.crossings > 0 || exported.invertedShells > 0)
+    err << "warning: " << path.string() << ": " << exported.summary() << '\n';
+}
+
 void drawProgress(std::ostream& err, int done, int total, double msPerFrame, bool interactive) {
   if (interactive) {
     const int width = 30;
@@ -134,13 +141,13 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
     }
     drawProgress(err, f, frames, msSum / f, interactive);
     if (exportEvery > 0 && f % exportEvery == 0)
-      writeVisualSurface(outDir / frameName(f, o.exportFormat), sim.surface());
+      writeExport(outDir / frameName(f, o.exportFormat), sim.exportSurface(), err);
     if (pictures && f % o.pngEvery == 0) pictures->write(sim, outDir / frameName(f, "png"), pose());
   }
   if (pictures) pictures->write(sim, outDir / "final.png", pose());
-  writeVisualSurface(outDir / "final.obj", sim.surface());
-  if (o.exportFormat != "obj")
-    writeVisualSurface(outDir / ("final." + o.exportFormat), sim.surface());
+  const ExportedSurface exported = sim.exportSurface();
+  writeExport(outDir / "final.obj", exported, err);
+  if (o.exportFormat != "obj") writeExport(outDir / ("final." + o.exportFormat), exported, err);
   if (o.exportTets) {
     sim.writeTetsWithDamage(outDir / "final");
     out << "wrote " << (outDir / "final").string() << ".node/.ele/.face/.damage/.vtk\n";
@@ -152,6 +159,7 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
       << last.pieces << " piece(s), " << warnings << " warning(s)\n"
       << std::defaultfloat;
   out << "wrote " << metricsPath.string() << " and " << (outDir / "final.obj").string() << '\n';
+  out << "final surface: " << exported.summary() << '\n';
   if (pieceFrames > 0)
     err << "note: " << pieceFrames << " frame(s) left a piece above the residual tolerance of its "
         << "own loads (worst " << worstPiece << "; metrics column piece_residual)\n";

@@ -151,7 +151,7 @@ class PySimulation {
 
   void exportSurface(const std::string& path) {
     Guard guard(*this);
-    writeVisualSurface(path, session_->simulation().surface());
+    writeVisualSurface(path, session_->simulation().exportSurface().surface);
   }
   void exportTets(const std::string& path) {
     Guard guard(*this);

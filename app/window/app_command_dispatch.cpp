@@ -152,10 +152,11 @@ void SculptApp::applyToSession(const Command& command) {
       report("saved recording " + argument + " (" + std::to_string(session_->recording().size()) +
              " events, " + std::to_string(session_->simulation().frame()) + " frames)");
       break;
-    case AppCommand::Export:
-      writeVisualSurface(argument, session_->simulation().surface());
-      report("exported surface " + argument);
-      break;
+    case AppCommand::Export: {
+      const ExportedSurface exported = session_->simulation().exportSurface();
+      writeVisualSurface(argument, exported.surface);
+      report("exported surface " + argument + ": " + exported.summary());
+    } break;
     case AppCommand::ExportTets:
       session_->simulation().writeTetsWithDamage(argument);
       report("exported tets " + argument + ".node/.ele/.face/.damage/.vtk");

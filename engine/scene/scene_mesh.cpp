@@ -217,4 +217,20 @@ TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress)
   throw std::logic_error("unhandled mesh source");
 }
 
+std::optional<EdgeDamageState> sceneMeshDamage(const SceneDescription& scene, const TetMesh& mesh) {
+  if (scene.mesh.kind != MeshSource::Kind::File) return std::nullopt;
+  const fs::path& file = scene.mesh.path;
+  const bool tetgen = meshFileKind(file) == MeshFileKind::TetGen;
+  const fs::path stem = tetgen ? tetgenStem(file) : fs::path(file).replace_extension();
+  const fs::path damagePath = fs::path(stem).concat(".damage");
+  std::error_code ec;
+  if (!fs::exists(damagePath, ec)) return std::nullopt;
+  EdgeDamageState damage = readDamage(damagePath, uniqueEdges(mesh));
+  if (tetgen) {
+    const fs::path node = fs::path(stem).concat(".node");
+    checkSameSet(node, findSetStamp(readWholeFile(node)), damagePath, damage.setStamp);
+  }
+  return damage;
+}
+
 }  // namespace galsculpt

@@ -7,10 +7,12 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/scene/scene.h"
+#include "solver/io/damage_io.h"
 #include "solver/mesh/tet_mesh.h"
 
 namespace galsculpt {
@@ -30,5 +32,12 @@ std::vector<TriMesh> generatorSurfaces(Generator generator, double radius, int t
 using ProgressFn = std::function<void(const std::string&)>;
 
 TetMesh loadSceneMesh(const SceneDescription& scene, const ProgressFn& progress = {});
+
+// The damage a scene's tet mesh file carries beside it (`stem.damage`, solver/io/damage_io.h:
+// what `--export-tets` and `export_tets` write), so that an exported mesh reopens cracked.
+// Checked against `mesh` (every edge one of its edges) and, beside a TetGen set, to be of the
+// same write as its .node (InputError naming the file otherwise). nullopt when the scene's mesh
+// is not a file or has no damage beside it.
+std::optional<EdgeDamageState> sceneMeshDamage(const SceneDescription& scene, const TetMesh& mesh);
 
 }  // namespace galsculpt

@@ -9,6 +9,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "engine/scene/scene_mesh.h"
 #include "engine/session/backend_select.h"
 #include "solver/fracture/debris.h"
 #include "solver/frame/timing.h"
@@ -131,6 +132,12 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   loadAnchor_ = scene.measure.loadAnchor;
   debrisFraction_ = scene.fracture.debrisFraction;
   removesDebris_ = scene.fracture.debris == DebrisRule::Remove;
+  // An exported tet mesh reopens with the cracks it was written with.
+  if (std::optional<EdgeDamageState> damage = sceneMeshDamage(scene, mesh)) {
+    state_.damaged = std::move(damage->damaged);
+    state_.crossing = std::move(damage->crossing);
+    ++state_.damageRevision;
+  }
   updatePieces();
 }
 

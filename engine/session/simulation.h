@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/scene/scene.h"
+#include "engine/surface/export_surface.h"
 #include "engine/surface/surface_builder.h"
 #include "solver/fracture/knife.h"
 #include "solver/frame/cpu_backend.h"
@@ -188,6 +189,9 @@ class Simulation {
   // The visualization surface (engine/surface/surface_builder.h) at the current damage and
   // positions, brought up to date on each call; `stats` (optional) gets what that update cost.
   const VisualSurface& surface(SurfaceUpdateStats* stats = nullptr) const;
+  // The surface as exports write it: one closed shell per piece (removed debris left out),
+  // crack sides apart, checked for crossings (engine/surface/export_surface.h).
+  ExportedSurface exportSurface() const;
   // What the last update of the surface cost, whoever asked for it: a frame of a body in
   // several pieces brings the surface up to date itself (its inverted-piece count reads it), so
   // a later surface() call finds nothing to do.

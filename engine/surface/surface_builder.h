@@ -76,6 +76,11 @@ class SurfaceBuilder {
   // builder was made for.
   SurfaceUpdateStats update(const SimModel& model, const SimState& state);
   const VisualSurface& surface() const { return surface_; }
+  // Per surface vertex, the mean current position of the mesh corners its copy holds: where a
+  // crack-side copy (one that holds only some of its point's corners) retracts to when the
+  // surface is exported (engine/surface/export_surface.h). Every other vertex gets its own
+  // position. `state` must be the one of the last update.
+  std::vector<Vec3> heldCentres(const SimState& state) const;
 
  private:
   // Numbers every tet face (faceCorners_, faceEdges_, faceOfTet_) and lists the boundary faces

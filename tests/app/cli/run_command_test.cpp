@@ -48,6 +48,22 @@ TEST(Cli, PlayRunsAScriptHeadlessAndWritesTheFinalSurface) {
   EXPECT_TRUE(fs::exists(dir / "out" / "final.obj"));
   EXPECT_TRUE(fs::exists(dir / "out" / "frame_00060.obj"));
   EXPECT_TRUE(fs::exists(dir / "out" / "metrics.csv"));
+  EXPECT_NE(r.out.find("final surface: 2 piece(s), closed"), std::string::npos) << r.out;
+
+  // The export is whole by the project's own check, one shell a piece, and imports again.
+  for (const char* name : {"final.obj", "frame_00060.obj"}) {
+    const CliRun info = run({"mesh", "info", (dir / "out" / name).string()});
+    ASSERT_EQ(info.code, kExitOk) << info.err;
+    for (const char* line : {"watertight: yes", "self_intersections: 0", "shells: 2", "pieces: 2",
+                             "inward_shells: 0", "contact: none"})
+      EXPECT_NE(info.out.find(line), std::string::npos) << name << ": " << line << '\n' << info.out;
+  }
+  const CliRun again = run({"mesh", "import", (dir / "out" / "final.obj").string(),
+                            (dir / "again.node").string(), "--tets", "10000"});
+  ASSERT_EQ(again.code, kExitOk) << again.err;
+  const CliRun againInfo = run({"mesh", "info", (dir / "again.node").string()});
+  EXPECT_NE(againInfo.out.find("pieces: 2"), std::string::npos) << againInfo.out;
+
   EXPECT_EQ(run({"play", script.string()}).code, kExitUsage) << "--out is required";
   EXPECT_EQ(
       run({"play", script.string(), "--out", (dir / "o3").string(), "--export-format", "fbx"}).code,
@@ -63,6 +79,14 @@ TEST(Cli, PlayRunsAScriptHeadlessAndWritesTheFinalSurface) {
         "final.damage", "final.vtk", "frame_00030.png", "frame_00060.png", "final.png"}) {
     EXPECT_TRUE(fs::exists(dir / "glb" / name)) << name;
   }
+  for (const char* name : {"final.glb", "frame_00060.glb"}) {
+    const CliRun info = run({"mesh", "info", (dir / "glb" / name).string()});
+    EXPECT_NE(info.out.find("watertight: yes"), std::string::npos) << name << '\n' << info.out;
+    EXPECT_NE(info.out.find("shells: 2"), std::string::npos) << name << '\n' << info.out;
+  }
+  // The tets reopen cracked: mesh info counts the pieces through the damage.
+  const CliRun tets = run({"mesh", "info", (dir / "glb" / "final.node").string()});
+  EXPECT_NE(tets.out.find("pieces: 2\nmesh_pieces: 1"), std::string::npos) << tets.out;
   test::writeText(dir / "bad.json", "{\"frames\": 2}");
   const CliRun bad = run({"play", (dir / "bad.json").string(), "--out", (dir / "o2").string()});
   EXPECT_EQ(bad.code, kExitBadInput);

@@ -1,0 +1,131 @@
+#include "engine/surface/export_surface.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "solver/mesh/surface_checks.h"
+
+namespace galsculpt {
+
+namespace {
+
+double signedSixVolume(const TriMesh& mesh, const Tri& f) {
+  return mesh.vertices[f[0]].dot(mesh.vertices[f[1]].cross(mesh.vertices[f[2]]));
+}
+
+// The faces to write: those of each exported piece's outer shell. Fills the report's shell
+// counts.
+std::vector<int> outerShellFaces(const VisualSurface& all, const std::vector<int>& pieceOfVertex,
+                                 ExportedSurface& report) {
+  std::vector<int> shellOfFace;
+  const int shells = countSurfacePieces(all.mesh, &shellOfFace);
+  std::vector<double> sixVolume(shells, 0.0);
+  std::vector<int> pieceOfShell(shells, -1);
+  for (int f = 0; f < all.mesh.numFaces(); ++f) {
+    sixVolume[shellOfFace[f]] += signedSixVolume(all.mesh, all.mesh.faces[f]);
+    pieceOfShell[shellOfFace[f]] = pieceOfVertex[all.cellVertex[f]];
+  }
+  int pieceCount = 0;
+  for (int p : pieceOfVertex) pieceCount = std::max(pieceCount, p + 1);
+  std::vector<int> outer(pieceCount, -1);
+  for (int s = 0; s < shells; ++s) {
+    const int p = pieceOfShell[s];
+    if (p < 0) continue;
+    if (outer[p] < 0 || sixVolume[s] > sixVolume[outer[p]]) outer[p] = s;
+  }
+  std::vector<char> kept(shells, 0);
+  for (int p = 0; p < pieceCount; ++p) {
+    if (outer[p] < 0) continue;
+    kept[outer[p]] = 1;
+    ++report.pieces;
+    if (!(sixVolume[outer[p]] > 0.0)) ++report.invertedShells;
+  }
+  for (int s = 0; s < shells; ++s) {
+    if (kept[s] || pieceOfShell[s] < 0) continue;
+    ++report.droppedShells;
+    report.droppedVolume += std::abs(sixVolume[s]) / 6.0;
+  }
+  std::vector<int> faces;
+  for (int f = 0; f < all.mesh.numFaces(); ++f)
+    if (kept[shellOfFace[f]]) faces.push_back(f);
+  return faces;
+}
+
+}  // namespace
+
+std::string ExportedSurface::summary() const {
+  std::ostringstream s;
+  s << pieces << " piece(s), " << (crossings == 0 && invertedShells == 0 ? "closed" : "NOT clean");
+  if (crossings > 0) s << ", " << crossings << " crossing face pair(s) left";
+  if (invertedShells > 0) s << ", " << invertedShells << " piece(s) inside out";
+  if (sealedEdges > 0) s << "; " << sealedEdges << " closed crack edge(s) inside pieces sealed";
+  if (droppedShells > 0) {
+    s << "; " << droppedShells << " internal crack shell(s) left out (" << droppedVolume
+      << " m^3 enclosed)";
+  }
+  if (pulledVertices > 0)
+    s << "; " << pulledVertices << " crack-face point(s) pulled further apart to clear crossings";
+  return s.str();
+}
+
+ExportedSurface makeExportSurface(const VisualSurface& all, const std::vector<Vec3>& heldCentre,
+                                  const std::vector<int>& pieceOfVertex,
+                                  const SurfaceExportOptions& options) {
+  ExportedSurface out;
+  const std::vector<int> faces = outerShellFaces(all, pieceOfVertex, out);
+
+  // Compact numbering over the kept faces.
+  VisualSurface& s = out.surface;
+  std::vector<int> number(all.mesh.numVertices(), -1);
+  std::vector<int> source;
+  for (int f : faces) {
+    Tri tri = all.mesh.faces[f];
+    for (int& v : tri) {
+      if (number[v] < 0) {
+        number[v] = static_cast<int>(source.size());
+        source.push_back(v);
+      }
+      v = number[v];
+    }
+    s.mesh.faces.push_back(tri);
+    s.tags.push_back(all.tags[f]);
+    s.cellVertex.push_back(all.cellVertex[f]);
+  }
+
+  // Crack-side copies stand `separation` of the way towards their held corners; where faces
+  // still cross, the copies among their corners are pulled further.
+  const size_t n = source.size();
+  std::vector<double> pull(n, options.separation);
+  std::vector<char> movable(n, 0);
+  for (size_t i = 0; i < n; ++i) movable[i] = heldCentre[source[i]] != all.mesh.vertices[source[i]];
+  auto place = [&] {
+    s.mesh.vertices.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      const Vec3& p = all.mesh.vertices[source[i]];
+      s.mesh.vertices[i] = movable[i] ? Vec3(p + pull[i] * (heldCentre[source[i]] - p)) : p;
+    }
+  };
+  place();
+  constexpr size_t kMaxPairs = 1000000;
+  std::vector<std::pair<int, int>> crossing = findSelfIntersections(s.mesh, kMaxPairs);
+  for (int round = 0; round < options.rounds && !crossing.empty(); ++round) {
+    std::vector<int> raise;
+    for (const auto& [f, g] : crossing) {
+      for (int face : {f, g}) {
+        for (int v : s.mesh.faces[face])
+          if (movable[v] && pull[v] < options.maxSeparation) raise.push_back(v);
+      }
+    }
+    if (raise.empty()) break;
+    std::sort(raise.begin(), raise.end());
+    raise.erase(std::unique(raise.begin(), raise.end()), raise.end());
+    for (int v : raise) pull[v] = std::min(2.0 * pull[v], options.maxSeparation);
+    place();
+    crossing = findSelfIntersections(s.mesh, kMaxPairs);
+  }
+  out.crossings = static_cast<int>(crossing.size());
+  for (size_t i = 0; i < n; ++i) out.pulledVertices += movable[i] && pull[i] > options.separation;
+  return out;
+}
+
+}  // namespace galsculpt

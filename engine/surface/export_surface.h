@@ -1,0 +1,55 @@
+// The surface that leaves the app: one closed, outward-oriented shell per piece, checked.
+//
+// The visualization surface (surface_builder.h) is closed piece by piece, but it is made for the
+// screen: a slit inside a piece is a zero-volume cavity shell of its own, and the two sides of a
+// closed crack (halves at rest after a cut, a crack band) are placed by each side's own fitted
+// deformation, so where they meet they may cross each other by a little. An export is a solid a
+// user takes to other programs, so:
+//   - each piece keeps only its outer shell (the one enclosing the most volume); the other
+//     shells of the piece (internal cracks: slits and voids) are left out, counted, and the
+//     volume they enclosed reported;
+//   - every crack-side copy (a surface vertex that holds only some of its point's corners) is
+//     pulled towards the mean of the corners it holds by `separation` of the way, so the two
+//     sides of a closed crack stand apart (about 1 % of the local edge length at the default)
+//     and never share a position;
+//   - the result is checked for crossing faces; the crack-side copies of faces that still cross
+//     are pulled further (doubling, up to `maxSeparation`) and the check repeated, so that what
+//     is written is free of crossings wherever pulling crack faces in can make it so. What is
+//     left (a body folded through itself) is counted and reported.
+// docs/surface.md ("Exports") states what an export promises.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/surface/surface_builder.h"
+
+namespace galsculpt {
+
+struct SurfaceExportOptions {
+  double separation = 0.02;    // of the way from a crack-side copy to its held corners
+  double maxSeparation = 0.5;  // the furthest a copy is pulled while faces still cross
+  int rounds = 8;              // check-and-pull rounds
+};
+
+struct ExportedSurface {
+  VisualSurface surface;       // faces of kept pieces' outer shells, compact numbering
+  int pieces = 0;              // shells written: one per piece
+  int sealedEdges = 0;         // closed slits inside pieces, sealed (Simulation::exportSurface)
+  int droppedShells = 0;       // internal crack shells left out
+  double droppedVolume = 0.0;  // the volume they enclosed (absolute, m^3)
+  int invertedShells = 0;      // pieces whose outer shell encloses no positive volume
+  int pulledVertices = 0;      // crack-side copies pulled further than `separation`
+  int crossings = 0;           // face pairs that still cross (0: no self-intersection)
+  // One line: "2 piece(s), closed; ..." for the command line and the window's messages.
+  std::string summary() const;
+};
+
+// `all`: the builder's surface; `heldCentre`: SurfaceBuilder::heldCentres of the same state;
+// `pieceOfVertex`: the piece of each tet-mesh vertex, negative for vertices whose faces are not
+// exported (removed debris).
+ExportedSurface makeExportSurface(const VisualSurface& all, const std::vector<Vec3>& heldCentre,
+                                  const std::vector<int>& pieceOfVertex,
+                                  const SurfaceExportOptions& options = {});
+
+}  // namespace galsculpt

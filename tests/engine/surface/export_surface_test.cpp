@@ -1,0 +1,165 @@
+#include "engine/surface/export_surface.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+
+#include "engine/session/simulation.h"
+#include "engine/surface/surface_io.h"
+#include "solver/fracture/knife.h"
+#include "solver/io/input_error.h"
+#include "solver/mesh/surface_checks.h"
+#include "tests/engine/session/clay_ball.h"
+#include "tests/test_util.h"
+
+namespace galsculpt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Per shell of `mesh`: its enclosed volume.
+std::vector<double> shellVolumes(const TriMesh& mesh) {
+  std::vector<int> shellOfFace;
+  const int shells = countSurfacePieces(mesh, &shellOfFace);
+  std::vector<double> volume(shells, 0.0);
+  for (int f = 0; f < mesh.numFaces(); ++f) {
+    const Tri& t = mesh.faces[f];
+    volume[shellOfFace[f]] +=
+        mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]])) / 6.0;
+  }
+  return volume;
+}
+
+// What an export promises (docs/surface.md): one closed, outward shell per piece, nothing
+// crossing, no two vertices at one position (a reader that welds keeps them apart).
+void expectWhole(const TriMesh& mesh, int pieces) {
+  const SurfaceTopology topo = analyzeSurface(mesh);
+  EXPECT_TRUE(topo.closedManifold()) << topo.describeProblem();
+  const std::vector<double> volumes = shellVolumes(mesh);
+  EXPECT_EQ(static_cast<int>(volumes.size()), pieces);
+  for (double v : volumes) EXPECT_GT(v, 0.0);
+  EXPECT_TRUE(findSelfIntersections(mesh, 10).empty());
+  std::map<std::array<double, 3>, int> at;
+  for (const Vec3& p : mesh.vertices) ++at[{p.x(), p.y(), p.z()}];
+  for (const auto& [p, count] : at) EXPECT_EQ(count, 1) << p[0] << ' ' << p[1] << ' ' << p[2];
+}
+
+// The clay ball cut through by a plane 2 cm above its centre and left a frame to settle: the
+// two halves touch along the cut, where the visualization surface places each side by its own
+// fitted deformation and the two cross (sphere_cut.json right after its knife).
+struct CutBall {
+  Simulation sim{test::clayBall().scene, test::clayBall().mesh};
+  CutBall() {
+    const int cut = sim.cut(sweptBladeSurface(Vec3(-0.2, 0.2, 0.02), Vec3(0.2, 0.2, 0.02),
+                                              Vec3(-0.2, -0.2, 0.02), Vec3(0.2, -0.2, 0.02)));
+    EXPECT_GT(cut, 0);
+    for (int f = 0; f < 2; ++f) sim.advance();
+  }
+};
+
+TEST(ExportSurface, TheHalvesOfACutBallAreTwoClosedShellsThatDoNotCross) {
+  CutBall ball;
+  ASSERT_EQ(ball.sim.pieceStats().pieces, 2);
+  const ExportedSurface exported = ball.sim.exportSurface();
+  EXPECT_EQ(exported.pieces, 2);
+  EXPECT_EQ(exported.crossings, 0);
+  EXPECT_EQ(exported.invertedShells, 0);
+  expectWhole(exported.surface.mesh, 2);
+  EXPECT_NE(exported.summary().find("2 piece(s), closed"), std::string::npos) << exported.summary();
+
+  // Written and read back (the reader welds equal positions): still whole.
+  test::TempDir dir;
+  for (const char* name : {"cut.obj", "cut.stl", "cut.ply", "cut.glb"}) {
+    writeVisualSurface(dir / name, exported.surface);
+    expectWhole(readSurface(dir / name), 2);
+  }
+}
+
+TEST(ExportSurface, WithoutTheCheckAndPullTheCutBallsSidesCross) {
+  // The separation and its check are what clear the crossings: with neither, the same state
+  // crosses (the case the export exists for).
+  CutBall ball;
+  const VisualSurface& all = ball.sim.surface();
+  std::vector<int> piece(ball.sim.model().numVertices());
+  for (int v = 0; v < ball.sim.model().numVertices(); ++v) piece[v] = ball.sim.pieceOf(v);
+  SurfaceExportOptions none;
+  none.separation = 0.0;
+  none.rounds = 0;
+  const std::vector<Vec3> centres(all.mesh.vertices);  // nothing moves
+  const ExportedSurface raw = makeExportSurface(all, centres, piece, none);
+  EXPECT_GT(raw.crossings, 0);
+}
+
+TEST(ExportSurface, AnInternalSlitIsACavityShellThatTheExportLeavesOut) {
+  Simulation sim(test::clayBall().scene, test::clayBall().mesh);
+  // An edge none of whose tets touches the boundary: damaged, it is a slit inside the ball.
+  const SimModel& model = sim.model();
+  std::vector<char> onBoundary(model.numVertices(), 0);
+  for (const Tri& f : boundaryFaces(model.mesh))
+    for (int v : f) onBoundary[v] = 1;
+  int inner = -1;
+  for (int e = 0; e < model.numEdges() && inner < 0; ++e)
+    if (!onBoundary[model.edges[e][0]] && !onBoundary[model.edges[e][1]]) inner = e;
+  ASSERT_GE(inner, 0);
+  SimulationSnapshot s = sim.snapshot();
+  s.damaged[inner] = 1;
+  sim.restore(s);
+  ASSERT_EQ(sim.pieceStats().pieces, 1);
+  EXPECT_EQ(shellVolumes(sim.surface().mesh).size(), 2u) << "the ball and its slit";
+
+  // Closed (at rest), the slit is sealed.
+  const ExportedSurface sealed = sim.exportSurface();
+  EXPECT_EQ(sealed.sealedEdges, 1);
+  EXPECT_EQ(sealed.droppedShells, 0);
+  expectWhole(sealed.surface.mesh, 1);
+
+  // Not sealed, its cavity shell is left out and counted.
+  std::vector<int> piece(model.numVertices(), 0);
+  const ExportedSurface dropped =
+      makeExportSurface(sim.surface(), std::vector<Vec3>(sim.surface().mesh.vertices), piece);
+  EXPECT_EQ(dropped.droppedShells, 1);
+  EXPECT_LT(dropped.droppedVolume, 1e-9);
+  expectWhole(dropped.surface.mesh, 1);
+}
+
+TEST(ExportSurface, FacesOfPiecesNumberedNegativeAreLeftOut) {
+  CutBall ball;
+  const VisualSurface& all = ball.sim.surface();
+  std::vector<int> piece(ball.sim.model().numVertices());
+  for (int v = 0; v < ball.sim.model().numVertices(); ++v)
+    piece[v] = ball.sim.pieceOf(v) == 0 ? 0 : -1;
+  const ExportedSurface one = makeExportSurface(all, std::vector<Vec3>(all.mesh.vertices), piece);
+  EXPECT_EQ(one.pieces, 1);
+  for (int v : one.surface.cellVertex) EXPECT_EQ(ball.sim.pieceOf(v), 0);
+  EXPECT_EQ(shellVolumes(one.surface.mesh).size(), 1u);
+}
+
+TEST(ExportSurface, ATetMeshWrittenWithItsDamageReopensCracked) {
+  CutBall ball;
+  test::TempDir dir;
+  ball.sim.writeTetsWithDamage(dir / "cut");
+  SceneDescription scene = test::clayBall().scene;
+  scene.mesh = MeshSource{};
+  scene.mesh.kind = MeshSource::Kind::File;
+  scene.mesh.path = dir / "cut.node";
+  const TetMesh mesh = loadSceneMesh(scene);
+  Simulation reopened(scene, mesh);
+  EXPECT_EQ(reopened.state().damaged, ball.sim.state().damaged);
+  EXPECT_EQ(reopened.pieceStats().pieces, 2);
+  expectWhole(reopened.exportSurface().surface.mesh, 2);
+
+  // A .damage of another write is refused, naming it.
+  const fs::path other = dir / "other";
+  ball.sim.writeTetsWithDamage(other);
+  fs::copy_file(dir / "other.damage", dir / "cut.damage", fs::copy_options::overwrite_existing);
+  try {
+    Simulation mixed(scene, mesh);
+    ADD_FAILURE() << "a damage file of another write was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cut.damage"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace galsculpt
