@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -14,6 +16,7 @@
 
 #include "app/cli/cli.h"
 #include "app/cli/cli_args.h"
+#include "app/cli/run_outputs.h"
 #include "app/render/render_mesh.h"
 #include "app/render/snapshot_renderer.h"
 #include "app/window/camera.h"
@@ -39,16 +42,35 @@ void writeExport(const fs::path& path, const ExportedSurface& exported, std::ost
     err << "warning: " << path.string() << ": " << exported.summary() << '\n';
 }
 
-void drawProgress(std::ostream& err, int done, int total, double msPerFrame, bool interactive) {
+// Seconds as "42 s" or "3 min 05 s".
+std::string duration(double seconds) {
+  const long s = std::lround(std::max(0.0, seconds));
+  std::ostringstream t;
+  if (s < 60) {
+    t << s << " s";
+  } else {
+    t << s / 60 << " min " << std::setw(2) << std::setfill('0') << s % 60 << " s";
+  }
+  return t.str();
+}
+
+// The progress line: frames done, ms a frame, the time since the first frame and an estimate of
+// the time left (the frames left at the mean pace so far).
+void drawProgress(std::ostream& err, int done, int total, double msPerFrame, double elapsedS,
+                  bool interactive) {
+  std::ostringstream pace;
+  pace << std::fixed << std::setprecision(1) << msPerFrame << " ms/frame, " << duration(elapsedS)
+       << " elapsed";
+  if (done < total && done > 0)
+    pace << ", ~" << duration(elapsedS / done * (total - done)) << " left";
   if (interactive) {
     const int width = 30;
     const int filled = total > 0 ? width * done / total : width;
     err << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << done
-        << '/' << total << std::fixed << std::setprecision(1) << "  " << msPerFrame << " ms/frame"
-        << std::defaultfloat << (done == total ? "\n" : "") << std::flush;
+        << '/' << total << "  " << pace.str() << "\x1b[K" << (done == total ? "\n" : "")
+        << std::flush;
   } else if (total > 0 && (done == total || done % std::max(1, total / 10) == 0)) {
-    err << "frame " << done << '/' << total << "  " << std::fixed << std::setprecision(1)
-        << msPerFrame << " ms/frame" << std::defaultfloat << '\n';
+    err << "frame " << done << '/' << total << "  " << pace.str() << '\n';
   }
 }
 
@@ -108,6 +130,15 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
   fs::create_directories(outDir, ec);
   if (ec) throw OutputError("cannot create " + outDir.string() + ": " + ec.message());
   const FolderLock lock(outDir);  // one writer at a time
+  const std::vector<std::string> cleared = clearRunOutputs(outDir);
+  if (!cleared.empty()) {
+    err << "note: removed " << cleared.size() << " file(s) an earlier run left in "
+        << outDir.string() << ": " << describeWritten(cleared) << '\n';
+  }
+  std::vector<std::string> written;  // names in outDir
+  const bool metricsInside = fs::absolute(metricsPath).parent_path().lexically_normal() ==
+                             fs::absolute(outDir).lexically_normal();
+  if (metricsInside) written.push_back(metricsPath.filename().string());
 
   // Rows reach the file frame by frame: a run stopped by a signal or killed keeps its metrics.
   AppendingFile csv(metricsPath);
@@ -121,6 +152,7 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
   int pieceFrames = 0;
   double worstPiece = 0.0;
   FrameMetrics last;
+  const auto started = std::chrono::steady_clock::now();
   for (int f = 1; f <= frames; ++f) {
     if (stopRequested()) {
       if (interactive) err << '\n';
@@ -139,18 +171,41 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
       ++pieceFrames;
       worstPiece = std::max(worstPiece, last.pieceResidual);
     }
-    drawProgress(err, f, frames, msSum / f, interactive);
-    if (exportEvery > 0 && f % exportEvery == 0)
+    drawProgress(err, f, frames, msSum / f,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
+                 interactive);
+    if (exportEvery > 0 && f % exportEvery == 0) {
       writeExport(outDir / frameName(f, o.exportFormat), sim.exportSurface(), err);
-    if (pictures && f % o.pngEvery == 0) pictures->write(sim, outDir / frameName(f, "png"), pose());
+      written.push_back(frameName(f, o.exportFormat));
+    }
+    if (pictures && f % o.pngEvery == 0) {
+      pictures->write(sim, outDir / frameName(f, "png"), pose());
+      written.push_back(frameName(f, "png"));
+    }
   }
-  if (pictures) pictures->write(sim, outDir / "final.png", pose());
+  if (pictures) {
+    pictures->write(sim, outDir / "final.png", pose());
+    written.push_back("final.png");
+  }
   const ExportedSurface exported = sim.exportSurface();
   writeExport(outDir / "final.obj", exported, err);
-  if (o.exportFormat != "obj") writeExport(outDir / ("final." + o.exportFormat), exported, err);
+  written.push_back("final.obj");
+  if (o.exportFormat != "obj") {
+    writeExport(outDir / ("final." + o.exportFormat), exported, err);
+    written.push_back("final." + o.exportFormat);
+  }
   if (o.exportTets) {
     sim.writeTetsWithDamage(outDir / "final");
     out << "wrote " << (outDir / "final").string() << ".node/.ele/.face/.damage/.vtk\n";
+    for (const char* extension : {".node", ".ele", ".face", ".damage", ".vtk"})
+      written.push_back(std::string("final") + extension);
+  }
+  // What else landed under a run output's name (a .gltf's .bin) is this run's: the folder held
+  // none before it.
+  std::error_code listed;
+  for (fs::directory_iterator it(outDir, listed), end; !listed && it != end; it.increment(listed)) {
+    const std::string name = it->path().filename().string();
+    if (isRunOutputName(name)) written.push_back(name);
   }
   csv.close();
   out << name << ": " << frames << " frames, " << std::fixed << std::setprecision(2)
@@ -159,6 +214,7 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
       << last.pieces << " piece(s), " << warnings << " warning(s)\n"
       << std::defaultfloat;
   out << "wrote " << metricsPath.string() << " and " << (outDir / "final.obj").string() << '\n';
+  out << "files in " << outDir.string() << ": " << describeWritten(written) << '\n';
   out << "final surface: " << exported.summary() << '\n';
   if (pieceFrames > 0)
     err << "note: " << pieceFrames << " frame(s) left a piece above the residual tolerance of its "

@@ -87,6 +87,22 @@ TEST(Cli, PlayRunsAScriptHeadlessAndWritesTheFinalSurface) {
   // The tets reopen cracked: mesh info counts the pieces through the damage.
   const CliRun tets = run({"mesh", "info", (dir / "glb" / "final.node").string()});
   EXPECT_NE(tets.out.find("pieces: 2\nmesh_pieces: 1"), std::string::npos) << tets.out;
+  // A second run into the same folder owns it: the first one's pictures, glTF files and tets
+  // are gone, its own listed.
+  test::writeText(dir / "glb" / "mine.txt", "kept");
+  const CliRun second = run({"play", script.string(), "--out", (dir / "glb").string()});
+  ASSERT_EQ(second.code, kExitOk) << second.err;
+  EXPECT_NE(second.err.find("note: removed"), std::string::npos) << second.err;
+  EXPECT_NE(second.out.find("files in " + (dir / "glb").string() + ": final.obj, metrics.csv\n"),
+            std::string::npos)
+      << second.out;
+  for (const auto& entry : fs::directory_iterator(dir / "glb")) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_TRUE(name == "final.obj" || name == "metrics.csv" || name == "mine.txt" ||
+                name == ".galsculpt-writer")
+        << name << " left beside the second run's files";
+  }
+
   test::writeText(dir / "bad.json", "{\"frames\": 2}");
   const CliRun bad = run({"play", (dir / "bad.json").string(), "--out", (dir / "o2").string()});
   EXPECT_EQ(bad.code, kExitBadInput);
