@@ -18,6 +18,8 @@
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/playback.h"
 #include "engine/session/project_file.h"
+#include "engine/surface/surface_io.h"
+#include "solver/mesh/surface_checks.h"
 #include "solver/model/sim_model.h"
 #include "tests/test_util.h"
 
@@ -314,6 +316,11 @@ TEST(AppUi, ExportsFromTheMenuCommandsAreWritten) {
                                     (dir / "cut").string() + R"("})");
   ASSERT_EQ(run.exitCode, 0) << run.log;
   EXPECT_TRUE(fs::exists(dir / "cut.glb"));
+  // The export is the closed one, and the window says what it holds.
+  EXPECT_NE(run.log.find("piece(s), closed"), std::string::npos) << run.log;
+  const TriMesh exported = readSurface(dir / "cut.glb");
+  EXPECT_TRUE(analyzeSurface(exported).closedManifold());
+  EXPECT_TRUE(findSelfIntersections(exported, 1).empty());
   for (const char* ext : {".node", ".ele", ".face", ".damage", ".vtk"})
     EXPECT_TRUE(fs::exists(dir / (std::string("cut") + ext))) << ext;
 }
