@@ -92,6 +92,7 @@ void writeProject(const fs::path& file, const SceneDescription& scene, const Sim
   h["edges"] = model.numEdges();
   h["plastic"] = !state.plasticInverse.empty();
   h["tool_damage"] = state.toolDamage;
+  h["solver_carry"] = state.solverCarry.size();
   h["next_anchor_id"] = state.nextAnchorId;
   nlohmann::json anchors = nlohmann::json::array();
   for (size_t i = 0; i < state.anchors.size(); ++i) {
@@ -136,6 +137,7 @@ void writeProject(const fs::path& file, const SceneDescription& scene, const Sim
       writeArray(out, plastic);
       writeArray(out, state.plasticStrain);
     }
+    writeArray(out, state.solverCarry);
   });
 }
 
@@ -241,6 +243,7 @@ AnchorConstraint readAnchor(const nlohmann::json& json, const std::string& where
 struct ProjectCounts {
   int vertices = 0, tets = 0, edges = 0, version = 1;
   bool plastic = false;
+  int solverCarry = 0;  // doubles (version 3)
 };
 
 // The binary arrays after the header: rest mesh, positions, velocities, damage (and blade
@@ -292,6 +295,8 @@ void readProjectArrays(BinaryReader& in, const ProjectCounts& n, const std::stri
     for (int t = 0; t < nt; ++t)
       s.plasticInverse.push_back(Eigen::Map<const Eigen::Matrix3d>(&inverse[9 * t]));
   }
+  in.read(s.solverCarry, static_cast<std::size_t>(n.solverCarry), "solver carry");
+  checkFinite(s.solverCarry, name, "solver carry");
   if (!in.atEnd())
     throw InputError(name + ": unexpected data after byte " + std::to_string(in.offset()));
   p.mesh.vertices = unflat(rest);
@@ -356,6 +361,7 @@ Project readProject(const fs::path& file) {
   const int ne = o.integer("edges", 0, 6, 2000000000);
   const bool plastic = o.boolean("plastic", false);
   s.toolDamage = o.integer("tool_damage", 0, 0, 2000000000);
+  const int solverCarry = o.integer("solver_carry", 0, 0, 200000000);
   s.nextAnchorId = o.integer("next_anchor_id", 0, 0, 2000000000);
   const auto anchors = o.array("anchors");
   for (size_t i = 0; i < anchors.size(); ++i) {
@@ -376,7 +382,7 @@ Project readProject(const fs::path& file) {
   o.rejectUnknownKeys();
 
   BinaryReader in(std::move(data), line2 + 1 + headerBytes, name);
-  readProjectArrays(in, ProjectCounts{nv, nt, ne, version, plastic}, name, p);
+  readProjectArrays(in, ProjectCounts{nv, nt, ne, version, plastic, solverCarry}, name, p);
   return p;
 }
 

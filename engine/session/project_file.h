@@ -4,11 +4,16 @@
 // (the scene as it was read, the frame and time, the anchors, the camera and the recording of
 // every action so far), then the arrays in binary, little-endian: rest vertices, tets,
 // positions, velocities, damage per edge, where knife blades crossed each edge (float per edge,
-// -1 for none; since version 2), and the plastic state when the material has one.
+// -1 for none; since version 2), the plastic state when the material has one, and what the
+// solver carries between frames beyond the state (the coarsest matrix whose factorization the
+// multigrid keeps, `solver_carry` doubles in the header; since version 3), so that a reopened
+// project runs on to the same bits as the session that saved it.
 // The tet mesh is stored, not referred to, so a project opens without its scene's mesh source.
 //
-// Versions: this build writes version 2 and reads versions 1 and 2 (a version 1 file has no
-// crossings: its cuts show today's crack faces, at edge midpoints); a newer file is refused
+// Versions: this build writes version 3 and reads versions 1 to 3 (a version 1 file has no
+// crossings: its cuts show today's crack faces, at edge midpoints; a file before version 3 has
+// no solver carry: its first frame factors afresh, to within the tolerance of the frame the
+// saving session would have run); a newer file is refused
 // with a message saying so. Every malformed file gets an InputError naming the file and what
 // is wrong (a header key with its JSON path, or the byte offset of a bad array).
 #pragma once
@@ -24,7 +29,7 @@
 
 namespace galsculpt {
 
-constexpr int kProjectVersion = 2;
+constexpr int kProjectVersion = 3;
 
 struct Project {
   SceneDescription scene;

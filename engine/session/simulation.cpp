@@ -352,11 +352,13 @@ std::size_t SimulationSnapshot::bytes() const {
                    a.path.size() * sizeof(AnchorKey);
   return (x.size() + v.size()) * sizeof(Vec3) + damaged.size() + crossing.size() * sizeof(float) +
          plasticInverse.size() * sizeof(Eigen::Matrix3d) + plasticStrain.size() * sizeof(double) +
-         colliders.size() * sizeof(ColliderState) + anchorBytes + sizeof(*this);
+         colliders.size() * sizeof(ColliderState) + solverCarry.size() * sizeof(double) +
+         anchorBytes + sizeof(*this);
 }
 
 SimulationSnapshot Simulation::snapshot() const {
   SimulationSnapshot s;
+  s.solverCarry = backend_->carriedState();
   s.x = state_.x;
   s.v = state_.v;
   s.damaged = state_.damaged;
@@ -404,6 +406,7 @@ void Simulation::restore(const SimulationSnapshot& s) {
   toolDamage_ = s.toolDamage;
   surfaceFrame_ = -1;  // positions changed without a frame
   ++generation_;
+  backend_->adoptCarriedState(s.solverCarry);
   updatePieces();
 }
 

@@ -43,6 +43,8 @@ struct SimulationSnapshot {
   std::vector<AnchorTag> anchorTags;  // (one per anchor)
   int nextAnchorId = 0;
   int toolDamage = 0;
+  // What the solver carries between frames beyond the state (StepBackend::carriedState).
+  std::vector<double> solverCarry;
   std::size_t bytes() const;
 };
 

@@ -16,6 +16,10 @@ class CpuStepBackend final : public StepBackend {
   std::string name() const override { return "cpu"; }
   bool offloads() const override { return false; }
   StepReport step(SimState& state, const StepSettings& settings) override;
+  std::vector<double> carriedState() const override { return frame_->carriedState(); }
+  void adoptCarriedState(std::vector<double> carried) override {
+    frame_->adoptCarriedState(std::move(carried));
+  }
 
  private:
   std::unique_ptr<StepBackend> frame_;

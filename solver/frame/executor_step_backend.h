@@ -20,6 +20,10 @@ class ExecutorStepBackend final : public StepBackend {
   StepReport step(SimState& state, const StepSettings& settings) override {
     return solver_.step(state, settings);
   }
+  std::vector<double> carriedState() const override { return solver_.carriedState(); }
+  void adoptCarriedState(std::vector<double> carried) override {
+    solver_.adoptCarriedState(std::move(carried));
+  }
 
  private:
   Exec executor_;

@@ -119,6 +119,12 @@ class FrameSolver {
     state.colliders = colliderStates_;
   }
 
+  // What the frame carries to the next beyond the state (StepBackend::carriedState).
+  std::vector<double> carriedState() const { return linear_.keptCoarseMatrix(); }
+  void adoptCarriedState(std::vector<double> carried) {
+    linear_.adoptKeptCoarseMatrix(std::move(carried));
+  }
+
   // One frame, from the host state to the host state.
   StepReport step(SimState& state, const StepSettings& settings) {
     syncIn(state, settings);

@@ -59,6 +59,10 @@ class LinearSolve {
     }
   }
 
+  // What the multigrid carries between frames (MultigridCycle::keptCoarseMatrix).
+  std::vector<double> keptCoarseMatrix() const { return mg_.keptCoarseMatrix(); }
+  void adoptKeptCoarseMatrix(std::vector<double> m) { mg_.adoptKeptCoarseMatrix(std::move(m)); }
+
   // The multigrid's operators for the system just built (its fixed rows: the held vertices).
   // Not in a local iteration: its solve has no multigrid.
   void refresh(const StepSettings& s) {

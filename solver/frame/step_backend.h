@@ -19,6 +19,12 @@ class StepBackend {
   virtual bool offloads() const = 0;
   // One frame of dt; the state is read at the start and written back at the end.
   virtual StepReport step(SimState& state, const StepSettings& settings) = 0;
+  // What the solver carries from one frame to the next beyond the state: the coarsest matrix
+  // whose factorization the multigrid keeps while its matrix stays close to it. Saved with a
+  // state (Simulation::snapshot, projects) and adopted where the state is restored, so that a
+  // reopened project or an undone action runs on to the same bits as the frames after the save.
+  virtual std::vector<double> carriedState() const { return {}; }
+  virtual void adoptCarriedState(std::vector<double>) {}
 };
 
 }  // namespace galsculpt

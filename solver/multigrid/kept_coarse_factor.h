@@ -57,6 +57,9 @@ class KeptCoarseFactor {
     return true;
   }
 
+  // The matrix factored (empty: none).
+  const std::vector<double>& matrix() const { return blocks_; }
+
  private:
   std::vector<double> blocks_, rootDiagonal_;  // the matrix factored, its diagonal's roots
 };

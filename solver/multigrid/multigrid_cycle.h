@@ -206,6 +206,17 @@ class MultigridCycle {
     }
     const Level& c = levels_.back();
     if constexpr (Exec::kHostMemory) {
+      if (!adopted_.empty()) {
+        // Only a matrix of this hierarchy's pattern: one saved under other damage is dropped.
+        if (adopted_.size() == c.blocks.size()) {
+          if (!sparse_) sparse_ = std::make_unique<CoarseCholesky>();
+          factored_ = sparse_->factor(c.handles, c.rowStart.data(), c.columns.data(),
+                                      adopted_.data());
+          kept_.remember(factored_, adopted_.data(), adopted_.size(), c.diagonal.data(),
+                         c.handles);
+        }
+        adopted_.clear();
+      }
       if (preconditions && factored_ &&
           kept_.keeps(c.blocks.data(), c.blocks.size(), c.rowStart.data(), c.columns.data(),
                       c.handles)) {
@@ -304,6 +315,14 @@ class MultigridCycle {
 
   // Coarsest factorizations reused since the hierarchy was uploaded (for tests).
   long coarseFactorsKept() const { return coarseFactorsKept_; }
+  // The coarsest matrix whose factorization is kept for the next refresh (empty: none), and its
+  // adoption by a cycle that did not factor it: the next refresh factors it first, as the cycle
+  // that saved it had, and then decides whether to keep it as that one would (a restored state
+  // runs on to the same bits: StepBackend::carriedState).
+  std::vector<double> keptCoarseMatrix() const {
+    return factored_ ? kept_.matrix() : std::vector<double>{};
+  }
+  void adoptKeptCoarseMatrix(std::vector<double> blocks) { adopted_ = std::move(blocks); }
 
   // The solve's settings are the scene's (multigrid.h); the cycle reads the sweeps, the
   // smoother, the coarsest solve and the cycle count, not the PCG fields (linear_solve.h's).
@@ -794,6 +813,7 @@ class MultigridCycle {
   bool factored_ = false;  // the last refresh factored the coarsest level
   // The coarsest matrix as last factored (host memory only).
   KeptCoarseFactor kept_;
+  std::vector<double> adopted_;  // a saved kept matrix, factored at the next refresh
   long coarseFactorsKept_ = 0;
 };
 

@@ -38,6 +38,18 @@ struct SculptedBall {
   }
 };
 
+// The bytes a version 2 build wrote for the same session: no solver carry.
+std::string asVersion2(const std::string& version3) {
+  std::size_t carry = 0;
+  std::string s = test::withProjectHeader(version3, [&](nlohmann::json& h) {
+    carry = h["solver_carry"].get<std::size_t>();
+    h.erase("solver_carry");
+  });
+  s.erase(s.size() - 8 * carry);
+  s.replace(s.find("PROJECT 3\n"), 10, "PROJECT 2\n");
+  return s;
+}
+
 TEST(ProjectFile, RoundTripRestoresTheSessionExactlyAndItRunsOnIdentically) {
   test::TempDir dir;
   SculptedBall ball;
@@ -159,7 +171,7 @@ TEST(ProjectFile, MalformedProjectsGetClearErrors) {
     return s.replace(at, from.size(), to);
   };
   EXPECT_NE(errorOf("hello").find("bad.gsproj:1: not a Galsculpt project"), std::string::npos);
-  EXPECT_NE(errorOf(replaced("PROJECT 2", "PROJECT 7")).find("made by a newer Galsculpt"),
+  EXPECT_NE(errorOf(replaced("PROJECT 3", "PROJECT 7")).find("made by a newer Galsculpt"),
             std::string::npos);
   EXPECT_NE(errorOf(good.substr(0, good.size() - 100)).find("truncated"), std::string::npos);
   EXPECT_NE(errorOf(good.substr(0, 40)).find("truncated"), std::string::npos);
@@ -184,8 +196,11 @@ TEST(ProjectFile, MalformedProjectsGetClearErrors) {
               fewerEdges.find("blade crossing of edge") != std::string::npos)
       << fewerEdges;
   const SimModel& model = ball.session.simulation().model();
-  // Arrays from the end: plastic state (10 doubles a tet), crossings (a float an edge), damage.
-  const size_t crossingEnd = good.size() - 10 * static_cast<size_t>(model.numTets()) * 8;
+  // Arrays from the end: the solver carry, plastic state (10 doubles a tet), crossings (a float
+  // an edge), damage.
+  size_t carry = 0;
+  test::withProjectHeader(good, [&](nlohmann::json& h) { carry = h["solver_carry"]; });
+  const size_t crossingEnd = good.size() - 8 * carry - 10 * static_cast<size_t>(model.numTets()) * 8;
   const size_t damageEnd = crossingEnd - 4 * static_cast<size_t>(model.numEdges());
   std::string damaged = good;
   damaged[damageEnd - 1] = 5;
@@ -207,9 +222,18 @@ TEST(ProjectFile, MalformedProjectsGetClearErrors) {
             std::string::npos);
   EXPECT_NE(errorOf(withCrossing(intactEdge, 0.5f)).find("on an undamaged edge"),
             std::string::npos);
+  // A solver carry that is not finite, or longer than the file.
+  ASSERT_GT(carry, 0u) << "the sculpted ball keeps a factorization";
+  std::string nan = good;
+  const double bad = std::nan("");
+  std::memcpy(&nan[good.size() - 8], &bad, sizeof(double));
+  EXPECT_NE(errorOf(nan).find("solver carry"), std::string::npos) << errorOf(nan);
+  EXPECT_NE(errorOf(withHeader([&](nlohmann::json& h) { h["solver_carry"] = carry + 1; }))
+                .find("solver carry needs"),
+            std::string::npos);
   // The version is a whole number and nothing else.
   for (const char* version : {"1garbage", "1.9", "", "-2", "2 ", "99999999999"}) {
-    EXPECT_NE(errorOf(replaced("PROJECT 2\n", std::string("PROJECT ") + version + "\n"))
+    EXPECT_NE(errorOf(replaced("PROJECT 3\n", std::string("PROJECT ") + version + "\n"))
                   .find("bad.gsproj:1: the format version is not a whole number"),
               std::string::npos)
         << version;
@@ -221,7 +245,7 @@ TEST(ProjectFile, Version1ProjectsStillOpen) {
   test::TempDir dir;
   SculptedBall ball;
   writeProject(dir / "new.gsproj", ball.session, std::nullopt);
-  std::string bytes = test::readText(dir / "new.gsproj");
+  std::string bytes = asVersion2(test::readText(dir / "new.gsproj"));
   const SimModel& model = ball.session.simulation().model();
   const size_t crossingEnd = bytes.size() - 10 * static_cast<size_t>(model.numTets()) * 8;
   const size_t crossingBytes = 4 * static_cast<size_t>(model.numEdges());
@@ -233,6 +257,68 @@ TEST(ProjectFile, Version1ProjectsStillOpen) {
   EXPECT_EQ(p.state.crossing, std::vector<float>(model.numEdges(), kNoCrossing));
   std::unique_ptr<SculptSession> reopened = sessionFromProject(p, dir / "old.gsproj");
   EXPECT_EQ(reopened->simulation().state().x, ball.session.simulation().state().x);
+}
+
+// Continuity: what the solver carries from frame to frame beyond the state (the coarsest matrix
+// whose factorization the multigrid keeps while its matrix stays close) is saved with it, so
+// the session that saved and the reopened one run on to the same bits, frame after frame and
+// under the same tools; a version 2 file (no carry) still opens and runs.
+TEST(ProjectFile, AReopenedProjectRunsOnToTheSameBitsAsTheSessionThatSavedIt) {
+  test::TempDir dir;
+  struct Untouched {
+    SceneDescription scene =
+        loadScene(fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json");
+    SculptSession session{scene, loadSceneMesh(scene)};
+  } ball;  // at rest, where the coarsest factorization is kept from frame to frame
+  for (int f = 0; f < 10; ++f) ball.session.step();
+  writeProject(dir / "ball.gsproj", ball.session, std::nullopt);
+  const Project project = readProject(dir / "ball.gsproj");
+  EXPECT_FALSE(project.state.solverCarry.empty()) << "the ball at rest keeps its factorization";
+  std::unique_ptr<SculptSession> reopened = sessionFromProject(project, dir / "ball.gsproj");
+  auto same = [&](const char* when) {
+    const SimState& a = ball.session.simulation().state();
+    const SimState& b = reopened->simulation().state();
+    ASSERT_EQ(ball.session.simulation().frame(), reopened->simulation().frame());
+    EXPECT_TRUE(a.x == b.x && a.v == b.v) << when << ", frame " << reopened->simulation().frame();
+  };
+  for (int f = 0; f < 30; ++f) {
+    ball.session.step();
+    reopened->step();
+    same("untouched");
+  }
+  BrushStroke pull;
+  pull.kind = BrushKind::Pull;
+  pull.center = Vec3(0.0, -0.098, 0.02);
+  pull.radius = 0.03;
+  pull.strength = 0.2;
+  for (SculptSession* s : {&ball.session, reopened.get()}) s->beginStroke(pull);
+  for (int f = 0; f < 8; ++f) {
+    for (SculptSession* s : {&ball.session, reopened.get()}) {
+      s->moveStroke(Vec3(0.0, -0.098 - 0.002 * f, 0.02), Vec3(0.0, -1.0, 0.0));
+      s->step();
+    }
+    same("under a stroke");
+  }
+  for (SculptSession* s : {&ball.session, reopened.get()}) s->endStroke();
+  for (int f = 0; f < 10; ++f) {
+    ball.session.step();
+    reopened->step();
+    same("after the stroke");
+  }
+
+  // Saved by a version 2 build: no carry; it opens where it was left and runs.
+  test::writeText(dir / "v2.gsproj", asVersion2(test::readText(dir / "ball.gsproj")));
+  const Project old = readProject(dir / "v2.gsproj");
+  EXPECT_TRUE(old.state.solverCarry.empty());
+  EXPECT_EQ(old.state.x, project.state.x);
+  std::unique_ptr<SculptSession> oldSession = sessionFromProject(old, dir / "v2.gsproj");
+  EXPECT_TRUE(oldSession->step().converged);
+
+  // A carry of another pattern (saved under other damage) is dropped, not misread.
+  SimulationSnapshot odd = reopened->simulation().snapshot();
+  odd.solverCarry.resize(odd.solverCarry.size() / 2 + 1, 1.0);
+  reopened->simulation().restore(odd);
+  EXPECT_TRUE(reopened->step().converged);
 }
 
 // Saved while a brush is still held: the file records the stroke as ending there (it once wrote
