@@ -210,10 +210,9 @@ class MultigridCycle {
         // Only a matrix of this hierarchy's pattern: one saved under other damage is dropped.
         if (adopted_.size() == c.blocks.size()) {
           if (!sparse_) sparse_ = std::make_unique<CoarseCholesky>();
-          factored_ = sparse_->factor(c.handles, c.rowStart.data(), c.columns.data(),
-                                      adopted_.data());
-          kept_.remember(factored_, adopted_.data(), adopted_.size(), c.diagonal.data(),
-                         c.handles);
+          factored_ =
+              sparse_->factor(c.handles, c.rowStart.data(), c.columns.data(), adopted_.data());
+          kept_.remember(factored_, adopted_.data(), adopted_.size(), c.diagonal.data(), c.handles);
         }
         adopted_.clear();
       }

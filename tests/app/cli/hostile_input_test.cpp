@@ -195,17 +195,20 @@ TEST_F(HostileProjects, MalformedProjectsAreRefusedWithFileAndPlace) {
             std::string::npos)
       << "a broken magic is a broken project, not 'unknown mesh format'";
   for (const char* version : {"1garbage", "1.9", "-1", ""}) {
-    EXPECT_NE(errorOf(replaced("PROJECT 2\n", std::string("PROJECT ") + version + "\n"))
+    EXPECT_NE(errorOf(replaced("PROJECT 3\n", std::string("PROJECT ") + version + "\n"))
                   .find("bad.gsproj:1: the format version is not a whole number"),
               std::string::npos)
         << version;
   }
   EXPECT_NE(errorOf(bytes.substr(0, bytes.size() / 2)).find("bad.gsproj: truncated"),
             std::string::npos);
-  // The last array is the plastic strain (a double per tet): a NaN there was accepted.
+  // The plastic strain (a double per tet) is the last array before the solver carry: a NaN
+  // there was accepted.
+  size_t carry = 0;
+  test::withProjectHeader(bytes, [&](nlohmann::json& h) { carry = h["solver_carry"]; });
   std::string nan = bytes;
   const double value = std::nan("");
-  std::memcpy(&nan[nan.size() - sizeof(double)], &value, sizeof(double));
+  std::memcpy(&nan[nan.size() - (carry + 1) * sizeof(double)], &value, sizeof(double));
   EXPECT_NE(errorOf(nan).find("bad.gsproj: plastic strain: value"), std::string::npos);
   // An invalid scene inside names the project (it named the scene's recorded path).
   const std::string scene =

@@ -200,7 +200,8 @@ TEST(ProjectFile, MalformedProjectsGetClearErrors) {
   // an edge), damage.
   size_t carry = 0;
   test::withProjectHeader(good, [&](nlohmann::json& h) { carry = h["solver_carry"]; });
-  const size_t crossingEnd = good.size() - 8 * carry - 10 * static_cast<size_t>(model.numTets()) * 8;
+  const size_t crossingEnd =
+      good.size() - 8 * carry - 10 * static_cast<size_t>(model.numTets()) * 8;
   const size_t damageEnd = crossingEnd - 4 * static_cast<size_t>(model.numEdges());
   std::string damaged = good;
   damaged[damageEnd - 1] = 5;
@@ -228,8 +229,9 @@ TEST(ProjectFile, MalformedProjectsGetClearErrors) {
   const double bad = std::nan("");
   std::memcpy(&nan[good.size() - 8], &bad, sizeof(double));
   EXPECT_NE(errorOf(nan).find("solver carry"), std::string::npos) << errorOf(nan);
-  EXPECT_NE(errorOf(withHeader([&](nlohmann::json& h) { h["solver_carry"] = carry + 1; }))
-                .find("solver carry needs"),
+  EXPECT_NE(errorOf(withHeader([&](nlohmann::json& h) {
+              h["solver_carry"] = carry + 1;
+            })).find("solver carry needs"),
             std::string::npos);
   // The version is a whole number and nothing else.
   for (const char* version : {"1garbage", "1.9", "", "-2", "2 ", "99999999999"}) {
