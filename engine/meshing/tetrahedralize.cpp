@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "engine/meshing/subprocess.h"
+#include "engine/surface/surface_bvh.h"
 #include "solver/io/atomic_file.h"
 #include "solver/io/input_error.h"
 #include "solver/io/tetgen_io.h"
@@ -80,21 +81,70 @@ std::string tetgenSwitches(const TetQuality& q, double bound) {
 
 constexpr double kTetsPerSurfaceFace = 12.0;
 
-// A simplified copy with about `faces` faces that is still closed and free of crossings; none
-// when simplification cannot keep it so.
-std::optional<TriMesh> simplifyForMeshing(const TriMesh& surface, int faces,
-                                          const TetrahedralizeOptions& options) {
-  for (int attempt = 0; attempt < 3; ++attempt, faces = faces * 3 / 2) {
-    TriMesh coarse = simplifySurface(surface, std::max(faces, 100));
-    if (analyzeSurface(coarse).closedManifold() && findSelfIntersections(coarse, 1).empty()) {
-      if (options.progress) {
-        options.progress("simplified " + options.surfaceName + " from " +
-                         std::to_string(surface.numFaces()) + " to " +
-                         std::to_string(coarse.numFaces()) + " faces");
-      }
-      return coarse;
+// How far a simplified surface strays from the original: its enclosed volume's relative change,
+// and the farthest distance between the two (each one's vertices and face centres measured to
+// the other: a sampled two-sided Hausdorff distance) relative to the original's bounding-box
+// diagonal.
+struct ShapeChange {
+  double volume = 0.0, distance = 0.0;
+};
+ShapeChange shapeChange(const TriMesh& original, const TriMesh& simplified) {
+  ShapeChange change;
+  const double volume = std::abs(enclosedVolume(original));
+  change.volume = volume > 0.0 ? std::abs(enclosedVolume(simplified)) / volume - 1.0 : 0.0;
+  const double diagonal = std::max(boundingBox(original.vertices).size().norm(), 1e-300);
+  double farthest = 0.0;
+  for (const auto& [from, to] : {std::pair{&original, &simplified}, {&simplified, &original}}) {
+    SurfaceBvh bvh;
+    bvh.build(*to);
+    for (const Vec3& v : from->vertices) farthest = std::max(farthest, bvh.distance(*to, v));
+    for (const Tri& f : from->faces) {
+      const Vec3 centre =
+          (from->vertices[f[0]] + from->vertices[f[1]] + from->vertices[f[2]]) / 3.0;
+      farthest = std::max(farthest, bvh.distance(*to, centre));
     }
   }
+  change.distance = farthest / diagonal;
+  return change;
+}
+
+std::string percent(double fraction) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(2) << 100.0 * fraction << " %";
+  return s.str();
+}
+
+// A simplified copy with about `faces` faces that is still closed, free of crossings and within
+// kShapeVolume / kShapeDistance of the original's shape; more faces where fewer stray too far;
+// none when no simplification keeps the shape.
+std::optional<TriMesh> simplifyForMeshing(const TriMesh& surface, int faces,
+                                          const TetrahedralizeOptions& options) {
+  auto say = [&](const std::string& line) {
+    if (options.progress) options.progress(line);
+  };
+  for (int attempt = 0; attempt < 8 && faces < surface.numFaces();
+       ++attempt, faces = faces * 3 / 2) {
+    say("simplifying " + options.surfaceName + " (" + std::to_string(surface.numFaces()) +
+        " faces) towards " + std::to_string(std::max(faces, 100)) + " faces");
+    TriMesh coarse = simplifySurface(surface, std::max(faces, 100));
+    if (!analyzeSurface(coarse).closedManifold() || !findSelfIntersections(coarse, 1).empty())
+      continue;
+    const ShapeChange change = shapeChange(surface, coarse);
+    const std::string what = std::to_string(coarse.numFaces()) + " faces (volume " +
+                             (change.volume >= 0.0 ? "+" : "") + percent(change.volume) +
+                             ", farthest " + percent(change.distance) + " of its size)";
+    if (std::abs(change.volume) <= kShapeVolume && change.distance <= kShapeDistance) {
+      say("simplified " + options.surfaceName + " from " + std::to_string(surface.numFaces()) +
+          " to " + what + "; " + std::to_string(surface.numFaces() - coarse.numFaces()) +
+          " faces dropped");
+      return coarse;
+    }
+    say("simplified to " + what + ": beyond " + percent(kShapeVolume) + " of its volume or " +
+        percent(kShapeDistance) + " of its size, keeping more faces");
+  }
+  say("no simplification of " + options.surfaceName + " keeps its shape within " +
+      percent(kShapeVolume) + " of its volume and " + percent(kShapeDistance) +
+      " of its size: meshing it as given");
   return std::nullopt;
 }
 

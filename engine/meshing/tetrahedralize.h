@@ -8,7 +8,8 @@
 // of the bound, the quality bound is nudged (a few percent) and the search resumes. A surface
 // finer than N tets allow (a scanned model with 50k triangles meshed to 40k tets) first forces
 // more tets than wanted. Then, in order: keep the surface as given (-Y); simplify the surface
-// (quadric edge collapses, to about one face per 12 tets) and try the strict levels again;
+// (quadric edge collapses, to about one face per 12 tets, more where fewer would stray beyond
+// kShapeVolume or kShapeDistance of its shape; each try said) and try the strict levels again;
 // relax the radius-edge bound step by step. Each level is probed once without a volume bound.
 #pragma once
 
@@ -20,6 +21,12 @@
 #include "solver/mesh/tet_mesh.h"
 
 namespace galsculpt {
+
+// How far a simplified surface may stray from the one given before it is meshed: its enclosed
+// volume, relative, and the farthest distance between the two, relative to the bounding-box
+// diagonal. A simplification beyond either keeps more faces, or is not used.
+inline constexpr double kShapeVolume = 0.01;
+inline constexpr double kShapeDistance = 0.01;
 
 struct TetrahedralizeOptions {
   int targetTets = 10000;

@@ -142,4 +142,64 @@ std::optional<RayHit> SurfaceBvh::intersect(const TriMesh& mesh, const Vec3& ori
   return best;
 }
 
+namespace {
+
+// The point of triangle abc nearest to p (Ericson, Real-Time Collision Detection, 5.1.5).
+Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + d1 / (d1 - d3) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+    return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const double denom = va + vb + vc;
+  if (!(std::abs(denom) > 0.0)) return a;  // a degenerate triangle: its corner will do
+  return a + (vb / denom) * ab + (vc / denom) * ac;
+}
+
+double boxDistanceSquared(const Vec3& p, const Vec3& min, const Vec3& max) {
+  return (min - p).cwiseMax(p - max).cwiseMax(0.0).squaredNorm();
+}
+
+}  // namespace
+
+double SurfaceBvh::distance(const TriMesh& mesh, const Vec3& p) const {
+  if (nodes_.empty()) return 0.0;
+  double best = 1e300;  // squared
+  int stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (boxDistanceSquared(p, n.min, n.max) >= best) continue;
+    if (n.left >= 0) {
+      // The nearer child last, so that it is searched first.
+      const Node& l = nodes_[n.left];
+      const Node& r = nodes_[n.right];
+      const bool leftNearer =
+          boxDistanceSquared(p, l.min, l.max) < boxDistanceSquared(p, r.min, r.max);
+      stack[top++] = leftNearer ? n.right : n.left;
+      stack[top++] = leftNearer ? n.left : n.right;
+      continue;
+    }
+    for (int k = n.first; k < n.first + n.count; ++k) {
+      const Tri& t = mesh.faces[faces_[k]];
+      const Vec3 q =
+          closestOnTriangle(p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+      best = std::min(best, (q - p).squaredNorm());
+    }
+  }
+  return std::sqrt(best);
+}
+
 }  // namespace galsculpt

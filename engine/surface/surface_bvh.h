@@ -28,6 +28,8 @@ class SurfaceBvh {
   // The nearest face hit from either side by the ray origin + t * direction, t in (0, maxT].
   std::optional<RayHit> intersect(const TriMesh& mesh, const Vec3& origin, const Vec3& direction,
                                   double maxT = 1e300) const;
+  // The distance from `p` to the nearest point of the faces (0 with no faces: none built).
+  double distance(const TriMesh& mesh, const Vec3& p) const;
 
  private:
   struct Node {

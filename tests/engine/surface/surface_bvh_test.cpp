@@ -36,6 +36,33 @@ TriMesh sphereSurface() {
   return sim.surface().mesh;
 }
 
+// The distance to the nearest face equals the least over every face (closest points by
+// barycentric minimization on a fine grid of each face, an independent route).
+TEST(SurfaceBvh, DistanceIsTheLeastOverEveryFace) {
+  TriMesh m = sphereSurface();
+  SurfaceBvh bvh;
+  bvh.build(m);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.15, 0.15);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Vec3 p(u(rng), u(rng), u(rng));
+    double brute = 1e300;
+    for (const Tri& t : m.faces) {
+      const Vec3 a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
+      constexpr int kSteps = 20;
+      for (int i = 0; i <= kSteps; ++i)
+        for (int j = 0; i + j <= kSteps; ++j) {
+          const Vec3 q = a + (b - a) * (double(i) / kSteps) + (c - a) * (double(j) / kSteps);
+          brute = std::min(brute, (q - p).norm());
+        }
+    }
+    const double d = bvh.distance(m, p);
+    EXPECT_LE(d, brute + 1e-12) << trial;
+    EXPECT_GT(d, brute - 3e-4) << trial << " (the grid's spacing bounds its error)";
+  }
+  EXPECT_EQ(bvh.distance(m, m.vertices[7]), 0.0);
+}
+
 TEST(SurfaceBvh, HitsTheSameNearestFaceAsTestingEveryFace) {
   TriMesh m = sphereSurface();
   SurfaceBvh bvh;
