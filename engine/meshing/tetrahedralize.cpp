@@ -129,6 +129,11 @@ std::optional<TriMesh> simplifyForMeshing(const TriMesh& surface, int faces,
     TriMesh coarse = simplifySurface(surface, std::max(faces, 100));
     if (!analyzeSurface(coarse).closedManifold() || !findSelfIntersections(coarse, 1).empty())
       continue;
+    if (!options.keepShape) {
+      say("simplified " + options.surfaceName + " from " + std::to_string(surface.numFaces()) +
+          " to " + std::to_string(coarse.numFaces()) + " faces");
+      return coarse;
+    }
     const ShapeChange change = shapeChange(surface, coarse);
     const std::string what = std::to_string(coarse.numFaces()) + " faces (volume " +
                              (change.volume >= 0.0 ? "+" : "") + percent(change.volume) +

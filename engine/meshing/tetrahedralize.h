@@ -35,7 +35,10 @@ struct TetrahedralizeOptions {
   double timeoutSeconds = 300.0;   // per TetGen run
   int maxAttempts = 30;
   std::string program = "tetgen";
-  std::string surfaceName = "surface";               // used in messages
+  std::string surfaceName = "surface";  // used in messages
+  // A simplification must keep the shape (kShapeVolume, kShapeDistance). Off for a generator's
+  // own surface, made for the count asked: a 100-tet sphere is a coarse sphere by request.
+  bool keepShape = true;
   std::function<void(const std::string&)> progress;  // one line per attempt, optional
 };
 

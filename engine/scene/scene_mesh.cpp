@@ -85,7 +85,8 @@ namespace {
 using SurfaceMaker = std::function<std::vector<TriMesh>()>;
 
 TetMesh cachedTetrahedralization(const SurfaceMaker& surfaces, const std::string& key,
-                                 const std::string& name, int tets, const ProgressFn& progress) {
+                                 const std::string& name, int tets, const ProgressFn& progress,
+                                 bool keepShape) {
   const fs::path dir = cacheDirectory() / "meshes";
   const fs::path stem = dir / key;
   std::error_code ec;
@@ -111,6 +112,7 @@ TetMesh cachedTetrahedralization(const SurfaceMaker& surfaces, const std::string
   options.targetTets = tets;
   options.surfaceName = name;
   options.progress = progress;
+  options.keepShape = keepShape;
   TetrahedralizeResult result = tetrahedralizeAny(surfaces(), options);
   orderForLocality(result.mesh);
   writeTetGen(stem, result.mesh);
@@ -123,7 +125,9 @@ TetMesh sceneTetrahedralization(const SceneDescription& scene, const SurfaceMake
                                 const std::string& key, const std::string& name,
                                 const ProgressFn& progress) {
   try {
-    return cachedTetrahedralization(surfaces, key, name, scene.mesh.tets, progress);
+    // A generator's surface is made for the count: only an imported one must keep its shape.
+    return cachedTetrahedralization(surfaces, key, name, scene.mesh.tets, progress,
+                                    scene.mesh.kind == MeshSource::Kind::Import);
   } catch (const TetCountUnreachable& e) {
     // The closest count was reached, so it works, unless it is below what a scene may ask for.
     const std::string advice =

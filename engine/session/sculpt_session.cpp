@@ -246,6 +246,10 @@ void SculptSession::replay(const PlaybackScript& script,
     if (progress) progress(sim_->frame(), script.frames);
   }
   tools_->applyTrailing(script.events, sim_->frame());  // as Playback::advance at the end
+  // What reaches past the script's end (a stroke's later moves and its release, a knife's later
+  // sweeps) acts on in the session's frames as a replay of its recording applies it.
+  for (const ToolEvent& e : script.events)
+    if (lastActingFrame(e) >= sim_->frame()) acting_.push_back(e);
   recording_ = script.events;
   dirty_ = true;
 }

@@ -251,6 +251,32 @@ TEST(SculptSession, AReplayedScriptContinuesAndSavesBackExactly) {
   expectSameState(again.snapshot(), s.simulation().snapshot());
 }
 
+// A script whose grab and knife reach past its last frame, opened as a session and sculpted on:
+// the grab keeps moving and the knife keeps cutting as its recording replays them (they stopped
+// acting at the script's end while the saved recording replayed them to their ends).
+TEST(SculptSession, StrokesReachingPastAScriptsEndActOnAsItsRecordingReplays) {
+  test::TempDir dir;
+  test::writeText(dir / "s.json", "{\"scene\": \"" +
+                                      (kAssets / "scenes" / "default.json").string() +
+                                      R"(", "frames": 6, "events": [
+      {"frame": 2, "tool": "grab", "center": [0, -0.1, 0.02], "radius": 0.03, "end": 16,
+       "moves": [{"frame": 4, "center": [0, -0.11, 0.02]}, {"frame": 9, "center": [0, -0.12, 0.02]},
+                 {"frame": 14, "center": [0, -0.13, 0.02]}]},
+      {"frame": 5, "tool": "knife", "duration": 5, "from": [[0.03, 0.3, -0.3], [0.03, 0.3, 0.3]],
+       "to": [[0.03, -0.3, -0.3], [0.03, -0.3, 0.3]]}]})");
+  const PlaybackScript script = loadPlaybackScript(dir / "s.json");
+  SculptSession s(script.scene, clayBall().mesh);
+  s.replay(script);
+  for (int f = 0; f < 14; ++f) s.step();
+  s.saveRecording(dir / "continued.json");
+  const PlaybackScript continued = loadPlaybackScript(dir / "continued.json");
+  EXPECT_EQ(continued.frames, 20);
+  Simulation again(continued.scene, clayBall().mesh);
+  Playback replay(continued, again);
+  while (!replay.finished()) replay.advance();
+  expectSameState(again.snapshot(), s.simulation().snapshot());
+}
+
 }  // namespace
 }  // namespace galsculpt
 
