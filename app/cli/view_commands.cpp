@@ -39,6 +39,19 @@ std::string describeMaterial(const MaterialDesc& m) {
   return s.str();
 }
 
+// The surface a scene's tet mesh shows: its boundary, or, with a .damage beside the mesh file
+// (an export with its cracks), the surface of the cracked body.
+TriMesh sceneSurface(const SceneDescription& scene, const TetMesh& mesh, ViewContent& c) {
+  if (!sceneMeshDamage(scene, mesh)) return boundarySurface(mesh);
+  Simulation sim(scene, mesh);
+  int damaged = 0;
+  for (std::uint8_t d : sim.state().damaged) damaged += d;
+  c.facts.push_back(std::to_string(damaged) + " damaged edges (" +
+                    fs::path(scene.mesh.path).replace_extension(".damage").filename().string() +
+                    "), " + std::to_string(sim.pieceStats().pieces) + " piece(s)");
+  return sim.surface().mesh;
+}
+
 }  // namespace
 
 ViewContent loadViewContent(const fs::path& file, std::ostream& log) {
@@ -59,7 +72,7 @@ ViewContent loadViewContent(const fs::path& file, std::ostream& log) {
     const TetMesh mesh =
         loadSceneMesh(scene, [&log](const std::string& line) { log << line << '\n'; });
     c.title = scene.name;
-    c.surface = boundarySurface(mesh);
+    c.surface = sceneSurface(scene, mesh, c);
     c.facts.push_back(std::to_string(mesh.numVertices()) + " vertices, " +
                       std::to_string(mesh.numTets()) + " tets");
     c.facts.push_back(describeMaterial(scene.material));
@@ -74,7 +87,7 @@ ViewContent loadViewContent(const fs::path& file, std::ostream& log) {
     return c;
   }
   const TetMesh mesh = readTetMesh(file);
-  c.surface = boundarySurface(mesh);
+  c.surface = sceneSurface(sceneForMesh(file, 20000), mesh, c);
   c.facts.push_back(std::to_string(mesh.numVertices()) + " vertices, " +
                     std::to_string(mesh.numTets()) + " tets");
   return c;

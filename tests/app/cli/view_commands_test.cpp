@@ -4,7 +4,13 @@
 
 #include <filesystem>
 
+#include "app/render/view_content.h"
+#include "engine/scene/scene_mesh.h"
+#include "engine/session/simulation.h"
+#include "solver/fracture/knife.h"
+#include "solver/mesh/surface_checks.h"
 #include "tests/app/cli/cli_run.h"
+#include "tests/test_util.h"
 
 namespace galsculpt {
 namespace {
@@ -20,6 +26,28 @@ TEST(Cli, SceneCheck) {
   ASSERT_EQ(r.code, kExitOk) << r.err;
   EXPECT_NE(r.out.find("material: clay"), std::string::npos);
   EXPECT_NE(r.out.find("tets\n"), std::string::npos);
+}
+
+// A tet mesh exported with its damage shows its cracks (render, open): the cut ball's two
+// halves are two closed shells; the same mesh without its .damage is one.
+TEST(Cli, ATetMeshWithItsDamageBesideItShowsCracked) {
+  test::TempDir dir;
+  const SceneDescription scene = loadScene(test::kDefaultSceneFile);
+  Simulation sim(scene, loadSceneMesh(scene));
+  ASSERT_GT(sim.cut(sweptBladeSurface(Vec3(-0.2, 0.2, 0.02), Vec3(0.2, 0.2, 0.02),
+                                      Vec3(-0.2, -0.2, 0.02), Vec3(0.2, -0.2, 0.02))),
+            0);
+  sim.writeTetsWithDamage(dir / "cut");
+  std::ostringstream log;
+  const ViewContent cracked = loadViewContent(dir / "cut.node", log);
+  EXPECT_EQ(countSurfacePieces(cracked.surface), 2);
+  EXPECT_TRUE(analyzeSurface(cracked.surface).closedManifold());
+  bool said = false;
+  for (const std::string& fact : cracked.facts)
+    said |= fact.find("damaged edges (cut.damage), 2 piece(s)") != std::string::npos;
+  EXPECT_TRUE(said) << ::testing::PrintToString(cracked.facts);
+  fs::remove(dir / "cut.damage");
+  EXPECT_EQ(countSurfacePieces(loadViewContent(dir / "cut.node", log).surface), 1);
 }
 
 }  // namespace
