@@ -11,6 +11,14 @@ namespace {
 using namespace galsculpt::test;
 namespace fs = std::filesystem;
 
+// What `play` leaves of a script: the state at its last frame.
+SimulationSnapshot playedToTheEnd(const PlaybackScript& script) {
+  Simulation sim(script.scene, clayBall().mesh);
+  Playback playback(script, sim);
+  while (!playback.finished()) playback.advance();
+  return sim.snapshot();
+}
+
 TEST(SculptSession, UndoAndRedoReturnTheExactStates) {
   SculptSession s(clayBall().scene, clayBall().mesh);
   for (int f = 0; f < 3; ++f) s.step();
@@ -130,11 +138,7 @@ TEST(SculptSession, ARecordedSessionReplaysExactly) {
 // The state a session's saved recording replays to through `play`'s Playback.
 SimulationSnapshot replayOf(const SculptSession& session, const fs::path& file) {
   session.saveRecording(file);
-  const PlaybackScript script = loadPlaybackScript(file);
-  Simulation replay(script.scene, clayBall().mesh);
-  Playback playback(script, replay);
-  while (!playback.finished()) playback.advance();
-  return replay.snapshot();
+  return playedToTheEnd(loadPlaybackScript(file));
 }
 
 // A script's events given to the session (the Python module's apply) act from the next frame as
@@ -235,20 +239,12 @@ TEST(SculptSession, AReplayedScriptContinuesAndSavesBackExactly) {
   int reported = 0;
   s.replay(script, [&](int, int) { ++reported; });
   EXPECT_EQ(reported, 6);
-  Simulation played(script.scene, clayBall().mesh);
-  Playback playback(script, played);
-  while (!playback.finished()) playback.advance();
-  expectSameState(s.simulation().snapshot(), played.snapshot());
+  expectSameState(s.simulation().snapshot(), playedToTheEnd(script));
   // Sculpt on, save, replay the saved recording from scratch.
   s.beginAction("paint");
   s.paint(Vec3(-0.1, 0.0, 0.0), 0.02, -1, false, {});
   s.step();
-  s.saveRecording(dir / "continued.json");
-  const PlaybackScript continued = loadPlaybackScript(dir / "continued.json");
-  Simulation again(continued.scene, clayBall().mesh);
-  Playback replay(continued, again);
-  while (!replay.finished()) replay.advance();
-  expectSameState(again.snapshot(), s.simulation().snapshot());
+  expectSameState(replayOf(s, dir / "continued.json"), s.simulation().snapshot());
 }
 
 // A script whose grab and knife reach past its last frame, opened as a session and sculpted on:
@@ -268,13 +264,8 @@ TEST(SculptSession, StrokesReachingPastAScriptsEndActOnAsItsRecordingReplays) {
   SculptSession s(script.scene, clayBall().mesh);
   s.replay(script);
   for (int f = 0; f < 14; ++f) s.step();
-  s.saveRecording(dir / "continued.json");
-  const PlaybackScript continued = loadPlaybackScript(dir / "continued.json");
-  EXPECT_EQ(continued.frames, 20);
-  Simulation again(continued.scene, clayBall().mesh);
-  Playback replay(continued, again);
-  while (!replay.finished()) replay.advance();
-  expectSameState(again.snapshot(), s.simulation().snapshot());
+  EXPECT_EQ(s.simulation().frame(), 20);
+  expectSameState(replayOf(s, dir / "continued.json"), s.simulation().snapshot());
 }
 
 }  // namespace
@@ -297,10 +288,7 @@ TEST(SculptSession, ACutAfterTheLastFrameReplays) {
   s.saveRecording(dir / "session.json");
   const PlaybackScript script = loadPlaybackScript(dir / "session.json");
   ASSERT_EQ(script.frames, 3);
-  Simulation played(script.scene, clayBall().mesh);
-  Playback playback(script, played);
-  while (!playback.finished()) playback.advance();
-  expectSameState(played.snapshot(), s.simulation().snapshot());
+  expectSameState(playedToTheEnd(script), s.simulation().snapshot());
   SculptSession reopened(script.scene, clayBall().mesh);
   reopened.replay(script);
   expectSameState(reopened.simulation().snapshot(), s.simulation().snapshot());
