@@ -138,13 +138,8 @@ ShellCensus censusOfShells(const TriMesh& mesh) {
   ShellCensus c;
   std::vector<int> shellOfFace;
   c.shells = countSurfacePieces(mesh, &shellOfFace);
-  std::vector<double> sixVolume(c.shells, 0.0);
-  for (int f = 0; f < mesh.numFaces(); ++f) {
-    const Tri& t = mesh.faces[f];
-    sixVolume[shellOfFace[f]] +=
-        mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
-  }
-  for (double v : sixVolume) (v > 0.0 ? c.pieces : c.inwardShells)++;
+  for (double v : enclosedVolumes(mesh, shellOfFace, c.shells))
+    (v > 0.0 ? c.pieces : c.inwardShells)++;
   const auto crossings = findSelfIntersections(mesh, kMaxPairs);
   c.capped = crossings.size() >= kMaxPairs;
   for (const auto& [f, g] : crossings)

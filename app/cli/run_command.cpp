@@ -202,11 +202,7 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
   }
   // What else landed under a run output's name (a .gltf's .bin) is this run's: the folder held
   // none before it.
-  std::error_code listed;
-  for (fs::directory_iterator it(outDir, listed), end; !listed && it != end; it.increment(listed)) {
-    const std::string name = it->path().filename().string();
-    if (isRunOutputName(name)) written.push_back(name);
-  }
+  for (const std::string& name : runOutputsIn(outDir)) written.push_back(name);
   csv.close();
   out << name << ": " << frames << " frames, " << std::fixed << std::setprecision(2)
       << msSum / frames << " ms/frame, volume change " << std::setprecision(3)

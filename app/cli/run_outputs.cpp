@@ -34,21 +34,29 @@ bool isRunOutputName(const std::string& name) {
   return stem == "final" || isFrameName(stem);
 }
 
-std::vector<std::string> clearRunOutputs(const fs::path& dir) {
-  std::vector<std::string> removed;
+std::vector<std::string> runOutputsIn(const fs::path& dir) {
+  std::vector<std::string> names;
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code kind;
     const std::string name = it->path().filename().string();
-    if (!isRunOutputName(name) || !it->is_regular_file(ec)) continue;
-    if (!fs::remove(it->path(), ec) || ec) {
-      throw OutputError("cannot remove " + it->path().string() + " left by an earlier run: " +
-                        (ec ? ec.message() : std::string("not removed")));
-    }
-    removed.push_back(name);
+    if (isRunOutputName(name) && it->is_regular_file(kind)) names.push_back(name);
   }
   if (ec) throw OutputError("cannot list " + dir.string() + ": " + ec.message());
-  std::sort(removed.begin(), removed.end());
-  return removed;
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::vector<std::string> clearRunOutputs(const fs::path& dir) {
+  const std::vector<std::string> names = runOutputsIn(dir);
+  for (const std::string& name : names) {
+    std::error_code ec;
+    if (!fs::remove(dir / name, ec) || ec) {
+      throw OutputError("cannot remove " + (dir / name).string() + " left by an earlier run: " +
+                        (ec ? ec.message() : std::string("not removed")));
+    }
+  }
+  return names;
 }
 
 std::string describeWritten(std::vector<std::string> names) {

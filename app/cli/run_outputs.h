@@ -17,8 +17,12 @@ namespace galsculpt {
 // with an extension they write).
 bool isRunOutputName(const std::string& name);
 
-// Removes the run outputs in `dir` (not its subfolders); returns their names, sorted. Throws
-// OutputError naming a file that cannot be removed.
+// The run outputs in `dir` (plain files, not its subfolders), sorted. Throws OutputError when
+// the folder cannot be listed.
+std::vector<std::string> runOutputsIn(const std::filesystem::path& dir);
+
+// Removes the run outputs in `dir`; returns their names, sorted. Throws OutputError naming a
+// file that cannot be removed.
 std::vector<std::string> clearRunOutputs(const std::filesystem::path& dir);
 
 // The files written, one line: plain names, with frame_NNNNN.EXT files counted per extension

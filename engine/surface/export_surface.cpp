@@ -9,41 +9,35 @@ namespace galsculpt {
 
 namespace {
 
-double signedSixVolume(const TriMesh& mesh, const Tri& f) {
-  return mesh.vertices[f[0]].dot(mesh.vertices[f[1]].cross(mesh.vertices[f[2]]));
-}
-
 // The faces to write: those of each exported piece's outer shell. Fills the report's shell
 // counts.
 std::vector<int> outerShellFaces(const VisualSurface& all, const std::vector<int>& pieceOfVertex,
                                  ExportedSurface& report) {
   std::vector<int> shellOfFace;
   const int shells = countSurfacePieces(all.mesh, &shellOfFace);
-  std::vector<double> sixVolume(shells, 0.0);
+  const std::vector<double> volume = enclosedVolumes(all.mesh, shellOfFace, shells);
   std::vector<int> pieceOfShell(shells, -1);
-  for (int f = 0; f < all.mesh.numFaces(); ++f) {
-    sixVolume[shellOfFace[f]] += signedSixVolume(all.mesh, all.mesh.faces[f]);
+  for (int f = 0; f < all.mesh.numFaces(); ++f)
     pieceOfShell[shellOfFace[f]] = pieceOfVertex[all.cellVertex[f]];
-  }
   int pieceCount = 0;
   for (int p : pieceOfVertex) pieceCount = std::max(pieceCount, p + 1);
   std::vector<int> outer(pieceCount, -1);
   for (int s = 0; s < shells; ++s) {
     const int p = pieceOfShell[s];
     if (p < 0) continue;
-    if (outer[p] < 0 || sixVolume[s] > sixVolume[outer[p]]) outer[p] = s;
+    if (outer[p] < 0 || volume[s] > volume[outer[p]]) outer[p] = s;
   }
   std::vector<char> kept(shells, 0);
   for (int p = 0; p < pieceCount; ++p) {
     if (outer[p] < 0) continue;
     kept[outer[p]] = 1;
     ++report.pieces;
-    if (!(sixVolume[outer[p]] > 0.0)) ++report.invertedShells;
+    if (!(volume[outer[p]] > 0.0)) ++report.invertedShells;
   }
   for (int s = 0; s < shells; ++s) {
     if (kept[s] || pieceOfShell[s] < 0) continue;
     ++report.droppedShells;
-    report.droppedVolume += std::abs(sixVolume[s]) / 6.0;
+    report.droppedVolume += std::abs(volume[s]);
   }
   std::vector<int> faces;
   for (int f = 0; f < all.mesh.numFaces(); ++f)

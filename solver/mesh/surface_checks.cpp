@@ -152,6 +152,17 @@ double enclosedVolume(const TriMesh& mesh) {
   return sum / 6.0;
 }
 
+std::vector<double> enclosedVolumes(const TriMesh& mesh, const std::vector<int>& groupOfFace,
+                                    int groups) {
+  std::vector<double> sum(groups, 0.0);
+  for (int fi = 0; fi < mesh.numFaces(); ++fi) {
+    const Tri& f = mesh.faces[fi];
+    sum[groupOfFace[fi]] += mesh.vertices[f[0]].dot(mesh.vertices[f[1]].cross(mesh.vertices[f[2]]));
+  }
+  for (double& v : sum) v /= 6.0;
+  return sum;
+}
+
 double surfaceArea(const TriMesh& mesh) {
   double sum = 0.0;
   for (const Tri& f : mesh.faces) {

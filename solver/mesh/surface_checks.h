@@ -35,6 +35,10 @@ SurfaceTopology analyzeSurface(const TriMesh& mesh);
 // Signed enclosed volume (divergence theorem): positive for a closed, outward-oriented surface.
 double enclosedVolume(const TriMesh& mesh);
 double surfaceArea(const TriMesh& mesh);
+// The signed volume each group of faces encloses (`groupOfFace`: a label in [0, groups) per
+// face, e.g. countSurfacePieces' shells).
+std::vector<double> enclosedVolumes(const TriMesh& mesh, const std::vector<int>& groupOfFace,
+                                    int groups);
 
 // Pairs of faces that cross each other (faces sharing an edge are not tested; touching is not
 // crossing). Stops after `maxPairs`.

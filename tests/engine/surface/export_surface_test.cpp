@@ -22,13 +22,7 @@ namespace fs = std::filesystem;
 std::vector<double> shellVolumes(const TriMesh& mesh) {
   std::vector<int> shellOfFace;
   const int shells = countSurfacePieces(mesh, &shellOfFace);
-  std::vector<double> volume(shells, 0.0);
-  for (int f = 0; f < mesh.numFaces(); ++f) {
-    const Tri& t = mesh.faces[f];
-    volume[shellOfFace[f]] +=
-        mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]])) / 6.0;
-  }
-  return volume;
+  return enclosedVolumes(mesh, shellOfFace, shells);
 }
 
 // What an export promises (docs/surface.md): one closed, outward shell per piece, nothing

@@ -85,5 +85,21 @@ TEST(SurfaceChecks, VolumeSignFollowsOrientation) {
   EXPECT_NEAR(enclosedVolume(m), -v, 1e-9);
 }
 
+// Each shell's volume apart: a ball and, far from it, a small one turned inside out.
+TEST(SurfaceChecks, EnclosedVolumesArePerGroup) {
+  const TriMesh big = makeIcosphere(2.0, 3);
+  TriMesh small = makeIcosphere(0.5, 2);
+  for (Tri& f : small.faces) std::swap(f[1], f[2]);
+  const TriMesh both = merged(big, small, Vec3(10.0, 0, 0));
+  std::vector<int> shellOfFace;
+  ASSERT_EQ(countSurfacePieces(both, &shellOfFace), 2);
+  const std::vector<double> v = enclosedVolumes(both, shellOfFace, 2);
+  const int bigShell = shellOfFace.front();
+  EXPECT_NEAR(v[bigShell], enclosedVolume(big), 1e-9);
+  EXPECT_NEAR(v[1 - bigShell], enclosedVolume(small), 1e-9);
+  EXPECT_LT(v[1 - bigShell], 0.0);
+  EXPECT_NEAR(v[0] + v[1], enclosedVolume(both), 1e-9);
+}
+
 }  // namespace
 }  // namespace galsculpt
