@@ -26,6 +26,7 @@
 
 #include "app/cli/cli.h"
 #include "app/cli/cli_args.h"
+#include "app/cli/progress_text.h"
 #include "engine/scene/scene.h"
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/simulation.h"
@@ -632,6 +633,28 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
   if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder");
   const fs::path scratch = pattern;
 
+  // Progress on standard error: measurements done of all, the time elapsed and left.
+  auto settingsOf = [&](const SceneDescription& scene, const BenchScene& bs) {
+    return benchSettings(scene, a.has("--cracks"),
+                         a.has("--sweep") && std::string(bs.name) == "sphere");
+  };
+  int measurements = 0, measured = 0;
+  for (const BenchScene& bs : scenes) {
+    measurements += static_cast<int>(
+        settingsOf(
+            withSolverOverrides(loadScene(fs::path(assetDirectory()) / "scenes" / bs.file), solver),
+            bs)
+            .size());
+  }
+  const auto started = std::chrono::steady_clock::now();
+  auto sayProgress = [&](const char* scene) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    err << "bench: " << measured << '/' << measurements << " measurement(s) done (" << scene
+        << "), " << paceText(measured, measurements, elapsed) << '\n'
+        << std::flush;
+  };
+
   nlohmann::json results = nlohmann::json::array();
   out << "scene" << std::string(kSceneColumn - 5, ' ')
       << "tets    solver    grid                     fine coarse  ms/frame      fps  "
@@ -646,10 +669,10 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
       mesh = loadSceneMesh(scene, [&err](const std::string& line) { err << line << '\n'; });
     } catch (const InputError& e) {
       err << "skipping " << bs.name << ": " << e.what() << '\n';
+      measurements -= static_cast<int>(settingsOf(scene, bs).size());
       continue;
     }
-    const std::vector<Setting> settings = benchSettings(
-        scene, a.has("--cracks"), a.has("--sweep") && std::string(bs.name) == "sphere");
+    const std::vector<Setting> settings = settingsOf(scene, bs);
     const fs::path refFile = scratch / (std::string(bs.name) + ".ref");
     std::vector<int> sceneSettles = settles;
     for (int& settle : sceneSettles) settle += bs.startFrame;
@@ -680,6 +703,8 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
         out << row(r) << '\n' << std::flush;
         results.push_back(r);
       }
+      ++measured;
+      sayProgress(bs.name);
     }
     if (sceneSettles.size() > 1)
       printWindowSummary(std::vector<nlohmann::json>(results.begin() + sceneFirst, results.end()),

@@ -1,4 +1,5 @@
 // `galsculpt mesh info | convert | import | generate`.
+#include <chrono>
 #include <filesystem>
 #include <iomanip>
 #include <nlohmann/json.hpp>
@@ -6,6 +7,7 @@
 
 #include "app/cli/cli.h"
 #include "app/cli/cli_args.h"
+#include "app/cli/progress_text.h"
 #include "engine/meshing/mesh_files.h"
 #include "engine/meshing/tetrahedralize.h"
 #include "engine/scene/scene_mesh.h"
@@ -205,7 +207,14 @@ TetMesh meshSurface(const std::vector<TriMesh>& surfaces, const std::string& nam
   options.tolerance = a.doubleValue("--tolerance", 0.15, 0.01, 1.0);
   options.radiusEdgeRatio = a.doubleValue("--quality", 1.414, 1.05, 10.0);
   options.surfaceName = name;
-  options.progress = [&err](const std::string& line) { err << line << '\n'; };
+  // Each step's line with the time since the import began (TetGen's attempts say how many
+  // there may be at most: the time left is not known before the count is reached).
+  const auto started = std::chrono::steady_clock::now();
+  options.progress = [&err, started](const std::string& line) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    err << '[' << durationText(elapsed) << "] " << line << '\n' << std::flush;
+  };
   return tetrahedralizeAny(surfaces, options).mesh;
 }
 

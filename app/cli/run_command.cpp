@@ -16,6 +16,7 @@
 
 #include "app/cli/cli.h"
 #include "app/cli/cli_args.h"
+#include "app/cli/progress_text.h"
 #include "app/cli/run_outputs.h"
 #include "app/render/render_mesh.h"
 #include "app/render/snapshot_renderer.h"
@@ -35,23 +36,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// An export is written whatever it holds; one that is not clean says so.
+// An export is written whatever it holds; one that is not clean, or whose pieces overlap, says
+// so.
 void writeExport(const fs::path& path, const ExportedSurface& exported, std::ostream& err) {
   writeVisualSurface(path, exported.surface);
-  if (exported.crossings > 0 || exported.invertedShells > 0)
+  if (exported.crossings > 0 || exported.invertedShells > 0 || exported.contacts > 0)
     err << "warning: " << path.string() << ": " << exported.summary() << '\n';
-}
-
-// Seconds as "42 s" or "3 min 05 s".
-std::string duration(double seconds) {
-  const long s = std::lround(std::max(0.0, seconds));
-  std::ostringstream t;
-  if (s < 60) {
-    t << s << " s";
-  } else {
-    t << s / 60 << " min " << std::setw(2) << std::setfill('0') << s % 60 << " s";
-  }
-  return t.str();
 }
 
 // The progress line: frames done, ms a frame, the time since the first frame and an estimate of
@@ -59,10 +49,8 @@ std::string duration(double seconds) {
 void drawProgress(std::ostream& err, int done, int total, double msPerFrame, double elapsedS,
                   bool interactive) {
   std::ostringstream pace;
-  pace << std::fixed << std::setprecision(1) << msPerFrame << " ms/frame, " << duration(elapsedS)
-       << " elapsed";
-  if (done < total && done > 0)
-    pace << ", ~" << duration(elapsedS / done * (total - done)) << " left";
+  pace << std::fixed << std::setprecision(1) << msPerFrame << " ms/frame, "
+       << paceText(done, total, elapsedS);
   if (interactive) {
     const int width = 30;
     const int filled = total > 0 ? width * done / total : width;

@@ -107,7 +107,7 @@ class PySimulation {
           "event.frame: an applied event acts from the next step: leave it out "
           "or give the current frame (" +
           std::to_string(frame) + ")");
-    session_->apply(parseToolEvent(e, "event", "<python>"));
+    session_->apply(parseToolEvent(e, "event", "<python>"), "<python>");
   }
 
   bool undo() {

@@ -188,8 +188,8 @@ class TetgenRuns {
     ++attempts_;
     if (options_.progress) {
       std::ostringstream line;
-      line << "tetgen attempt " << attempts_ << " (" << sw << "): " << count << " tets (target "
-           << options_.targetTets << ")";
+      line << "tetgen attempt " << attempts_ << " of at most " << options_.maxAttempts << " (" << sw
+           << "): " << count << " tets (target " << options_.targetTets << ")";
       options_.progress(line.str());
     }
     const double target = options_.targetTets;

@@ -290,16 +290,18 @@ void writePlaybackScript(const fs::path& file, const fs::path& scene, int frames
   writeFileAtomically(file, [&](std::ostream& out) { out << text; });
 }
 
+void checkToolEvent(const ToolEvent& e, const Simulation& sim, const std::string& file) {
+  if (e.tool == ToolEvent::Tool::Anchor && e.add)
+    sim.selectVertices(e.shape, file, e.path + ".anchor");
+  if (e.seed >= sim.model().numVertices())
+    throw InputError(file, 0,
+                     e.path + ".seed: " + std::to_string(e.seed) +
+                         " is not a vertex of the mesh (it has " +
+                         std::to_string(sim.model().numVertices()) + ")");
+}
+
 void checkScriptAnchors(const PlaybackScript& script, const Simulation& sim) {
-  for (const ToolEvent& e : script.events) {
-    if (e.tool == ToolEvent::Tool::Anchor && e.add)
-      sim.selectVertices(e.shape, script.file.string(), e.path + ".anchor");
-    if (e.seed >= sim.model().numVertices())
-      throw InputError(script.file.string(), 0,
-                       e.path + ".seed: " + std::to_string(e.seed) +
-                           " is not a vertex of the mesh (it has " +
-                           std::to_string(sim.model().numVertices()) + ")");
-  }
+  for (const ToolEvent& e : script.events) checkToolEvent(e, sim, script.file.string());
 }
 
 Playback::Playback(const PlaybackScript& script, Simulation& sim)

@@ -116,8 +116,10 @@ class ToolApplier {
   std::optional<CameraPose> camera_;
 };
 
-// Checks up front that every anchor a script adds selects something and that every brush or
-// anchor-paint `seed` is a vertex of the mesh (InputError naming its JSON path otherwise).
+// Checks an event against the mesh: an anchor it adds selects something, a brush's or anchor
+// paint's `seed` is a vertex (InputError naming `file` and the event's JSON path otherwise).
+void checkToolEvent(const ToolEvent& event, const Simulation& sim, const std::string& file);
+// checkToolEvent for every event of a script, up front.
 void checkScriptAnchors(const PlaybackScript& script, const Simulation& sim);
 
 class Playback {

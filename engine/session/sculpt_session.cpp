@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "solver/io/atomic_file.h"
+#include "solver/io/input_error.h"
 #include "solver/io/stop_request.h"
 
 namespace galsculpt {
@@ -121,7 +122,20 @@ int lastActingFrame(const ToolEvent& e) {
 
 }  // namespace
 
-void SculptSession::apply(ToolEvent event) {
+void SculptSession::apply(ToolEvent event, const std::string& source) {
+  checkToolEvent(event, *sim_, source);
+  if (event.tool == ToolEvent::Tool::Anchor && !event.add) {
+    if (event.sceneAnchor >= static_cast<int>(scene_.anchors.size()))
+      throw InputError(source, 0,
+                       event.path + ".scene_anchor: the scene has " +
+                           std::to_string(scene_.anchors.size()) + " anchor(s)");
+    const bool toBeAdded = std::any_of(acting_.begin(), acting_.end(), [&](const ToolEvent& e) {
+      return e.tool == ToolEvent::Tool::Anchor && e.add && e.name == event.name;
+    });
+    if (!event.name.empty() && !sim_->namedAnchor(event.name) && !toBeAdded)
+      throw InputError(source, 0,
+                       event.path + ".name: no anchor named \"" + event.name + "\" holds now");
+  }
   beginAction("apply");
   event.scripted = true;
   record(event);

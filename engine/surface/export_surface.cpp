@@ -35,9 +35,15 @@ std::vector<int> outerShellFaces(const VisualSurface& all, const std::vector<int
     if (!(volume[outer[p]] > 0.0)) ++report.invertedShells;
   }
   for (int s = 0; s < shells; ++s) {
-    if (kept[s] || pieceOfShell[s] < 0) continue;
-    ++report.droppedShells;
-    report.droppedVolume += std::abs(volume[s]);
+    if (pieceOfShell[s] < 0) continue;
+    if (kept[s]) continue;
+    if (volume[s] > 0.0) {  // material: a corner carved out, or a part cut off by it
+      ++report.detachedShells;
+      report.detachedVolume += volume[s];
+    } else {  // a cavity: faces turned into the void they close
+      ++report.droppedShells;
+      report.droppedVolume += std::abs(volume[s]);
+    }
   }
   std::vector<int> faces;
   for (int f = 0; f < all.mesh.numFaces(); ++f)
@@ -51,8 +57,17 @@ std::string ExportedSurface::summary() const {
   std::ostringstream s;
   s << pieces << " piece(s), " << (crossings == 0 && invertedShells == 0 ? "closed" : "NOT clean");
   if (crossings > 0) s << ", " << crossings << " crossing face pair(s) left";
+  if (contacts > 0)
+    s << ", " << contacts << " face pair(s) of two pieces crossing (pieces overlap)";
   if (invertedShells > 0) s << ", " << invertedShells << " piece(s) inside out";
+  if (removedPieces > 0)
+    s << "; " << removedPieces << " debris piece(s) removed by the scene's rule, not written";
   if (sealedEdges > 0) s << "; " << sealedEdges << " closed crack edge(s) inside pieces sealed";
+  if (carvedCorners > 0 || detachedShells > 0) {
+    s << "; " << carvedCorners << " corner(s) carved out where crack faces crossed, "
+      << detachedShells << " detached shell(s) left out (" << detachedVolume << " m^3, "
+      << 100.0 * detachedVolume / std::max(volume + detachedVolume, 1e-300) << " % of the volume)";
+  }
   if (droppedShells > 0) {
     s << "; " << droppedShells << " internal crack shell(s) left out (" << droppedVolume
       << " m^3 enclosed)";
@@ -117,7 +132,20 @@ ExportedSurface makeExportSurface(const VisualSurface& all, const std::vector<Ve
     place();
     crossing = findSelfIntersections(s.mesh, kMaxPairs);
   }
-  out.crossings = static_cast<int>(crossing.size());
+  for (const auto& [f, g] : crossing) {
+    const int a = s.cellVertex[f], b = s.cellVertex[g];
+    if (pieceOfVertex[a] != pieceOfVertex[b]) {
+      ++out.contacts;
+      continue;
+    }
+    ++out.crossings;
+    out.crossingCells.push_back(a);
+    out.crossingCells.push_back(b);
+  }
+  std::sort(out.crossingCells.begin(), out.crossingCells.end());
+  out.crossingCells.erase(std::unique(out.crossingCells.begin(), out.crossingCells.end()),
+                          out.crossingCells.end());
+  out.volume = enclosedVolume(s.mesh);
   for (size_t i = 0; i < n; ++i) out.pulledVertices += movable[i] && pull[i] > options.separation;
   return out;
 }

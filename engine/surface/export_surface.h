@@ -15,7 +15,11 @@
 //   - the result is checked for crossing faces; the crack-side copies of faces that still cross
 //     are pulled further (doubling, up to `maxSeparation`) and the check repeated, so that what
 //     is written is free of crossings wherever pulling crack faces in can make it so. What is
-//     left (a body folded through itself) is counted and reported.
+//     left is counted and reported: crossings inside a piece's shell apart from contact, faces
+//     of two pieces that cross (pieces that overlap, which the simulation does not prevent).
+// Simulation::exportSurface carves out the corners whose cells bound faces of one piece still
+// crossing (a broken end's crack band folded through itself): each becomes a shell of its own,
+// which the export leaves out as material detached from its piece, with its volume reported.
 // docs/surface.md ("Exports") states what an export promises.
 #pragma once
 
@@ -33,14 +37,21 @@ struct SurfaceExportOptions {
 };
 
 struct ExportedSurface {
-  VisualSurface surface;       // faces of kept pieces' outer shells, compact numbering
-  int pieces = 0;              // shells written: one per piece
-  int sealedEdges = 0;         // closed slits inside pieces, sealed (Simulation::exportSurface)
-  int droppedShells = 0;       // internal crack shells left out
-  double droppedVolume = 0.0;  // the volume they enclosed (absolute, m^3)
-  int invertedShells = 0;      // pieces whose outer shell encloses no positive volume
-  int pulledVertices = 0;      // crack-side copies pulled further than `separation`
-  int crossings = 0;           // face pairs that still cross (0: no self-intersection)
+  VisualSurface surface;           // faces of kept pieces' outer shells, compact numbering
+  int pieces = 0;                  // shells written: one per piece
+  int removedPieces = 0;           // debris pieces the scene's rule removed: not written
+  int sealedEdges = 0;             // closed slits inside pieces, sealed (Simulation::exportSurface)
+  int carvedCorners = 0;           // mesh vertices carved out where faces crossed (ditto)
+  int droppedShells = 0;           // internal crack shells (cavities) left out
+  double droppedVolume = 0.0;      // the volume they enclosed (absolute, m^3)
+  int detachedShells = 0;          // other shells of a piece enclosing material, left out
+  double detachedVolume = 0.0;     // the material they held, m^3
+  double volume = 0.0;             // the volume the written shells enclose, m^3
+  int invertedShells = 0;          // pieces whose outer shell encloses no positive volume
+  int pulledVertices = 0;          // crack-side copies pulled further than `separation`
+  int crossings = 0;               // face pairs of one piece that still cross (self-intersection)
+  std::vector<int> crossingCells;  // tet-mesh vertices whose cells bound those faces, sorted
+  int contacts = 0;                // face pairs of two pieces that cross (the pieces overlap)
   // One line: "2 piece(s), closed; ..." for the command line and the window's messages.
   std::string summary() const;
 };

@@ -108,6 +108,12 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   const auto both = nlohmann::json::parse(test::readText(dir / "2.json"))["results"];
   ASSERT_EQ(both.size(), 6u);
   EXPECT_EQ(both[0]["scene"], "charpy");
+  // Progress on standard error: measurements done of all, time elapsed and left.
+  EXPECT_NE(two.err.find("bench: 1/6 measurement(s) done (charpy), "), std::string::npos)
+      << two.err;
+  EXPECT_NE(two.err.find(" left\n"), std::string::npos) << two.err;
+  EXPECT_NE(two.err.find("bench: 6/6 measurement(s) done (sphere), "), std::string::npos)
+      << two.err;
   EXPECT_EQ(both[5]["scene"], "sphere");
   ASSERT_EQ(paperScene.code, kExitOk) << paperScene.err;
   const auto p = nlohmann::json::parse(test::readText(dir / "p.json"));

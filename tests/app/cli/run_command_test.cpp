@@ -61,6 +61,9 @@ TEST(Cli, PlayRunsAScriptHeadlessAndWritesTheFinalSurface) {
   const CliRun again = run({"mesh", "import", (dir / "out" / "final.obj").string(),
                             (dir / "again.node").string(), "--tets", "10000"});
   ASSERT_EQ(again.code, kExitOk) << again.err;
+  // Each step of the import says the time since it began; TetGen's attempts, how many there
+  // may be.
+  EXPECT_NE(again.err.find("s] tetgen attempt 1 of at most 30 ("), std::string::npos) << again.err;
   const CliRun againInfo = run({"mesh", "info", (dir / "again.node").string()});
   EXPECT_NE(againInfo.out.find("pieces: 2"), std::string::npos) << againInfo.out;
 

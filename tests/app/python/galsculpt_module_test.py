@@ -93,6 +93,36 @@ def test_bad_events_name_their_key(ball):
         ball.apply(dict(KNIFE, frame=ball.frame + 5))
 
 
+def test_applied_events_are_checked_against_the_mesh_and_scene_as_a_scripts_are():
+    # Each of these crashed a later step (a seed past the vertices read out of bounds) or made
+    # every later step fail; apply() refuses them as `play` refuses them in a script, records
+    # nothing, and the session steps on.
+    sim = galsculpt.Simulation(BALL)
+    vertices = sim.rest_positions.shape[0]
+    bad = [
+        ({"tool": "push", "center": [0, 0, 0.1], "radius": 0.05, "seed": 10**9},
+         r"event\.seed: 1000000000 is not a vertex of the mesh"),
+        ({"tool": "grab", "center": [0, 0, 0.1], "radius": 0.05, "seed": vertices},
+         r"event\.seed: %d is not a vertex" % vertices),
+        ({"tool": "anchor_paint", "center": [0, 0, 0.1], "radius": 0.05, "seed": 10**9},
+         r"event\.seed"),
+        ({"tool": "anchor", "anchor": {"vertices": [10**8]}}, r"event\.anchor"),
+        ({"tool": "anchor", "action": "remove", "scene_anchor": 99},
+         r"event\.scene_anchor: the scene has 1 anchor"),
+        ({"tool": "anchor", "action": "remove", "name": "nobody"},
+         r"event\.name: no anchor named \"nobody\""),
+    ]
+    for event, message in bad:
+        with pytest.raises(ValueError, match="<python>: " + message):
+            sim.apply(event)
+    assert sim.undo() is False, "nothing was recorded"
+    assert sim.step()["converged"]
+    # An anchor added by an event still to act may be removed after it.
+    sim.apply({"tool": "anchor", "name": "a", "anchor": {"vertices": [0]}})
+    sim.apply({"tool": "anchor", "action": "remove", "name": "a"})
+    sim.step()
+
+
 def test_errors_are_exceptions_with_the_readers_messages(tmp_path):
     with pytest.raises(FileNotFoundError, match="nothing.json: no such file"):
         galsculpt.Simulation(str(tmp_path / "nothing.json"))
