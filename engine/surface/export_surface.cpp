@@ -1,6 +1,7 @@
 #include "engine/surface/export_surface.h"
 
 #include <algorithm>
+#include <array>
 #include <sstream>
 
 #include "solver/mesh/surface_checks.h"
@@ -49,6 +50,36 @@ std::vector<int> outerShellFaces(const VisualSurface& all, const std::vector<int
   for (int f = 0; f < all.mesh.numFaces(); ++f)
     if (kept[shellOfFace[f]]) faces.push_back(f);
   return faces;
+}
+
+// Vertices at one position (two crack-side copies placed alike, e.g. on a knife's plane where
+// both sides hold corners with the same centre) would be welded by a reader that merges equal
+// positions (STL needs it) into a point where two sheets touch. All but the first of each
+// position step 1 % of the way towards the centroid of their faces.
+void separateCoincident(TriMesh& mesh) {
+  const int n = mesh.numVertices();
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i) order[i] = i;
+  auto key = [&](int i) {
+    const Vec3& p = mesh.vertices[i];
+    return std::array<double, 3>{p.x(), p.y(), p.z()};
+  };
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return key(a) != key(b) ? key(a) < key(b) : a < b; });
+  std::vector<int> stepping;
+  for (int k = 1; k < n; ++k)
+    if (key(order[k]) == key(order[k - 1])) stepping.push_back(order[k]);
+  if (stepping.empty()) return;
+  std::vector<Vec3> inward(n, Vec3::Zero());
+  std::vector<int> faces(n, 0);
+  for (const Tri& f : mesh.faces) {
+    const Vec3 centre = (mesh.vertices[f[0]] + mesh.vertices[f[1]] + mesh.vertices[f[2]]) / 3.0;
+    for (int v : f) {
+      inward[v] += centre;
+      ++faces[v];
+    }
+  }
+  for (int v : stepping) mesh.vertices[v] += 0.01 * (inward[v] / faces[v] - mesh.vertices[v]);
 }
 
 }  // namespace
@@ -113,6 +144,7 @@ ExportedSurface makeExportSurface(const VisualSurface& all, const std::vector<Ve
       const Vec3& p = all.mesh.vertices[source[i]];
       s.mesh.vertices[i] = movable[i] ? Vec3(p + pull[i] * (heldCentre[source[i]] - p)) : p;
     }
+    separateCoincident(s.mesh);
   };
   place();
   constexpr size_t kMaxPairs = 1000000;
@@ -128,9 +160,22 @@ ExportedSurface makeExportSurface(const VisualSurface& all, const std::vector<Ve
     if (raise.empty()) break;
     std::sort(raise.begin(), raise.end());
     raise.erase(std::unique(raise.begin(), raise.end()), raise.end());
-    for (int v : raise) pull[v] = std::min(2.0 * pull[v], options.maxSeparation);
+    std::vector<char> moved(n, 0);
+    for (int v : raise) {
+      pull[v] = std::min(2.0 * pull[v], options.maxSeparation);
+      moved[v] = 1;
+    }
     place();
-    crossing = findSelfIntersections(s.mesh, kMaxPairs);
+    // Only pairs with a moved face can have changed: those are checked again, the others that
+    // crossed still do.
+    std::vector<char> movedFace(s.mesh.faces.size(), 0);
+    for (size_t f = 0; f < s.mesh.faces.size(); ++f)
+      for (int v : s.mesh.faces[f]) movedFace[f] |= moved[v];
+    std::vector<std::pair<int, int>> still = findSelfIntersections(s.mesh, kMaxPairs, &movedFace);
+    for (const auto& pair : crossing)
+      if (!movedFace[pair.first] && !movedFace[pair.second]) still.push_back(pair);
+    std::sort(still.begin(), still.end());
+    crossing = std::move(still);
   }
   for (const auto& [f, g] : crossing) {
     const int a = s.cellVertex[f], b = s.cellVertex[g];

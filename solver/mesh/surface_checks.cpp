@@ -191,7 +191,8 @@ int countSurfacePieces(const TriMesh& mesh, std::vector<int>* pieceOfFace) {
   return pieces;
 }
 
-std::vector<std::pair<int, int>> findSelfIntersections(const TriMesh& mesh, size_t maxPairs) {
+std::vector<std::pair<int, int>> findSelfIntersections(const TriMesh& mesh, size_t maxPairs,
+                                                       const std::vector<char>* faceMask) {
   std::vector<std::pair<int, int>> hits;
   if (mesh.faces.empty()) return hits;
   const BoundingBox box = boundingBox(mesh.vertices);
@@ -207,6 +208,7 @@ std::vector<std::pair<int, int>> findSelfIntersections(const TriMesh& mesh, size
     return ((p - box.min).array() / cell).floor().cast<int>().max(0).min(dims - 1).eval();
   };
   std::vector<std::pair<long long, int>> entries;
+  std::vector<Eigen::Array3i> lowest(mesh.faces.size());  // each face's lowest cell
   for (int fi = 0; fi < mesh.numFaces(); ++fi) {
     const Tri& f = mesh.faces[fi];
     const Vec3& a = mesh.vertices[f[0]];
@@ -214,6 +216,7 @@ std::vector<std::pair<int, int>> findSelfIntersections(const TriMesh& mesh, size
     const Vec3& c = mesh.vertices[f[2]];
     const Eigen::Array3i lo = cellOf(a.cwiseMin(b).cwiseMin(c));
     const Eigen::Array3i hi = cellOf(a.cwiseMax(b).cwiseMax(c));
+    lowest[fi] = lo;
     for (int z = lo.z(); z <= hi.z(); ++z) {
       for (int y = lo.y(); y <= hi.y(); ++y) {
         for (int x = lo.x(); x <= hi.x(); ++x) {
@@ -223,18 +226,40 @@ std::vector<std::pair<int, int>> findSelfIntersections(const TriMesh& mesh, size
     }
   }
   std::sort(entries.begin(), entries.end());
+  // Faces that cross share a point, so their boxes overlap: most pairs of a cell are told apart
+  // by their boxes alone.
+  std::vector<BoundingBox> boxes(mesh.faces.size());
+  for (int fi = 0; fi < mesh.numFaces(); ++fi) {
+    const Tri& f = mesh.faces[fi];
+    const Vec3 &a = mesh.vertices[f[0]], &b = mesh.vertices[f[1]], &c = mesh.vertices[f[2]];
+    boxes[fi].min = a.cwiseMin(b).cwiseMin(c);
+    boxes[fi].max = a.cwiseMax(b).cwiseMax(c);
+  }
+  auto apart = [&](int fi, int gi) {
+    const BoundingBox& bf = boxes[fi];
+    const BoundingBox& bg = boxes[gi];
+    return (bf.max.array() < bg.min.array()).any() || (bg.max.array() < bf.min.array()).any();
+  };
+  // A pair of faces is listed once, in the first cell the two share (their lowest cells' corner).
+  auto firstShared = [&](int fi, int gi) {
+    const Eigen::Array3i c = lowest[fi].max(lowest[gi]);
+    return (static_cast<long long>(c.z()) * dims.y() + c.y()) * dims.x() + c.x();
+  };
   std::vector<std::pair<int, int>> candidates;
   for (size_t i = 0; i < entries.size();) {
     size_t j = i;
     while (j < entries.size() && entries[j].first == entries[i].first) ++j;
     for (size_t a = i; a < j; ++a) {
-      for (size_t b = a + 1; b < j; ++b)
-        candidates.push_back({entries[a].second, entries[b].second});
+      for (size_t b = a + 1; b < j; ++b) {
+        const int fi = entries[a].second, gi = entries[b].second;
+        if (faceMask && !(*faceMask)[fi] && !(*faceMask)[gi]) continue;
+        if (!apart(fi, gi) && firstShared(fi, gi) == entries[i].first)
+          candidates.push_back({fi, gi});
+      }
     }
     i = j;
   }
   std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   for (const auto& [fi, gi] : candidates) {
     const Tri& f = mesh.faces[fi];
     const Tri& g = mesh.faces[gi];

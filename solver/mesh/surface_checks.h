@@ -41,8 +41,11 @@ std::vector<double> enclosedVolumes(const TriMesh& mesh, const std::vector<int>&
                                     int groups);
 
 // Pairs of faces that cross each other (faces sharing an edge are not tested; touching is not
-// crossing). Stops after `maxPairs`.
-std::vector<std::pair<int, int>> findSelfIntersections(const TriMesh& mesh, size_t maxPairs = 16);
+// crossing), in increasing order. Stops after `maxPairs`. With `faceMask` (nFaces), only pairs
+// with at least one face marked are tested: after moving some vertices, the pairs that may have
+// changed.
+std::vector<std::pair<int, int>> findSelfIntersections(const TriMesh& mesh, size_t maxPairs = 16,
+                                                       const std::vector<char>* faceMask = nullptr);
 
 // Connected components over shared vertices; fills `pieceOfFace` when given.
 int countSurfacePieces(const TriMesh& mesh, std::vector<int>* pieceOfFace = nullptr);

@@ -187,6 +187,33 @@ TEST(ExportSurface, AnInternalSlitIsACavityShellThatTheExportLeavesOut) {
   expectWhole(dropped.surface.mesh, 1);
 }
 
+TEST(ExportSurface, PiecesThatMeetAtAPointKeepTheirOwnVertexThere) {
+  // Two tetrahedra, pieces of their own, with a corner at one position: a reader that welds
+  // equal positions would join them there into a point where two sheets touch.
+  VisualSurface two;
+  const std::vector<Vec3> corners{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  for (int piece = 0; piece < 2; ++piece) {
+    const int base = two.mesh.numVertices();
+    for (const Vec3& c : corners) two.mesh.vertices.push_back(piece == 0 ? c : Vec3(-c));
+    for (const Tri& f : {Tri{0, 2, 1}, Tri{0, 1, 3}, Tri{0, 3, 2}, Tri{1, 2, 3}}) {
+      // The second, mirrored through the shared corner, keeps its faces outward reversed.
+      if (piece == 0) two.mesh.faces.push_back({base + f[0], base + f[1], base + f[2]});
+      if (piece == 1) two.mesh.faces.push_back({base + f[0], base + f[2], base + f[1]});
+      two.tags.push_back(SurfaceTag::Outer);
+      two.cellVertex.push_back(piece);
+    }
+  }
+  ASSERT_EQ(two.mesh.vertices[0], two.mesh.vertices[4]);
+  const ExportedSurface exported =
+      makeExportSurface(two, std::vector<Vec3>(two.mesh.vertices), {0, 1});
+  EXPECT_EQ(exported.pieces, 2);
+  expectWhole(exported.surface.mesh, 2);
+  // Only the second copy stepped, and by a little.
+  EXPECT_EQ(exported.surface.mesh.vertices[0], Vec3(0, 0, 0));
+  EXPECT_GT(exported.surface.mesh.vertices[4].norm(), 0.0);
+  EXPECT_LT(exported.surface.mesh.vertices[4].norm(), 0.01);
+}
+
 TEST(ExportSurface, FacesOfPiecesNumberedNegativeAreLeftOut) {
   CutBall ball;
   const VisualSurface& all = ball.sim.surface();

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "solver/mesh/shape_generators.h"
 
 namespace galsculpt {
@@ -75,6 +77,29 @@ TEST(SurfaceChecks, OverlappingSpheresIntersect) {
   EXPECT_FALSE(findSelfIntersections(both).empty());
   EXPECT_TRUE(findSelfIntersections(merged(a, a, Vec3(3.0, 0, 0))).empty());
   EXPECT_EQ(countSurfacePieces(both), 2);
+}
+
+TEST(SurfaceChecks, CrossingPairsAreListedOnceInOrderAndAMaskTestsOnlyThePairsItTouches) {
+  const TriMesh a = makeIcosphere(1.0, 2);
+  const TriMesh both = merged(a, a, Vec3(1.0, 0.1, 0.05));
+  const std::vector<std::pair<int, int>> all = findSelfIntersections(both, 100000);
+  ASSERT_GT(all.size(), 4u);
+  EXPECT_TRUE(std::is_sorted(all.begin(), all.end()));
+  EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end()) << "each pair once";
+  // Every crossing pair is one face of each sphere, found whatever the grid.
+  for (const auto& [f, g] : all) {
+    EXPECT_LT(f, a.numFaces());
+    EXPECT_GE(g, a.numFaces());
+  }
+  // Marking the faces of one crossing pair's first face finds exactly the pairs it is in.
+  std::vector<char> mask(both.faces.size(), 0);
+  mask[all[0].first] = 1;
+  std::vector<std::pair<int, int>> expected;
+  for (const auto& pair : all)
+    if (pair.first == all[0].first || pair.second == all[0].first) expected.push_back(pair);
+  EXPECT_EQ(findSelfIntersections(both, 100000, &mask), expected);
+  std::fill(mask.begin(), mask.end(), 0);
+  EXPECT_TRUE(findSelfIntersections(both, 100000, &mask).empty());
 }
 
 TEST(SurfaceChecks, VolumeSignFollowsOrientation) {
