@@ -10,7 +10,7 @@ namespace {
 // A damaged edge inside one piece whose ends stand no further apart than this, relative to its
 // rest length, is a closed slit: the export seals it (docs/surface.md, "Exports").
 constexpr double kClosedSlitStretch = 1.1;
-// Rounds of carving out the corners of cells whose faces still cross.
+// Rounds of carving out the corners of cells whose faces still cross (within kExportCarveBudget).
 constexpr int kCarveRounds = 8;
 
 }  // namespace
@@ -58,6 +58,7 @@ ExportedSurface Simulation::exportSurface() const {
   // is made again (docs/surface.md, "Exports").
   std::vector<char> carved(model_.numVertices(), 0);
   for (int round = 0; round < kCarveRounds && out.crossings > 0; ++round) {
+    const std::vector<char> carvedBefore = carved;
     for (int v : out.crossingCells) carved[v] = 1;
     for (int e = 0; e < model_.numEdges(); ++e) {
       const auto [a, b] = model_.edges[e];
@@ -65,7 +66,13 @@ ExportedSurface Simulation::exportSurface() const {
     }
     SurfaceBuilder builder(model_);
     builder.update(model_, sealed);
-    out = makeExportSurface(builder.surface(), builder.heldCentres(sealed), piece);
+    ExportedSurface next = makeExportSurface(builder.surface(), builder.heldCentres(sealed), piece);
+    if (next.detachedVolume > kExportCarveBudget * (next.volume + next.detachedVolume)) {
+      carved = carvedBefore;
+      out.carveBudgetReached = true;
+      break;
+    }
+    out = std::move(next);
   }
   out.sealedEdges = sealedEdges;
   out.removedPieces = static_cast<int>(removedPieces.size());

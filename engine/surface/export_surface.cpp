@@ -88,6 +88,10 @@ std::string ExportedSurface::summary() const {
   std::ostringstream s;
   s << pieces << " piece(s), " << (crossings == 0 && invertedShells == 0 ? "closed" : "NOT clean");
   if (crossings > 0) s << ", " << crossings << " crossing face pair(s) left";
+  if (carveBudgetReached) {
+    s << " (carving them out would leave out more than " << 100.0 * kExportCarveBudget
+      << " % of the volume)";
+  }
   if (contacts > 0)
     s << ", " << contacts << " face pair(s) of two pieces crossing (pieces overlap)";
   if (invertedShells > 0) s << ", " << invertedShells << " piece(s) inside out";

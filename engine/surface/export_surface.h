@@ -30,6 +30,11 @@
 
 namespace galsculpt {
 
+// The most of a body's volume that carving out folds may leave out (Simulation::exportSurface);
+// past it the crossings are left in the file and said. A body whose pieces fold through
+// themselves in many places (where several knife cuts meet) would otherwise lose a fifth.
+constexpr double kExportCarveBudget = 0.03;
+
 struct SurfaceExportOptions {
   double separation = 0.02;    // of the way from a crack-side copy to its held corners
   double maxSeparation = 0.5;  // the furthest a copy is pulled while faces still cross
@@ -42,6 +47,7 @@ struct ExportedSurface {
   int removedPieces = 0;           // debris pieces the scene's rule removed: not written
   int sealedEdges = 0;             // closed slits inside pieces, sealed (Simulation::exportSurface)
   int carvedCorners = 0;           // mesh vertices carved out where faces crossed (ditto)
+  bool carveBudgetReached = false;  // carving stopped: more would leave out too much volume
   int droppedShells = 0;           // internal crack shells (cavities) left out
   double droppedVolume = 0.0;      // the volume they enclosed (absolute, m^3)
   int detachedShells = 0;          // other shells of a piece enclosing material, left out

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 
@@ -104,31 +105,55 @@ void shiftVertices(Simulation& sim, const Vec3& shift, Pick moved) {
   sim.restore(s);
 }
 
-TEST(ExportSurface, FoldedFacesOfOnePieceAreCarvedOutAndTheirVolumeReported) {
-  // A knife half way across the ball (one piece, an open notch), the notch's upper lip slid an
-  // edge along the cut and pushed a third of an edge down into the lower one (the slit is
-  // opened, not sealed): the piece folds through itself where the lips overlap, which no pull of
-  // crack-side copies can clear. The export carves the corners of the crossing cells out of the
-  // piece and says what it left out.
+// The clay ball with a knife half way across it (one piece, an open notch) and the vertices of
+// the notch's upper lip that `inFlap` picks slid an edge along the cut and pushed a third of an
+// edge down into the lower lip (the slit is opened, not sealed): the piece folds through itself
+// where the lips overlap, which no pull of crack-side copies can clear.
+template <class Pick>
+ExportedSurface exportFoldedNotch(Pick inFlap) {
   Simulation sim(test::clayBall().scene, test::clayBall().mesh);
-  ASSERT_GT(sim.cut(sweptBladeSurface(Vec3(-0.2, 0.2, 0.02), Vec3(0.0, 0.2, 0.02),
+  EXPECT_GT(sim.cut(sweptBladeSurface(Vec3(-0.2, 0.2, 0.02), Vec3(0.0, 0.2, 0.02),
                                       Vec3(-0.2, -0.2, 0.02), Vec3(0.0, -0.2, 0.02))),
             0);
-  ASSERT_EQ(sim.pieceStats().pieces, 1);
+  EXPECT_EQ(sim.pieceStats().pieces, 1);
   const double h = meanEdge(sim.model());
   const std::vector<Vec3>& X = sim.model().mesh.vertices;
   shiftVertices(sim, Vec3(h, 0, -h / 3.0),
-                [&](int v) { return X[v].z() > 0.02 && X[v].x() < -2.0 * h; });
-  const ExportedSurface exported = sim.exportSurface();
+                [&](int v) { return X[v].z() > 0.02 && inFlap(X[v], h); });
+  return sim.exportSurface();
+}
+
+TEST(ExportSurface, FoldedFacesOfOnePieceAreCarvedOutAndTheirVolumeReported) {
+  // A flap of the lip folded: the export carves the corners of the crossing cells out of the
+  // piece and says what it left out.
+  const ExportedSurface exported = exportFoldedNotch([](const Vec3& p, double h) {
+    return p.x() < -4.0 * h && std::abs(p.y()) < h;
+  });
   EXPECT_EQ(exported.crossings, 0);
   EXPECT_EQ(exported.contacts, 0);
+  EXPECT_FALSE(exported.carveBudgetReached);
   EXPECT_GT(exported.carvedCorners, 0);
   EXPECT_GT(exported.detachedShells, 0);
   EXPECT_GT(exported.detachedVolume, 0.0);
-  EXPECT_LT(exported.detachedVolume, 0.25 * exported.volume) << exported.summary();
+  EXPECT_LT(exported.detachedVolume, kExportCarveBudget * exported.volume) << exported.summary();
   EXPECT_NEAR(exported.volume, shellVolumes(exported.surface.mesh)[0], 1e-12);
   expectWhole(exported.surface.mesh, 1);
   EXPECT_NE(exported.summary().find("corner(s) carved out where crack faces crossed"),
+            std::string::npos)
+      << exported.summary();
+}
+
+TEST(ExportSurface, AFoldTooLargeToCarveIsLeftAndSaid) {
+  // The whole lip folded: carving it out would leave out more than the budget, so the export
+  // keeps the material and says it is not clean.
+  const ExportedSurface exported =
+      exportFoldedNotch([](const Vec3& p, double h) { return p.x() < -2.0 * h; });
+  EXPECT_GT(exported.crossings, 0);
+  EXPECT_TRUE(exported.carveBudgetReached);
+  EXPECT_EQ(exported.carvedCorners, 0);
+  EXPECT_EQ(exported.detachedShells, 0);
+  EXPECT_NE(exported.summary().find("NOT clean"), std::string::npos) << exported.summary();
+  EXPECT_NE(exported.summary().find("would leave out more than 3 % of the volume"),
             std::string::npos)
       << exported.summary();
 }
