@@ -26,6 +26,7 @@
 
 #include "app/cli/cli.h"
 #include "app/cli/cli_args.h"
+#include "app/cli/command_table.h"
 #include "app/cli/progress_text.h"
 #include "engine/scene/scene.h"
 #include "engine/scene/scene_mesh.h"
@@ -608,16 +609,7 @@ class ReferenceCache {
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(args,
-                  {"--scene", "--json", "--frames", "--settle", "--backend", "--debris", "--preset",
-                   "--threads", "--reference-dir", "--solver-option"},
-                  {"--quick", "--sweep", "--cracks"});
-  a.expectPositional(
-      0, 0,
-      "galsculpt bench [--scene NAME[,NAME...]] [--quick] [--sweep] [--cracks] [--frames N] "
-      "[--settle N[,N...]] [--json FILE] [--backend auto|cpu|cuda] [--debris keep|remove] "
-      "[--preset converged|paper] [--threads N] [--reference-dir DIR] "
-      "[--solver-option KEY=VALUE[,KEY=VALUE...]]");
+  const CliArgs a(args, commandSpec("bench"));
   applyThreadsOption(a);
   SolverOverrides solver = solverOverrides(a);
   const std::optional<DebrisRule> debris = debrisOption(a);

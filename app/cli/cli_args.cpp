@@ -1,5 +1,6 @@
 #include "app/cli/cli_args.h"
 
+#include "app/cli/command_table.h"
 #include "solver/frame/parallel.h"
 
 #include <charconv>
@@ -8,8 +9,15 @@
 
 namespace galsculpt {
 
-CliArgs::CliArgs(const std::vector<std::string>& args, const std::set<std::string>& valueFlags,
-                 const std::set<std::string>& switches) {
+CliArgs::CliArgs(const std::vector<std::string>& args, const CommandSpec& command) {
+  for (const std::string& a : args)
+    if (a == "--help" || a == "-h") throw HelpRequested(commandHelp(command));
+  auto fail = [&](const std::string& message) { throw UsageError(message, command.name); };
+  auto flagNamed = [&](const std::string& name) -> const FlagSpec* {
+    for (const FlagSpec& f : command.flags)
+      if (f.name == name) return &f;
+    return nullptr;
+  };
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a.rfind("--", 0) != 0 || a == "--") {
@@ -22,20 +30,38 @@ CliArgs::CliArgs(const std::vector<std::string>& args, const std::set<std::strin
       name = a.substr(0, eq);
       inlineValue = a.substr(eq + 1);
     }
-    if (valueFlags.count(name)) {
+    const FlagSpec* flag = flagNamed(name);
+    if (!flag) {
+      std::vector<std::string> names;
+      for (const FlagSpec& f : command.flags) names.push_back(f.name);
+      const std::string near = nearestName(name, names);
+      fail("unknown option " + name + " for " + command.name +
+           (near.empty() ? "" : " (did you mean " + near + "?)"));
+    }
+    if (!flag->value.empty()) {
       if (inlineValue) {
         values_[name] = *inlineValue;
       } else if (i + 1 < args.size()) {
         values_[name] = args[++i];
       } else {
-        throw UsageError(name + " needs a value");
+        fail(name + " needs a value (" + flag->value + ")");
       }
-    } else if (switches.count(name) && !inlineValue) {
-      values_[name] = "";
+    } else if (inlineValue) {
+      fail(name + " takes no value");
     } else {
-      throw UsageError("unknown option " + name);
+      values_[name] = "";
     }
   }
+  const int operands = static_cast<int>(positional_.size());
+  if (operands < command.minOperands || operands > command.maxOperands) {
+    fail(operands < command.minOperands
+             ? command.name + " needs " + command.operands
+             : command.name + " takes " +
+                   (command.maxOperands == 0 ? std::string("no operand") : command.operands) +
+                   ", got '" + positional_[command.maxOperands] + "' too");
+  }
+  for (const FlagSpec& f : command.flags)
+    if (f.required && !has(f.name)) fail(command.name + " needs " + f.name + " " + f.value);
 }
 
 std::optional<std::string> CliArgs::value(const std::string& flag) const {
@@ -111,10 +137,6 @@ std::pair<int, int> CliArgs::sizeValue(const std::string& flag,
     }
   }
   throw UsageError(flag + " expects WIDTHxHEIGHT between 16 and 8192, got '" + *v + "'");
-}
-
-void CliArgs::expectPositional(size_t min, size_t max, const std::string& usage) const {
-  if (positional_.size() < min || positional_.size() > max) throw UsageError("usage: " + usage);
 }
 
 std::optional<BackendRequest> backendOption(const CliArgs& args) {

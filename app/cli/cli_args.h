@@ -18,13 +18,30 @@ namespace galsculpt {
 class UsageError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+  // `command`: the command whose line it is ("mesh import"), for its usage.
+  UsageError(const std::string& message, std::string command)
+      : std::runtime_error(message), command_(std::move(command)) {}
+  const std::string& command() const { return command_; }
+
+ private:
+  std::string command_;
 };
+
+// `galsculpt CMD --help` (or -h): the CLI prints the text to standard output and exits 0.
+class HelpRequested : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct CommandSpec;
 
 class CliArgs {
  public:
-  // `valueFlags` take a value (--tets 1000 or --tets=1000); `switches` do not.
-  CliArgs(const std::vector<std::string>& args, const std::set<std::string>& valueFlags,
-          const std::set<std::string>& switches);
+  // The command's line parsed by its table entry (app/cli/command_table.h): its flags (those
+  // with a value: --tets 1000 or --tets=1000), its operand count and its required flags. -h or
+  // --help anywhere: HelpRequested with the command's help. An unknown flag names the nearest
+  // one.
+  CliArgs(const std::vector<std::string>& args, const CommandSpec& command);
 
   const std::vector<std::string>& positional() const { return positional_; }
   bool has(const std::string& flag) const { return values_.count(flag) > 0; }
@@ -36,7 +53,6 @@ class CliArgs {
                                 int max) const;
   // "WxH"
   std::pair<int, int> sizeValue(const std::string& flag, std::pair<int, int> fallback) const;
-  void expectPositional(size_t min, size_t max, const std::string& usage) const;
 
  private:
   std::vector<std::string> positional_;

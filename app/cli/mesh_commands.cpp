@@ -7,6 +7,7 @@
 
 #include "app/cli/cli.h"
 #include "app/cli/cli_args.h"
+#include "app/cli/command_table.h"
 #include "app/cli/progress_text.h"
 #include "engine/meshing/mesh_files.h"
 #include "engine/meshing/tetrahedralize.h"
@@ -246,8 +247,7 @@ fs::path checkedOutput(const fs::path& path) {
 
 // mesh info FILE [--json]: what a tet or surface mesh holds and whether it is sound.
 int meshInfo(const std::vector<std::string>& rest, std::ostream& out) {
-  const CliArgs a(rest, {}, {"--json"});
-  a.expectPositional(1, 1, "galsculpt mesh info FILE [--json]");
+  const CliArgs a(rest, commandSpec("mesh info"));
   fs::path file = a.positional()[0];
   // A .damage file is read with the mesh it belongs to (stem.node/.ele beside it).
   if (file.extension() == ".damage")
@@ -262,8 +262,7 @@ int meshInfo(const std::vector<std::string>& rest, std::ostream& out) {
 
 // mesh convert IN OUT [--tets N]: between formats; a surface to tets through TetGen.
 int meshConvert(const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
-  const CliArgs a(rest, {"--tets", "--timeout", "--tolerance", "--quality"}, {});
-  a.expectPositional(2, 2, "galsculpt mesh convert IN OUT [--tets N]");
+  const CliArgs a(rest, commandSpec("mesh convert"));
   const fs::path in = a.positional()[0], outPath = checkedOutput(a.positional()[1]);
   const bool outSurface = meshFileKind(outPath) == MeshFileKind::Surface;
   if (meshFileKind(in) == MeshFileKind::Surface) {
@@ -287,9 +286,7 @@ int meshConvert(const std::vector<std::string>& rest, std::ostream& out, std::os
 
 // mesh import SURFACE OUT --tets N: a surface tetrahedralized to about N tets.
 int meshImport(const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
-  const CliArgs a(rest, {"--tets", "--timeout", "--tolerance", "--quality"}, {});
-  a.expectPositional(2, 2, "galsculpt mesh import SURFACE OUT --tets N");
-  if (!a.has("--tets")) throw UsageError("mesh import needs --tets N");
+  const CliArgs a(rest, commandSpec("mesh import"));
   a.intValue("--tets", 0, 1, 50000000);  // a malformed count is a usage error before any I/O
   const fs::path in = a.positional()[0], outPath = checkedOutput(a.positional()[1]);
   if (meshFileKind(outPath) == MeshFileKind::Surface)
@@ -305,9 +302,7 @@ int meshImport(const std::vector<std::string>& rest, std::ostream& out, std::ost
 
 // mesh generate sphere|charpy|steak OUT: a generated shape, as a surface or tets.
 int meshGenerate(const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
-  const CliArgs a(rest, {"--tets", "--radius", "--timeout"}, {});
-  a.expectPositional(2, 2,
-                     "galsculpt mesh generate sphere|charpy|steak OUT [--tets N] [--radius R]");
+  const CliArgs a(rest, commandSpec("mesh generate"));
   const std::string name = a.positional()[0];
   const std::optional<Generator> generator = generatorFromName(name);
   if (!generator) throw UsageError("unknown shape '" + name + "' (sphere, charpy or steak)");
@@ -332,14 +327,14 @@ int meshGenerate(const std::vector<std::string>& rest, std::ostream& out, std::o
 }  // namespace
 
 int meshCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  if (args.empty()) throw UsageError("mesh needs a subcommand: info, convert, import or generate");
+  subcommandOf("mesh", args);
   const std::string sub = args[0];
   const std::vector<std::string> rest(args.begin() + 1, args.end());
   if (sub == "info") return meshInfo(rest, out);
   if (sub == "convert") return meshConvert(rest, out, err);
   if (sub == "import") return meshImport(rest, out, err);
   if (sub == "generate") return meshGenerate(rest, out, err);
-  throw UsageError("unknown mesh subcommand '" + sub + "'");
+  throw std::logic_error("mesh " + sub + " is in the command table but not dispatched");
 }
 
 }  // namespace galsculpt

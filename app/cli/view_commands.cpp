@@ -4,6 +4,7 @@
 
 #include "app/cli/cli.h"
 #include "app/cli/cli_args.h"
+#include "app/cli/command_table.h"
 #include "app/render/render_mesh.h"
 #include "app/render/snapshot_renderer.h"
 #include "app/render/view_content.h"
@@ -125,9 +126,7 @@ std::vector<std::string> renderViewsOffscreen(const ViewContent& content, const 
 }
 
 int renderCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(args, {"--out", "--size"}, {});
-  a.expectPositional(1, 1, "galsculpt render FILE --out DIR [--size WxH]");
-  if (!a.has("--out")) throw UsageError("render needs --out DIR");
+  const CliArgs a(args, commandSpec("render"));
   const auto [w, h] = a.sizeValue("--size", {1280, 800});
   const ViewContent content = loadViewContent(a.positional()[0], err);
   for (const std::string& f : renderViewsOffscreen(content, *a.value("--out"), w, h))
@@ -136,15 +135,7 @@ int renderCommand(const std::vector<std::string>& args, std::ostream& out, std::
 }
 
 int openCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(args,
-                  {"--out", "--size", "--input-script", "--save-project", "--save-recording",
-                   "--autosave", "--backend", "--threads", "--solver-option"},
-                  {"--headless", "--paused", "--no-recovery"});
-  a.expectPositional(1, 1,
-                     "galsculpt open FILE [--headless] [--out DIR] [--size WxH] [--paused] "
-                     "[--input-script FILE] [--save-project FILE] [--save-recording FILE] "
-                     "[--autosave SECONDS] [--no-recovery] [--backend auto|cpu|cuda] "
-                     "[--threads N] [--solver-option KEY=VALUE[,KEY=VALUE...]]");
+  const CliArgs a(args, commandSpec("open"));
   applyThreadsOption(a);
   const SolverOverrides solver = solverOverrides(a);
   const fs::path file = a.positional()[0];
@@ -207,10 +198,9 @@ int openCommand(const std::vector<std::string>& args, std::ostream& out, std::os
 }
 
 int sceneCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  if (args.empty() || args[0] != "check")
-    throw UsageError("usage: galsculpt scene check SCENE [--load-mesh]");
-  const CliArgs a(std::vector<std::string>(args.begin() + 1, args.end()), {}, {"--load-mesh"});
-  a.expectPositional(1, 1, "galsculpt scene check SCENE [--load-mesh]");
+  subcommandOf("scene", args);
+  const CliArgs a(std::vector<std::string>(args.begin() + 1, args.end()),
+                  commandSpec("scene check"));
   const SceneDescription s = loadScene(a.positional()[0]);
   out << "scene: " << s.name << '\n';
   out << describeMaterial(s.material) << '\n';

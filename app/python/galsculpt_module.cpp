@@ -38,6 +38,19 @@ namespace {
   throw py::error_already_set();
 }
 
+// A path argument: str or os.PathLike (pathlib.Path), never empty or with an embedded NUL (which
+// the file system would cut the name at, writing another file than asked).
+std::string pathArgument(const py::object& path, const char* what) {
+  const py::object text = py::module_::import("os").attr("fspath")(path);
+  if (!py::isinstance<py::str>(text))
+    throw py::type_error(std::string(what) + ": a str or os.PathLike path, not bytes");
+  const std::string s = text.cast<std::string>();
+  if (s.empty()) throw py::value_error(std::string(what) + ": an empty path");
+  if (s.find('\0') != std::string::npos)
+    throw py::value_error(std::string(what) + ": the path holds a NUL character");
+  return s;
+}
+
 // Python values through JSON: the readers' own format, so that they validate what Python gives.
 nlohmann::json toJson(const py::handle& value) {
   const std::string text = py::module_::import("json").attr("dumps")(value).cast<std::string>();
@@ -74,12 +87,21 @@ py::array vec3View(const std::vector<Vec3>& v, const py::handle& owner) {
 
 class PySimulation {
  public:
-  PySimulation(const std::string& path, const py::object& solverOptions) {
-    if (!fs::exists(path)) raise(PyExc_FileNotFoundError, path + ": no such file");
+  // `source`: a path (str or os.PathLike) of anything `galsculpt open` opens, or a scene as a
+  // dict (the JSON object of docs/scenes.md; relative paths from the working directory).
+  PySimulation(const py::object& source, const py::object& solverOptions) {
     SolverOverrides overrides;
     if (!solverOptions.is_none())
       for (const auto& [key, value] : solverOptions.cast<py::dict>())
         overrides.emplace_back(py::str(key).cast<std::string>(), toJson(value));
+    if (py::isinstance<py::dict>(source)) {
+      const SceneDescription scene =
+          withSolverOverrides(parseScene(toJson(source), fs::current_path() / "<dict>"), overrides);
+      session_ = std::make_unique<SculptSession>(scene, loadSceneMesh(scene));
+      return;
+    }
+    const std::string path = pathArgument(source, "path");
+    if (!fs::exists(path)) raise(PyExc_FileNotFoundError, path + ": no such file");
     OpenedSession opened = openSession(path, {}, 20000, overrides);
     session_ = std::move(opened.session);
   }
@@ -119,9 +141,18 @@ class PySimulation {
     return session_->redo();
   }
 
+  void reset() {
+    Guard guard(*this);
+    session_->reset();
+  }
+
   int frame() {
     Guard guard(*this);
     return session_->simulation().frame();
+  }
+  double time() {
+    Guard guard(*this);
+    return session_->simulation().state().time;
   }
   int pieces() {
     Guard guard(*this);
@@ -149,17 +180,22 @@ class PySimulation {
     return py::make_tuple(vertices, triangles, piece);
   }
 
-  void exportSurface(const std::string& path) {
+  void exportSurface(const py::object& where) {
+    const std::string path = pathArgument(where, "path");
     Guard guard(*this);
     writeVisualSurface(path, session_->simulation().exportSurface().surface);
   }
-  void exportTets(const std::string& path) {
+  int exportTets(const py::object& where) {
+    const std::string path = pathArgument(where, "path");
+    if (fs::path(path).filename().empty() || fs::path(path).stem().empty())
+      throw py::value_error("path: names no file (" + path + ")");
     Guard guard(*this);
     fs::path stem = path;
     if (stem.extension() == ".node") stem.replace_extension();
-    session_->simulation().writeTetsWithDamage(stem);
+    return session_->simulation().writeTetsWithDamage(stem);
   }
-  void saveProject(const std::string& path) {
+  void saveProject(const py::object& where) {
+    const std::string path = pathArgument(where, "path");
     Guard guard(*this);
     writeProject(path, *session_, std::nullopt);
   }
@@ -180,6 +216,12 @@ class PySimulation {
     static_assert(sizeof(Tet) == 4 * sizeof(int));
     return view(t.empty() ? nullptr : t.front().data(), {static_cast<py::ssize_t>(t.size()), 4},
                 {sizeof(Tet), sizeof(int)}, self);
+  }
+  static py::array edges(const py::object& self) {
+    const std::vector<Edge>& e = self.cast<PySimulation&>().sim().model().edges;
+    static_assert(sizeof(Edge) == 2 * sizeof(int));
+    return view(e.empty() ? nullptr : e.front().data(), {static_cast<py::ssize_t>(e.size()), 2},
+                {sizeof(Edge), sizeof(int)}, self);
   }
   static py::array damage(const py::object& self) {
     const std::vector<std::uint8_t>& d = state(self).damaged;
@@ -310,38 +352,62 @@ PYBIND11_MODULE(galsculpt, m) {
     }
   });
 
-  py::class_<PySimulation>(m, "Simulation")
-      .def(py::init<const std::string&, const py::object&>(), py::arg("path"),
+  m.attr("__version__") = GALSCULPT_VERSION;
+  py::class_<PySimulation>(m, "Simulation",
+                           "A sculpting session: a scene, project, playback script or mesh, "
+                           "stepped from Python (docs/python.md). Arrays are read-only views of "
+                           "the engine's memory, valid while the Simulation lives.")
+      .def(py::init<const py::object&, const py::object&>(), py::arg("source"),
            py::arg("solver_options") = py::none(),
-           "A scene (.json), a playback script (replayed), a project (.gsproj) or a mesh; "
-           "solver_options: solver keys over the scene's (docs/scenes.md)")
+           "source: a path (str or os.PathLike) of a scene (.json), a playback script "
+           "(replayed), a project (.gsproj) or a mesh; or a scene as a dict (relative paths from "
+           "the working directory). solver_options: solver keys over the scene's "
+           "(docs/scenes.md). FileNotFoundError for a missing file, ValueError naming the file "
+           "and key for bad content.")
       .def("step", &PySimulation::step, py::arg("frames") = 1,
            "Runs frames; returns the last one's figures (the metrics CSV's columns)")
       .def("apply", &PySimulation::apply, py::arg("event"),
-           "A playback script's event (docs/scripts.md), acting from the next step")
-      .def("undo", &PySimulation::undo)
-      .def("redo", &PySimulation::redo)
-      .def_property_readonly("frame", &PySimulation::frame)
-      .def_property_readonly("pieces", &PySimulation::pieces)
+           "A playback script's event (docs/scripts.md) as a dict, acting from the next step; "
+           "checked as a script's are (ValueError naming the key)")
+      .def("undo", &PySimulation::undo, "Undoes the last action (a step, an event); False if none")
+      .def("redo", &PySimulation::redo, "Redoes what undo took back; False if nothing")
+      .def("reset", &PySimulation::reset,
+           "Back to the state it was opened in, forgetting the recording (undo brings it back)")
+      .def_property_readonly("frame", &PySimulation::frame, "Frames stepped so far")
+      .def_property_readonly("time", &PySimulation::time, "Simulated time in s")
+      .def_property_readonly("pieces", &PySimulation::pieces,
+                             "Pieces the body is in (connected through undamaged edges)")
       .def_property_readonly("options", &PySimulation::options,
                              "The solver options as the scene's \"solver\" object holds them")
-      .def_property_readonly("positions", &PySimulation::positions)
-      .def_property_readonly("velocities", &PySimulation::velocities)
-      .def_property_readonly("rest_positions", &PySimulation::restPositions)
-      .def_property_readonly("tets", &PySimulation::tets)
-      .def_property_readonly("damage", &PySimulation::damage)
+      .def_property_readonly("positions", &PySimulation::positions,
+                             "Current vertex positions (n, 3), m")
+      .def_property_readonly("velocities", &PySimulation::velocities,
+                             "Current vertex velocities (n, 3), m/s")
+      .def_property_readonly("rest_positions", &PySimulation::restPositions,
+                             "Rest vertex positions (n, 3), m")
+      .def_property_readonly("tets", &PySimulation::tets, "Tets' vertices (t, 4), int32")
+      .def_property_readonly("edges", &PySimulation::edges,
+                             "The mesh's edges (e, 2), int32, sorted: damage[i] is edges[i]'s")
+      .def_property_readonly("damage", &PySimulation::damage,
+                             "Per edge of `edges`: 1 damaged for good, 0 intact (uint8)")
       .def("surface", &PySimulation::surface,
-           "(vertices (k, 3), triangles (t, 3), piece of each triangle (t,))")
+           "The visualization surface: (vertices (k, 3), triangles (t, 3), piece of each "
+           "triangle (t,))")
       .def("export", &PySimulation::exportSurface, py::arg("path"),
-           "The surface, by extension: obj, ply, stl, gltf, glb")
+           "Writes the export surface (one closed shell per piece, docs/surface.md) by "
+           "extension: obj, ply, stl, gltf, glb")
       .def("export_tets", &PySimulation::exportTets, py::arg("path"),
-           "The tet mesh at the current positions with its damage (stem.node/.ele/.face, "
-           ".damage, .vtk)")
-      .def("save_project", &PySimulation::saveProject, py::arg("path"));
+           "Writes the tet mesh at the current positions with its damage (stem.node/.ele/.face, "
+           ".damage, .vtk); returns how many tets parted and crushed flat were left out")
+      .def("save_project", &PySimulation::saveProject, py::arg("path"),
+           "Saves the session as a project (.gsproj) that reopens to the same bits");
 
   m.def(
       "play",
-      [](const std::string& script, const std::string& out, const py::kwargs& flags) {
+      [](const py::object& scriptPath, const py::object& outPath, const py::kwargs& flags) {
+        const std::string script = pathArgument(scriptPath, "script");
+        const std::string out = pathArgument(outPath, "out");
+        if (!fs::exists(script)) raise(PyExc_FileNotFoundError, script + ": no such file");
         std::vector<std::string> args = {"play", script, "--out", out};
         const std::vector<std::string> more = commandFlags(flags);
         args.insert(args.end(), more.begin(), more.end());

@@ -157,10 +157,13 @@ void SculptApp::applyToSession(const Command& command) {
       writeVisualSurface(argument, exported.surface);
       report("exported surface " + argument + ": " + exported.summary());
     } break;
-    case AppCommand::ExportTets:
-      session_->simulation().writeTetsWithDamage(argument);
-      report("exported tets " + argument + ".node/.ele/.face/.damage/.vtk");
-      break;
+    case AppCommand::ExportTets: {
+      const int leftOut = session_->simulation().writeTetsWithDamage(argument);
+      report("exported tets " + argument + ".node/.ele/.face/.damage/.vtk" +
+             (leftOut > 0 ? " (" + std::to_string(leftOut) +
+                                " tet(s) parted between pieces and crushed flat left out)"
+                          : std::string()));
+    } break;
     case AppCommand::Undo:
       session_->undo();
       break;

@@ -219,8 +219,10 @@ class TetgenRuns {
         << static_cast<int>(options_.tolerance * 100) << " % for " << options_.surfaceName << " in "
         << attempts_ << " TetGen runs: closest was " << bestCount_ << " tets (" << bestSwitches_
         << ")";
-    if (bestCount_ > options_.targetTets)
-      msg << "; the surface is finer than " << options_.targetTets << " tets allow";
+    if (bestCount_ > options_.targetTets) {
+      msg << "; the surface is finer than " << options_.targetTets << " tets allow (--tets "
+          << bestCount_ << " or more would do)";
+    }
     throw TetCountUnreachable(msg.str(), bestCount_);
   }
 

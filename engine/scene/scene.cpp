@@ -1,7 +1,10 @@
 #include "engine/scene/scene.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <limits>
+#include <set>
 #include <stdexcept>
 
 #include "engine/scene/json_reader.h"
@@ -348,6 +351,19 @@ MaterialDesc materialPreset(const std::string& name) {
 }
 
 SceneDescription loadScene(const fs::path& file) {
+  // A mesh where a scene is expected is a slip worth a hint, not a JSON syntax error.
+  static const std::set<std::string> kMeshExtensions{".node", ".ele", ".face", ".msh",
+                                                     ".vtk",  ".obj", ".ply",  ".stl",
+                                                     ".gltf", ".glb", ".off",  ".damage"};
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (kMeshExtensions.count(extension)) {
+    throw InputError(file.string(), 0,
+                     "a mesh, not a scene: open it with 'galsculpt open " + file.string() +
+                         "' (sculpted as clay), or name it in a scene's mesh.file "
+                         "(docs/scenes.md)");
+  }
   return parseScene(parseJsonFile(file), file);
 }
 
@@ -358,7 +374,11 @@ SceneDescription parseScene(const nlohmann::json& root, const fs::path& file) {
   s.file = fs::absolute(file);
   const fs::path dir = s.file.parent_path();
   s.name = o.string("name", file.stem().string());
-  if (!o.has("mesh")) o.fail("mesh", "is required");
+  if (!o.has("mesh")) {
+    o.fail("mesh", root.is_object() && root.contains("events")
+                       ? "is required (this looks like a playback script: galsculpt play FILE)"
+                       : "is required");
+  }
   s.mesh = readMesh(o.object("mesh"), dir);
   if (o.has("material"))
     s.material = readMaterial(o.object("material"));

@@ -261,13 +261,58 @@ VisualSurface Simulation::withoutRemovedDebris() const {
   return shown;
 }
 
-void Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
+int Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
   TetMesh now = model_.mesh;
   now.vertices = state_.x;
+  // A tet parted between pieces carries nothing between them and may have been crushed flat
+  // as they moved; a mesh reader refuses a zero-volume tet, so such tets are left out of the
+  // set (their edges' damage with them). A flat tet of one piece is written as it is.
+  TetMesh kept = now;
+  kept.tets.clear();
+  for (const Tet& t : now.tets) {
+    const bool parted = pieceNumber_[t[0]] != pieceNumber_[t[1]] ||
+                        pieceNumber_[t[0]] != pieceNumber_[t[2]] ||
+                        pieceNumber_[t[0]] != pieceNumber_[t[3]];
+    if (!parted ||
+        !isFlatTet(now.vertices[t[0]], now.vertices[t[1]], now.vertices[t[2]], now.vertices[t[3]]))
+      kept.tets.push_back(t);
+  }
+  const int leftOut = now.numTets() - kept.numTets();
+  std::vector<Edge> edges = model_.edges;
+  std::vector<std::uint8_t> damaged = state_.damaged;
+  std::vector<float> crossing = state_.crossing;
+  if (leftOut > 0) {
+    // Vertices of left-out tets alone go too (a vertex in no tet has no mass); the others keep
+    // their order.
+    std::vector<int> number(now.numVertices(), -1);
+    for (const Tet& t : kept.tets)
+      for (int v : t) number[v] = 0;
+    kept.vertices.clear();
+    std::vector<int> original;
+    for (int v = 0; v < now.numVertices(); ++v) {
+      if (number[v] < 0) continue;
+      number[v] = static_cast<int>(original.size());
+      original.push_back(v);
+      kept.vertices.push_back(now.vertices[v]);
+    }
+    for (Tet& t : kept.tets)
+      for (int& v : t) v = number[v];
+    edges = uniqueEdges(kept);
+    damaged.assign(edges.size(), 0);
+    crossing.assign(edges.size(), kNoCrossing);
+    for (size_t e = 0; e < edges.size(); ++e) {
+      Edge was{original[edges[e][0]], original[edges[e][1]]};
+      if (was[0] > was[1]) std::swap(was[0], was[1]);
+      const size_t at =
+          std::lower_bound(model_.edges.begin(), model_.edges.end(), was) - model_.edges.begin();
+      damaged[e] = state_.damaged[at];
+      crossing[e] = state_.crossing[at];
+    }
+  }
   // The mesh and its damage are one set: committed together, stamped alike.
   FileSet set;
-  addTetGen(set, stem, now);
-  addDamage(set, stem.string() + ".damage", model_.edges, state_.damaged, state_.crossing);
+  addTetGen(set, stem, kept);
+  addDamage(set, stem.string() + ".damage", edges, damaged, crossing);
   set.commit();
   // Piece of each tet: numbered in tet order when all four corners share it, otherwise -1.
   std::vector<int> label(model_.numVertices(), -1);
@@ -281,6 +326,7 @@ void Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
   }
   writeVtk(stem.string() + ".vtk", now,
            {{"damage", tetDamageFraction(model_.tetEdges, state_.damaged)}, piece});
+  return leftOut;
 }
 
 std::vector<int> Simulation::selectVertices(const AnchorDesc& shape, const std::string& file,

@@ -199,8 +199,10 @@ class Simulation {
   // a later surface() call finds nothing to do.
   const SurfaceUpdateStats& lastSurfaceUpdate() const { return lastSurfaceUpdate_; }
   // Writes the tet mesh at the current positions with its damage: stem.node/.ele/.face,
-  // stem.damage (solver/io/damage_io.h) and stem.vtk (cell data: damage, piece).
-  void writeTetsWithDamage(const std::filesystem::path& stem) const;
+  // stem.damage (solver/io/damage_io.h) and stem.vtk (cell data: damage, piece). Tets parted
+  // between pieces and crushed flat are left out of the .node/.ele set (a reader refuses them;
+  // the .vtk keeps every tet); returns how many.
+  int writeTetsWithDamage(const std::filesystem::path& stem) const;
   // Volume of the tets that lie inside one piece (all of them until something breaks), and its
   // change from their rest volume.
   double currentVolume() const;

@@ -35,16 +35,9 @@ void validateTets(TetMesh& mesh, const std::string& file, const std::vector<int>
     const Vec3& p1 = mesh.vertices[t[1]];
     const Vec3& p2 = mesh.vertices[t[2]];
     const Vec3& p3 = mesh.vertices[t[3]];
-    double longest = 0.0;
-    const Vec3* p[4] = {&p0, &p1, &p2, &p3};
-    for (int a = 0; a < 4; ++a) {
-      for (int b = a + 1; b < 4; ++b) longest = std::max(longest, (*p[a] - *p[b]).norm());
-    }
     const double sixVolume = tetSixVolume(p0, p1, p2, p3);
-    // Relative test: flat to 1e-10 of its own size. Slivers of poor but real quality pass.
-    if (!(std::abs(sixVolume) > 1e-10 * longest * longest * longest)) {
+    if (isFlatTet(p0, p1, p2, p3))
       throw InputError(file, line, "degenerate tet: zero volume (its four vertices are coplanar)");
-    }
     if (sixVolume < 0.0) {
       std::swap(t[2], t[3]);
       ++report.reorientedTets;

@@ -16,11 +16,13 @@ struct DirectedEdge {
   bool forward;  // traversed from key[0] to key[1]
 };
 
-// Orientation of d against the plane (a, b, c), with a relative dead zone so that touching and
-// coplanar configurations count as zero.
+// Orientation of d against the plane (a, b, c), with a dead zone relative to `scale`, the size of
+// the two triangles being compared, so that touching and coplanar configurations count as zero.
+// Relative to the triangles and not to the mesh: a dead zone of the mesh's size swallowed small
+// crack faces folded through their neighbours by a hundredth of their size (TetGen found them).
 int orientSign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double scale) {
   const double v = tetSixVolume(a, b, c, d);
-  const double eps = 1e-12 * scale * scale * scale;
+  const double eps = 1e-10 * scale * scale * scale;
   return v > eps ? 1 : (v < -eps ? -1 : 0);
 }
 
@@ -35,8 +37,16 @@ bool segmentCrossesTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const V
   return s1 != 0 && s1 == s2 && s2 == s3;
 }
 
-bool trianglesCross(const TriMesh& m, const Tri& f, const Tri& g, double scale) {
+bool trianglesCross(const TriMesh& m, const Tri& f, const Tri& g) {
   const auto& v = m.vertices;
+  Vec3 lo = v[f[0]], hi = v[f[0]];
+  for (const Tri* t : {&f, &g}) {
+    for (int k : *t) {
+      lo = lo.cwiseMin(v[k]);
+      hi = hi.cwiseMax(v[k]);
+    }
+  }
+  const double scale = (hi - lo).norm();
   for (int i = 0; i < 3; ++i) {
     if (segmentCrossesTriangle(v[f[i]], v[f[(i + 1) % 3]], v[g[0]], v[g[1]], v[g[2]], scale))
       return true;
@@ -266,7 +276,7 @@ std::vector<std::pair<int, int>> findSelfIntersections(const TriMesh& mesh, size
     int shared = 0;
     for (int a : f) shared += (a == g[0]) + (a == g[1]) + (a == g[2]);
     if (shared >= 2) continue;
-    if (trianglesCross(mesh, f, g, scale)) {
+    if (trianglesCross(mesh, f, g)) {
       hits.push_back({fi, gi});
       if (hits.size() >= maxPairs) break;
     }

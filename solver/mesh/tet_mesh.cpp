@@ -8,6 +8,15 @@
 
 namespace galsculpt {
 
+bool isFlatTet(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3* p[4] = {&a, &b, &c, &d};
+  double longest = 0.0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (*p[i] - *p[j]).norm());
+  // Written so that a NaN reads as flat.
+  return !(std::abs(tetSixVolume(a, b, c, d)) > 1e-10 * longest * longest * longest);
+}
+
 double tetVolume(const TetMesh& mesh, int tet) {
   const Tet& t = mesh.tets[tet];
   const auto& v = mesh.vertices;

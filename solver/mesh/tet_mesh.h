@@ -48,6 +48,9 @@ struct BoundingBox {
 inline double tetSixVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return (b - a).dot((c - a).cross(d - a));
 }
+// Flat to 1e-10 of its own size (its longest edge cubed): what a mesh reader refuses as a
+// zero-volume tet. Slivers of poor but real quality are not flat.
+bool isFlatTet(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 double tetVolume(const TetMesh& mesh, int tet);
 // Sum of tet volumes.
 double totalVolume(const TetMesh& mesh);

@@ -64,6 +64,17 @@ TEST(Cli, PlayRunsAScriptHeadlessAndWritesTheFinalSurface) {
   // Each step of the import says the time since it began; TetGen's attempts, how many there
   // may be.
   EXPECT_NE(again.err.find("s] tetgen attempt 1 of at most 30 ("), std::string::npos) << again.err;
+  // Too few tets for the surface: refused, naming a count that works.
+  const CliRun few = run({"mesh", "import", (dir / "out" / "final.obj").string(),
+                          (dir / "few.node").string(), "--tets", "300"});
+  EXPECT_EQ(few.code, kExitFailure) << few.err;
+  const size_t hint = few.err.find("(--tets ");
+  ASSERT_NE(hint, std::string::npos) << few.err;
+  const std::string works = few.err.substr(hint + 8, few.err.find(' ', hint + 8) - hint - 8);
+  EXPECT_NE(few.err.find(" or more would do)", hint), std::string::npos) << few.err;
+  const CliRun suggested = run({"mesh", "import", (dir / "out" / "final.obj").string(),
+                                (dir / "few.node").string(), "--tets", works});
+  EXPECT_EQ(suggested.code, kExitOk) << "the suggested " << works << " tets: " << suggested.err;
   const CliRun againInfo = run({"mesh", "info", (dir / "again.node").string()});
   EXPECT_NE(againInfo.out.find("pieces: 2"), std::string::npos) << againInfo.out;
 

@@ -123,6 +123,52 @@ def test_applied_events_are_checked_against_the_mesh_and_scene_as_a_scripts_are(
     sim.step()
 
 
+def test_paths_dict_scenes_time_edges_reset_and_the_version(tmp_path):
+    assert isinstance(galsculpt.__version__, str) and galsculpt.__version__.count(".") >= 1
+    for documented in (galsculpt.Simulation, galsculpt.Simulation.step, galsculpt.Simulation.reset,
+                       galsculpt.Simulation.edges, galsculpt.Simulation.time, galsculpt.play,
+                       galsculpt.bench):
+        assert documented.__doc__, documented
+    sim = galsculpt.Simulation(pathlib.Path(BALL))
+    sim.step(3)
+    assert sim.time == pytest.approx(3 * 0.0166667, rel=1e-6)
+    edges = sim.edges
+    assert edges.dtype == np.int32 and edges.shape == (sim.damage.shape[0], 2)
+    assert (edges[:, 0] < edges[:, 1]).all() and edges.max() == sim.positions.shape[0] - 1
+    assert not edges.flags.writeable
+    # Every damaged edge's ends are in different pieces after a clean cut through the ball.
+    sim.apply(KNIFE)
+    sim.step()
+    assert sim.damage.sum() > 0
+    sim.reset()
+    assert sim.frame == 0 and sim.time == 0.0 and sim.damage.sum() == 0
+    assert sim.undo(), "the reset is undoable"
+    assert sim.frame == 4
+    # A scene as a dict, paths from the working directory.
+    scene = json.loads(pathlib.Path(BALL).read_text())
+    scene["mesh"]["file"] = str(SOURCE / "assets" / "meshes" / "sphere_small.node")
+    from_dict = galsculpt.Simulation(scene)
+    assert from_dict.positions.shape == sim.positions.shape
+    with pytest.raises(ValueError, match=r"\$\.material\.preset"):
+        galsculpt.Simulation(dict(scene, material={"preset": "marble"}))
+    # Paths as pathlib.Path; empty, NUL-holding and missing ones refused as such.
+    sim.export(tmp_path / "s.obj")
+    sim.save_project(tmp_path / "s.gsproj")
+    assert sim.export_tets(tmp_path / "t") == 0
+    assert (tmp_path / "s.obj").exists() and (tmp_path / "t.node").exists()
+    with pytest.raises(ValueError, match="an empty path"):
+        sim.export_tets("")
+    with pytest.raises(ValueError, match="names no file"):
+        sim.export_tets(str(tmp_path) + "/")
+    with pytest.raises(ValueError, match="NUL"):
+        sim.save_project(str(tmp_path / "a\0b.gsproj"))
+    assert not list(tmp_path.glob("a*")), "nothing written under a cut name"
+    with pytest.raises(TypeError):
+        sim.export(42)
+    with pytest.raises(FileNotFoundError, match="missing.json: no such file"):
+        galsculpt.play(tmp_path / "missing.json", tmp_path / "o")
+
+
 def test_errors_are_exceptions_with_the_readers_messages(tmp_path):
     with pytest.raises(FileNotFoundError, match="nothing.json: no such file"):
         galsculpt.Simulation(str(tmp_path / "nothing.json"))
@@ -204,7 +250,7 @@ def test_a_script_played_from_python_is_the_commands_bit_for_bit(tmp_path):
     assert pathlib.Path(threaded["final_surface"]).read_bytes() == \
         pathlib.Path(played["final_surface"]).read_bytes()
     assert (tmp_path / "one" / "final.node").exists()
-    with pytest.raises(ValueError, match=r"^\S*missing\.json: file not found$"):
+    with pytest.raises(FileNotFoundError, match=r"^\S*missing\.json: no such file$"):
         galsculpt.play(str(tmp_path / "missing.json"), str(tmp_path / "x"))
     with pytest.raises(ValueError, match=r"--frames must be in \[1, 100000\], got -1"):
         galsculpt.bench(frames=-1)

@@ -126,9 +126,8 @@ ExportedSurface exportFoldedNotch(Pick inFlap) {
 TEST(ExportSurface, FoldedFacesOfOnePieceAreCarvedOutAndTheirVolumeReported) {
   // A flap of the lip folded: the export carves the corners of the crossing cells out of the
   // piece and says what it left out.
-  const ExportedSurface exported = exportFoldedNotch([](const Vec3& p, double h) {
-    return p.x() < -4.0 * h && std::abs(p.y()) < h;
-  });
+  const ExportedSurface exported = exportFoldedNotch(
+      [](const Vec3& p, double h) { return p.x() < -4.0 * h && std::abs(p.y()) < h; });
   EXPECT_EQ(exported.crossings, 0);
   EXPECT_EQ(exported.contacts, 0);
   EXPECT_FALSE(exported.carveBudgetReached);
@@ -275,6 +274,41 @@ TEST(ExportSurface, ATetMeshWrittenWithItsDamageReopensCracked) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("cut.damage"), std::string::npos) << e.what();
   }
+}
+
+TEST(ExportSurface, ATetPartedAndCrushedFlatIsLeftOutOfTheTetExportThatReopens) {
+  // A tet parted between the two halves carries nothing between them and may be crushed flat
+  // as they move; the reader refuses a zero-volume tet, so the export leaves it out.
+  CutBall ball;
+  const SimModel& model = ball.sim.model();
+  int parted = -1;
+  for (int t = 0; t < model.numTets() && parted < 0; ++t) {
+    const Tet& tet = model.mesh.tets[t];
+    if (ball.sim.pieceOf(tet[0]) != ball.sim.pieceOf(tet[3])) parted = t;
+  }
+  ASSERT_GE(parted, 0);
+  const Tet tet = model.mesh.tets[parted];
+  SimulationSnapshot crushed = ball.sim.snapshot();
+  const Vec3 a = crushed.x[tet[0]], b = crushed.x[tet[1]], c = crushed.x[tet[2]];
+  const Vec3 normal = (b - a).cross(c - a).normalized();
+  crushed.x[tet[3]] -= normal.dot(crushed.x[tet[3]] - a) * normal;  // onto the other three's plane
+  ball.sim.restore(crushed);
+  ASSERT_TRUE(
+      isFlatTet(crushed.x[tet[0]], crushed.x[tet[1]], crushed.x[tet[2]], crushed.x[tet[3]]));
+
+  test::TempDir dir;
+  const int leftOut = ball.sim.writeTetsWithDamage(dir / "cut");
+  EXPECT_GE(leftOut, 1);
+  SceneDescription scene = test::clayBall().scene;
+  scene.mesh = MeshSource{};
+  scene.mesh.kind = MeshSource::Kind::File;
+  scene.mesh.path = dir / "cut.node";
+  const TetMesh mesh = loadSceneMesh(scene);
+  EXPECT_EQ(mesh.numTets(), model.numTets() - leftOut);
+  Simulation reopened(scene, mesh);
+  EXPECT_EQ(reopened.pieceStats().pieces, 2);
+  EXPECT_GT(std::count(reopened.state().damaged.begin(), reopened.state().damaged.end(), 1), 0);
+  expectWhole(reopened.exportSurface().surface.mesh, 2);
 }
 
 }  // namespace

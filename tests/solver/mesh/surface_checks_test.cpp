@@ -79,6 +79,29 @@ TEST(SurfaceChecks, OverlappingSpheresIntersect) {
   EXPECT_EQ(countSurfacePieces(both), 2);
 }
 
+TEST(SurfaceChecks, SmallFacesCrossingByAHundredthOfTheirSizeCrossWhateverTheMeshsSize) {
+  // Two faces a ten-thousandth of the mesh's size, one piercing the other by a hundredth of
+  // their own size: a dead zone relative to the mesh called them touching (TetGen did not).
+  TriMesh mesh = makeIcosphere(1.0, 2);
+  const Vec3 p(2.0, 0.0, 0.0);
+  const double h = 1e-4;
+  const int base = mesh.numVertices();
+  for (const Vec3& v : {p, Vec3(p + Vec3(h, 0, 0)), Vec3(p + Vec3(0, h, 0))})
+    mesh.vertices.push_back(v);
+  const Vec3 q = p + Vec3(0.2 * h, 0.2 * h, 0.0);
+  for (const Vec3& v : {Vec3(q - Vec3(0, 0, 0.01 * h)), Vec3(q + Vec3(0, 0, 0.01 * h)),
+                        Vec3(q + Vec3(0.5 * h, 0, 0))})
+    mesh.vertices.push_back(v);
+  mesh.faces.push_back({base, base + 1, base + 2});
+  mesh.faces.push_back({base + 3, base + 4, base + 5});
+  const auto pairs = findSelfIntersections(mesh, 10);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0], std::make_pair(mesh.numFaces() - 2, mesh.numFaces() - 1));
+  // Lifted clear of the first by a hundredth of their size, they no longer cross.
+  for (int k = 3; k < 6; ++k) mesh.vertices[base + k].z() += 0.02 * h;
+  EXPECT_TRUE(findSelfIntersections(mesh, 10).empty());
+}
+
 TEST(SurfaceChecks, CrossingPairsAreListedOnceInOrderAndAMaskTestsOnlyThePairsItTouches) {
   const TriMesh a = makeIcosphere(1.0, 2);
   const TriMesh both = merged(a, a, Vec3(1.0, 0.1, 0.05));
