@@ -210,6 +210,7 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
   describeSetting(setting, r);
   r["backend"] = sim.backendName();
   r["threads"] = threadCount();
+  if (!sim.backendFallback().empty()) r["backend_note"] = sim.backendFallback();
   for (const std::string& note : sim.notes()) {
     if (note.find("running on the CPU") != std::string::npos) r["backend_note"] = note;
   }

@@ -11,9 +11,10 @@ BackendChoice chooseBackend(BackendRequest requested, const SimModel& model,
     std::string reason;
     choice.backend = gpu::makeCudaStepBackend(model, settings, reason);
     if (choice.backend) return choice;
-    choice.note = (requested == BackendRequest::Cuda ? "the CUDA backend is not available ("
-                                                     : "backend auto: (") +
-                  reason + "): running on the CPU";
+    if (requested == BackendRequest::Cuda)
+      choice.note = "the CUDA backend is not available (" + reason + "): running on the CPU";
+    else
+      choice.fallback = "backend auto: (" + reason + "): running on the CPU";
   }
   choice.backend = std::make_unique<CpuStepBackend>(model);
   return choice;

@@ -13,7 +13,8 @@ namespace galsculpt {
 
 struct BackendChoice {
   std::unique_ptr<StepBackend> backend;
-  std::string note;  // why the request was not met (empty when it was)
+  std::string note;      // why an explicit request (cuda) was not met: said to the user
+  std::string fallback;  // why `auto` runs on the CPU: asked for, not said (Simulation)
 };
 
 // The model must outlive the backend.

@@ -121,6 +121,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   BackendChoice backend = chooseBackend(scene.solver.backend, model_, settings_);
   backend_ = std::move(backend.backend);
   if (!backend.note.empty()) notes_.push_back(backend.note);
+  backendFallback_ = backend.fallback;
   for (const Vec3& p : scene.measure.opening) {
     int best = 0;
     for (int v = 1; v < mesh.numVertices(); ++v) {

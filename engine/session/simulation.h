@@ -184,6 +184,9 @@ class Simulation {
   void setBackend(std::unique_ptr<StepBackend> backend) { backend_ = std::move(backend); }
   // Notes for the user about how the scene is run (e.g. a solver that is not available yet).
   const std::vector<std::string>& notes() const { return notes_; }
+  // Why `backend: auto` runs on the CPU (empty when it runs on the GPU or the CPU was asked
+  // for): not a note, since the user did not ask for the GPU; bench records it.
+  const std::string& backendFallback() const { return backendFallback_; }
   int frame() const { return frame_; }
   // Changes whenever the positions may have changed (a frame, a restore): views and pick
   // structures compare it to know when to refresh.
@@ -214,6 +217,7 @@ class Simulation {
   StepSettings settings_;
   std::unique_ptr<StepBackend> backend_;
   std::vector<std::string> notes_;
+  std::string backendFallback_;
   std::pair<std::vector<Vec3>, std::vector<Vec3>> lastFinite_;  // x and v before the frame
   int divergedFrames_ = 0;  // each has a note, up to kDivergenceNotes (its warning counts all)
   static constexpr int kDivergenceNotes = 5;

@@ -17,8 +17,8 @@ namespace fs = std::filesystem;
 using test::CliRun;
 using test::run;
 
-// --backend on run (and play, bench, open): cpu runs without a note; cuda runs on the GPU or
-// says why not; anything else is a usage error.
+// --backend on run (and play, bench, open): cpu and auto run without a note; cuda runs on the GPU
+// or says why not; anything else is a usage error.
 TEST(Cli, BackendFlag) {
   test::TempDir dir;
   const fs::path scene = test::kDefaultSceneFile;
@@ -38,6 +38,11 @@ TEST(Cli, BackendFlag) {
               std::string::npos)
         << cuda.err;
   }
+  // auto (the scene's default) falls back without a word: the user did not ask for the GPU.
+  const CliRun automatic = run(
+      {"run", scene.string(), "--frames", "1", "--out", (dir / "d").string(), "--backend", "auto"});
+  ASSERT_EQ(automatic.code, kExitOk) << automatic.err;
+  EXPECT_EQ(automatic.err.find("note:"), std::string::npos) << automatic.err;
   const fs::path script = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scripts" / "sphere_cut.json";
   const std::vector<std::vector<std::string>> bad = {
       {"run", scene.string(), "--frames", "1", "--out", (dir / "c").string()},
