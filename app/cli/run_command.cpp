@@ -106,8 +106,8 @@ class FrameRenderer {
 // The frame loop shared by run and play: metrics CSV, surface exports, final.obj, summary.
 int simulateFrames(const std::string& name, int frames, Simulation& sim, const RunOptions& o,
                    const std::function<FrameMetrics()>& advance, std::ostream& out,
-                   std::ostream& err,
-                   const std::function<std::optional<CameraPose>()>& camera = {}) {
+                   std::ostream& err, const std::function<std::optional<CameraPose>()>& camera = {},
+                   const std::function<std::vector<std::string>()>& toolReports = {}) {
   auto pose = [&camera]() -> std::optional<CameraPose> { return camera ? camera() : std::nullopt; };
   const fs::path& outDir = o.outDir;
   const fs::path& metricsPath = o.metricsPath;
@@ -156,6 +156,14 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
       err << "note: " << sim.notes()[n] << '\n';
     msSum += last.msTotal;
     warnings += last.warnings;
+    // Tools that acted on nothing (a knife that crossed no edge, a brush in empty space).
+    if (toolReports) {
+      for (const std::string& report : toolReports()) {
+        if (interactive) err << "\r\x1b[K";
+        err << "warning: " << report << '\n';
+        ++warnings;
+      }
+    }
     if (pieceAboveTolerance(last, sim.settings().residualTolerance)) {
       ++pieceFrames;
       worstPiece = std::max(worstPiece, last.pieceResidual);
@@ -258,9 +266,15 @@ int playCommand(const std::vector<std::string>& args, std::ostream& out, std::os
   script.scene = withSolverOverrides(script.scene, solver);
   Simulation sim(script.scene, loadMeshReporting(script.scene, err), o.solver);
   Playback playback(script, sim);
+  const std::string file = a.positional()[0];
   return simulateFrames(
       script.scene.name, script.frames, sim, o, [&playback] { return playback.advance(); }, out,
-      err, [&playback] { return playback.camera(); });
+      err, [&playback] { return playback.camera(); },
+      [&playback, &file] {
+        std::vector<std::string> reports = playback.takeIdleReports();
+        for (std::string& r : reports) r = file + ": " + r;
+        return reports;
+      });
 }
 
 }  // namespace galsculpt

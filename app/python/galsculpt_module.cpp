@@ -110,12 +110,24 @@ class PySimulation {
     if (frames < 1)
       throw py::value_error("frames must be at least 1, got " + std::to_string(frames));
     FrameMetrics m;
+    std::vector<std::string> idle;
     {
       py::gil_scoped_release released;
       std::lock_guard<std::mutex> lock(busy_);
-      for (int f = 0; f < frames; ++f) m = session_->step();
+      for (int f = 0; f < frames; ++f) {
+        m = session_->step();
+        for (std::string& report : session_->takeIdleReports()) idle.push_back(std::move(report));
+      }
     }
-    return metricsDict(m);
+    // Applied events that acted on nothing: Python warnings, and listed with the figures.
+    py::dict figures = metricsDict(m);
+    py::list warned;
+    for (const std::string& report : idle) {
+      if (PyErr_WarnEx(PyExc_UserWarning, report.c_str(), 1) < 0) throw py::error_already_set();
+      warned.append(report);
+    }
+    figures["tool_warnings"] = warned;
+    return figures;
   }
 
   void apply(const py::dict& event) {
@@ -365,7 +377,8 @@ PYBIND11_MODULE(galsculpt, m) {
            "(docs/scenes.md). FileNotFoundError for a missing file, ValueError naming the file "
            "and key for bad content.")
       .def("step", &PySimulation::step, py::arg("frames") = 1,
-           "Runs frames; returns the last one's figures (the metrics CSV's columns)")
+           "Runs frames; returns the last one's figures (the metrics CSV's columns) and "
+           "tool_warnings: the applied events that acted on nothing (also UserWarnings)")
       .def("apply", &PySimulation::apply, py::arg("event"),
            "A playback script's event (docs/scripts.md) as a dict, acting from the next step; "
            "checked as a script's are (ValueError naming the key)")

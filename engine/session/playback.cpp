@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
+#include "engine/session/tool_reach.h"
 #include "solver/io/atomic_file.h"
 #include "solver/io/input_error.h"
 
@@ -332,14 +335,29 @@ int ToolApplier::apply(const ToolEvent& e, int frame) {
       // behind the blade (a cut body relaxes as the blade goes on) is cut too, not skipped.
       const double u1 = static_cast<double>(step + 1) / e.duration;
       auto at = [](const Vec3& a, const Vec3& b, double u) { return Vec3((1.0 - u) * a + u * b); };
-      return sculptor_.cut(
-          sweptBladeSurface(e.from0, e.from1, at(e.from0, e.to0, u1), at(e.from1, e.to1, u1)),
-          e.symmetry);
+      const std::vector<BladeTriangle> blade =
+          sweptBladeSurface(e.from0, e.from1, at(e.from0, e.to0, u1), at(e.from1, e.to1, u1));
+      const int cut = sculptor_.cut(blade, e.symmetry);
+      const std::string key = e.path + "@" + std::to_string(e.frame);
+      knifeCuts_[key] += cut;
+      if (step == e.duration - 1) {
+        if (knifeCuts_[key] == 0) {
+          std::ostringstream what;
+          what << "crossed no edge: its blade passed " << std::setprecision(3)
+               << distanceToBlade(blade, sim_.state().x) << " m from the nearest vertex";
+          reportIdle(e, frame, what.str());
+        }
+        knifeCuts_.erase(key);
+      }
+      return cut;
     }
     case ToolEvent::Tool::Brush: {
       if (step != 0) break;
       const std::vector<int> grabbed = sim_.verticesNear(e.center, e.radius);
-      if (grabbed.empty()) break;  // a brush stroke in empty space moves nothing
+      if (grabbed.empty()) {  // a brush stroke in empty space moves nothing, and says so
+        reportIdle(e, frame, "reached no vertex: " + nearestText(e.center, e.radius));
+        break;
+      }
       sim_.addAnchor(grabbed, {{0.0, Vec3::Zero()}, {e.duration * dt, e.offset}},
                      e.hold ? -1 : e.frame + e.duration);
       break;
@@ -374,17 +392,40 @@ int ToolApplier::apply(const ToolEvent& e, int frame) {
       }
       for (const StrokeKey& k : e.moves)
         if (k.frame == frame) sculptor_.moveBrush(k.center, k.normal);
-      if (frame == e.end) sculptor_.endBrush();
+      if (frame == e.end) {
+        // A stroke that never acted (begun and ended in one frame) has reached nothing to say.
+        if (sculptor_.strokeReach() == 0 && (e.end > e.frame || e.brush == BrushKind::Grab))
+          reportIdle(e, frame, "reached no vertex: " + nearestText(e.center, e.radius));
+        sculptor_.endBrush();
+      }
       break;
     }
     case ToolEvent::Tool::Paint:
-      if (step == 0) sculptor_.paintAnchors(e.center, e.radius, e.seed, e.erase, e.symmetry);
+      if (step == 0 &&
+          sculptor_.paintAnchors(e.center, e.radius, e.seed, e.erase, e.symmetry) == 0) {
+        reportIdle(e, frame,
+                   std::string(e.erase ? "freed" : "anchored") +
+                       " no vertex: " + nearestText(e.center, e.radius));
+      }
       break;
     case ToolEvent::Tool::Camera:
       if (step == 0) camera_ = e.camera;
       break;
   }
   return 0;
+}
+
+std::string ToolApplier::nearestText(const Vec3& center, double radius) const {
+  const int v = sim_.nearestVertex(center);
+  std::ostringstream s;
+  s << std::setprecision(3) << "the nearest is " << (sim_.state().x[v] - center).norm()
+    << " m from its centre (radius " << radius << " m)";
+  return s.str();
+}
+
+void ToolApplier::reportIdle(const ToolEvent& e, int frame, const std::string& what) {
+  idle_.push_back("frame " + std::to_string(frame) + ": " + toolEventJson(e).value("tool", "tool") +
+                  (e.path.empty() ? "" : " (" + e.path + ")") + " " + what);
 }
 
 FrameMetrics Playback::advance() {

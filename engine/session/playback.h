@@ -4,8 +4,10 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/scene/scene.h"
@@ -108,12 +110,22 @@ class ToolApplier {
   void applyTrailing(const std::vector<ToolEvent>& events, int lastFrame);
   Sculptor& sculptor() { return sculptor_; }
   const std::optional<CameraPose>& camera() const { return camera_; }
+  // What events acted on nothing since the last call, a line each: "frame 12: knife
+  // ($.events[3]) crossed no edge: its blade passed 0.0022 m from the nearest vertex" (a knife
+  // that cut no edge over its sweep, a brush, stroke or anchor paint that reached no vertex).
+  std::vector<std::string> takeIdleReports() { return std::exchange(idle_, {}); }
 
  private:
+  void reportIdle(const ToolEvent& e, int frame, const std::string& what);
+  // "the nearest is 0.0022 m from its centre (radius 0.01 m)"
+  std::string nearestText(const Vec3& center, double radius) const;
+
   Simulation& sim_;
   Sculptor sculptor_;
   std::string file_;
   std::optional<CameraPose> camera_;
+  std::map<std::string, int> knifeCuts_;  // per knife event under way: edges cut so far
+  std::vector<std::string> idle_;
 };
 
 // Checks an event against the mesh: an anchor it adds selects something, a brush's or anchor
@@ -132,6 +144,8 @@ class Playback {
   bool finished() const { return sim_.frame() >= script_.frames; }
   // The script's latest camera event so far, if any.
   const std::optional<CameraPose>& camera() const { return tools_.camera(); }
+  // ToolApplier::takeIdleReports: the events that acted on nothing since the last call.
+  std::vector<std::string> takeIdleReports() { return tools_.takeIdleReports(); }
 
  private:
   const PlaybackScript& script_;

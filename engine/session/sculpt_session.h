@@ -57,6 +57,8 @@ class SculptSession {
 
   // One frame: script brushes let go, held brushes act, the solver steps.
   FrameMetrics step();
+  // Applied events that acted on nothing since the last call (ToolApplier::takeIdleReports).
+  std::vector<std::string> takeIdleReports() { return tools_->takeIdleReports(); }
 
   // Back to the scene's start, as an undoable action.
   void reset();

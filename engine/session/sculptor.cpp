@@ -76,6 +76,7 @@ void Sculptor::selectUnderBrush(const Vec3& a, const Vec3& b, double radius, int
 void Sculptor::beginBrush(const BrushStroke& stroke) {
   endBrush();
   stroke_ = stroke;
+  strokeReach_ = 0;
   const int sides = stroke.symmetry.enabled() ? 2 : 1;
   for (int s = 0; s < sides; ++s) {
     Side side;
@@ -89,6 +90,7 @@ void Sculptor::beginBrush(const BrushStroke& stroke) {
     if (stroke.kind == BrushKind::Grab) {
       selectUnderBrush(side.center, side.center, stroke.radius, side.seed, side.vertices,
                        side.weights);
+      strokeReach_ += static_cast<int>(side.vertices.size());
       if (!side.vertices.empty()) {
         side.anchor = sim_.addAnchor(side.vertices);
         for (int v : side.vertices) side.start.push_back(sim_.state().x[v]);
@@ -147,6 +149,7 @@ void Sculptor::beforeFrame() {
     const Vec3 from = side.previousCenter;
     side.previousCenter = side.center;
     selectUnderBrush(from, side.center, stroke_.radius, side.seed, side.vertices, side.weights);
+    strokeReach_ += static_cast<int>(side.vertices.size());
     if (side.vertices.empty()) continue;
     const std::vector<Vec3>& x = sim_.state().x;
     std::vector<Vec3> targets(side.vertices.size());

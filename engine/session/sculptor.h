@@ -65,6 +65,8 @@ class Sculptor {
   void moveBrush(const Vec3& center, const Vec3& normal);
   void endBrush();
   bool brushActive() const { return !sides_.empty(); }
+  // Vertices the stroke under way has held so far, over its frames (0: it reached nothing).
+  int strokeReach() const { return strokeReach_; }
   // Before each frame: push, pull, inflate and pinch move what they hold.
   void beforeFrame();
 
@@ -97,6 +99,7 @@ class Sculptor {
   Simulation& sim_;
   BrushStroke stroke_;
   std::vector<Side> sides_;  // the stroke and, with symmetry, its mirror image
+  int strokeReach_ = 0;
 };
 
 }  // namespace galsculpt

@@ -175,6 +175,34 @@ const fs::path kClayBall = test::kDefaultSceneFile;
 // ball leave a piece above the residual tolerance of its own loads while the body's residual is
 // within it (docs/physics.md). The run says how many, as the metrics' piece_residual column
 // counts them.
+TEST(Cli, PlayWarnsOfToolsThatActOnNothing) {
+  // A knife above the ball, a brush, a push and an anchor paint in empty space: each said with
+  // its frame, its event and how far it passed; a push on the ball says nothing.
+  test::TempDir dir;
+  const fs::path script = dir / "idle.json";
+  test::writeText(script, std::string(R"({"scene": ")") + test::kDefaultSceneFile.string() + R"(",
+    "frames": 6, "events": [
+    {"frame": 1, "tool": "knife", "duration": 2, "from": [[-0.2, 0.5, 0.02], [0.2, 0.5, 0.02]],
+     "to": [[-0.2, 0.4, 0.02], [0.2, 0.4, 0.02]]},
+    {"frame": 1, "tool": "push", "center": [0, 0.3, 0], "radius": 0.01, "end": 3},
+    {"frame": 2, "tool": "brush", "center": [0, 0.3, 0], "radius": 0.01, "offset": [0, 0.01, 0]},
+    {"frame": 2, "tool": "anchor_paint", "center": [0, 0.3, 0], "radius": 0.01},
+    {"frame": 4, "tool": "push", "center": [0, 0.1, 0], "radius": 0.03, "end": 5}]})");
+  const CliRun r = run({"play", script.string(), "--out", (dir / "o").string()});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const std::string w = "warning: " + script.string() + ": ";
+  EXPECT_NE(r.err.find(w + "frame 2: knife ($.events[0]) crossed no edge: its blade passed 0.3"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find(w + "frame 3: push ($.events[1]) reached no vertex: the nearest is 0.2"),
+            std::string::npos);
+  EXPECT_NE(r.err.find(w + "frame 2: brush ($.events[2]) reached no vertex"), std::string::npos);
+  EXPECT_NE(r.err.find(w + "frame 2: anchor_paint ($.events[3]) anchored no vertex"),
+            std::string::npos);
+  EXPECT_EQ(r.err.find("$.events[4]"), std::string::npos) << "the push on the ball acted";
+  EXPECT_NE(r.out.find("4 warning(s)"), std::string::npos) << r.out;
+}
+
 TEST(Cli, PlaySaysWhichFramesLeftAPieceAboveTheTolerance) {
   test::TempDir dir;
   nlohmann::json scene = nlohmann::json::parse(test::readText(kClayBall));

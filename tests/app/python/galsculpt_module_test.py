@@ -123,6 +123,17 @@ def test_applied_events_are_checked_against_the_mesh_and_scene_as_a_scripts_are(
     sim.step()
 
 
+def test_an_event_that_acts_on_nothing_is_a_warning():
+    sim = galsculpt.Simulation(BALL)
+    sim.apply({"tool": "knife", "duration": 1, "from": [[-0.2, 0.5, 0], [0.2, 0.5, 0]],
+               "to": [[-0.2, 0.4, 0], [0.2, 0.4, 0]]})
+    with pytest.warns(UserWarning, match=r"frame 0: knife \(\$\.events\[0\]\) crossed no edge"):
+        report = sim.step()
+    assert len(report["tool_warnings"]) == 1
+    sim.apply(KNIFE)
+    assert sim.step()["tool_warnings"] == [], "a knife through the ball cuts"
+
+
 def test_paths_dict_scenes_time_edges_reset_and_the_version(tmp_path):
     assert isinstance(galsculpt.__version__, str) and galsculpt.__version__.count(".") >= 1
     for documented in (galsculpt.Simulation, galsculpt.Simulation.step, galsculpt.Simulation.reset,
