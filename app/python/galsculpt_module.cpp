@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include <signal.h>
 #include <unistd.h>
 
 #include "app/cli/cli.h"
@@ -25,6 +26,7 @@
 #include "engine/session/session_loader.h"
 #include "engine/surface/surface_io.h"
 #include "solver/io/input_error.h"
+#include "solver/io/stop_request.h"
 
 namespace py = pybind11;
 namespace fs = std::filesystem;
@@ -111,14 +113,19 @@ class PySimulation {
       throw py::value_error("frames must be at least 1, got " + std::to_string(frames));
     FrameMetrics m;
     std::vector<std::string> idle;
+    bool interrupted = false;
     {
       py::gil_scoped_release released;
       std::lock_guard<std::mutex> lock(busy_);
-      for (int f = 0; f < frames; ++f) {
+      for (int f = 0; f < frames && !interrupted; ++f) {
         m = session_->step();
         for (std::string& report : session_->takeIdleReports()) idle.push_back(std::move(report));
+        // Ctrl-C between frames: KeyboardInterrupt after the frame under way, whole.
+        py::gil_scoped_acquire acquired;
+        interrupted = PyErr_CheckSignals() != 0;
       }
     }
+    if (interrupted) throw py::error_already_set();
     // Applied events that acted on nothing: Python warnings, and listed with the figures.
     py::dict figures = metricsDict(m);
     py::list warned;
@@ -261,15 +268,28 @@ class PySimulation {
   std::mutex busy_;
 };
 
+// The command's poll of Python's signals: SIGINT when a KeyboardInterrupt is pending (left set,
+// raised once the command returns).
+int pythonStopPoll() {
+  py::gil_scoped_acquire acquired;
+  return PyErr_CheckSignals() != 0 ? SIGINT : 0;
+}
+
 // A CLI command in this process, without the GIL: its standard output, or the error it exits
 // with as an exception.
 std::string runCommandLine(const std::vector<std::string>& args) {
   std::ostringstream out, err;
   int code = 0;
   {
+    // Ctrl-C reaches the command's loops, which stop between frames (or TetGen runs) as on the
+    // command line; Python's KeyboardInterrupt is raised when it returns.
+    setStopPoller(pythonStopPoll);
     py::gil_scoped_release released;
     code = runCli(args, out, err);
   }
+  setStopPoller(nullptr);
+  clearStopRequest();
+  if (PyErr_Occurred()) throw py::error_already_set();
   if (code == kExitOk) return out.str();
   // The command's last words, less its "galsculpt: error: " prefix.
   std::string message = err.str();

@@ -9,6 +9,7 @@ namespace galsculpt {
 namespace {
 
 std::atomic<int> requested{0};
+std::atomic<StopPoller> poller{nullptr};
 static_assert(std::atomic<int>::is_always_lock_free, "read and written inside a signal handler");
 
 void onStopSignal(int signal) {
@@ -33,7 +34,22 @@ void installStopHandlers() {
 }
 
 int stopSignal() {
-  return requested.load(std::memory_order_relaxed);
+  int signal = requested.load(std::memory_order_relaxed);
+  if (signal == 0) {
+    if (const StopPoller poll = poller.load(std::memory_order_relaxed)) {
+      signal = poll();
+      if (signal != 0) requested.store(signal);
+    }
+  }
+  return signal;
+}
+
+void setStopPoller(StopPoller poll) {
+  poller.store(poll);
+}
+
+void clearStopRequest() {
+  requested.store(0);
 }
 
 void throwIfStopRequested() {

@@ -34,4 +34,11 @@ std::string signalName(int signal);
 // Tests: records a stop as the handler does (0 clears it).
 void requestStopForTesting(int signal);
 
+// An embedding's own signal handling (Python's): while set, stopSignal() asks `poll` when no
+// stop is recorded, and records what it returns (a signal, or 0). Null: none. clearStopRequest()
+// forgets a recorded stop once the embedding has handled it.
+using StopPoller = int (*)();
+void setStopPoller(StopPoller poll);
+void clearStopRequest();
+
 }  // namespace galsculpt

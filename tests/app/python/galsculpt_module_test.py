@@ -123,6 +123,24 @@ def test_applied_events_are_checked_against_the_mesh_and_scene_as_a_scripts_are(
     sim.step()
 
 
+def test_ctrl_c_stops_a_long_step_and_play_between_frames(tmp_path):
+    import signal
+    sim = galsculpt.Simulation(BALL)
+    threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+    started = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        sim.step(100000)
+    assert time.monotonic() - started < 10.0
+    assert 0 < sim.frame < 100000, "stopped after a whole frame"
+    sim.step()  # and steps on
+    threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+    with pytest.raises(KeyboardInterrupt):
+        galsculpt.play(SCRIPT, tmp_path / "o", solver_option={"newton_iters": 40})
+    # The stop is not left behind for the next command.
+    played = galsculpt.play(SCRIPT, tmp_path / "p")
+    assert played["metrics"][-1]["frame"] == 120
+
+
 def test_an_event_that_acts_on_nothing_is_a_warning():
     sim = galsculpt.Simulation(BALL)
     sim.apply({"tool": "knife", "duration": 1, "from": [[-0.2, 0.5, 0], [0.2, 0.5, 0]],

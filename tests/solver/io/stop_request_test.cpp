@@ -42,5 +42,29 @@ TEST(StopRequest, TestsCanAskAndClear) {
   EXPECT_EQ(signalName(SIGHUP), "signal " + std::to_string(SIGHUP));
 }
 
+// An embedding's poll (Python's signals): asked while no stop is recorded, its answer recorded
+// until cleared, and asked no more once a stop stands.
+int pollCalls = 0;
+int pollAnswer = 0;
+int poll() {
+  ++pollCalls;
+  return pollAnswer;
+}
+
+TEST(StopRequest, AnEmbeddingsPollIsAskedAndItsStopKeptUntilCleared) {
+  setStopPoller(poll);
+  EXPECT_FALSE(stopRequested());
+  EXPECT_EQ(pollCalls, 1);
+  pollAnswer = SIGINT;
+  EXPECT_THROW(throwIfStopRequested(), Interrupted);
+  pollAnswer = 0;
+  EXPECT_EQ(stopSignal(), SIGINT) << "recorded";
+  EXPECT_EQ(pollCalls, 2) << "not asked again while a stop stands";
+  setStopPoller(nullptr);
+  clearStopRequest();
+  EXPECT_FALSE(stopRequested());
+  EXPECT_EQ(pollCalls, 2) << "no poll once unset";
+}
+
 }  // namespace
 }  // namespace galsculpt
