@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -54,7 +55,24 @@ std::string pathArgument(const py::object& path, const char* what) {
 }
 
 // Python values through JSON: the readers' own format, so that they validate what Python gives.
-nlohmann::json toJson(const py::handle& value) {
+// A number JSON cannot hold (NaN, inf) is a ValueError naming where it is (`where`: "event",
+// then ".radius", "[1]", ...), as the readers name a key, not the JSON library's parse error.
+void checkFinite(const py::handle& value, const std::string& where) {
+  if (py::isinstance<py::float_>(value)) {
+    if (!std::isfinite(value.cast<double>()))
+      throw py::value_error(where + ": " + py::repr(value).cast<std::string>() +
+                            " is not a finite number");
+  } else if (py::isinstance<py::dict>(value)) {
+    for (const auto& [key, item] : value.cast<py::dict>())
+      checkFinite(item, where + "." + py::str(key).cast<std::string>());
+  } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    int i = 0;
+    for (const py::handle& item : value) checkFinite(item, where + "[" + std::to_string(i++) + "]");
+  }
+}
+
+nlohmann::json toJson(const py::handle& value, const std::string& where) {
+  checkFinite(value, where);
   const std::string text = py::module_::import("json").attr("dumps")(value).cast<std::string>();
   return nlohmann::json::parse(text);
 }
@@ -95,10 +113,11 @@ class PySimulation {
     SolverOverrides overrides;
     if (!solverOptions.is_none())
       for (const auto& [key, value] : solverOptions.cast<py::dict>())
-        overrides.emplace_back(py::str(key).cast<std::string>(), toJson(value));
+        overrides.emplace_back(py::str(key).cast<std::string>(),
+                               toJson(value, "solver_options." + py::str(key).cast<std::string>()));
     if (py::isinstance<py::dict>(source)) {
-      const SceneDescription scene =
-          withSolverOverrides(parseScene(toJson(source), fs::current_path() / "<dict>"), overrides);
+      const SceneDescription scene = withSolverOverrides(
+          parseScene(toJson(source, "scene"), fs::current_path() / "<dict>"), overrides);
       session_ = std::make_unique<SculptSession>(scene, loadSceneMesh(scene));
       return;
     }
@@ -139,7 +158,7 @@ class PySimulation {
 
   void apply(const py::dict& event) {
     Guard guard(*this);
-    nlohmann::json e = toJson(event);
+    nlohmann::json e = toJson(event, "event");
     const int frame = session_->simulation().frame();
     if (!e.is_object()) throw py::value_error("an event is a dict");
     if (!e.contains("frame")) e["frame"] = frame;

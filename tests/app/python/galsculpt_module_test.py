@@ -198,6 +198,18 @@ def test_paths_dict_scenes_time_edges_reset_and_the_version(tmp_path):
         galsculpt.play(tmp_path / "missing.json", tmp_path / "o")
 
 
+def test_a_number_json_cannot_hold_is_a_value_error_naming_its_key():
+    sim = galsculpt.Simulation(BALL)
+    with pytest.raises(ValueError, match=r"^event\.radius: nan is not a finite number$"):
+        sim.apply({"tool": "brush", "center": [0, 0, 0], "radius": float("nan"),
+                   "offset": [0, 0, 0]})
+    with pytest.raises(ValueError, match=r"^event\.from\[1\]\[2\]: inf is not a finite number$"):
+        sim.apply(dict(KNIFE, **{"from": [[-0.2, 0.2, 0.02], [0.2, 0.2, float("inf")]]}))
+    with pytest.raises(ValueError, match=r"solver_options\.residual_tolerance: nan"):
+        galsculpt.Simulation(BALL, solver_options={"residual_tolerance": float("nan")})
+    assert sim.undo() is False
+
+
 def test_errors_are_exceptions_with_the_readers_messages(tmp_path):
     with pytest.raises(FileNotFoundError, match="nothing.json: no such file"):
         galsculpt.Simulation(str(tmp_path / "nothing.json"))
