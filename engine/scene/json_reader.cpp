@@ -67,29 +67,38 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& file, i
   if (const size_t at = jsonTooDeepAt(text); at != std::string::npos)
     throw InputError(file, firstLine - 1 + lineAt(text, at),
                      "JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels");
-  // A key given twice in one object would silently keep the last value: refused.
+  // A key given twice in one object would silently keep the last value: refused. Checked by a
+  // SAX handler around the library's DOM builder: its callback parser scans the enclosing array
+  // at every object's end (quadratic: a million-move stroke took minutes).
   struct DuplicateKey {
     std::string key;
     size_t ordinal;  // among all keys of the document, from 0
   };
-  std::vector<std::set<std::string>> open;  // the keys seen in each open object (or array)
-  size_t keys = 0;
-  const auto callback = [&open, &keys](int, nlohmann::json::parse_event_t event,
-                                       nlohmann::json& parsed) {
-    using Event = nlohmann::json::parse_event_t;
-    if (event == Event::object_start || event == Event::array_start) {
+  using Json = nlohmann::json;
+  struct KeyCheckingBuilder : nlohmann::detail::json_sax_dom_parser<Json> {
+    using Base = nlohmann::detail::json_sax_dom_parser<Json>;
+    explicit KeyCheckingBuilder(Json& result) : Base(result, true) {}
+    std::vector<std::set<std::string>> open;  // the keys seen in each open object
+    size_t keys = 0;
+    bool start_object(std::size_t n) {
       open.emplace_back();
-    } else if ((event == Event::object_end || event == Event::array_end) && !open.empty()) {
-      open.pop_back();
-    } else if (event == Event::key) {
-      if (!open.empty() && !open.back().insert(parsed.get<std::string>()).second)
-        throw DuplicateKey{parsed.get<std::string>(), keys};
-      ++keys;
+      return Base::start_object(n);
     }
-    return true;
+    bool end_object() {
+      open.pop_back();
+      return Base::end_object();
+    }
+    bool key(Json::string_t& k) {
+      if (!open.back().insert(k).second) throw DuplicateKey{k, keys};
+      ++keys;
+      return Base::key(k);
+    }
   };
   try {
-    return nlohmann::json::parse(text, callback);
+    Json result;
+    KeyCheckingBuilder builder(result);
+    Json::sax_parse(text, &builder);
+    return result;
   } catch (const DuplicateKey& d) {
     throw InputError(
         file, firstLine - 1 + lineAt(text, nthKeyAt(text, d.ordinal)),
