@@ -40,6 +40,26 @@ FlagSpec required(FlagSpec flag) {
   return flag;
 }
 
+// `text` from column `column` on, wrapped at `width` columns between words, its later lines
+// starting at `column` too.
+std::string wrapWords(const std::string& text, size_t column, size_t width) {
+  std::istringstream words(text);
+  std::string out;
+  size_t at = column;
+  bool first = true;
+  for (std::string word; words >> word;) {
+    if (!first && at + 1 + word.size() > width) {
+      out += "\n" + std::string(column, ' ');
+      at = column;
+      first = true;
+    }
+    out += (first ? "" : " ") + word;
+    at += word.size() + (first ? 0 : 1);
+    first = false;
+  }
+  return out;
+}
+
 std::vector<CommandSpec> makeTable() {
   return {
       {"open",
@@ -166,9 +186,37 @@ std::string commandUsage(const CommandSpec& command) {
   return usage;
 }
 
+std::string wrapUsage(const std::string& usage, size_t width, size_t indent) {
+  std::vector<std::string> pieces;  // each starts at a break: before " [" or " -"
+  size_t start = 0;
+  for (size_t i = 1; i + 1 < usage.size(); ++i) {
+    if (usage[i] == ' ' && (usage[i + 1] == '[' || usage[i + 1] == '-')) {
+      pieces.push_back(usage.substr(start, i - start));
+      start = i + 1;
+    }
+  }
+  pieces.push_back(usage.substr(start));
+  std::string out;
+  size_t column = 0;
+  for (const std::string& piece : pieces) {
+    if (out.empty()) {
+      out = piece;
+      column = piece.size();
+    } else if (column + 1 + piece.size() > width) {
+      out += "\n" + std::string(indent, ' ') + piece;
+      column = indent + piece.size();
+    } else {
+      out += " " + piece;
+      column += 1 + piece.size();
+    }
+  }
+  return out;
+}
+
 std::string commandHelp(const CommandSpec& command) {
   std::ostringstream s;
-  s << "usage: " << commandUsage(command) << "\n\n" << command.summary << "\n";
+  s << "usage: " << wrapUsage(commandUsage(command), 100 - 7, 10) << "\n\n"
+    << wrapWords(command.summary, 0, 100) << "\n";
   if (!command.flags.empty()) s << "\noptions:\n";
   constexpr size_t kColumn = 26, kWidth = 100;
   for (const FlagSpec& f : command.flags) {
@@ -179,21 +227,7 @@ std::string commandHelp(const CommandSpec& command) {
     } else {
       s << "\n" << std::string(kColumn, ' ');
     }
-    // The meaning, wrapped at kWidth under its column.
-    std::istringstream words((f.required ? "(required) " : "") + f.help);
-    size_t at = kColumn;
-    bool first = true;
-    for (std::string word; words >> word;) {
-      if (!first && at + 1 + word.size() > kWidth) {
-        s << "\n" << std::string(kColumn, ' ');
-        at = kColumn;
-        first = true;
-      }
-      s << (first ? "" : " ") << word;
-      at += word.size() + (first ? 0 : 1);
-      first = false;
-    }
-    s << '\n';
+    s << wrapWords((f.required ? "(required) " : "") + f.help, kColumn, kWidth) << '\n';
   }
   s << "  -h, --help              this text\n";
   s << "\ndocs/cli.md has the whole story; exit codes: 0 ok, 1 failure, 2 usage, 3 bad input, 4 "
@@ -207,7 +241,8 @@ std::string topLevelHelp() {
        "With no command, opens the default scene (a window; with no display, a headless run that\n"
        "writes images and says where).\n\ncommands:\n";
   for (const CommandSpec& c : commandTable()) {
-    s << "  " << commandUsage(c) << "\n      " << c.summary << "\n";
+    s << "  " << wrapUsage(commandUsage(c), 98, 8) << "\n      " << wrapWords(c.summary, 6, 100)
+      << "\n";
   }
   s << "  help, --help, -h; version, --version\n"
        "\n'galsculpt COMMAND --help' says what each option means (docs/cli.md has more).\n"
@@ -222,7 +257,8 @@ std::string subcommandOf(const std::string& group, const std::vector<std::string
   for (const CommandSpec& c : commandTable()) {
     if (c.name.rfind(group + " ", 0) != 0) continue;
     words.push_back(c.name.substr(group.size() + 1));
-    list << "  " << commandUsage(c) << "\n      " << c.summary << "\n";
+    list << "  " << wrapUsage(commandUsage(c), 98, 8) << "\n      " << wrapWords(c.summary, 6, 100)
+         << "\n";
   }
   list << "\n'galsculpt " << group << " SUBCOMMAND --help' says what each option means.\n";
   if (args.empty() || args[0] == "-h" || args[0] == "--help") {

@@ -32,6 +32,9 @@ const CommandSpec& commandSpec(const std::string& name);
 // "galsculpt run SCENE --frames N --out DIR [--solver reference] ...": required flags bare,
 // the others in brackets.
 std::string commandUsage(const CommandSpec& command);
+// A usage line wrapped at `width` columns, breaking only before an option ("--x" or "[--x ...]")
+// and indenting the lines after the first by `indent` spaces.
+std::string wrapUsage(const std::string& usage, size_t width, size_t indent);
 // The usage, the summary and every flag with its meaning: `galsculpt CMD --help`.
 std::string commandHelp(const CommandSpec& command);
 // `galsculpt --help`: every command with its usage and summary, the exit codes.

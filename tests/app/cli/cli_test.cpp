@@ -37,7 +37,7 @@ TEST(Cli, EveryCommandHasHelpFromTheTableThatParsesIt) {
       args.push_back(flag);
       const CliRun r = run(args);
       EXPECT_EQ(r.code, kExitOk) << c.name << ' ' << flag << ": " << r.err;
-      EXPECT_EQ(r.out.rfind("usage: " + commandUsage(c) + "\n", 0), 0u) << r.out;
+      EXPECT_EQ(r.out.rfind("usage: " + wrapUsage(commandUsage(c), 93, 10) + "\n", 0), 0u) << r.out;
       // Every flag the parser takes, with its meaning; -h anywhere on the line.
       for (const FlagSpec& f : c.flags) {
         EXPECT_NE(r.out.find("  " + f.name + (f.value.empty() ? "" : " " + f.value)),
@@ -46,7 +46,8 @@ TEST(Cli, EveryCommandHasHelpFromTheTableThatParsesIt) {
         EXPECT_FALSE(f.help.empty()) << c.name << ": " << f.name;
       }
     }
-    EXPECT_NE(top.find(commandUsage(c)), std::string::npos) << "the top-level help: " << c.name;
+    EXPECT_NE(top.find(wrapUsage(commandUsage(c), 98, 8)), std::string::npos)
+        << "the top-level help: " << c.name;
     // What the help lists, the parser takes: each flag is known (a wrong value or a missing
     // operand may still be refused, but never as an unknown option).
     for (const FlagSpec& f : c.flags) {
@@ -106,6 +107,18 @@ TEST(Cli, AMeshWhereASceneIsExpectedSaysWhatToDo) {
   EXPECT_NE(run({"run", script.string(), "--frames", "1", "--out", (dir / "o").string()})
                 .err.find("this looks like a playback script: galsculpt play FILE"),
             std::string::npos);
+}
+
+TEST(CommandTable, AUsageWrapsOnlyBeforeAnOption) {
+  const std::string usage =
+      "galsculpt run SCENE --frames N --out DIR [--metrics FILE.csv] [--size WxH]";
+  EXPECT_EQ(wrapUsage(usage, 200, 4), usage);
+  EXPECT_EQ(wrapUsage(usage, 40, 4),
+            "galsculpt run SCENE --frames N --out DIR\n    [--metrics FILE.csv] [--size WxH]");
+  // A piece longer than the width stays whole on its own line.
+  EXPECT_EQ(
+      wrapUsage(usage, 10, 2),
+      "galsculpt run SCENE\n  --frames N\n  --out DIR\n  [--metrics FILE.csv]\n  [--size WxH]");
 }
 
 TEST(CommandTable, TheNearestNameIsASlipOrNothing) {
