@@ -149,6 +149,7 @@ void SculptApp::handleEvent(const InputEvent& e) {
       // A press over a panel belongs to the panel; a release always ends what a press began.
       if (!controller_ || (e.pressed && io.WantCaptureMouse && !scripted_) || busy()) break;
       controller_->mouseButton(e.button, e.pressed, e.shift);
+      if (std::string notice = controller_->takeNotice(); !notice.empty()) report(notice);
       break;
     case InputEvent::Kind::Scroll:
       if (controller_ && !(io.WantCaptureMouse && !scripted_)) controller_->scroll(e.y);

@@ -65,7 +65,7 @@ void ToolController::cutTo(double x, double y) {
   Vec3 origin, direction;
   camera_.ray(x, y, width_, height_, origin, direction);
   const Vec3 nearPoint = origin + knifeNear_ * direction, farPoint = origin + knifeFar_ * direction;
-  session_.knife(bladeNear_, bladeFar_, nearPoint, farPoint, settings_.plane());
+  knifeCut_ += session_.knife(bladeNear_, bladeFar_, nearPoint, farPoint, settings_.plane());
   bladeNear_ = nearPoint;
   bladeFar_ = farPoint;
 }
@@ -87,6 +87,8 @@ void ToolController::paintTo(const RayHit& hit) {
 void ToolController::mouseButton(MouseButton button, bool pressed, bool shift) {
   if (!pressed) {
     if (active_ == Active::Brush) session_.endStroke();
+    if (active_ == Active::Knife && knifeCut_ == 0)
+      notice_ = "the knife crossed no edge: drag it across the body";
     active_ = Active::None;
     return;
   }
@@ -117,6 +119,7 @@ void ToolController::mouseButton(MouseButton button, bool pressed, bool shift) {
       bladeFar_ = origin + knifeFar_ * direction;
       session_.beginAction("knife");
       active_ = Active::Knife;
+      knifeCut_ = 0;
       break;
     }
     case Tool::AnchorPaint:

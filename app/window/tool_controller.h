@@ -11,6 +11,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "app/window/camera.h"
 #include "engine/session/sculpt_session.h"
@@ -48,6 +49,9 @@ class ToolController {
   // A tool in use when the window loses the mouse (or an undo comes) ends cleanly.
   void cancelStroke();
   bool strokeActive() const { return active_ != Active::None; }
+  // What the last stroke did not do, to tell the user once ("the knife crossed no edge: ..."),
+  // or empty; taking it clears it.
+  std::string takeNotice() { return std::exchange(notice_, {}); }
   // Nothing under way but, at most, an orbit or a pan (which touch only the camera).
   bool navigating() const {
     return active_ == Active::None || active_ == Active::Orbit || active_ == Active::Pan;
@@ -65,6 +69,8 @@ class ToolController {
   void paintTo(const RayHit& hit);
 
   SculptSession& session_;
+  int knifeCut_ = 0;    // edges the knife stroke under way has cut
+  std::string notice_;  // takeNotice
   OrbitCamera& camera_;
   const ToolSettings& settings_;
   int width_ = 1, height_ = 1;

@@ -39,6 +39,25 @@ TEST(ToolController, AKnifeDragAcrossTheViewCutsTheBallInTwo) {
   EXPECT_FALSE(b.session.recording().empty());
 }
 
+// A knife dragged along the top edge of the view, above the ball, crosses nothing and says so
+// once; a stroke through the ball says nothing.
+TEST(ToolController, AKnifeThatCrossesNothingSaysSo) {
+  Ball b;
+  b.settings.tool = Tool::Knife;
+  b.controller.mouseMove(5, 5);
+  b.controller.mouseButton(MouseButton::Left, true, false);
+  for (int x = 5; x <= 795; x += 30) b.controller.mouseMove(x, 5);
+  b.controller.mouseButton(MouseButton::Left, false, false);
+  EXPECT_EQ(b.session.simulation().state().damageRevision, 0u) << "nothing was cut";
+  EXPECT_EQ(b.controller.takeNotice(), "the knife crossed no edge: drag it across the body");
+  EXPECT_EQ(b.controller.takeNotice(), "") << "said once";
+  b.controller.mouseMove(400, 5);
+  b.controller.mouseButton(MouseButton::Left, true, false);
+  for (int y = 5; y <= 595; y += 30) b.controller.mouseMove(400, y);
+  b.controller.mouseButton(MouseButton::Left, false, false);
+  EXPECT_EQ(b.controller.takeNotice(), "");
+}
+
 // Picking hits the ball's surface in the middle of the view and nothing at a corner; the right
 // button orbits (the camera turns, the body stays).
 TEST(ToolController, PickingAndOrbiting) {
