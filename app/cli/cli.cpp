@@ -47,9 +47,7 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
       if (std::find(commands.begin(), commands.end(), word) == commands.end())
         commands.push_back(word);
     }
-    const std::string near = nearestName(command, commands);
-    throw UsageError("unknown command '" + command + "'" +
-                     (near.empty() ? "" : " (did you mean " + near + "?)"));
+    throw UsageError("unknown command '" + command + "'" + didYouMean(command, commands));
   } catch (const HelpRequested& e) {
     out << e.what();
     return kExitOk;

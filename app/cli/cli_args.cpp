@@ -34,9 +34,7 @@ CliArgs::CliArgs(const std::vector<std::string>& args, const CommandSpec& comman
     if (!flag) {
       std::vector<std::string> names;
       for (const FlagSpec& f : command.flags) names.push_back(f.name);
-      const std::string near = nearestName(name, names);
-      fail("unknown option " + name + " for " + command.name +
-           (near.empty() ? "" : " (did you mean " + near + "?)"));
+      fail("unknown option " + name + " for " + command.name + didYouMean(name, names));
     }
     if (!flag->value.empty()) {
       if (inlineValue) {

@@ -266,9 +266,8 @@ std::string subcommandOf(const std::string& group, const std::vector<std::string
     throw HelpRequested(list.str());
   }
   if (std::find(words.begin(), words.end(), args[0]) != words.end()) return group + " " + args[0];
-  const std::string near = nearestName(args[0], words);
   throw UsageError("unknown " + group + " subcommand '" + args[0] + "'" +
-                   (near.empty() ? "" : " (did you mean " + near + "?)"));
+                   didYouMean(args[0], words));
 }
 
 std::string nearestName(const std::string& word, const std::vector<std::string>& candidates) {
@@ -300,6 +299,11 @@ std::string nearestName(const std::string& word, const std::vector<std::string>&
     }
   }
   return best;
+}
+
+std::string didYouMean(const std::string& word, const std::vector<std::string>& candidates) {
+  const std::string near = nearestName(word, candidates);
+  return near.empty() ? "" : " (did you mean " + near + "?)";
 }
 
 }  // namespace galsculpt

@@ -48,5 +48,7 @@ std::string subcommandOf(const std::string& group, const std::vector<std::string
 // The name among `candidates` nearest `word` by edit distance, when near enough to be a slip
 // (at most a third of its letters, at least one), else empty: "did you mean ...?".
 std::string nearestName(const std::string& word, const std::vector<std::string>& candidates);
+// " (did you mean NAME?)" with nearestName's answer, or empty: the tail of an "unknown" message.
+std::string didYouMean(const std::string& word, const std::vector<std::string>& candidates);
 
 }  // namespace galsculpt

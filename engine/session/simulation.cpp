@@ -262,6 +262,30 @@ VisualSurface Simulation::withoutRemovedDebris() const {
   return shown;
 }
 
+namespace {
+
+// Removes the vertices no tet uses, the others keeping their order; returns each kept vertex's
+// index before.
+std::vector<int> dropUnusedVertices(TetMesh& mesh) {
+  std::vector<int> number(mesh.numVertices(), -1);
+  for (const Tet& t : mesh.tets)
+    for (int v : t) number[v] = 0;
+  std::vector<int> original;
+  std::vector<Vec3> vertices;
+  for (int v = 0; v < mesh.numVertices(); ++v) {
+    if (number[v] < 0) continue;
+    number[v] = static_cast<int>(original.size());
+    original.push_back(v);
+    vertices.push_back(mesh.vertices[v]);
+  }
+  mesh.vertices = std::move(vertices);
+  for (Tet& t : mesh.tets)
+    for (int& v : t) v = number[v];
+  return original;
+}
+
+}  // namespace
+
 int Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
   TetMesh now = model_.mesh;
   now.vertices = state_.x;
@@ -283,21 +307,8 @@ int Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
   std::vector<std::uint8_t> damaged = state_.damaged;
   std::vector<float> crossing = state_.crossing;
   if (leftOut > 0) {
-    // Vertices of left-out tets alone go too (a vertex in no tet has no mass); the others keep
-    // their order.
-    std::vector<int> number(now.numVertices(), -1);
-    for (const Tet& t : kept.tets)
-      for (int v : t) number[v] = 0;
-    kept.vertices.clear();
-    std::vector<int> original;
-    for (int v = 0; v < now.numVertices(); ++v) {
-      if (number[v] < 0) continue;
-      number[v] = static_cast<int>(original.size());
-      original.push_back(v);
-      kept.vertices.push_back(now.vertices[v]);
-    }
-    for (Tet& t : kept.tets)
-      for (int& v : t) v = number[v];
+    // Vertices of left-out tets alone go too (a vertex in no tet has no mass).
+    const std::vector<int> original = dropUnusedVertices(kept);
     edges = uniqueEdges(kept);
     damaged.assign(edges.size(), 0);
     crossing.assign(edges.size(), kNoCrossing);

@@ -43,14 +43,16 @@ ExportedSurface Simulation::exportSurface() const {
     sealed.crossing[e] = kNoCrossing;
     ++sealedEdges;
   }
-  ExportedSurface out;
-  if (sealedEdges == 0) {
-    out = makeExportSurface(surfaceBuilder_.surface(), surfaceBuilder_.heldCentres(state_), piece);
-  } else {
+  // The export of a state with other damage than the simulation's: a surface built for it.
+  auto exportOf = [&](const SimState& state) {
     SurfaceBuilder builder(model_);
-    builder.update(model_, sealed);
-    out = makeExportSurface(builder.surface(), builder.heldCentres(sealed), piece);
-  }
+    builder.update(model_, state);
+    return makeExportSurface(builder.surface(), builder.heldCentres(state), piece);
+  };
+  ExportedSurface out =
+      sealedEdges == 0
+          ? makeExportSurface(surfaceBuilder_.surface(), surfaceBuilder_.heldCentres(state_), piece)
+          : exportOf(sealed);
 
   // Where faces still cross (a broken end's crack band folded through itself), the corners
   // whose cells bound them are carved out: every edge at them parted for the export, so each
@@ -64,9 +66,7 @@ ExportedSurface Simulation::exportSurface() const {
       const auto [a, b] = model_.edges[e];
       if (carved[a] || carved[b]) sealed.damaged[e] = 1;
     }
-    SurfaceBuilder builder(model_);
-    builder.update(model_, sealed);
-    ExportedSurface next = makeExportSurface(builder.surface(), builder.heldCentres(sealed), piece);
+    ExportedSurface next = exportOf(sealed);
     if (next.detachedVolume > kExportCarveBudget * (next.volume + next.detachedVolume)) {
       carved = carvedBefore;
       out.carveBudgetReached = true;

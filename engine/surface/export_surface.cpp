@@ -36,8 +36,7 @@ std::vector<int> outerShellFaces(const VisualSurface& all, const std::vector<int
     if (!(volume[outer[p]] > 0.0)) ++report.invertedShells;
   }
   for (int s = 0; s < shells; ++s) {
-    if (pieceOfShell[s] < 0) continue;
-    if (kept[s]) continue;
+    if (pieceOfShell[s] < 0 || kept[s]) continue;
     if (volume[s] > 0.0) {  // material: a corner carved out, or a part cut off by it
       ++report.detachedShells;
       report.detachedVolume += volume[s];
