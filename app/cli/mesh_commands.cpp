@@ -134,7 +134,8 @@ int infoTet(const fs::path& file, bool json, std::ostream& out) {
 struct ShellCensus {
   int shells = 0, pieces = 0, inwardShells = 0;
   size_t selfCrossings = 0, contactCrossings = 0;
-  bool capped = false;
+  bool capped = false;      // the census stopped at its bound: more contact pairs may exist
+  bool selfCapped = false;  // ditto, for the crossings inside a shell
 };
 ShellCensus censusOfShells(const TriMesh& mesh) {
   constexpr size_t kMaxPairs = 1000;
@@ -144,9 +145,34 @@ ShellCensus censusOfShells(const TriMesh& mesh) {
   for (double v : enclosedVolumes(mesh, shellOfFace, c.shells))
     (v > 0.0 ? c.pieces : c.inwardShells)++;
   const auto crossings = findSelfIntersections(mesh, kMaxPairs);
-  c.capped = crossings.size() >= kMaxPairs;
+  c.capped = c.selfCapped = crossings.size() >= kMaxPairs;
   for (const auto& [f, g] : crossings)
     (shellOfFace[f] == shellOfFace[g] ? c.selfCrossings : c.contactCrossings)++;
+  if (c.capped) {
+    c.selfCapped = false;
+    // The pairs found first may all be contact: each shell is checked on its own, so that a
+    // crossing inside one is never hidden behind the cap.
+    c.selfCrossings = 0;
+    std::vector<TriMesh> shells(c.shells);
+    std::vector<int> number(mesh.numVertices(), -1);
+    for (int f = 0; f < mesh.numFaces(); ++f) {
+      TriMesh& shell = shells[shellOfFace[f]];
+      Tri tri = mesh.faces[f];
+      for (int& v : tri) {
+        if (number[v] < 0) {
+          number[v] = shell.numVertices();
+          shell.vertices.push_back(mesh.vertices[v]);
+        }
+        v = number[v];
+      }
+      shell.faces.push_back(tri);
+    }
+    for (const TriMesh& shell : shells) {
+      const size_t found = findSelfIntersections(shell, kMaxPairs).size();
+      c.selfCrossings += found;
+      c.selfCapped |= found >= kMaxPairs;
+    }
+  }
   return c;
 }
 
@@ -157,9 +183,10 @@ int infoSurface(const fs::path& file, bool json, std::ostream& out) {
   const BoundingBox box = boundingBox(mesh.vertices);
   const bool watertight = topo.closedManifold() && shells.selfCrossings == 0;
   const std::string more = shells.capped ? "+" : "";
+  const std::string moreSelf = shells.selfCapped ? "+" : "";
   std::string problem = topo.describeProblem();
   if (problem.empty() && shells.selfCrossings > 0) {
-    problem = "self-intersecting: " + std::to_string(shells.selfCrossings) + more +
+    problem = "self-intersecting: " + std::to_string(shells.selfCrossings) + moreSelf +
               " crossing face pair(s) inside a shell";
   }
   if (json) {
@@ -188,7 +215,7 @@ int infoSurface(const fs::path& file, bool json, std::ostream& out) {
   out << "bbox_min: " << vec(box.min) << "\nbbox_max: " << vec(box.max) << '\n';
   out << "volume: " << enclosedVolume(mesh) << "\narea: " << surfaceArea(mesh) << '\n';
   out << "watertight: " << (watertight ? "yes" : "no (" + problem + ")") << '\n';
-  out << "self_intersections: " << shells.selfCrossings << more << '\n';
+  out << "self_intersections: " << shells.selfCrossings << moreSelf << '\n';
   out << "shells: " << shells.shells << '\n';
   out << "pieces: " << shells.pieces << '\n';
   out << "inward_shells: " << shells.inwardShells << '\n';

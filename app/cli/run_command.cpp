@@ -219,7 +219,7 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
   return kExitOk;
 }
 
-RunOptions readRunOptions(const CliArgs& a, const std::string& command) {
+RunOptions readRunOptions(const CliArgs& a) {
   RunOptions o;
   o.exportEvery = a.intValue("--export-every", 0, 1, 10000000);
   o.exportFormat = a.value("--export-format").value_or("obj");
@@ -248,7 +248,7 @@ TetMesh loadMeshReporting(const SceneDescription& scene, std::ostream& err) {
 int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args, commandSpec("run"));
   applyThreadsOption(a);
-  const RunOptions o = readRunOptions(a, "run");
+  const RunOptions o = readRunOptions(a);
   const int frames = a.intValue("--frames", 0, 1, 10000000);
   const SolverOverrides solver = solverOverrides(a);
   const SceneDescription scene = withSolverOverrides(loadScene(a.positional()[0]), solver);
@@ -260,7 +260,7 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
 int playCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args, commandSpec("play"));
   applyThreadsOption(a);
-  const RunOptions o = readRunOptions(a, "play");
+  const RunOptions o = readRunOptions(a);
   const SolverOverrides solver = solverOverrides(a);
   PlaybackScript script = loadPlaybackScript(a.positional()[0]);
   script.scene = withSolverOverrides(script.scene, solver);

@@ -74,6 +74,9 @@ ExportedSurface Simulation::exportSurface() const {
     }
     out = std::move(next);
   }
+  // What carving could not clear within its budget: the pieces still folded through themselves
+  // are remade as the boundary of the region they enclose.
+  solidifyCrossingPieces(out, piece);
   out.sealedEdges = sealedEdges;
   out.removedPieces = static_cast<int>(removedPieces.size());
   out.carvedCorners = static_cast<int>(std::count(carved.begin(), carved.end(), 1));

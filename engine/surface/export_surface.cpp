@@ -4,6 +4,7 @@
 #include <array>
 #include <sstream>
 
+#include "engine/surface/solidify.h"
 #include "solver/mesh/surface_checks.h"
 
 namespace galsculpt {
@@ -81,13 +82,34 @@ void separateCoincident(TriMesh& mesh) {
   for (int v : stepping) mesh.vertices[v] += 0.01 * (inward[v] / faces[v] - mesh.vertices[v]);
 }
 
+// Sorts the crossing face pairs of `out.surface` into crossings inside a piece (with the cells
+// that bound them) and contact between pieces; sets the volume.
+void countCrossings(ExportedSurface& out, const std::vector<std::pair<int, int>>& crossing,
+                    const std::vector<int>& pieceOfVertex) {
+  const VisualSurface& s = out.surface;
+  for (const auto& [f, g] : crossing) {
+    const int a = s.cellVertex[f], b = s.cellVertex[g];
+    if (pieceOfVertex[a] != pieceOfVertex[b]) {
+      ++out.contacts;
+      continue;
+    }
+    ++out.crossings;
+    out.crossingCells.push_back(a);
+    out.crossingCells.push_back(b);
+  }
+  std::sort(out.crossingCells.begin(), out.crossingCells.end());
+  out.crossingCells.erase(std::unique(out.crossingCells.begin(), out.crossingCells.end()),
+                          out.crossingCells.end());
+  out.volume = enclosedVolume(s.mesh);
+}
+
 }  // namespace
 
 std::string ExportedSurface::summary() const {
   std::ostringstream s;
   s << pieces << " piece(s), " << (crossings == 0 && invertedShells == 0 ? "closed" : "NOT clean");
   if (crossings > 0) s << ", " << crossings << " crossing face pair(s) left";
-  if (carveBudgetReached) {
+  if (carveBudgetReached && crossings > 0) {
     s << " (carving them out would leave out more than " << 100.0 * kExportCarveBudget
       << " % of the volume)";
   }
@@ -97,10 +119,18 @@ std::string ExportedSurface::summary() const {
   if (removedPieces > 0)
     s << "; " << removedPieces << " debris piece(s) removed by the scene's rule, not written";
   if (sealedEdges > 0) s << "; " << sealedEdges << " closed crack edge(s) inside pieces sealed";
-  if (carvedCorners > 0 || detachedShells > 0) {
-    s << "; " << carvedCorners << " corner(s) carved out where crack faces crossed, "
-      << detachedShells << " detached shell(s) left out (" << detachedVolume << " m^3, "
+  if (carvedCorners > 0)
+    s << "; " << carvedCorners << " corner(s) carved out where crack faces crossed";
+  if (detachedShells > 0) {
+    s << (carvedCorners > 0 ? ", " : "; ") << detachedShells << " detached shell(s) left out ("
+      << detachedVolume << " m^3, "
       << 100.0 * detachedVolume / std::max(volume + detachedVolume, 1e-300) << " % of the volume)";
+  }
+  if (solidifiedPieces > 0) {
+    s << "; " << solidifiedPieces
+      << " folded piece(s) remade as the boundary of the region they enclose (volume "
+      << (solidifiedVolumeChange >= 0.0 ? "+" : "") << solidifiedVolumeChange << " m^3, "
+      << 100.0 * solidifiedVolumeChange / std::max(volume, 1e-300) << " %)";
   }
   if (droppedShells > 0) {
     s << "; " << droppedShells << " internal crack shell(s) left out (" << droppedVolume
@@ -180,22 +210,110 @@ ExportedSurface makeExportSurface(const VisualSurface& all, const std::vector<Ve
     std::sort(still.begin(), still.end());
     crossing = std::move(still);
   }
-  for (const auto& [f, g] : crossing) {
-    const int a = s.cellVertex[f], b = s.cellVertex[g];
-    if (pieceOfVertex[a] != pieceOfVertex[b]) {
-      ++out.contacts;
-      continue;
-    }
-    ++out.crossings;
-    out.crossingCells.push_back(a);
-    out.crossingCells.push_back(b);
-  }
-  std::sort(out.crossingCells.begin(), out.crossingCells.end());
-  out.crossingCells.erase(std::unique(out.crossingCells.begin(), out.crossingCells.end()),
-                          out.crossingCells.end());
-  out.volume = enclosedVolume(s.mesh);
+  countCrossings(out, crossing, pieceOfVertex);
   for (size_t i = 0; i < n; ++i) out.pulledVertices += movable[i] && pull[i] > options.separation;
   return out;
+}
+
+void solidifyCrossingPieces(ExportedSurface& out, const std::vector<int>& pieceOfVertex) {
+  if (out.crossings == 0) return;
+  std::vector<char> folded(pieceOfVertex.size(), 0);
+  for (int v : out.crossingCells) folded[pieceOfVertex[v]] = 1;
+  const VisualSurface& before = out.surface;
+  VisualSurface after;
+  std::vector<int> number(before.mesh.numVertices(), -1);
+  // The faces of `piece` (or of every piece not folded, with -1) appended to `to` with their
+  // own numbering.
+  auto copyFaces = [&](int piece, VisualSurface& to) {
+    std::fill(number.begin(), number.end(), -1);
+    for (int f = 0; f < before.mesh.numFaces(); ++f) {
+      const int p = pieceOfVertex[before.cellVertex[f]];
+      if (piece >= 0 ? p != piece : folded[p] != 0) continue;
+      Tri tri = before.mesh.faces[f];
+      for (int& v : tri) {
+        if (number[v] < 0) {
+          number[v] = to.mesh.numVertices();
+          to.mesh.vertices.push_back(before.mesh.vertices[v]);
+        }
+        v = number[v];
+      }
+      to.mesh.faces.push_back(tri);
+      to.tags.push_back(before.tags[f]);
+      to.cellVertex.push_back(before.cellVertex[f]);
+    }
+  };
+  copyFaces(-1, after);
+  for (int piece = 0; piece < static_cast<int>(folded.size()); ++piece) {
+    if (!folded[piece]) continue;
+    VisualSurface shell;
+    copyFaces(piece, shell);
+    std::vector<double> edges;
+    for (const Tri& f : shell.mesh.faces)
+      for (int k = 0; k < 3; ++k)
+        edges.push_back((shell.mesh.vertices[f[k]] - shell.mesh.vertices[f[(k + 1) % 3]]).norm());
+    std::nth_element(edges.begin(), edges.begin() + edges.size() / 2, edges.end());
+    const double cell = 0.5 * edges[edges.size() / 2];
+    TriMesh solid = solidify(shell.mesh, {.cell = cell, .maxNodes = 4000000});
+    std::vector<int> shellOfFace;
+    const int shells = countSurfacePieces(solid, &shellOfFace);
+    const std::vector<double> volume = enclosedVolumes(solid, shellOfFace, shells);
+    const int keptShell =
+        shells == 0
+            ? -1
+            : static_cast<int>(std::max_element(volume.begin(), volume.end()) - volume.begin());
+    if (keptShell < 0 || !(volume[keptShell] > 0.0)) {  // thinner than the grid: left as it was
+      const int base = after.mesh.numVertices();
+      for (const Vec3& p : shell.mesh.vertices) after.mesh.vertices.push_back(p);
+      for (Tri f : shell.mesh.faces) {
+        for (int& v : f) v += base;
+        after.mesh.faces.push_back(f);
+      }
+      after.tags.insert(after.tags.end(), shell.tags.begin(), shell.tags.end());
+      after.cellVertex.insert(after.cellVertex.end(), shell.cellVertex.begin(),
+                              shell.cellVertex.end());
+      continue;
+    }
+    for (int s = 0; s < shells; ++s) {
+      if (s == keptShell) continue;
+      if (volume[s] > 0.0) {
+        ++out.detachedShells;
+        out.detachedVolume += volume[s];
+      } else {
+        ++out.droppedShells;
+        out.droppedVolume += std::abs(volume[s]);
+      }
+    }
+    TriMesh kept;
+    std::vector<int> vertexNumber(solid.numVertices(), -1);
+    for (int f = 0; f < solid.numFaces(); ++f) {
+      if (shellOfFace[f] != keptShell) continue;
+      Tri tri = solid.faces[f];
+      for (int& v : tri) {
+        if (vertexNumber[v] < 0) {
+          vertexNumber[v] = kept.numVertices();
+          kept.vertices.push_back(solid.vertices[v]);
+        }
+        v = vertexNumber[v];
+      }
+      kept.faces.push_back(tri);
+    }
+    ++out.solidifiedPieces;
+    out.solidifiedVolumeChange += enclosedVolume(kept) - enclosedVolume(shell.mesh);
+    const int base = after.mesh.numVertices();
+    after.mesh.vertices.insert(after.mesh.vertices.end(), kept.vertices.begin(),
+                               kept.vertices.end());
+    for (Tri f : kept.faces) {
+      for (int& v : f) v += base;
+      after.mesh.faces.push_back(f);
+      after.tags.push_back(SurfaceTag::Outer);
+      after.cellVertex.push_back(shell.cellVertex[0]);
+    }
+  }
+  out.surface = std::move(after);
+  out.crossings = 0;
+  out.contacts = 0;
+  out.crossingCells.clear();
+  countCrossings(out, findSelfIntersections(out.surface.mesh, 1000000), pieceOfVertex);
 }
 
 }  // namespace galsculpt

@@ -20,6 +20,10 @@
 // Simulation::exportSurface carves out the corners whose cells bound faces of one piece still
 // crossing (a broken end's crack band folded through itself): each becomes a shell of its own,
 // which the export leaves out as material detached from its piece, with its volume reported.
+// Where carving would leave out too much (pieces folded through themselves in many places), the
+// pieces still crossing are remade as the boundary of the region their faces wind around
+// (solidify.h): closed and free of crossings, rounded off at the grid's cell, the change of
+// volume reported.
 // docs/surface.md ("Exports") states what an export promises.
 #pragma once
 
@@ -42,22 +46,24 @@ struct SurfaceExportOptions {
 };
 
 struct ExportedSurface {
-  VisualSurface surface;           // faces of kept pieces' outer shells, compact numbering
-  int pieces = 0;                  // shells written: one per piece
-  int removedPieces = 0;           // debris pieces the scene's rule removed: not written
-  int sealedEdges = 0;             // closed slits inside pieces, sealed (Simulation::exportSurface)
-  int carvedCorners = 0;           // mesh vertices carved out where faces crossed (ditto)
+  VisualSurface surface;  // faces of kept pieces' outer shells, compact numbering
+  int pieces = 0;         // shells written: one per piece
+  int removedPieces = 0;  // debris pieces the scene's rule removed: not written
+  int sealedEdges = 0;    // closed slits inside pieces, sealed (Simulation::exportSurface)
+  int carvedCorners = 0;  // mesh vertices carved out where faces crossed (ditto)
   bool carveBudgetReached = false;  // carving stopped: more would leave out too much volume
-  int droppedShells = 0;           // internal crack shells (cavities) left out
-  double droppedVolume = 0.0;      // the volume they enclosed (absolute, m^3)
-  int detachedShells = 0;          // other shells of a piece enclosing material, left out
-  double detachedVolume = 0.0;     // the material they held, m^3
-  double volume = 0.0;             // the volume the written shells enclose, m^3
-  int invertedShells = 0;          // pieces whose outer shell encloses no positive volume
-  int pulledVertices = 0;          // crack-side copies pulled further than `separation`
-  int crossings = 0;               // face pairs of one piece that still cross (self-intersection)
-  std::vector<int> crossingCells;  // tet-mesh vertices whose cells bound those faces, sorted
-  int contacts = 0;                // face pairs of two pieces that cross (the pieces overlap)
+  int droppedShells = 0;            // internal crack shells (cavities) left out
+  double droppedVolume = 0.0;       // the volume they enclosed (absolute, m^3)
+  int detachedShells = 0;           // other shells of a piece enclosing material, left out
+  double detachedVolume = 0.0;      // the material they held, m^3
+  double volume = 0.0;              // the volume the written shells enclose, m^3
+  int invertedShells = 0;           // pieces whose outer shell encloses no positive volume
+  int pulledVertices = 0;           // crack-side copies pulled further than `separation`
+  int crossings = 0;                // face pairs of one piece that still cross (self-intersection)
+  std::vector<int> crossingCells;   // tet-mesh vertices whose cells bound those faces, sorted
+  int contacts = 0;                 // face pairs of two pieces that cross (the pieces overlap)
+  int solidifiedPieces = 0;         // pieces remade as the boundary of the region they enclose
+  double solidifiedVolumeChange = 0.0;  // the volume that remaking added (< 0: removed), m^3
   // One line: "2 piece(s), closed; ..." for the command line and the window's messages.
   std::string summary() const;
 };
@@ -68,5 +74,11 @@ struct ExportedSurface {
 ExportedSurface makeExportSurface(const VisualSurface& all, const std::vector<Vec3>& heldCentre,
                                   const std::vector<int>& pieceOfVertex,
                                   const SurfaceExportOptions& options = {});
+
+// Remakes every piece whose own faces still cross (`out.crossingCells`) as the boundary of the
+// region its shell winds around (solidify.h, a grid of half its median edge), keeping the
+// largest shell that gives (other shells: detached material or cavities, counted as such), and
+// counts the crossings again. A piece too thin for the grid keeps its faces.
+void solidifyCrossingPieces(ExportedSurface& out, const std::vector<int>& pieceOfVertex);
 
 }  // namespace galsculpt

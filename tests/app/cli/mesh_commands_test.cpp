@@ -37,6 +37,33 @@ TEST(Cli, InfoOfTetMeshAndSurface) {
   EXPECT_EQ(j["quality_histogram"].size(), 10u);
 }
 
+TEST(Cli, InfoFindsACrossingInsideAShellBeyondManyContactPairs) {
+  // Five dense spheres through each other (contact: more pairs than the census lists) and a
+  // small one with a vertex pushed through its far side: the last is not watertight, however
+  // many contact pairs come first.
+  TriMesh mesh = makeIcosphere(1.0, 4);
+  auto append = [&](TriMesh part, const Vec3& shift) {
+    const int base = mesh.numVertices();
+    for (const Vec3& p : part.vertices) mesh.vertices.push_back(p + shift);
+    for (Tri f : part.faces) {
+      for (int& v : f) v += base;
+      mesh.faces.push_back(f);
+    }
+  };
+  for (int k = 1; k < 5; ++k) append(makeIcosphere(1.0, 4), Vec3(0.3 * k, 0.011 * k, 0.017 * k));
+  TriMesh dented = makeIcosphere(0.2, 1);
+  dented.vertices[0] *= -2.0;
+  append(dented, Vec3(5.0, 0.0, 0.0));
+  test::TempDir dir;
+  writeSurface(dir / "s.obj", mesh);
+  const CliRun info = run({"mesh", "info", (dir / "s.obj").string()});
+  ASSERT_EQ(info.code, kExitOk) << info.err;
+  EXPECT_NE(info.out.find("watertight: no (self-intersecting"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("contact: 1000+ crossing face pair(s) between shells"), std::string::npos)
+      << info.out;
+  EXPECT_EQ(info.out.find("self_intersections: 0"), std::string::npos) << info.out;
+}
+
 TEST(Cli, ConvertBetweenFormats) {
   test::TempDir dir;
   const CliRun gen = run({"mesh", "generate", "sphere", (dir / "s.node").string(), "--tets", "2000",
