@@ -3,6 +3,7 @@
 #include <stdlib.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include <sstream>
 
 #include "engine/meshing/subprocess.h"
+#include "engine/surface/solidify.h"
 #include "engine/surface/surface_bvh.h"
 #include "solver/io/atomic_file.h"
 #include "solver/io/input_error.h"
@@ -279,26 +281,29 @@ std::optional<TetrahedralizeResult> searchVolumeBound(TetgenRuns& runs, const Te
 
 }  // namespace
 
-void checkMeshableSurface(const TriMesh& surface, const std::string& name) {
+void checkMeshableSurface(const TriMesh& surface, const std::string& name, bool crossings) {
   if (surface.faces.empty()) throw InputError(name, 0, "the surface has no triangles");
   const SurfaceTopology topo = analyzeSurface(surface);
   if (!topo.closedManifold()) {
     throw InputError(name, 0, "cannot tetrahedralize: the surface is " + topo.describeProblem());
   }
-  const auto crossings = findSelfIntersections(surface, 1000);
-  if (!crossings.empty()) {
+  if (!crossings) return;
+  const auto pairs = findSelfIntersections(surface, 1000);
+  if (!pairs.empty()) {
     throw InputError(name, 0,
                      "cannot tetrahedralize: the surface is self-intersecting: faces " +
-                         std::to_string(crossings[0].first) + " and " +
-                         std::to_string(crossings[0].second) + " cross (" +
-                         std::to_string(crossings.size()) + (crossings.size() >= 1000 ? "+" : "") +
+                         std::to_string(pairs[0].first) + " and " +
+                         std::to_string(pairs[0].second) + " cross (" +
+                         std::to_string(pairs.size()) + (pairs.size() >= 1000 ? "+" : "") +
                          " crossing pair(s))");
   }
 }
 
-TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOptions& options) {
-  checkMeshableSurface(input, options.surfaceName);
-  if (options.targetTets < 1) throw std::invalid_argument("target tet count must be positive");
+namespace {
+
+// TetGen's runs on a closed surface free of crossings, towards the target count.
+TetrahedralizeResult tetrahedralizeClean(const TriMesh& input,
+                                         const TetrahedralizeOptions& options) {
   TriMesh surface = input;
   double volume = enclosedVolume(surface);
   if (volume < 0.0) {  // inside-out: flip, the solid is the same
@@ -337,6 +342,158 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
     break;
   }
   runs.fail();
+}
+
+// The faces of `surface` whose `group` is `which`, with their own numbering.
+TriMesh facesOf(const TriMesh& surface, const std::vector<int>& group, int which) {
+  TriMesh out;
+  std::vector<int> number(surface.numVertices(), -1);
+  for (int f = 0; f < surface.numFaces(); ++f) {
+    if (group[f] != which) continue;
+    Tri tri = surface.faces[f];
+    for (int& v : tri) {
+      if (number[v] < 0) {
+        number[v] = out.numVertices();
+        out.vertices.push_back(surface.vertices[v]);
+      }
+      v = number[v];
+    }
+    out.faces.push_back(tri);
+  }
+  return out;
+}
+
+void append(TriMesh& to, const TriMesh& part) {
+  const int base = to.numVertices();
+  to.vertices.insert(to.vertices.end(), part.vertices.begin(), part.vertices.end());
+  for (Tri f : part.faces) {
+    for (int& v : f) v += base;
+    to.faces.push_back(f);
+  }
+}
+
+// A shell that crosses itself, remade as the region it encloses (solidify.h) on a grid of its
+// median edge (what an export does with a folded piece).
+TriMesh solidifiedShell(const TriMesh& shell) {
+  std::vector<double> edges;
+  for (const Tri& f : shell.faces)
+    for (int k = 0; k < 3; ++k)
+      edges.push_back((shell.vertices[f[k]] - shell.vertices[f[(k + 1) % 3]]).norm());
+  std::nth_element(edges.begin(), edges.begin() + edges.size() / 2, edges.end());
+  return solidify(shell, {.cell = edges[edges.size() / 2]});
+}
+
+}  // namespace
+
+TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOptions& options) {
+  checkMeshableSurface(input, options.surfaceName, !options.solidifyCrossings);
+  if (options.targetTets < 1) throw std::invalid_argument("target tet count must be positive");
+  if (!options.solidifyCrossings) return tetrahedralizeClean(input, options);
+  TriMesh surface = input;
+  if (enclosedVolume(surface) < 0.0)  // inside-out: the same solid, faces turned
+    for (Tri& f : surface.faces) std::swap(f[1], f[2]);
+  constexpr size_t kAllPairs = 100000000;
+  std::vector<std::pair<int, int>> crossings = findSelfIntersections(surface, kAllPairs);
+  if (crossings.empty()) return tetrahedralizeClean(surface, options);
+  auto say = [&](const std::string& line) {
+    if (options.progress) options.progress(line);
+  };
+
+  // Shells that cross themselves are remade as the region they enclose.
+  std::vector<int> shellOfFace;
+  const int shells = countSurfacePieces(surface, &shellOfFace);
+  std::vector<char> selfCrossing(shells, 0);
+  for (const auto& [f, g] : crossings)
+    if (shellOfFace[f] == shellOfFace[g]) selfCrossing[shellOfFace[f]] = 1;
+  TriMesh items;  // every shell, the self-crossing ones remade; itemOfFace numbers them
+  std::vector<int> itemOfFace;
+  double volumeBefore = 0.0, volumeAfter = 0.0;
+  int remade = 0;
+  for (int s = 0; s < shells; ++s) {
+    TriMesh shell = facesOf(surface, shellOfFace, s);
+    if (selfCrossing[s]) {
+      volumeBefore += enclosedVolume(shell);
+      shell = solidifiedShell(shell);
+      volumeAfter += enclosedVolume(shell);
+      ++remade;
+    }
+    append(items, shell);
+    itemOfFace.resize(items.faces.size(), s);
+  }
+  if (remade > 0) {
+    std::ostringstream line;
+    line << options.surfaceName << ": " << remade
+         << " shell(s) crossing themselves remade as the region they enclose (volume "
+         << volumeBefore << " -> " << volumeAfter << " m^3)";
+    say(line.str());
+  }
+  crossings = findSelfIntersections(items, kAllPairs);
+  if (crossings.empty()) return tetrahedralizeClean(items, options);
+
+  // Shells through each other (pieces of an export that overlap): meshed in groups of shells
+  // that do not cross, each group its share of the tets by volume; the overlaps stay as given.
+  std::vector<std::vector<int>> touching(shells);
+  for (const auto& [f, g] : crossings) {
+    const int a = itemOfFace[f], b = itemOfFace[g];
+    if (a == b) continue;  // cannot happen after the remaking; TetGen says if it does
+    touching[a].push_back(b);
+    touching[b].push_back(a);
+  }
+  std::vector<int> colour(shells, -1);
+  int colours = 0;
+  for (int s = 0; s < shells; ++s) {
+    std::vector<char> used(colours + 1, 0);
+    for (int t : touching[s])
+      if (colour[t] >= 0) used[colour[t]] = 1;
+    colour[s] = static_cast<int>(std::find(used.begin(), used.end(), 0) - used.begin());
+    colours = std::max(colours, colour[s] + 1);
+  }
+  std::vector<int> groupOfFace(items.faces.size());
+  for (size_t f = 0; f < groupOfFace.size(); ++f) groupOfFace[f] = colour[itemOfFace[f]];
+  std::vector<TriMesh> groups;
+  double total = 0.0;
+  for (int c = 0; c < colours; ++c) {
+    groups.push_back(facesOf(items, groupOfFace, c));
+    total += enclosedVolume(groups.back());
+  }
+  {
+    std::ostringstream line;
+    line << options.surfaceName << ": " << shells << " shell(s), some through each other ("
+         << crossings.size() << " crossing face pair(s) between shells): meshed in " << colours
+         << " groups of shells that do not cross, the overlaps kept as they are";
+    say(line.str());
+  }
+  TetrahedralizeResult merged;
+  for (int c = 0; c < colours; ++c) {
+    TetrahedralizeOptions part = options;
+    const double share = enclosedVolume(groups[c]) / total;
+    part.targetTets = std::max(1, static_cast<int>(std::lround(share * options.targetTets)));
+    part.surfaceName = options.surfaceName + " (group " + std::to_string(c + 1) + " of " +
+                       std::to_string(colours) + ")";
+    TetrahedralizeResult result;
+    try {
+      result = tetrahedralizeClean(groups[c], part);
+    } catch (const TetCountUnreachable& e) {
+      // The group's count scaled to the whole: each group gets its share of what is asked.
+      const long long whole = static_cast<long long>(
+          std::ceil(static_cast<double>(e.closest) * options.targetTets / part.targetTets));
+      throw TetCountUnreachable(std::string(e.what()) + "; for the whole of " +
+                                    options.surfaceName + ", --tets " + std::to_string(whole) +
+                                    " or more would give this group its share",
+                                static_cast<int>(std::min<long long>(whole, INT_MAX)));
+    }
+    const int base = merged.mesh.numVertices();
+    merged.mesh.vertices.insert(merged.mesh.vertices.end(), result.mesh.vertices.begin(),
+                                result.mesh.vertices.end());
+    for (Tet t : result.mesh.tets) {
+      for (int& v : t) v += base;
+      merged.mesh.tets.push_back(t);
+    }
+    merged.attempts += result.attempts;
+    merged.quality = result.quality;
+    merged.volumeBound = std::max(merged.volumeBound, result.volumeBound);
+  }
+  return merged;
 }
 
 TetrahedralizeResult tetrahedralizeAny(const std::vector<TriMesh>& surfaces,

@@ -39,6 +39,10 @@ struct TetrahedralizeOptions {
   // A simplification must keep the shape (kShapeVolume, kShapeDistance). Off for a generator's
   // own surface, made for the count asked: a 100-tet sphere is a coarse sphere by request.
   bool keepShape = true;
+  // A surface that crosses itself (shells through each other: pieces of an export that overlap,
+  // a model whose parts interpenetrate) is meshed as the region it encloses, remade free of
+  // crossings on a grid of half the target tets' edge (solidify.h), and said; off, it is refused.
+  bool solidifyCrossings = true;
   std::function<void(const std::string&)> progress;  // one line per attempt, optional
 };
 
@@ -75,7 +79,8 @@ TetrahedralizeResult tetrahedralize(const TriMesh& surface, const Tetrahedralize
 TetrahedralizeResult tetrahedralizeAny(const std::vector<TriMesh>& surfaces,
                                        const TetrahedralizeOptions& options);
 
-// Throws InputError naming the first problem of a surface that TetGen cannot mesh.
-void checkMeshableSurface(const TriMesh& surface, const std::string& name);
+// Throws InputError naming the first problem of a surface that TetGen cannot mesh (with
+// `crossings` false, all but crossing faces).
+void checkMeshableSurface(const TriMesh& surface, const std::string& name, bool crossings = true);
 
 }  // namespace galsculpt

@@ -252,7 +252,7 @@ void solidifyCrossingPieces(ExportedSurface& out, const std::vector<int>& pieceO
       for (int k = 0; k < 3; ++k)
         edges.push_back((shell.mesh.vertices[f[k]] - shell.mesh.vertices[f[(k + 1) % 3]]).norm());
     std::nth_element(edges.begin(), edges.begin() + edges.size() / 2, edges.end());
-    const double cell = 0.5 * edges[edges.size() / 2];
+    const double cell = edges[edges.size() / 2];
     TriMesh solid = solidify(shell.mesh, {.cell = cell, .maxNodes = 4000000});
     std::vector<int> shellOfFace;
     const int shells = countSurfacePieces(solid, &shellOfFace);

@@ -76,7 +76,7 @@ ExportedSurface makeExportSurface(const VisualSurface& all, const std::vector<Ve
                                   const SurfaceExportOptions& options = {});
 
 // Remakes every piece whose own faces still cross (`out.crossingCells`) as the boundary of the
-// region its shell winds around (solidify.h, a grid of half its median edge), keeping the
+// region its shell winds around (solidify.h, a grid of its median edge), keeping the
 // largest shell that gives (other shells: detached material or cavities, counted as such), and
 // counts the crossings again. A piece too thin for the grid keeps its faces.
 void solidifyCrossingPieces(ExportedSurface& out, const std::vector<int>& pieceOfVertex);

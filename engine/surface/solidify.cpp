@@ -204,8 +204,8 @@ TriMesh solidify(const TriMesh& surface, const SolidifyOptions& options) {
             // On the surface where the segment meets it; otherwise the distance field's zero.
             const std::optional<double> exact = exactCrossing(
                 surface, bvh, position[p], position[q], winding[static_cast<size_t>(node[p])]);
-            const double t =
-                std::clamp(exact ? *exact : value(p) / (value(p) - value(q)), 0.01, 0.99);
+            const double t = std::clamp(exact ? *exact : value(p) / (value(p) - value(q)),
+                                        options.nodeClearance, 1.0 - options.nodeClearance);
             out.vertices.push_back(position[p] + t * (position[q] - position[p]));
           }
           return it->second;

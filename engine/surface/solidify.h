@@ -25,6 +25,11 @@ namespace galsculpt {
 struct SolidifyOptions {
   double cell = 0.0;             // grid spacing (m); must be positive
   long long maxNodes = 8000000;  // past this the cell grows until the grid fits
+  // How near a grid node a vertex may sit, as a fraction of its grid edge: the surface's
+  // crossing is moved to this bound where it falls nearer. It keeps the triangles' smallest
+  // angles away from zero, which a mesher's quality bound would otherwise refine around without
+  // end, at the cost of moving the surface by at most this fraction of a grid edge.
+  double nodeClearance = 0.2;
 };
 
 // `surface` must be closed and consistently oriented outward (it may cross itself). Returns the

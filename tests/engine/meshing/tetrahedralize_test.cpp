@@ -122,12 +122,61 @@ TEST(Tetrahedralize, BadSurfacesSayWhatIsWrong) {
   for (Tri f : copy.faces)
     two.faces.push_back(
         {f[0] + copy.numVertices(), f[1] + copy.numVertices(), f[2] + copy.numVertices()});
-  EXPECT_THROW_WITH(tetrahedralize(two, o), InputError, "self-intersecting");
+  TetrahedralizeOptions refuse = o;
+  refuse.solidifyCrossings = false;
+  EXPECT_THROW_WITH(tetrahedralize(two, refuse), InputError, "self-intersecting");
 
   TriMesh fin = makeIcosphere(1.0, 1);
   fin.vertices.push_back(Vec3(2, 2, 2));
   fin.faces.push_back({fin.faces[0][0], fin.faces[0][1], fin.numVertices() - 1});
   EXPECT_THROW_WITH(tetrahedralize(fin, o), InputError, "non-manifold");
+}
+
+TEST(Tetrahedralize, ShellsThroughEachOtherAreMeshedInGroupsThatDoNotCross) {
+  // Three balls, the middle one through both others (pieces of an export that overlap): each
+  // stays a body of its own, the overlaps as given, the tets shared out by volume.
+  const TriMesh ball = makeIcosphere(1.0, 3);
+  TriMesh three;
+  for (int k = 0; k < 3; ++k) {
+    const int base = three.numVertices();
+    for (const Vec3& v : ball.vertices) three.vertices.push_back(v + Vec3(1.5 * k, 0.1 * k, 0.0));
+    for (Tri f : ball.faces) three.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+  }
+  TetrahedralizeOptions o;
+  o.targetTets = 6000;
+  o.surfaceName = "three.obj";
+  std::vector<std::string> said;
+  o.progress = [&](const std::string& line) { said.push_back(line); };
+  const TetrahedralizeResult result = tetrahedralize(three, o);
+  EXPECT_NEAR(totalVolume(result.mesh), 3.0 * enclosedVolume(ball),
+              0.01 * 3.0 * enclosedVolume(ball));
+  EXPECT_NEAR(result.mesh.numTets(), 6000, 0.15 * 6000);
+  EXPECT_EQ(computeStats(result.mesh).pieces, 3);
+  ASSERT_FALSE(said.empty());
+  EXPECT_NE(said[0].find("three.obj: 3 shell(s), some through each other"), std::string::npos)
+      << said[0];
+  EXPECT_NE(said[0].find("meshed in 2 groups of shells that do not cross"), std::string::npos)
+      << said[0];
+}
+
+TEST(Tetrahedralize, AShellThatCrossesItselfIsMeshedAsTheRegionItEncloses) {
+  // A ball with one vertex pulled through to the far side: a spike through the body, the faces
+  // around it crossing the others. The region it winds around is meshed, and said.
+  TriMesh dented = makeIcosphere(1.0, 3);
+  dented.vertices[0] *= -1.5;
+  ASSERT_FALSE(findSelfIntersections(dented, 1).empty());
+  TetrahedralizeOptions o;
+  o.targetTets = 3000;
+  o.surfaceName = "dented.obj";
+  std::vector<std::string> said;
+  o.progress = [&](const std::string& line) { said.push_back(line); };
+  const TetrahedralizeResult result = tetrahedralize(dented, o);
+  EXPECT_NEAR(result.mesh.numTets(), 3000, 0.15 * 3000);
+  EXPECT_NEAR(totalVolume(result.mesh), enclosedVolume(makeIcosphere(1.0, 3)), 0.03 * 4.19);
+  ASSERT_FALSE(said.empty());
+  EXPECT_NE(said[0].find("1 shell(s) crossing themselves remade as the region they enclose"),
+            std::string::npos)
+      << said[0];
 }
 
 TEST(Tetrahedralize, CrashAndTimeoutOfTheProgramAreReported) {
