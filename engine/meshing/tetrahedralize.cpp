@@ -408,7 +408,7 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
   TriMesh items;  // every shell, the self-crossing ones remade; itemOfFace numbers them
   std::vector<int> itemOfFace;
   double volumeBefore = 0.0, volumeAfter = 0.0;
-  int remade = 0;
+  int remade = 0, remadeShells = 0;
   for (int s = 0; s < shells; ++s) {
     TriMesh shell = facesOf(surface, shellOfFace, s);
     if (selfCrossing[s]) {
@@ -416,6 +416,7 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
       shell = solidifiedShell(shell);
       volumeAfter += enclosedVolume(shell);
       ++remade;
+      remadeShells += countSurfacePieces(shell);
     }
     append(items, shell);
     itemOfFace.resize(items.faces.size(), s);
@@ -423,8 +424,9 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
   if (remade > 0) {
     std::ostringstream line;
     line << options.surfaceName << ": " << remade
-         << " shell(s) crossing themselves remade as the region they enclose (volume "
-         << volumeBefore << " -> " << volumeAfter << " m^3)";
+         << " shell(s) crossing themselves remade as the region they enclose (" << remadeShells
+         << " shell(s) where the grid parts thin necks, volume " << volumeBefore << " -> "
+         << volumeAfter << " m^3)";
     say(line.str());
   }
   crossings = findSelfIntersections(items, kAllPairs);
