@@ -246,6 +246,19 @@ class PySimulation {
   // The arrays: views of the engine's memory, valid while the simulation lives.
   static py::array positions(const py::object& self) { return vec3View(state(self).x, self); }
   static py::array velocities(const py::object& self) { return vec3View(state(self).v, self); }
+  // Setters (MuJoCo's qpos / qvel): an undoable action of the session, not a tool event.
+  static void setPositions(const py::object& self, const py::object& values) {
+    std::vector<Vec3> x = rowsOfThree(values, "positions");
+    PySimulation& s = self.cast<PySimulation&>();
+    Guard guard(s);
+    s.session_->setState(&x, nullptr);
+  }
+  static void setVelocities(const py::object& self, const py::object& values) {
+    std::vector<Vec3> v = rowsOfThree(values, "velocities");
+    PySimulation& s = self.cast<PySimulation&>();
+    Guard guard(s);
+    s.session_->setState(nullptr, &v);
+  }
   static py::array restPositions(const py::object& self) {
     return vec3View(self.cast<PySimulation&>().sim().model().mesh.vertices, self);
   }
@@ -278,6 +291,16 @@ class PySimulation {
   const Simulation& sim() {
     Guard guard(*this);
     return session_->simulation();
+  }
+  // An (n, 3) array of numbers as rows; ValueError naming `what` for another shape.
+  static std::vector<Vec3> rowsOfThree(const py::object& values, const std::string& what) {
+    const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
+    if (!a || a.ndim() != 2 || a.shape(1) != 3)
+      throw py::value_error(what + ": expected an (n, 3) array of numbers");
+    std::vector<Vec3> rows(static_cast<size_t>(a.shape(0)));
+    const auto r = a.unchecked<2>();
+    for (py::ssize_t i = 0; i < a.shape(0); ++i) rows[i] = Vec3(r(i, 0), r(i, 1), r(i, 2));
+    return rows;
   }
   static const SimState& state(const py::object& self) {
     return self.cast<PySimulation&>().sim().state();
@@ -342,11 +365,15 @@ std::vector<std::string> commandFlags(const py::kwargs& flags) {
       continue;
     }
     std::string joined;
+    // Appended piece by piece (GCC 12 warns of a restrict overlap, wrongly, in `"," + text`).
+    auto add = [&joined](const std::string& item) {
+      if (!joined.empty()) joined.push_back(',');
+      joined.append(item);
+    };
     if (py::isinstance<py::dict>(value)) {
-      for (const auto& [k, v] : value.cast<py::dict>())
-        joined += (joined.empty() ? "" : ",") + text(k) + "=" + text(v);
+      for (const auto& [k, v] : value.cast<py::dict>()) add(text(k) + "=" + text(v));
     } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
-      for (const py::handle& v : value) joined += (joined.empty() ? "" : ",") + text(v);
+      for (const py::handle& v : value) add(text(v));
     } else {
       joined = text(value);
     }
@@ -431,10 +458,12 @@ PYBIND11_MODULE(galsculpt, m) {
                              "Pieces the body is in (connected through undamaged edges)")
       .def_property_readonly("options", &PySimulation::options,
                              "The solver options as the scene's \"solver\" object holds them")
-      .def_property_readonly("positions", &PySimulation::positions,
-                             "Current vertex positions (n, 3), m")
-      .def_property_readonly("velocities", &PySimulation::velocities,
-                             "Current vertex velocities (n, 3), m/s")
+      .def_property("positions", &PySimulation::positions, &PySimulation::setPositions,
+                    "Current vertex positions (n, 3), m: a read-only view; assign an (n, 3) "
+                    "array to set them (an undoable action, not recorded as a tool)")
+      .def_property("velocities", &PySimulation::velocities, &PySimulation::setVelocities,
+                    "Current vertex velocities (n, 3), m/s: a read-only view; assign an (n, 3) "
+                    "array to set them (an undoable action, not recorded as a tool)")
       .def_property_readonly("rest_positions", &PySimulation::restPositions,
                              "Rest vertex positions (n, 3), m")
       .def_property_readonly("tets", &PySimulation::tets, "Tets' vertices (t, 4), int32")

@@ -20,6 +20,7 @@ namespace galsculpt {
 // where the arithmetic overflows (a coordinate of 1e300 squared is infinite).
 inline constexpr double kMaxCoordinate = 1e6;    // m: positions, offsets, blade ends
 inline constexpr double kMaxSpeed = 1e4;         // m/s
+inline constexpr double kMaxAngularSpeed = 1e5;  // rad/s
 inline constexpr double kMaxAcceleration = 1e5;  // m/s^2: about 10,000 g
 
 // [x, y, z], every digit kept (what the readers' vec3 reads back exactly).

@@ -385,6 +385,14 @@ SceneDescription parseScene(const nlohmann::json& root, const fs::path& file) {
   else
     s.material = materialPreset("rubber");
   s.gravity = o.vec3("gravity", s.gravity, kMaxAcceleration);
+  if (o.has("initial_velocity")) {
+    JsonObject v = o.object("initial_velocity");
+    s.initialVelocity.linear = v.vec3("linear", Eigen::Vector3d::Zero(), kMaxSpeed);
+    s.initialVelocity.angular = v.vec3("angular", Eigen::Vector3d::Zero(), kMaxAngularSpeed);
+    if (v.has("center"))
+      s.initialVelocity.center = v.vec3("center", Eigen::Vector3d::Zero(), kMaxCoordinate);
+    v.rejectUnknownKeys();
+  }
   s.timeStep = o.number("time_step", s.timeStep, 1e-7, 1.0);
   s.substeps = o.integer("substeps", s.substeps, 1, 1000);
   if (o.has("damping")) {

@@ -127,6 +127,14 @@ struct MeasureDesc {
   int loadAnchor = -1;
 };
 
+// The body's velocity at the start: a translation and a spin about a centre (the centre of
+// mass at rest by default). Vertices a scene anchor holds start at rest.
+struct InitialVelocityDesc {
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();   // m/s
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero();  // rad/s, about `center`
+  std::optional<Eigen::Vector3d> center;              // m
+};
+
 struct SceneDescription {
   std::filesystem::path file;
   nlohmann::json source;  // the scene as read (projects store it)
@@ -143,6 +151,7 @@ struct SceneDescription {
   FractureDesc fracture;
   SolverOptions solver;
   MeasureDesc measure;
+  InitialVelocityDesc initialVelocity;
 };
 
 // One anchor object (box / sphere / vertices, optional path), as in a scene's "anchors" list.

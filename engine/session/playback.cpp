@@ -430,10 +430,12 @@ void ToolApplier::reportIdle(const ToolEvent& e, int frame, const std::string& w
 
 FrameMetrics Playback::advance() {
   const int frame = sim_.frame();  // the frame about to be computed is frame + 1
+  const int idleBefore = tools_.idleCount();
   tools_.prepareFrame(script_.events, frame);
-  const FrameMetrics m = sim_.advance();
+  FrameMetrics m = sim_.advance();
   // The metrics are the frame's; trailing cuts show in the state (and the final surface).
   if (finished()) tools_.applyTrailing(script_.events, sim_.frame());
+  m.idleTools = tools_.idleCount() - idleBefore;
   return m;
 }
 

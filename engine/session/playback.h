@@ -114,6 +114,8 @@ class ToolApplier {
   // ($.events[3]) crossed no edge: its blade passed 0.0022 m from the nearest vertex" (a knife
   // that cut no edge over its sweep, a brush, stroke or anchor paint that reached no vertex).
   std::vector<std::string> takeIdleReports() { return std::exchange(idle_, {}); }
+  // How many of those there are (not taken).
+  int idleCount() const { return static_cast<int>(idle_.size()); }
 
  private:
   void reportIdle(const ToolEvent& e, int frame, const std::string& what);

@@ -144,9 +144,11 @@ void SculptSession::apply(ToolEvent event, const std::string& source) {
 
 FrameMetrics SculptSession::step() {
   // The user's events were applied as they came; those given to apply() act as in a script.
+  const int idleBefore = tools_->idleCount();
   tools_->prepareFrame(acting_, sim_->frame());
   dirty_ = true;
   FrameMetrics m = sim_->advance();
+  m.idleTools = tools_->idleCount() - idleBefore;
   std::erase_if(acting_, [&](const ToolEvent& e) { return lastActingFrame(e) < sim_->frame(); });
   return m;
 }
@@ -161,6 +163,13 @@ void SculptSession::reset() {
   acting_.clear();
   sim_->restore(initial_);
   recording_.clear();
+  dirty_ = true;
+}
+
+void SculptSession::setState(const std::vector<Vec3>* x, const std::vector<Vec3>* v) {
+  sim_->checkPositionsAndVelocities(x, v);  // refused before anything changes
+  beginAction("set state");
+  sim_->setPositionsAndVelocities(x, v);
   dirty_ = true;
 }
 

@@ -62,6 +62,10 @@ class SculptSession {
 
   // Back to the scene's start, as an undoable action.
   void reset();
+  // Sets positions and/or velocities (null: kept; Simulation::setPositionsAndVelocities) as an
+  // undoable action. It is not a tool event: the recording replays the tools alone, and a
+  // project saved after it keeps the state set.
+  void setState(const std::vector<Vec3>* x, const std::vector<Vec3>* v);
   bool canUndo() const { return !undo_.empty(); }
   bool canRedo() const { return !redo_.empty(); }
   const std::string& undoLabel() const;

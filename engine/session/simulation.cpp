@@ -133,6 +133,7 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   loadAnchor_ = scene.measure.loadAnchor;
   debrisFraction_ = scene.fracture.debrisFraction;
   removesDebris_ = scene.fracture.debris == DebrisRule::Remove;
+  applyInitialVelocity(scene.initialVelocity);
   // An exported tet mesh reopens with the cracks it was written with.
   if (std::optional<EdgeDamageState> damage = sceneMeshDamage(scene, mesh)) {
     state_.damaged = std::move(damage->damaged);
@@ -140,6 +141,55 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     ++state_.damageRevision;
   }
   updatePieces();
+}
+
+void Simulation::applyInitialVelocity(const InitialVelocityDesc& initial) {
+  if (initial.linear.isZero() && initial.angular.isZero()) return;
+  Vec3 center = Vec3::Zero();
+  if (initial.center) {
+    center = *initial.center;
+  } else {  // the centre of mass at rest
+    double mass = 0.0;
+    for (int v = 0; v < model_.numVertices(); ++v) {
+      center += model_.mass[v] * model_.mesh.vertices[v];
+      mass += model_.mass[v];
+    }
+    if (mass > 0.0) center /= mass;
+  }
+  std::vector<char> held(model_.numVertices(), 0);
+  for (const AnchorConstraint& a : state_.anchors)
+    for (int v : a.vertices) held[v] = 1;
+  for (int v = 0; v < model_.numVertices(); ++v) {
+    if (held[v]) continue;
+    state_.v[v] = initial.linear + initial.angular.cross(model_.mesh.vertices[v] - center);
+  }
+}
+
+void Simulation::checkPositionsAndVelocities(const std::vector<Vec3>* x,
+                                             const std::vector<Vec3>* v) const {
+  for (const std::vector<Vec3>* values : {x, v}) {
+    if (!values) continue;
+    const std::string name = values == x ? "positions" : "velocities";
+    if (values->size() != state_.x.size())
+      throw std::invalid_argument(name + ": " + std::to_string(values->size()) +
+                                  " rows for a model of " + std::to_string(state_.x.size()) +
+                                  " vertices");
+    for (size_t i = 0; i < values->size(); ++i)
+      if (!(*values)[i].allFinite())
+        throw std::invalid_argument(name + "[" + std::to_string(i) + "]: not a finite number");
+  }
+}
+
+void Simulation::setPositionsAndVelocities(const std::vector<Vec3>* x, const std::vector<Vec3>* v) {
+  checkPositionsAndVelocities(x, v);
+  SimulationSnapshot s = snapshot();
+  if (x) {
+    s.x = *x;
+    // The coarsest matrix kept between frames belongs to the old positions.
+    s.solverCarry.clear();
+  }
+  if (v) s.v = *v;
+  restore(s);
 }
 
 void Simulation::updatePieces() {
@@ -693,6 +743,7 @@ const std::vector<MetricsColumn>& metricsColumns() {
       {"debris_mass_kg", &M::debrisMassKg},
       {"piece_residual", &M::pieceResidual},
       {"local_iterations", &M::localIterations},
+      {"idle_tools", &M::idleTools},
   };
   return columns;
 }

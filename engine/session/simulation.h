@@ -76,6 +76,9 @@ struct FrameMetrics : FrameStatistics {
   // what the body absorbed; 0 for a kinematic collider).
   double strikerDisplacementM = 0.0;
   double absorbedEnergyJ = 0.0;
+  // Tool events that acted on nothing this frame (a knife that crossed no edge, a brush that
+  // reached no vertex: Playback and SculptSession count ToolApplier's idle reports).
+  int idleTools = 0;
 };
 
 // Whether the frame left a piece of the body above `tolerance` of its own loads (the metrics'
@@ -174,6 +177,13 @@ class Simulation {
   // moves on, so that the surface and the solver see the change).
   SimulationSnapshot snapshot() const;
   void restore(const SimulationSnapshot& snapshot);
+  // Sets the vertices' positions and/or velocities (null: kept), as MuJoCo's qpos / qvel are
+  // set; what the solver keeps between frames is dropped where it belonged to the old
+  // positions. Throws std::invalid_argument for a size that does not fit or a value that is
+  // not finite (nothing changed then).
+  void setPositionsAndVelocities(const std::vector<Vec3>* x, const std::vector<Vec3>* v);
+  // The checks of setPositionsAndVelocities alone.
+  void checkPositionsAndVelocities(const std::vector<Vec3>* x, const std::vector<Vec3>* v) const;
 
   const SimModel& model() const { return model_; }
   const SimState& state() const { return state_; }
@@ -230,6 +240,7 @@ class Simulation {
   int nextAnchorId_ = 0;
   int toolDamage_ = 0;  // edges cut by tools since the last frame
   void updatePieces();  // pieces and counted tets, when the damage changed
+  void applyInitialVelocity(const InitialVelocityDesc& initial);
   std::uint64_t piecesRevision_ = ~0ull;
   PieceTracker pieceTracker_;
   std::vector<std::uint8_t> countedTets_;

@@ -190,6 +190,18 @@ TEST(Cli, PlayWarnsOfToolsThatActOnNothing) {
     {"frame": 4, "tool": "push", "center": [0, 0.1, 0], "radius": 0.03, "end": 5}]})");
   const CliRun r = run({"play", script.string(), "--out", (dir / "o").string()});
   ASSERT_EQ(r.code, kExitOk) << r.err;
+  // The metrics count them in the row of the frame computed after they acted (an event of
+  // frame k acts before frame k + 1): the knife ending at frame 2, the brush and the paint in
+  // row 3, the push in empty space letting go at frame 3 in row 4.
+  std::ifstream csv(dir / "o" / "metrics.csv");
+  std::string line;
+  std::getline(csv, line);
+  const std::vector<std::string> header = splitCsv(line);
+  const auto column = std::find(header.begin(), header.end(), "idle_tools") - header.begin();
+  ASSERT_LT(column, static_cast<long>(header.size())) << line;
+  std::vector<std::string> idle;
+  while (std::getline(csv, line)) idle.push_back(splitCsv(line)[column]);
+  EXPECT_EQ(idle, (std::vector<std::string>{"0", "0", "3", "1", "0", "0"}));
   const std::string w = "warning: " + script.string() + ": ";
   EXPECT_NE(r.err.find(w + "frame 2: knife ($.events[0]) crossed no edge: its blade passed 0.3"),
             std::string::npos)

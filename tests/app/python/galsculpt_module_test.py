@@ -63,6 +63,50 @@ def test_arrays_view_the_engines_memory_read_only(ball):
     assert not np.array_equal(before, x), "the view shows the new positions"
 
 
+def test_positions_and_velocities_are_set_as_an_undoable_action():
+    sim = galsculpt.Simulation(BALL)
+    sim.step()
+    view = sim.positions
+    lifted = sim.positions + np.array([0.0, 0.05, 0.0])
+    sim.positions = lifted
+    assert np.array_equal(sim.positions, lifted)
+    assert view.__array_interface__["data"][0] == sim.positions.__array_interface__["data"][0], \
+        "views taken before stay views"
+    sim.velocities = np.zeros_like(lifted) + [0.0, 0.0, 0.2]
+    assert np.all(sim.velocities[:, 2] == 0.2)
+    report = sim.step()
+    assert report["converged"]
+    sim.undo()  # the step
+    sim.undo()  # the velocities
+    sim.undo()  # the positions
+    assert not np.array_equal(sim.positions, lifted)
+    assert np.all(sim.velocities[:, 2] != 0.2)
+    before = sim.positions.copy()
+    with pytest.raises(ValueError, match=r"positions: expected an \(n, 3\) array"):
+        sim.positions = np.zeros((5, 2))
+    with pytest.raises(ValueError, match="positions: 5 rows for a model of"):
+        sim.positions = np.zeros((5, 3))
+    bad = before.copy()
+    bad[3, 1] = np.inf
+    with pytest.raises(ValueError, match=r"positions\[3\]: not a finite number"):
+        sim.positions = bad
+    with pytest.raises(ValueError, match="velocities: expected"):
+        sim.velocities = "fast"
+    assert np.array_equal(sim.positions, before), "a refused value changes nothing"
+
+
+def test_a_scenes_initial_velocity_throws_the_body(tmp_path):
+    scene = {"mesh": {"file": str(SOURCE / "assets" / "meshes" / "sphere_small.node")},
+             "material": {"preset": "rubber"}, "gravity": [0, 0, 0],
+             "initial_velocity": {"linear": [0.3, 0, 0]}}
+    sim = galsculpt.Simulation(scene)
+    assert np.allclose(sim.velocities, [0.3, 0, 0])
+    sim.step(6)
+    assert abs(np.mean(sim.positions - sim.rest_positions, axis=0)[0] - 0.03) < 1e-3
+    sim.reset()
+    assert np.allclose(sim.velocities, [0.3, 0, 0]), "reset goes back to the scene's start"
+
+
 def test_apply_undo_redo_and_the_pieces():
     sim = galsculpt.Simulation(BALL)
     sim.step()

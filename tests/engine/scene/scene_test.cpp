@@ -272,6 +272,10 @@ INSTANTIATE_TEST_SUITE_P(
                  "$.solver.backend: unknown value 'gpu' (expected one of: auto, cpu, cuda)"},
         BadScene{std::string("{") + kMesh + R"(, "solver": {"energy_guard": "local"}})",
                  "$.solver.energy_guard: unknown value 'local' (expected one of: vertex, body)"},
+        BadScene{std::string("{") + kMesh + R"(, "initial_velocity": {"linear": [1, 0]}})",
+                 "$.initial_velocity.linear: expected an array of 3 numbers"},
+        BadScene{std::string("{") + kMesh + R"(, "initial_velocity": {"spin": [0, 0, 1]}})",
+                 "$.initial_velocity.spin: unknown key"},
         BadScene{"{\n\"mesh\": {\n\"file\": \"x.node\",\n}\n}", "s.json:4: JSON syntax error"}));
 
 // Every model of the solver's table (solver/fem/material_table.h) is a scene's by its name.
@@ -317,6 +321,20 @@ TEST(Scene, SolverChoicesAreTypedAndKeepTheirNames) {
   EXPECT_EQ(enumFromName<SolverPreset>("paper"), SolverPreset::Paper);
   EXPECT_EQ(enumFromName<SolverPreset>(enumName(SolverPreset::Converged)), SolverPreset::Converged);
   EXPECT_FALSE(enumFromName<SolverPreset>("fast").has_value());
+}
+
+TEST(Scene, AnInitialVelocityIsATranslationAndASpin) {
+  test::TempDir dir;
+  test::writeText(dir / "s.json", std::string("{") + kMesh + R"(, "initial_velocity":
+      {"linear": [1, 2, 3], "angular": [0, 0, 5], "center": [0.1, 0, 0]}})");
+  const SceneDescription s = loadScene(dir / "s.json");
+  EXPECT_EQ(s.initialVelocity.linear, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(s.initialVelocity.angular, Eigen::Vector3d(0, 0, 5));
+  ASSERT_TRUE(s.initialVelocity.center.has_value());
+  EXPECT_EQ(*s.initialVelocity.center, Eigen::Vector3d(0.1, 0, 0));
+  test::writeText(dir / "s.json", std::string("{") + kMesh + "}");
+  EXPECT_TRUE(loadScene(dir / "s.json").initialVelocity.linear.isZero());
+  EXPECT_FALSE(loadScene(dir / "s.json").initialVelocity.center.has_value());
 }
 
 TEST(Scene, MissingMeshFileIsReportedWhenLoading) {
