@@ -1,5 +1,7 @@
 #include "app/cli/cli.h"
 
+#include <new>
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -8,6 +10,7 @@
 #include "app/cli/cli_args.h"
 #include "app/cli/command_table.h"
 #include "solver/io/input_error.h"
+#include "solver/io/memory_limits.h"
 #include "solver/io/stop_request.h"
 
 namespace galsculpt {
@@ -69,6 +72,10 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   } catch (const OutputError& e) {
     err << "galsculpt: error: " << e.what() << '\n';
     return kExitOutput;
+  } catch (const std::bad_alloc&) {
+    err << "galsculpt: error: out of memory: an allocation failed" << availableMemoryText()
+        << "; a mesh of fewer tets, or more memory, would do\n";
+    return kExitFailure;
   } catch (const std::exception& e) {
     err << "galsculpt: error: " << e.what() << '\n';
     return kExitFailure;

@@ -27,6 +27,7 @@
 #include "engine/session/session_loader.h"
 #include "engine/surface/surface_io.h"
 #include "solver/io/input_error.h"
+#include "solver/io/memory_limits.h"
 #include "solver/io/stop_request.h"
 
 namespace py = pybind11;
@@ -427,6 +428,8 @@ PYBIND11_MODULE(galsculpt, m) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const fs::filesystem_error& e) {
       PyErr_SetString(PyExc_OSError, e.what());
+    } catch (const OutOfMemory& e) {
+      PyErr_SetString(PyExc_MemoryError, e.what());
     }
   });
 

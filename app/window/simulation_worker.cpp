@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "solver/io/stop_request.h"
+
 namespace galsculpt {
 
 namespace {
@@ -19,7 +21,15 @@ void FrameWorker::start(SculptSession& session, const SurfaceStyle& style,
                         std::function<void()> done) {
   SculptSession* s = &session;
   frame_ = std::async(std::launch::async, [s, style, done = std::move(done)] {
-    FrameView view = makeFrameView(*s, style, s->step());
+    FrameMetrics metrics;
+    try {
+      metrics = s->step();
+    } catch (const Interrupted&) {
+      // Ctrl-C or SIGTERM cut the frame short (the state is the last whole frame's): the
+      // window closes as it sees the stop, its session kept for recovery.
+      metrics.frame = s->simulation().frame();
+    }
+    FrameView view = makeFrameView(*s, style, metrics);
     view.readyAt = std::chrono::steady_clock::now();
     if (done) done();
     return view;

@@ -16,6 +16,7 @@
 #include "engine/surface/surface_bvh.h"
 #include "solver/io/atomic_file.h"
 #include "solver/io/input_error.h"
+#include "solver/io/memory_limits.h"
 #include "solver/io/tetgen_io.h"
 #include "solver/mesh/surface_checks.h"
 #include "solver/mesh/surface_simplify.h"
@@ -181,9 +182,14 @@ class TetgenRuns {
                                "': is TetGen installed? (scripts/install-deps.sh installs it)");
     }
     if (!r.succeeded()) {
-      throw std::runtime_error("tetgen " + r.describe() + " on " + options_.surfaceName +
-                               " (switches " + sw + ")" +
-                               (r.logTail.empty() ? "" : ":\n" + r.logTail));
+      // TetGen says "Out of memory." and throws an int when an allocation fails.
+      const bool memory = r.logTail.find("Out of memory") != std::string::npos ||
+                          r.logTail.find("bad_alloc") != std::string::npos;
+      throw std::runtime_error(
+          "tetgen " + (memory ? "ran out of memory (" + r.describe() + ")" : r.describe()) +
+          " on " + options_.surfaceName + " (switches " + sw + ")" +
+          (memory ? availableMemoryText() + ": ask for fewer tets (--tets)" : "") +
+          (r.logTail.empty() ? "" : ":\n" + r.logTail));
     }
     const long long count = countTets(fs::path(resultStem()).concat(".ele"));
     if (count <= 0) throw std::runtime_error("tetgen wrote no tets for " + options_.surfaceName);
@@ -388,6 +394,7 @@ TriMesh solidifiedShell(const TriMesh& shell) {
 TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOptions& options) {
   checkMeshableSurface(input, options.surfaceName, !options.solidifyCrossings);
   if (options.targetTets < 1) throw std::invalid_argument("target tet count must be positive");
+  checkMemoryForTets(options.targetTets, options.surfaceName);
   if (!options.solidifyCrossings) return tetrahedralizeClean(input, options);
   TriMesh surface = input;
   if (enclosedVolume(surface) < 0.0)  // inside-out: the same solid, faces turned
@@ -514,6 +521,12 @@ TetrahedralizeResult tetrahedralizeAny(const std::vector<TriMesh>& surfaces,
     }
   }
   throw *nearest;
+}
+
+void checkMemoryForTets(long long tets, const std::string& name) {
+  requireMemory(static_cast<double>(tets) * kTetgenBytesPerTet,
+                "meshing " + name + " to " + std::to_string(tets) + " tets (TetGen)",
+                "ask for fewer tets");
 }
 
 }  // namespace galsculpt

@@ -79,6 +79,13 @@ TetrahedralizeResult tetrahedralize(const TriMesh& surface, const Tetrahedralize
 TetrahedralizeResult tetrahedralizeAny(const std::vector<TriMesh>& surfaces,
                                        const TetrahedralizeOptions& options);
 
+// What TetGen takes for each tet it makes (its pools of tets, faces, points and their links;
+// docs/notes/2026-12-07-memory-before-starting.md).
+inline constexpr double kTetgenBytesPerTet = 500.0;
+// Throws OutOfMemory (memory_limits.h) with the size when meshing to `tets` would need more
+// than the memory available; `name` is the surface's, for the message.
+void checkMemoryForTets(long long tets, const std::string& name);
+
 // Throws InputError naming the first problem of a surface that TetGen cannot mesh (with
 // `crossings` false, all but crossing faces).
 void checkMeshableSurface(const TriMesh& surface, const std::string& name, bool crossings = true);

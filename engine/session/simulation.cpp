@@ -15,6 +15,8 @@
 #include "solver/frame/timing.h"
 #include "solver/io/damage_io.h"
 #include "solver/io/input_error.h"
+#include "solver/io/memory_limits.h"
+#include "solver/io/stop_request.h"
 #include "solver/io/tetgen_io.h"
 #include "solver/io/vtk_io.h"
 
@@ -72,8 +74,20 @@ MaterialParams materialFromScene(const MaterialDesc& m, bool compressionResists)
   return p;
 }
 
+namespace {
+
+// Checked before the model is built (an exception in the initializer list).
+const TetMesh& withMemoryFor(const TetMesh& mesh) {
+  requireMemory(static_cast<double>(mesh.numTets()) * kSimulationBytesPerTet,
+                "simulating " + std::to_string(mesh.numTets()) + " tets",
+                "a mesh of fewer tets (a scene's mesh.tets, mesh import --tets) would do");
+  return mesh;
+}
+
+}  // namespace
+
 Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, SolverChoice choice)
-    : model_(buildSimModel(mesh,
+    : model_(buildSimModel(withMemoryFor(mesh),
                            materialFromScene(scene.material, scene.fracture.compressionResists))),
       state_(initialState(model_)),
       surfaceBuilder_(model_) {
@@ -632,6 +646,14 @@ FrameMetrics Simulation::advance() {
   // Kept to undo a frame that diverges: no NaN reaches the window, an export or the metrics.
   lastFinite_.first.assign(state_.x.begin(), state_.x.end());
   lastFinite_.second.assign(state_.v.begin(), state_.v.end());
+  // And the rest of the state, to leave nothing of a frame a stop cuts short.
+  frameStart_.time = state_.time;
+  frameStart_.colliders = state_.colliders;
+  frameStart_.damaged.assign(state_.damaged.begin(), state_.damaged.end());
+  frameStart_.crossing.assign(state_.crossing.begin(), state_.crossing.end());
+  frameStart_.plasticInverse.assign(state_.plasticInverse.begin(), state_.plasticInverse.end());
+  frameStart_.plasticStrain.assign(state_.plasticStrain.begin(), state_.plasticStrain.end());
+  frameStart_.damageRevision = state_.damageRevision;
   StepReport r;
   try {
     r = backend_->step(state_, settings_);
@@ -643,6 +665,23 @@ FrameMetrics Simulation::advance() {
                      "): running on the CPU from frame " + std::to_string(frame_));
     backend_ = std::make_unique<CpuStepBackend>(model_);
     r = backend_->step(state_, settings_);
+  }
+  if (r.stopped) {
+    // Ctrl-C or SIGTERM within the frame: back to the last whole frame, then the stop.
+    std::copy(lastFinite_.first.begin(), lastFinite_.first.end(), state_.x.begin());
+    std::copy(lastFinite_.second.begin(), lastFinite_.second.end(), state_.v.begin());
+    state_.time = frameStart_.time;
+    state_.colliders = frameStart_.colliders;
+    state_.plasticInverse = frameStart_.plasticInverse;
+    state_.plasticStrain = frameStart_.plasticStrain;
+    if (state_.damageRevision != frameStart_.damageRevision) {
+      state_.damaged = frameStart_.damaged;
+      state_.crossing = frameStart_.crossing;
+      ++state_.damageRevision;  // a new revision: whatever saw the frame's damage looks again
+      updatePieces();
+    }
+    surfaceFrame_ = -1;
+    throw Interrupted(stopSignal());
   }
   const bool diverged = !allFinite(state_.x) || !allFinite(state_.v);
   if (diverged) {

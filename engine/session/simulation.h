@@ -107,6 +107,10 @@ void checkSceneAnchors(const SceneDescription& scene, const TetMesh& mesh);
 // Solver-side material from a scene material; throws InputError for an unknown model.
 MaterialParams materialFromScene(const MaterialDesc& m, bool compressionResists = true);
 
+// What a simulation takes for each tet: the model, the state, the solver's matrices and levels,
+// the surfaces (docs/notes/2026-12-07-memory-before-starting.md). Checked before one is built.
+inline constexpr double kSimulationBytesPerTet = 3000.0;
+
 class Simulation {
  public:
   // Throws InputError (naming the scene and JSON path) for anchors that select nothing or
@@ -117,6 +121,8 @@ class Simulation {
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
+  // One frame. Throws Interrupted when a stop (stop_request.h) cuts it short: the state is then
+  // the last whole frame's, as if the frame had not begun.
   FrameMetrics advance();
 
   // Tools (engine/session/playback.h drives them from scripts; the app from the mouse).
@@ -229,6 +235,18 @@ class Simulation {
   std::vector<std::string> notes_;
   std::string backendFallback_;
   std::pair<std::vector<Vec3>, std::vector<Vec3>> lastFinite_;  // x and v before the frame
+  // The rest of the state before the frame, brought back with lastFinite_ when a stop leaves
+  // the frame unfinished (advance).
+  struct FrameStart {
+    double time = 0.0;
+    std::vector<ColliderState> colliders;
+    std::vector<std::uint8_t> damaged;
+    std::vector<float> crossing;
+    std::vector<Eigen::Matrix3d> plasticInverse;
+    std::vector<double> plasticStrain;
+    std::uint64_t damageRevision = 0;
+  };
+  FrameStart frameStart_;
   int divergedFrames_ = 0;  // each has a note, up to kDivergenceNotes (its warning counts all)
   static constexpr int kDivergenceNotes = 5;
   mutable SurfaceBuilder surfaceBuilder_;

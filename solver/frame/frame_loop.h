@@ -24,9 +24,11 @@
 namespace galsculpt {
 
 // One sub-step's figures (FrameStatistics: its Newton iterations, residual, ...); `ok` false
-// when it failed (NaN, no descent) and is rolled back.
+// when it failed (NaN, no descent) and is rolled back; `stopped` when a stop was asked for
+// (stop_request.h) between two of its Newton iterations.
 struct SubstepOutcome : StepReport {
   bool ok = true;
+  bool stopped = false;
 };
 
 template <typename Ops>
@@ -41,6 +43,13 @@ StepReport runFrame(Ops& ops, const StepSettings& settings) {
     h = std::min(h, frameEnd - ops.time());
     const auto saved = ops.save();
     const SubstepOutcome r = ops.substep(h);
+    if (r.stopped) {
+      // Asked to stop: the sub-step is rolled back and the frame left unfinished; the caller
+      // brings back the state of the frame's start (Simulation::advance).
+      ops.restore(saved, false);
+      report.stopped = true;
+      break;
+    }
     if (!r.ok) {
       ops.restore(saved, false);
       if (report.retries >= settings.maxRetries) {

@@ -46,6 +46,7 @@
 #include "solver/frame/secant_history.h"
 #include "solver/frame/step.h"
 #include "solver/frame/timing.h"
+#include "solver/io/stop_request.h"
 
 namespace galsculpt {
 
@@ -185,6 +186,12 @@ class FrameSolver {
     bool local = false;  // this iteration solves only in the region (local_region.h)
     double lastResidual = 0.0;
     for (int it = 0; it < s.newtonIterations; ++it) {
+      // Ctrl-C or SIGTERM: a frame with many sub-steps or slow iterations stops within one.
+      if (stopRequested()) {
+        result.ok = false;
+        result.stopped = true;
+        return result;
+      }
       d_.local = local;
       const NewtonOutcome n = newtonIteration(h, it, reuse, result);
       d_.local = false;

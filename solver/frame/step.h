@@ -109,6 +109,8 @@ StepSettings referenceSettings(StepSettings base);
 // One frame's figures (frame_statistics.h) and the colliders' forces.
 struct StepReport : FrameStatistics {
   std::vector<Vec3> contactForces;  // (nColliders) force of each collider on the body, N
+  // A stop was asked for within the frame (solver/io/stop_request.h): it was left unfinished.
+  bool stopped = false;
 };
 
 // Elastic energy of positions `x`; the gradient (3 nVerts) and, when `hessian` is given, the

@@ -309,9 +309,15 @@ struct Bounded {
   std::string err;
 };
 Bounded runBinaryWithin(const std::vector<std::string>& args, const fs::path& errFile,
-                        double seconds) {
+                        double seconds, rlim_t addressLimit = RLIM_INFINITY) {
   const pid_t pid = fork();
   if (pid == 0) {
+    if (addressLimit != RLIM_INFINITY) {
+      // ulimit -v, and OpenBLAS's threads as a user's environment leaves them.
+      const rlimit limit{addressLimit, addressLimit};
+      if (setrlimit(RLIMIT_AS, &limit) != 0) _exit(125);
+      unsetenv("OPENBLAS_NUM_THREADS");
+    }
     std::vector<char*> argv{const_cast<char*>(GALSCULPT_BINARY)};
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
@@ -333,6 +339,24 @@ Bounded runBinaryWithin(const std::vector<std::string>& args, const fs::path& er
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -2;
   r.err = test::readText(errFile);
   return r;
+}
+
+// Under an address-space limit (ulimit -v) a run ends, and says out of memory when its mesh does
+// not fit. Before, OpenBLAS's worker thread spun retrying its buffer and the process hung at exit
+// joining it, even after a refusal.
+TEST(HostileInput, AnAddressSpaceLimitEndsARunAndSaysWhenItIsTooSmall) {
+  test::TempDir dir;
+  const Bounded small = runBinaryWithin({"run", (kAssets / "scenes" / "default.json").string(),
+                                         "--frames", "2", "--out", (dir / "a").string()},
+                                        dir / "err.txt", 60.0, rlim_t(600) << 20);
+  EXPECT_EQ(small.code, kExitOk) << small.err;
+  const Bounded large =
+      runBinaryWithin({"run", (kAssets / "scenes" / "hanging_sphere.json").string(), "--frames",
+                       "2", "--out", (dir / "b").string()},
+                      dir / "err.txt", 60.0, rlim_t(180) << 20);
+  EXPECT_EQ(large.code, 1) << large.err;
+  EXPECT_NE(large.err.find("out of memory before starting: simulating"), std::string::npos)
+      << large.err;
 }
 
 // A disk that fills while a file is written: a file size limit (RLIMIT_FSIZE) makes every

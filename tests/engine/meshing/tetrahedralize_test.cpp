@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "solver/io/input_error.h"
+#include "solver/io/memory_limits.h"
 #include "solver/mesh/mesh_stats.h"
 #include "solver/mesh/shape_generators.h"
 #include "solver/mesh/surface_checks.h"
@@ -177,6 +178,30 @@ TEST(Tetrahedralize, AShellThatCrossesItselfIsMeshedAsTheRegionItEncloses) {
   EXPECT_NE(said[0].find("1 shell(s) crossing themselves remade as the region they enclose"),
             std::string::npos)
       << said[0];
+}
+
+TEST(Tetrahedralize, ACountNoMemoryHoldsIsRefusedBeforeTetGenStarts) {
+  // Two billion tets: about 1 TB for TetGen, said before any run (TetGen aborted with "signal
+  // 6, instance of 'int'" minutes into a 50M-tet request).
+  TetrahedralizeOptions o;
+  o.targetTets = 2000000000;
+  o.program = "/nonexistent/tetgen";  // never reached
+  EXPECT_THROW_WITH(tetrahedralize(makeIcosphere(1.0, 1), o), OutOfMemory,
+                    "out of memory before starting: meshing surface to 2000000000 tets "
+                    "(TetGen) needs about 1.0 TB; about ");
+  EXPECT_NO_THROW(checkMemoryForTets(1000, "small"));
+}
+
+TEST(Tetrahedralize, TetGenRunningOutOfMemoryIsSaidAsSuch) {
+  test::TempDir dir;
+  const auto fake = dir / "fake-tetgen";
+  test::writeText(fake, "#!/bin/sh\necho 'Error:  Out of memory.'\nkill -ABRT $$\n");
+  std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
+  TetrahedralizeOptions o;
+  o.targetTets = 100;
+  o.program = fake.string();
+  EXPECT_THROW_WITH(tetrahedralize(makeIcosphere(1.0, 1), o), std::runtime_error,
+                    "tetgen ran out of memory (crashed with signal 6");
 }
 
 TEST(Tetrahedralize, CrashAndTimeoutOfTheProgramAreReported) {

@@ -4,17 +4,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <limits>
 #include <map>
 
 #include <sstream>
 
+#include <sys/resource.h>
+#include <fstream>
+
 #include "engine/scene/scene_mesh.h"
 #include "solver/fem/tet_element.h"
+#include "solver/fracture/knife.h"
 #include "solver/frame/step.h"
 #include "solver/io/damage_io.h"
 #include "solver/io/input_error.h"
+#include "solver/io/memory_limits.h"
+#include "solver/io/stop_request.h"
 #include "solver/io/tetgen_io.h"
+#include "tests/engine/session/clay_ball.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
@@ -129,6 +137,77 @@ TEST(Simulation, PositionsAndVelocitiesAreSetOrRefusedWhole) {
                     "velocities[7]: not a finite number");
   EXPECT_EQ(sim.state().x, before.x) << "nothing changed";
   EXPECT_EQ(sim.state().v, before.v);
+}
+
+TEST(Simulation, AMeshNoMemoryHoldsIsRefusedBeforeTheModelIsBuilt) {
+  // The address space limited to what is mapped now and 4 MB more: the 5.9k-tet ball needs
+  // about 18 MB, said before anything is allocated for it.
+  test::TempDir dir;
+  const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + "}");
+  const TetMesh mesh = loadSceneMesh(scene);
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  std::uint64_t mappedKb = 0;
+  while (status >> key)
+    if (key == "VmSize:" && status >> mappedKb) break;
+  rlimit old{};
+  ASSERT_EQ(getrlimit(RLIMIT_AS, &old), 0);
+  rlimit tight = old;
+  tight.rlim_cur = mappedKb * 1024 + (4u << 20);
+  if (old.rlim_max != RLIM_INFINITY && tight.rlim_cur > old.rlim_max) GTEST_SKIP();
+  ASSERT_EQ(setrlimit(RLIMIT_AS, &tight), 0);
+  std::string what;
+  try {
+    Simulation sim(scene, mesh);
+  } catch (const OutOfMemory& e) {
+    what = e.what();
+  } catch (const std::bad_alloc&) {
+    what = "bad_alloc";
+  }
+  ASSERT_EQ(setrlimit(RLIMIT_AS, &old), 0);
+  EXPECT_NE(what.find("out of memory before starting: simulating " +
+                      std::to_string(mesh.numTets()) + " tets needs about 18 MB"),
+            std::string::npos)
+      << what;
+}
+
+// A stop poll that asks for SIGTERM on its 10th call (stop_request.h): between two Newton
+// iterations of a frame of many sub-steps.
+int stopOnTenthPoll() {
+  static int polls = 0;
+  return ++polls == 10 ? SIGTERM : 0;
+}
+
+TEST(Simulation, AStopWithinAFrameBringsBackTheLastWholeFrame) {
+  // The plastic clay ball cut through and falling, 20 sub-steps a frame: a stop asked for
+  // within the frame ends it unfinished, and the state is the last whole frame's, bit for bit
+  // (positions, velocities, time, damage, plastic shapes), as if the frame had not begun.
+  SceneDescription scene = test::clayBall().scene;
+  scene.substeps = 20;
+  Simulation sim(scene, test::clayBall().mesh);
+  sim.cut(sweptBladeSurface(Vec3(-0.2, 0.2, 0.02), Vec3(0.2, 0.2, 0.02), Vec3(-0.2, -0.2, 0.02),
+                            Vec3(0.2, -0.2, 0.02)));
+  sim.advance();
+  const SimulationSnapshot before = sim.snapshot();
+  setStopPoller(stopOnTenthPoll);
+  int signal = 0;
+  try {
+    sim.advance();
+  } catch (const Interrupted& e) {
+    signal = e.signal();
+  }
+  setStopPoller(nullptr);
+  clearStopRequest();
+  EXPECT_EQ(signal, SIGTERM);
+  EXPECT_EQ(sim.frame(), before.frame);
+  EXPECT_EQ(sim.state().x, before.x);
+  EXPECT_EQ(sim.state().v, before.v);
+  EXPECT_EQ(sim.state().time, before.time);
+  EXPECT_EQ(sim.state().damaged, before.damaged);
+  EXPECT_EQ(sim.state().plasticStrain, before.plasticStrain);
+  // And the frame runs whole afterwards.
+  EXPECT_TRUE(sim.advance().converged);
+  EXPECT_EQ(sim.frame(), before.frame + 1);
 }
 
 TEST(Simulation, HangingSphereSagsAndSettlesWithAnchorsHeld) {
