@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -61,6 +62,16 @@ class ScopedEnv {
 inline void writeText(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
+}
+
+// The address space this process has mapped (VmSize), bytes; 0 where it cannot be read.
+inline std::uint64_t mappedBytes() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  std::uint64_t kb = 0;
+  while (status >> key)
+    if (key == "VmSize:" && status >> kb) return kb * 1024;
+  return 0;
 }
 
 inline std::string readText(const std::filesystem::path& path) {

@@ -18,6 +18,7 @@
 #include "solver/io/tetgen_io.h"
 #include "solver/mesh/mesh_stats.h"
 #include "solver/mesh/surface_checks.h"
+#include "solver/mesh/surface_parts.h"
 #include "solver/mesh/union_find.h"
 
 namespace galsculpt {
@@ -153,21 +154,7 @@ ShellCensus censusOfShells(const TriMesh& mesh) {
     // The pairs found first may all be contact: each shell is checked on its own, so that a
     // crossing inside one is never hidden behind the cap.
     c.selfCrossings = 0;
-    std::vector<TriMesh> shells(c.shells);
-    std::vector<int> number(mesh.numVertices(), -1);
-    for (int f = 0; f < mesh.numFaces(); ++f) {
-      TriMesh& shell = shells[shellOfFace[f]];
-      Tri tri = mesh.faces[f];
-      for (int& v : tri) {
-        if (number[v] < 0) {
-          number[v] = shell.numVertices();
-          shell.vertices.push_back(mesh.vertices[v]);
-        }
-        v = number[v];
-      }
-      shell.faces.push_back(tri);
-    }
-    for (const TriMesh& shell : shells) {
+    for (const TriMesh& shell : splitByGroup(mesh, shellOfFace, c.shells)) {
       const size_t found = findSelfIntersections(shell, kMaxPairs).size();
       c.selfCrossings += found;
       c.selfCapped |= found >= kMaxPairs;

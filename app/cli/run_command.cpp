@@ -142,15 +142,24 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
   double worstPiece = 0.0;
   FrameMetrics last;
   const auto started = std::chrono::steady_clock::now();
+  // Between frames, or within one (the frame cut short is rolled back: Simulation::advance).
+  auto sayStopped = [&](int done) {
+    if (interactive) err << '\n';
+    err << "stopped after " << done << " of " << frames << " frames; " << metricsPath.string()
+        << " holds their rows\n";
+  };
   for (int f = 1; f <= frames; ++f) {
     if (stopRequested()) {
-      if (interactive) err << '\n';
-      err << "stopped after " << f - 1 << " of " << frames << " frames; " << metricsPath.string()
-          << " holds their rows\n";
+      sayStopped(f - 1);
       throwIfStopRequested();
     }
     const std::size_t notesBefore = sim.notes().size();
-    last = advance();
+    try {
+      last = advance();
+    } catch (const Interrupted&) {
+      sayStopped(f - 1);
+      throw;
+    }
     csv.append(metricsCsvRow(last) + '\n');
     for (std::size_t n = notesBefore; n < sim.notes().size(); ++n)
       err << "note: " << sim.notes()[n] << '\n';

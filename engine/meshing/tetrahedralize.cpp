@@ -19,6 +19,7 @@
 #include "solver/io/memory_limits.h"
 #include "solver/io/tetgen_io.h"
 #include "solver/mesh/surface_checks.h"
+#include "solver/mesh/surface_parts.h"
 #include "solver/mesh/surface_simplify.h"
 
 namespace galsculpt {
@@ -350,34 +351,6 @@ TetrahedralizeResult tetrahedralizeClean(const TriMesh& input,
   runs.fail();
 }
 
-// The faces of `surface` whose `group` is `which`, with their own numbering.
-TriMesh facesOf(const TriMesh& surface, const std::vector<int>& group, int which) {
-  TriMesh out;
-  std::vector<int> number(surface.numVertices(), -1);
-  for (int f = 0; f < surface.numFaces(); ++f) {
-    if (group[f] != which) continue;
-    Tri tri = surface.faces[f];
-    for (int& v : tri) {
-      if (number[v] < 0) {
-        number[v] = out.numVertices();
-        out.vertices.push_back(surface.vertices[v]);
-      }
-      v = number[v];
-    }
-    out.faces.push_back(tri);
-  }
-  return out;
-}
-
-void append(TriMesh& to, const TriMesh& part) {
-  const int base = to.numVertices();
-  to.vertices.insert(to.vertices.end(), part.vertices.begin(), part.vertices.end());
-  for (Tri f : part.faces) {
-    for (int& v : f) v += base;
-    to.faces.push_back(f);
-  }
-}
-
 // A shell that crosses itself, remade as the region it encloses (solidify.h) on a grid of its
 // median edge (what an export does with a folded piece).
 TriMesh solidifiedShell(const TriMesh& shell) {
@@ -417,7 +390,7 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
   double volumeBefore = 0.0, volumeAfter = 0.0;
   int remade = 0, remadeShells = 0;
   for (int s = 0; s < shells; ++s) {
-    TriMesh shell = facesOf(surface, shellOfFace, s);
+    TriMesh shell = facesOfGroup(surface, shellOfFace, s);
     if (selfCrossing[s]) {
       volumeBefore += enclosedVolume(shell);
       shell = solidifiedShell(shell);
@@ -425,7 +398,7 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
       ++remade;
       remadeShells += countSurfacePieces(shell);
     }
-    append(items, shell);
+    appendSurface(items, shell);
     itemOfFace.resize(items.faces.size(), s);
   }
   if (remade > 0) {
@@ -459,12 +432,9 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
   }
   std::vector<int> groupOfFace(items.faces.size());
   for (size_t f = 0; f < groupOfFace.size(); ++f) groupOfFace[f] = colour[itemOfFace[f]];
-  std::vector<TriMesh> groups;
+  const std::vector<TriMesh> groups = splitByGroup(items, groupOfFace, colours);
   double total = 0.0;
-  for (int c = 0; c < colours; ++c) {
-    groups.push_back(facesOf(items, groupOfFace, c));
-    total += enclosedVolume(groups.back());
-  }
+  for (const TriMesh& group : groups) total += enclosedVolume(group);
   {
     std::ostringstream line;
     line << options.surfaceName << ": " << shells << " shell(s), some through each other ("

@@ -6,6 +6,7 @@
 
 #include "engine/surface/solidify.h"
 #include "solver/mesh/surface_checks.h"
+#include "solver/mesh/surface_parts.h"
 
 namespace galsculpt {
 
@@ -283,20 +284,7 @@ void solidifyCrossingPieces(ExportedSurface& out, const std::vector<int>& pieceO
         out.droppedVolume += std::abs(volume[s]);
       }
     }
-    TriMesh kept;
-    std::vector<int> vertexNumber(solid.numVertices(), -1);
-    for (int f = 0; f < solid.numFaces(); ++f) {
-      if (shellOfFace[f] != keptShell) continue;
-      Tri tri = solid.faces[f];
-      for (int& v : tri) {
-        if (vertexNumber[v] < 0) {
-          vertexNumber[v] = kept.numVertices();
-          kept.vertices.push_back(solid.vertices[v]);
-        }
-        v = vertexNumber[v];
-      }
-      kept.faces.push_back(tri);
-    }
+    const TriMesh kept = facesOfGroup(solid, shellOfFace, keptShell);
     ++out.solidifiedPieces;
     out.solidifiedVolumeChange += enclosedVolume(kept) - enclosedVolume(shell.mesh);
     const int base = after.mesh.numVertices();

@@ -145,15 +145,10 @@ TEST(Simulation, AMeshNoMemoryHoldsIsRefusedBeforeTheModelIsBuilt) {
   test::TempDir dir;
   const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + "}");
   const TetMesh mesh = loadSceneMesh(scene);
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  std::uint64_t mappedKb = 0;
-  while (status >> key)
-    if (key == "VmSize:" && status >> mappedKb) break;
   rlimit old{};
   ASSERT_EQ(getrlimit(RLIMIT_AS, &old), 0);
   rlimit tight = old;
-  tight.rlim_cur = mappedKb * 1024 + (4u << 20);
+  tight.rlim_cur = test::mappedBytes() + (4u << 20);
   if (old.rlim_max != RLIM_INFINITY && tight.rlim_cur > old.rlim_max) GTEST_SKIP();
   ASSERT_EQ(setrlimit(RLIMIT_AS, &tight), 0);
   std::string what;

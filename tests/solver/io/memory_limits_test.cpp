@@ -3,8 +3,9 @@
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 
-#include <fstream>
 #include <string>
+
+#include "tests/test_util.h"
 
 namespace galsculpt {
 namespace {
@@ -22,16 +23,12 @@ TEST(MemoryLimits, TheAddressSpaceLimitBoundsWhatIsAvailable) {
   ASSERT_TRUE(before.has_value()) << "Linux has /proc/meminfo";
   EXPECT_GT(*before, 0u);
   // ulimit -v at what is mapped now plus 64 MB: about 64 MB is left.
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  std::uint64_t mappedKb = 0;
-  while (status >> key)
-    if (key == "VmSize:" && status >> mappedKb) break;
-  ASSERT_GT(mappedKb, 0u);
+  const std::uint64_t mapped = test::mappedBytes();
+  ASSERT_GT(mapped, 0u);
   rlimit old{};
   ASSERT_EQ(getrlimit(RLIMIT_AS, &old), 0);
   rlimit tight = old;
-  tight.rlim_cur = mappedKb * 1024 + (64u << 20);
+  tight.rlim_cur = mapped + (64u << 20);
   if (old.rlim_max != RLIM_INFINITY && tight.rlim_cur > old.rlim_max) GTEST_SKIP();
   ASSERT_EQ(setrlimit(RLIMIT_AS, &tight), 0);
   const std::optional<std::uint64_t> limited = availableMemoryBytes();
