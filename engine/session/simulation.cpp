@@ -646,14 +646,20 @@ FrameMetrics Simulation::advance() {
   // Kept to undo a frame that diverges: no NaN reaches the window, an export or the metrics.
   lastFinite_.first.assign(state_.x.begin(), state_.x.end());
   lastFinite_.second.assign(state_.v.begin(), state_.v.end());
-  // And the rest of the state, to leave nothing of a frame a stop cuts short.
+  // And the rest of the state, to leave nothing of a frame a stop cuts short. A frame of one
+  // sub-step with no fracture pass is rolled back by the solver itself (its sub-step's start is
+  // the frame's start); only more sub-steps or a fracture pass leave damage and plastic shapes
+  // to bring back.
   frameStart_.time = state_.time;
   frameStart_.colliders = state_.colliders;
-  frameStart_.damaged.assign(state_.damaged.begin(), state_.damaged.end());
-  frameStart_.crossing.assign(state_.crossing.begin(), state_.crossing.end());
-  frameStart_.plasticInverse.assign(state_.plasticInverse.begin(), state_.plasticInverse.end());
-  frameStart_.plasticStrain.assign(state_.plasticStrain.begin(), state_.plasticStrain.end());
   frameStart_.damageRevision = state_.damageRevision;
+  frameStart_.whole = settings_.substeps > 1 || model_.fracture.enabled;
+  if (frameStart_.whole) {
+    frameStart_.damaged.assign(state_.damaged.begin(), state_.damaged.end());
+    frameStart_.crossing.assign(state_.crossing.begin(), state_.crossing.end());
+    frameStart_.plasticInverse.assign(state_.plasticInverse.begin(), state_.plasticInverse.end());
+    frameStart_.plasticStrain.assign(state_.plasticStrain.begin(), state_.plasticStrain.end());
+  }
   StepReport r;
   try {
     r = backend_->step(state_, settings_);
@@ -672,9 +678,11 @@ FrameMetrics Simulation::advance() {
     std::copy(lastFinite_.second.begin(), lastFinite_.second.end(), state_.v.begin());
     state_.time = frameStart_.time;
     state_.colliders = frameStart_.colliders;
-    state_.plasticInverse = frameStart_.plasticInverse;
-    state_.plasticStrain = frameStart_.plasticStrain;
-    if (state_.damageRevision != frameStart_.damageRevision) {
+    if (frameStart_.whole) {
+      state_.plasticInverse = frameStart_.plasticInverse;
+      state_.plasticStrain = frameStart_.plasticStrain;
+    }
+    if (frameStart_.whole && state_.damageRevision != frameStart_.damageRevision) {
       state_.damaged = frameStart_.damaged;
       state_.crossing = frameStart_.crossing;
       ++state_.damageRevision;  // a new revision: whatever saw the frame's damage looks again

@@ -245,6 +245,7 @@ class Simulation {
     std::vector<Eigen::Matrix3d> plasticInverse;
     std::vector<double> plasticStrain;
     std::uint64_t damageRevision = 0;
+    bool whole = false;  // damage and plastic shapes kept too (advance says when)
   };
   FrameStart frameStart_;
   int divergedFrames_ = 0;  // each has a note, up to kDivergenceNotes (its warning counts all)

@@ -166,43 +166,50 @@ TEST(Simulation, AMeshNoMemoryHoldsIsRefusedBeforeTheModelIsBuilt) {
       << what;
 }
 
-// A stop poll that asks for SIGTERM on its 10th call (stop_request.h): between two Newton
-// iterations of a frame of many sub-steps.
-int stopOnTenthPoll() {
-  static int polls = 0;
-  return ++polls == 10 ? SIGTERM : 0;
+// A stop poll that asks for SIGTERM on its `stopAtPoll`-th call (stop_request.h): between two
+// Newton iterations within a frame.
+int polls = 0, stopAtPoll = 0;
+int stopOnACountedPoll() {
+  return ++polls == stopAtPoll ? SIGTERM : 0;
 }
 
 TEST(Simulation, AStopWithinAFrameBringsBackTheLastWholeFrame) {
-  // The plastic clay ball cut through and falling, 20 sub-steps a frame: a stop asked for
-  // within the frame ends it unfinished, and the state is the last whole frame's, bit for bit
-  // (positions, velocities, time, damage, plastic shapes), as if the frame had not begun.
-  SceneDescription scene = test::clayBall().scene;
-  scene.substeps = 20;
-  Simulation sim(scene, test::clayBall().mesh);
-  sim.cut(sweptBladeSurface(Vec3(-0.2, 0.2, 0.02), Vec3(0.2, 0.2, 0.02), Vec3(-0.2, -0.2, 0.02),
-                            Vec3(0.2, -0.2, 0.02)));
-  sim.advance();
-  const SimulationSnapshot before = sim.snapshot();
-  setStopPoller(stopOnTenthPoll);
-  int signal = 0;
-  try {
+  // The plastic clay ball cut through and falling: a stop asked for within a frame ends it
+  // unfinished, and the state is the last whole frame's, bit for bit (positions, velocities,
+  // time, damage, plastic shapes), as if the frame had not begun. With 20 sub-steps a frame
+  // (the stop after several accepted ones) and with one (the solver's own roll-back).
+  for (const auto& [substeps, poll] : {std::pair{20, 10}, std::pair{1, 2}}) {
+    SCOPED_TRACE(substeps);
+    SceneDescription scene = test::clayBall().scene;
+    scene.substeps = substeps;
+    Simulation sim(scene, test::clayBall().mesh);
+    sim.cut(sweptBladeSurface(Vec3(-0.2, 0.2, 0.02), Vec3(0.2, 0.2, 0.02), Vec3(-0.2, -0.2, 0.02),
+                              Vec3(0.2, -0.2, 0.02)));
     sim.advance();
-  } catch (const Interrupted& e) {
-    signal = e.signal();
+    const SimulationSnapshot before = sim.snapshot();
+    polls = 0;
+    stopAtPoll = poll;
+    setStopPoller(stopOnACountedPoll);
+    int signal = 0;
+    try {
+      sim.advance();
+    } catch (const Interrupted& e) {
+      signal = e.signal();
+    }
+    setStopPoller(nullptr);
+    clearStopRequest();
+    EXPECT_EQ(signal, SIGTERM);
+    EXPECT_EQ(sim.frame(), before.frame);
+    EXPECT_EQ(sim.state().x, before.x);
+    EXPECT_EQ(sim.state().v, before.v);
+    EXPECT_EQ(sim.state().time, before.time);
+    EXPECT_EQ(sim.state().damaged, before.damaged);
+    EXPECT_EQ(sim.state().plasticStrain, before.plasticStrain);
+    EXPECT_EQ(sim.state().plasticInverse, before.plasticInverse);
+    // And the frame runs whole afterwards.
+    EXPECT_TRUE(sim.advance().converged);
+    EXPECT_EQ(sim.frame(), before.frame + 1);
   }
-  setStopPoller(nullptr);
-  clearStopRequest();
-  EXPECT_EQ(signal, SIGTERM);
-  EXPECT_EQ(sim.frame(), before.frame);
-  EXPECT_EQ(sim.state().x, before.x);
-  EXPECT_EQ(sim.state().v, before.v);
-  EXPECT_EQ(sim.state().time, before.time);
-  EXPECT_EQ(sim.state().damaged, before.damaged);
-  EXPECT_EQ(sim.state().plasticStrain, before.plasticStrain);
-  // And the frame runs whole afterwards.
-  EXPECT_TRUE(sim.advance().converged);
-  EXPECT_EQ(sim.frame(), before.frame + 1);
 }
 
 TEST(Simulation, HangingSphereSagsAndSettlesWithAnchorsHeld) {
