@@ -263,12 +263,7 @@ void solidifyCrossingPieces(ExportedSurface& out, const std::vector<int>& pieceO
             ? -1
             : static_cast<int>(std::max_element(volume.begin(), volume.end()) - volume.begin());
     if (keptShell < 0 || !(volume[keptShell] > 0.0)) {  // thinner than the grid: left as it was
-      const int base = after.mesh.numVertices();
-      for (const Vec3& p : shell.mesh.vertices) after.mesh.vertices.push_back(p);
-      for (Tri f : shell.mesh.faces) {
-        for (int& v : f) v += base;
-        after.mesh.faces.push_back(f);
-      }
+      appendSurface(after.mesh, shell.mesh);
       after.tags.insert(after.tags.end(), shell.tags.begin(), shell.tags.end());
       after.cellVertex.insert(after.cellVertex.end(), shell.cellVertex.begin(),
                               shell.cellVertex.end());
@@ -287,15 +282,9 @@ void solidifyCrossingPieces(ExportedSurface& out, const std::vector<int>& pieceO
     const TriMesh kept = facesOfGroup(solid, shellOfFace, keptShell);
     ++out.solidifiedPieces;
     out.solidifiedVolumeChange += enclosedVolume(kept) - enclosedVolume(shell.mesh);
-    const int base = after.mesh.numVertices();
-    after.mesh.vertices.insert(after.mesh.vertices.end(), kept.vertices.begin(),
-                               kept.vertices.end());
-    for (Tri f : kept.faces) {
-      for (int& v : f) v += base;
-      after.mesh.faces.push_back(f);
-      after.tags.push_back(SurfaceTag::Outer);
-      after.cellVertex.push_back(shell.cellVertex[0]);
-    }
+    appendSurface(after.mesh, kept);
+    after.tags.resize(after.mesh.faces.size(), SurfaceTag::Outer);
+    after.cellVertex.resize(after.mesh.faces.size(), shell.cellVertex[0]);
   }
   out.surface = std::move(after);
   out.crossings = 0;
