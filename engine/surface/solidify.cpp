@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/surface/surface_bvh.h"
+#include "solver/mesh/exact_predicates.h"
 
 namespace galsculpt {
 
@@ -50,6 +51,14 @@ double orient2(double ax, double ay, double bx, double by, double px, double py)
   return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
 }
 
+// The sign of orient2 (u, v, (px, py)) exactly: the plane z = 0 lifted against a point above
+// it (exact_predicates.h's orient3d is negative where the three points turn counter-clockwise
+// seen from above).
+int exactOrient2(const Vec3& u, const Vec3& v, double px, double py) {
+  return -orient3d(Vec3(u.x(), u.y(), 0.0), Vec3(v.x(), v.y(), 0.0), Vec3(px, py, 0.0),
+                   Vec3(u.x(), u.y(), 1.0));
+}
+
 // Of a counter-clockwise triangle's edge u -> v: whether a point on it counts as inside (the
 // top-left rule), so that a column through an edge two faces share crosses exactly one of them.
 bool topLeft(double ux, double uy, double vx, double vy) {
@@ -86,13 +95,17 @@ std::vector<int> windingNumbers(const TriMesh& surface, const Grid& grid) {
       const double py = grid.origin.y() + grid.cell * static_cast<double>(j);
       for (long long i = i0; i <= i1; ++i) {
         const double px = grid.origin.x() + grid.cell * static_cast<double>(i);
-        const double wa = orient2(b.x(), b.y(), c.x(), c.y(), px, py);
-        const double wb = orient2(c.x(), c.y(), a.x(), a.y(), px, py);
-        const double wc = orient2(a.x(), a.y(), b.x(), b.y(), px, py);
-        const bool inside = (wa > 0.0 || (wa == 0.0 && topLeft(b.x(), b.y(), c.x(), c.y()))) &&
-                            (wb > 0.0 || (wb == 0.0 && topLeft(c.x(), c.y(), a.x(), a.y()))) &&
-                            (wc > 0.0 || (wc == 0.0 && topLeft(a.x(), a.y(), b.x(), b.y())));
+        // Inside by exact signs (a column through an edge two faces share is decided alike for
+        // both), the crossing's height by floating-point weights.
+        const int sa = exactOrient2(b, c, px, py), sb = exactOrient2(c, a, px, py),
+                  sc = exactOrient2(a, b, px, py);
+        const bool inside = (sa > 0 || (sa == 0 && topLeft(b.x(), b.y(), c.x(), c.y()))) &&
+                            (sb > 0 || (sb == 0 && topLeft(c.x(), c.y(), a.x(), a.y()))) &&
+                            (sc > 0 || (sc == 0 && topLeft(a.x(), a.y(), b.x(), b.y())));
         if (!inside) continue;
+        const double wa = std::max(0.0, orient2(b.x(), b.y(), c.x(), c.y(), px, py));
+        const double wb = std::max(0.0, orient2(c.x(), c.y(), a.x(), a.y(), px, py));
+        const double wc = std::max(0.0, orient2(a.x(), a.y(), b.x(), b.y(), px, py));
         const double sum = wa + wb + wc;
         if (!(sum > 0.0)) continue;
         const double z = (wa * a.z() + wb * b.z() + wc * c.z()) / sum;

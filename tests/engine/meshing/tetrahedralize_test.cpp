@@ -192,30 +192,32 @@ TEST(Tetrahedralize, ACountNoMemoryHoldsIsRefusedBeforeTetGenStarts) {
   EXPECT_NO_THROW(checkMemoryForTets(1000, "small"));
 }
 
-TEST(Tetrahedralize, TetGenRunningOutOfMemoryIsSaidAsSuch) {
-  test::TempDir dir;
+// A stand-in for the tetgen program: a shell script of `body` in `dir`; options for 100 tets
+// that run it.
+TetrahedralizeOptions fakeTetgen(const test::TempDir& dir, const std::string& body) {
   const auto fake = dir / "fake-tetgen";
-  test::writeText(fake, "#!/bin/sh\necho 'Error:  Out of memory.'\nkill -ABRT $$\n");
+  test::writeText(fake, "#!/bin/sh\n" + body);
   std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
   TetrahedralizeOptions o;
   o.targetTets = 100;
   o.program = fake.string();
+  return o;
+}
+
+TEST(Tetrahedralize, TetGenRunningOutOfMemoryIsSaidAsSuch) {
+  test::TempDir dir;
+  const TetrahedralizeOptions o = fakeTetgen(dir, "echo 'Error:  Out of memory.'\nkill -ABRT $$\n");
   EXPECT_THROW_WITH(tetrahedralize(makeIcosphere(1.0, 1), o), std::runtime_error,
                     "tetgen ran out of memory (crashed with signal 6");
 }
 
 TEST(Tetrahedralize, CrashAndTimeoutOfTheProgramAreReported) {
   test::TempDir dir;
-  const auto fake = dir / "fake-tetgen";
-  test::writeText(fake, "#!/bin/sh\nkill -ABRT $$\n");
-  std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
-  TetrahedralizeOptions o;
-  o.targetTets = 100;
-  o.program = fake.string();
+  TetrahedralizeOptions o = fakeTetgen(dir, "kill -ABRT $$\n");
   EXPECT_THROW_WITH(tetrahedralize(makeIcosphere(1.0, 1), o), std::runtime_error,
                     "crashed with signal 6");
 
-  test::writeText(fake, "#!/bin/sh\nsleep 20\n");
+  o = fakeTetgen(dir, "sleep 20\n");
   o.timeoutSeconds = 0.5;
   EXPECT_THROW_WITH(tetrahedralize(makeIcosphere(1.0, 1), o), std::runtime_error, "timed out");
 
