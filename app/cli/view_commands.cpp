@@ -138,7 +138,7 @@ int openCommand(const std::vector<std::string>& args, std::ostream& out, std::os
   const CliArgs a(args, commandSpec("open"));
   applyThreadsOption(a);
   const SolverOverrides solver = solverOverrides(a);
-  const fs::path file = a.positional()[0];
+  const fs::path file = a.positional().empty() ? defaultScenePath() : a.positional()[0];
   requirePathExists(file);
   bool headless = a.has("--headless");
   if (!headless && !haveDisplay()) {

@@ -28,6 +28,15 @@ TEST(Cli, SceneCheck) {
   EXPECT_NE(r.out.find("tets\n"), std::string::npos);
 }
 
+// `open` with no FILE opens the default scene, as its usage says (it read past the end of its
+// operands and crashed).
+TEST(Cli, OpenWithNoFileOpensTheDefaultScene) {
+  test::TempDir dir;
+  const CliRun r = run({"open", "--headless", "--out", (dir / "v").string(), "--size", "64x40"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "v" / "view_front.png")) << r.out;
+}
+
 // A tet mesh exported with its damage shows its cracks (render, open): the cut ball's two
 // halves are two closed shells; the same mesh without its .damage is one.
 TEST(Cli, ATetMeshWithItsDamageBesideItShowsCracked) {
