@@ -24,6 +24,7 @@
 #include <string>
 #include <thread>
 
+#include "app/cli/bench.h"
 #include "app/cli/cli.h"
 #include "app/cli/cli_args.h"
 #include "app/cli/command_table.h"
@@ -439,26 +440,25 @@ std::string row(const nlohmann::json& r) {
 }
 
 // The scenes asked for: by name, the quick pair, the sphere for --cracks, or all of them.
-std::vector<BenchScene> benchScenes(const CliArgs& a) {
+std::vector<BenchScene> benchScenes(const BenchOptions& o) {
   std::vector<BenchScene> scenes;
-  if (auto list = a.value("--scene")) {
-    // NAME[,NAME...]: those scenes, in the order given.
-    std::stringstream names(*list);
-    for (std::string name; std::getline(names, name, ',');) {
+  if (!o.scenes.empty()) {
+    // Those scenes, in the order given.
+    for (const std::string& name : o.scenes) {
       const size_t before = scenes.size();
       for (const BenchScene& s : kScenes) {
         if (name == s.name) scenes.push_back(s);
       }
       if (scenes.size() == before)
-        throw UsageError("unknown scene '" + name + "' (" + sceneNames() + ")");
+        throw UsageError("--scene: unknown scene '" + name + "'" +
+                         didYouMean(name, benchSceneNames()) + " (" + sceneNames() + ")");
     }
-    if (scenes.empty()) throw UsageError("--scene names no scene");
     for (const BenchScene& s : scenes)
-      if (s.cuts > 0 && a.has("--cracks"))
+      if (s.cuts > 0 && o.cracks)
         throw UsageError(std::string("--cracks makes its own cuts: not with ") + s.name);
-  } else if (a.has("--quick") || a.has("--cracks")) {
-    scenes = a.has("--cracks") ? std::vector<BenchScene>{kScenes[0]}
-                               : std::vector<BenchScene>{kScenes[0], kScenes[1]};
+  } else if (o.quick || o.cracks) {
+    scenes = o.cracks ? std::vector<BenchScene>{kScenes[0]}
+                      : std::vector<BenchScene>{kScenes[0], kScenes[1]};
   } else {
     scenes.assign(std::begin(kScenes), std::end(kScenes));
   }
@@ -513,9 +513,12 @@ std::vector<Setting> benchSettings(const SceneDescription& scene, bool cracks, b
 // --settle N[,N...]: where each measured window starts, in frames after the cuts: ascending, each
 // window (`frames` long) ended before the next starts. Several only with --cracks: the other
 // rows compare each window with a reference run that has one.
-std::vector<int> settleOption(const CliArgs& args, int frames) {
-  const std::vector<int> settles = args.intListValue("--settle", {0}, 0, 100000);
-  if (settles.size() > 1 && !args.has("--cracks"))
+void checkSettles(const std::vector<int>& settles, int frames, bool cracks) {
+  if (settles.empty()) throw UsageError("--settle names no frame count");
+  for (const int settle : settles)
+    if (settle < 0 || settle > 100000)
+      throw UsageError("--settle expects counts in [0, 100000], got " + std::to_string(settle));
+  if (settles.size() > 1 && !cracks)
     throw UsageError("--settle takes several counts only with --cracks");
   for (size_t k = 1; k < settles.size(); ++k) {
     if (settles[k] < settles[k - 1] + frames)
@@ -524,7 +527,6 @@ std::vector<int> settleOption(const CliArgs& args, int frames) {
                        std::to_string(settles[k - 1]) + " + " + std::to_string(frames) +
                        " frames) has ended");
   }
-  return settles;
 }
 
 // With several windows, each cut count's cost against the uncut frame in every window, and the
@@ -609,18 +611,23 @@ class ReferenceCache {
 
 }  // namespace
 
-int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  const CliArgs a(args, commandSpec("bench"));
-  applyThreadsOption(a);
-  SolverOverrides solver = solverOverrides(a);
-  const std::optional<DebrisRule> debris = debrisOption(a);
-  if (const std::optional<SolverPreset> preset = presetOption(a))
-    solver.insert(solver.begin(), {"preset", enumName(*preset)});
-  const bool quick = a.has("--quick");
-  const int frames = a.intValue("--frames", quick ? 20 : 60, 1, 100000);
-  const std::vector<int> settles = settleOption(a, frames);
-  const std::vector<BenchScene> scenes = benchScenes(a);
-  const std::optional<std::string> referenceDir = a.value("--reference-dir");
+std::vector<std::string> benchSceneNames() {
+  std::vector<std::string> names;
+  for (const BenchScene& s : kScenes) names.push_back(s.name);
+  return names;
+}
+
+nlohmann::json runBench(const BenchOptions& o, std::ostream& out, std::ostream& err) {
+  SolverOverrides solver = o.solver;
+  const std::optional<DebrisRule> debris = o.debris;
+  if (o.preset) solver.insert(solver.begin(), {"preset", enumName(*o.preset)});
+  if (o.frames < 0 || o.frames > 100000)
+    throw UsageError("--frames expects an integer in [1, 100000], got " + std::to_string(o.frames));
+  const int frames = o.frames != 0 ? o.frames : o.quick ? 20 : 60;
+  const std::vector<int>& settles = o.settles;
+  checkSettles(settles, frames, o.cracks);
+  const std::vector<BenchScene> scenes = benchScenes(o);
+  const std::optional<std::string>& referenceDir = o.referenceDir;
   if (referenceDir) fs::create_directories(*referenceDir);
   std::string pattern = (fs::temp_directory_path() / "galsculpt-bench-XXXXXX").string();
   if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder");
@@ -628,8 +635,7 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
 
   // Progress on standard error: measurements done of all, the time elapsed and left.
   auto settingsOf = [&](const SceneDescription& scene, const BenchScene& bs) {
-    return benchSettings(scene, a.has("--cracks"),
-                         a.has("--sweep") && std::string(bs.name) == "sphere");
+    return benchSettings(scene, o.cracks, o.sweep && std::string(bs.name) == "sphere");
   };
   int measurements = 0, measured = 0;
   for (const BenchScene& bs : scenes) {
@@ -704,16 +710,39 @@ int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::o
                          out);
   }
   fs::remove_all(scratch);
-  if (auto json = a.value("--json")) {
-    const nlohmann::json doc{
-        {"machine", {{"cores", static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN))}}},
-        {"frames", frames},
-        {"settle_frames", settles.front()},
-        {"settle_windows", settles},
-        {"results", results}};
-    writeFileAtomically(*json, [&](std::ostream& o) { o << doc.dump(2) << '\n'; });
-    out << "wrote " << *json << '\n';
+  const nlohmann::json doc{
+      {"machine", {{"cores", static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN))}}},
+      {"frames", frames},
+      {"settle_frames", settles.front()},
+      {"settle_windows", settles},
+      {"results", results}};
+  if (o.json) {
+    writeFileAtomically(*o.json, [&](std::ostream& file) { file << doc.dump(2) << '\n'; });
+    out << "wrote " << *o.json << '\n';
   }
+  return doc;
+}
+
+int benchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  const CliArgs a(args, commandSpec("bench"));
+  applyThreadsOption(a);
+  BenchOptions o;
+  if (const auto list = a.value("--scene")) {
+    std::stringstream names(*list);
+    for (std::string name; std::getline(names, name, ',');) o.scenes.push_back(name);
+    if (o.scenes.empty()) throw UsageError("--scene names no scene");
+  }
+  o.quick = a.has("--quick");
+  o.sweep = a.has("--sweep");
+  o.cracks = a.has("--cracks");
+  o.frames = a.intValue("--frames", 0, 1, 100000);
+  o.settles = a.intListValue("--settle", {0}, 0, 100000);
+  o.preset = presetOption(a);
+  o.debris = debrisOption(a);
+  o.solver = solverOverrides(a);
+  o.referenceDir = a.value("--reference-dir");
+  o.json = a.value("--json");
+  runBench(o, out, err);
   return kExitOk;
 }
 

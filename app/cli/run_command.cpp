@@ -18,6 +18,7 @@
 #include "app/cli/cli_args.h"
 #include "app/cli/command_table.h"
 #include "app/cli/progress_text.h"
+#include "app/cli/run_command.h"
 #include "app/cli/run_outputs.h"
 #include "app/render/render_mesh.h"
 #include "app/render/snapshot_renderer.h"
@@ -69,17 +70,6 @@ std::string frameName(int frame, const std::string& extension) {
   return s.str();
 }
 
-// What run and play share: where outputs go, how often surfaces are exported, which solver.
-struct RunOptions {
-  fs::path outDir, metricsPath;
-  int exportEvery = 0;
-  std::string exportFormat = "obj";  // obj, ply, stl, gltf or glb
-  bool exportTets = false;
-  int pngEvery = 0;  // render the surface offscreen every K frames (0: never)
-  int width = 1280, height = 800;
-  SolverChoice solver = SolverChoice::FromScene;
-};
-
 // Offscreen snapshots of the visualization surface (crack faces tinted, anchored vertices as
 // blue dots), framed on the body at rest and seen from the standard perspective view (the
 // camera's default angles) - or from a script's latest camera event.
@@ -104,13 +94,15 @@ class FrameRenderer {
 };
 
 // The frame loop shared by run and play: metrics CSV, surface exports, final.obj, summary.
-int simulateFrames(const std::string& name, int frames, Simulation& sim, const RunOptions& o,
-                   const std::function<FrameMetrics()>& advance, std::ostream& out,
-                   std::ostream& err, const std::function<std::optional<CameraPose>()>& camera = {},
-                   const std::function<std::vector<std::string>()>& toolReports = {}) {
+RunSummary simulateFrames(const std::string& name, int frames, Simulation& sim, const RunOptions& o,
+                          const std::function<FrameMetrics()>& advance, std::ostream& out,
+                          std::ostream& err, const FrameSink& onFrame = {},
+                          const std::function<std::optional<CameraPose>()>& camera = {},
+                          const std::function<std::vector<std::string>()>& toolReports = {}) {
+  checkRunOptions(o);
   auto pose = [&camera]() -> std::optional<CameraPose> { return camera ? camera() : std::nullopt; };
   const fs::path& outDir = o.outDir;
-  const fs::path& metricsPath = o.metricsPath;
+  const fs::path metricsPath = o.metricsPath.empty() ? outDir / "metrics.csv" : o.metricsPath;
   const int exportEvery = o.exportEvery;
   std::unique_ptr<FrameRenderer> pictures;
   if (o.pngEvery > 0) pictures = std::make_unique<FrameRenderer>(sim, o.width, o.height);
@@ -161,6 +153,7 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
       throw;
     }
     csv.append(metricsCsvRow(last) + '\n');
+    if (onFrame) onFrame(last);
     for (std::size_t n = notesBefore; n < sim.notes().size(); ++n)
       err << "note: " << sim.notes()[n] << '\n';
     msSum += last.msTotal;
@@ -225,17 +218,20 @@ int simulateFrames(const std::string& name, int frames, Simulation& sim, const R
   if (pieceFrames > 0)
     err << "note: " << pieceFrames << " frame(s) left a piece above the residual tolerance of its "
         << "own loads (worst " << worstPiece << "; metrics column piece_residual)\n";
-  return kExitOk;
+  RunSummary summary;
+  summary.name = name;
+  summary.frames = frames;
+  summary.warnings = warnings;
+  summary.metricsPath = metricsPath;
+  summary.finalSurface = outDir / "final.obj";
+  summary.written = std::move(written);
+  return summary;
 }
 
 RunOptions readRunOptions(const CliArgs& a) {
   RunOptions o;
   o.exportEvery = a.intValue("--export-every", 0, 1, 10000000);
   o.exportFormat = a.value("--export-format").value_or("obj");
-  if (o.exportFormat != "obj" && o.exportFormat != "ply" && o.exportFormat != "stl" &&
-      o.exportFormat != "gltf" && o.exportFormat != "glb") {
-    throw UsageError("--export-format must be obj, ply, stl, gltf or glb");
-  }
   o.exportTets = a.has("--export-tets");
   o.pngEvery = a.intValue("--png-every", 0, 1, 10000000);
   std::tie(o.width, o.height) = a.sizeValue("--size", {1280, 800});
@@ -244,7 +240,7 @@ RunOptions readRunOptions(const CliArgs& a) {
     throw UsageError("--solver must be 'reference' (or omitted)");
   o.solver = solver == "reference" ? SolverChoice::Reference : SolverChoice::FromScene;
   o.outDir = *a.value("--out");
-  o.metricsPath = a.value("--metrics").value_or((o.outDir / "metrics.csv").string());
+  o.metricsPath = a.value("--metrics").value_or("");
   return o;
 }
 
@@ -254,36 +250,58 @@ TetMesh loadMeshReporting(const SceneDescription& scene, std::ostream& err) {
 
 }  // namespace
 
+void checkRunOptions(const RunOptions& o) {
+  if (o.outDir.empty()) throw UsageError("--out must name a folder");
+  if (o.exportFormat != "obj" && o.exportFormat != "ply" && o.exportFormat != "stl" &&
+      o.exportFormat != "gltf" && o.exportFormat != "glb") {
+    throw UsageError("--export-format must be obj, ply, stl, gltf or glb, got '" + o.exportFormat +
+                     "'");
+  }
+  if (o.exportEvery < 0) throw UsageError("--export-every must be at least 0 (0: never)");
+  if (o.pngEvery < 0) throw UsageError("--png-every must be at least 0 (0: never)");
+  // (the bounds --size's reader keeps: app/cli/cli_args.cpp)
+  if (o.width < 16 || o.height < 16 || o.width > 8192 || o.height > 8192)
+    throw UsageError("--size expects WIDTHxHEIGHT between 16 and 8192, got " +
+                     std::to_string(o.width) + "x" + std::to_string(o.height));
+}
+
+RunSummary playScript(const std::string& scriptPath, const RunOptions& o,
+                      const SolverOverrides& solver, std::ostream& out, std::ostream& err,
+                      const FrameSink& onFrame) {
+  checkRunOptions(o);
+  PlaybackScript script = loadPlaybackScript(scriptPath);
+  script.scene = withSolverOverrides(script.scene, solver);
+  Simulation sim(script.scene, loadMeshReporting(script.scene, err), o.solver);
+  Playback playback(script, sim);
+  return simulateFrames(
+      script.scene.name, script.frames, sim, o, [&playback] { return playback.advance(); }, out,
+      err, onFrame, [&playback] { return playback.camera(); },
+      [&playback, &scriptPath] {
+        std::vector<std::string> reports = playback.takeIdleReports();
+        for (std::string& r : reports) r = scriptPath + ": " + r;
+        return reports;
+      });
+}
+
 int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args, commandSpec("run"));
   applyThreadsOption(a);
   const RunOptions o = readRunOptions(a);
+  checkRunOptions(o);
   const int frames = a.intValue("--frames", 0, 1, 10000000);
   const SolverOverrides solver = solverOverrides(a);
   const SceneDescription scene = withSolverOverrides(loadScene(a.positional()[0]), solver);
   Simulation sim(scene, loadMeshReporting(scene, err), o.solver);
-  return simulateFrames(
+  simulateFrames(
       scene.name, frames, sim, o, [&sim] { return sim.advance(); }, out, err);
+  return kExitOk;
 }
 
 int playCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const CliArgs a(args, commandSpec("play"));
   applyThreadsOption(a);
-  const RunOptions o = readRunOptions(a);
-  const SolverOverrides solver = solverOverrides(a);
-  PlaybackScript script = loadPlaybackScript(a.positional()[0]);
-  script.scene = withSolverOverrides(script.scene, solver);
-  Simulation sim(script.scene, loadMeshReporting(script.scene, err), o.solver);
-  Playback playback(script, sim);
-  const std::string file = a.positional()[0];
-  return simulateFrames(
-      script.scene.name, script.frames, sim, o, [&playback] { return playback.advance(); }, out,
-      err, [&playback] { return playback.camera(); },
-      [&playback, &file] {
-        std::vector<std::string> reports = playback.takeIdleReports();
-        for (std::string& r : reports) r = file + ": " + r;
-        return reports;
-      });
+  playScript(a.positional()[0], readRunOptions(a), solverOverrides(a), out, err);
+  return kExitOk;
 }
 
 }  // namespace galsculpt

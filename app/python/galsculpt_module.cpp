@@ -7,12 +7,13 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
-#include <atomic>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,12 +21,15 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include "app/cli/bench.h"
 #include "app/cli/cli.h"
 #include "app/cli/cli_args.h"
+#include "app/cli/run_command.h"
 #include "engine/scene/solver_options_json.h"
 #include "engine/session/project_file.h"
 #include "engine/session/session_loader.h"
 #include "engine/surface/surface_io.h"
+#include "solver/frame/parallel.h"
 #include "solver/io/input_error.h"
 #include "solver/io/memory_limits.h"
 #include "solver/io/stop_request.h"
@@ -318,97 +322,160 @@ int pythonStopPoll() {
   return PyErr_CheckSignals() != 0 ? SIGINT : 0;
 }
 
-// A CLI command in this process, without the GIL: its standard output, or the error it exits
-// with as an exception.
-std::string runCommandLine(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  int code = 0;
-  {
-    // Ctrl-C reaches the command's loops, which stop between frames (or TetGen runs) as on the
-    // command line; Python's KeyboardInterrupt is raised when it returns.
-    setStopPoller(pythonStopPoll);
-    py::gil_scoped_release released;
-    code = runCli(args, out, err);
-  }
-  setStopPoller(nullptr);
-  clearStopRequest();
-  if (PyErr_Occurred()) throw py::error_already_set();
-  if (code == kExitOk) return out.str();
-  // The command's last words, less its "galsculpt: error: " prefix.
-  std::string message = err.str();
-  for (const std::string prefix : {"galsculpt: error: ", "galsculpt: "})
-    if (const size_t at = message.rfind(prefix); at != std::string::npos) {
-      message = message.substr(at + prefix.size());
-      break;
-    }
-  while (!message.empty() && message.back() == '\n') message.pop_back();
-  if (code == kExitOutput) raise(PyExc_OSError, message);
-  if (code == kExitUsage || code == kExitBadInput) throw py::value_error(message);
-  throw std::runtime_error(message);
-}
-
-// Keyword arguments as the command line's flags: `threads=2` is `--threads 2`, `solver_option=
-// {"newton_iters": 3}` is `--solver-option newton_iters=3`, `export_tets=True` is the bare flag
-// (False and None leave it out), a list is comma-separated. The command checks them as it
-// checks its own (an unknown one is a ValueError naming it).
-std::vector<std::string> commandFlags(const py::kwargs& flags) {
-  std::vector<std::string> args;
-  const auto text = [](const py::handle& v) -> std::string {
-    if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
-    return py::str(v).cast<std::string>();
-  };
-  for (const auto& [key, value] : flags) {
-    std::string flag = "--" + key.cast<std::string>();
-    std::replace(flag.begin() + 2, flag.end(), '_', '-');
-    if (value.is_none() || (py::isinstance<py::bool_>(value) && !value.cast<bool>())) continue;
-    if (py::isinstance<py::bool_>(value)) {
-      args.push_back(flag);
+// A usage message as Python names the keyword: `--export-every` is `export_every`.
+std::string pythonKeywords(const std::string& message) {
+  std::string text;
+  for (size_t i = 0; i < message.size(); ++i) {
+    const bool flag = message.compare(i, 2, "--") == 0 && i + 2 < message.size() &&
+                      std::islower(static_cast<unsigned char>(message[i + 2])) &&
+                      (i == 0 || !std::isalnum(static_cast<unsigned char>(message[i - 1])));
+    if (!flag) {
+      text.push_back(message[i]);
       continue;
     }
-    std::string joined;
-    // Appended piece by piece (GCC 12 warns of a restrict overlap, wrongly, in `"," + text`).
-    auto add = [&joined](const std::string& item) {
-      if (!joined.empty()) joined.push_back(',');
-      joined.append(item);
-    };
-    if (py::isinstance<py::dict>(value)) {
-      for (const auto& [k, v] : value.cast<py::dict>()) add(text(k) + "=" + text(v));
-    } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
-      for (const py::handle& v : value) add(text(v));
-    } else {
-      joined = text(value);
-    }
-    args.insert(args.end(), {flag, joined});
+    for (i += 2; i < message.size() &&
+                 (std::isalnum(static_cast<unsigned char>(message[i])) || message[i] == '-');
+         ++i)
+      text.push_back(message[i] == '-' ? '_' : message[i]);
+    --i;
   }
-  return args;
+  return text;
 }
 
-// A metrics CSV as a list of dicts (numbers as numbers).
-py::list readMetrics(const fs::path& file) {
-  py::list rows;
-  std::ifstream in(file);
-  std::string header, line;
-  if (!std::getline(in, header)) return rows;
-  std::vector<std::string> names;
-  for (std::istringstream h(header); std::getline(h, line, ',');) names.push_back(line);
-  while (std::getline(in, line)) {
-    py::dict row;
-    std::istringstream cells(line);
-    std::string cell;
-    for (const std::string& name : names) {
-      std::getline(cells, cell, ',');
-      // Every column is a number (integers stay integers); anything else stays text.
-      const nlohmann::json value = nlohmann::json::parse(cell, nullptr, false);
-      if (value.is_number_integer())
-        row[name.c_str()] = value.get<long long>();
-      else if (value.is_number())
-        row[name.c_str()] = value.get<double>();
-      else
-        row[name.c_str()] = cell;
+// A command's work (play, bench) in this process without the GIL, with `threads` CPU threads for
+// its time when given. Ctrl-C reaches its loops, which stop as on the command line (between
+// frames or Newton iterations, outputs whole) and raise KeyboardInterrupt; a usage error is a
+// ValueError naming the keyword; other errors as the module's translator maps them.
+template <typename Work>
+auto runCommandWork(const std::optional<int>& threads, Work&& work) {
+  if (threads && (*threads < 1 || *threads > 1024))
+    throw py::value_error("threads expects an integer in [1, 1024], got " +
+                          std::to_string(*threads));
+  struct Restore {
+    int threads = threadCount();
+    ~Restore() {
+      setStopPoller(nullptr);
+      clearStopRequest();
+      setThreadCount(threads);
     }
-    rows.append(row);
+  } restore;
+  if (threads) setThreadCount(*threads);
+  setStopPoller(pythonStopPoll);
+  try {
+    py::gil_scoped_release released;
+    return work();
+  } catch (const Interrupted& e) {
+    if (PyErr_Occurred()) throw py::error_already_set();
+    raise(PyExc_KeyboardInterrupt, e.what());
+  } catch (const UsageError& e) {
+    throw py::value_error(pythonKeywords(e.what()));
   }
-  return rows;
+}
+
+// solver_option (a dict of the scene's solver keys) and backend, as --solver-option and
+// --backend give them: the backend wins.
+SolverOverrides commandSolverOverrides(const py::object& solverOption,
+                                       const std::optional<std::string>& backend) {
+  SolverOverrides overrides;
+  if (!solverOption.is_none()) {
+    if (!py::isinstance<py::dict>(solverOption))
+      throw py::type_error("solver_option: a dict of the scene's solver keys");
+    for (const auto& [key, value] : solverOption.cast<py::dict>())
+      overrides.emplace_back(py::str(key).cast<std::string>(),
+                             toJson(value, "solver_option." + py::str(key).cast<std::string>()));
+  }
+  if (backend) {
+    if (!enumFromName<BackendRequest>(*backend))
+      throw py::value_error("backend must be auto, cpu or cuda, got '" + *backend + "'");
+    overrides.emplace_back("backend", *backend);
+  }
+  return overrides;
+}
+
+// What a command said on standard error, as lists: its warnings and notes (without the prefix).
+void addMessages(py::dict& result, const std::string& said) {
+  py::list warnings, notes;
+  std::istringstream lines(said);
+  for (std::string line; std::getline(lines, line);) {
+    const size_t cr = line.rfind('\r');  // a progress bar's redraw before it
+    if (cr != std::string::npos) line = line.substr(cr + 1);
+    if (line.rfind("\x1b[K", 0) == 0) line = line.substr(3);
+    if (line.rfind("warning: ", 0) == 0) warnings.append(line.substr(9));
+    if (line.rfind("note: ", 0) == 0) notes.append(line.substr(6));
+  }
+  result["warnings"] = warnings;
+  result["notes"] = notes;
+}
+
+py::dict play(const py::object& scriptPath, const py::object& outPath, const py::object& metrics,
+              int exportEvery, const std::string& exportFormat, bool exportTets, int pngEvery,
+              std::pair<int, int> size, const std::string& solver, const py::object& solverOption,
+              const std::optional<std::string>& backend, const std::optional<int>& threads) {
+  const std::string script = pathArgument(scriptPath, "script");
+  if (!fs::exists(script)) raise(PyExc_FileNotFoundError, script + ": no such file");
+  RunOptions o;
+  o.outDir = pathArgument(outPath, "out");
+  if (!metrics.is_none()) o.metricsPath = pathArgument(metrics, "metrics");
+  o.exportEvery = exportEvery;
+  o.exportFormat = exportFormat;
+  o.exportTets = exportTets;
+  o.pngEvery = pngEvery;
+  std::tie(o.width, o.height) = size;
+  if (solver != "scene" && solver != "reference")
+    throw py::value_error("solver must be 'scene' or 'reference', got '" + solver + "'");
+  o.solver = solver == "reference" ? SolverChoice::Reference : SolverChoice::FromScene;
+  const SolverOverrides overrides = commandSolverOverrides(solverOption, backend);
+  std::ostringstream out, err;
+  std::vector<FrameMetrics> frames;
+  const RunSummary summary = runCommandWork(threads, [&] {
+    return playScript(script, o, overrides, out, err,
+                      [&frames](const FrameMetrics& m) { frames.push_back(m); });
+  });
+  py::dict result;
+  result["output"] = out.str();
+  py::list rows;
+  for (const FrameMetrics& m : frames) rows.append(metricsDict(m));
+  result["metrics"] = rows;
+  result["final_surface"] = summary.finalSurface.string();
+  result["metrics_file"] = summary.metricsPath.string();
+  py::list files;
+  for (const std::string& name : summary.written) files.append(name);
+  result["files"] = files;
+  addMessages(result, err.str());
+  return result;
+}
+
+py::dict bench(const std::vector<std::string>& scenes, int frames, bool quick,
+               const std::optional<std::string>& preset, bool sweep, bool cracks,
+               const std::vector<int>& settle, const std::optional<std::string>& debris,
+               const py::object& referenceDir, const py::object& json,
+               const py::object& solverOption, const std::optional<std::string>& backend,
+               const std::optional<int>& threads) {
+  BenchOptions o;
+  o.scenes = scenes;
+  o.frames = frames;
+  o.quick = quick;
+  o.sweep = sweep;
+  o.cracks = cracks;
+  o.settles = settle;
+  if (preset && !preset->empty()) {
+    o.preset = enumFromName<SolverPreset>(*preset);
+    if (!o.preset)
+      throw py::value_error("preset must be converged or paper, got '" + *preset + "'");
+  }
+  if (debris) {
+    o.debris = debrisRuleFromName(*debris);
+    if (!o.debris) throw py::value_error("debris must be keep or remove, got '" + *debris + "'");
+  }
+  if (!referenceDir.is_none()) o.referenceDir = pathArgument(referenceDir, "reference_dir");
+  if (!json.is_none()) o.json = pathArgument(json, "json");
+  o.solver = commandSolverOverrides(solverOption, backend);
+  std::ostringstream out, err;
+  const nlohmann::json doc = runCommandWork(threads, [&] { return runBench(o, out, err); });
+  py::dict result = fromJson(doc).cast<py::dict>();
+  result["output"] = out.str();
+  addMessages(result, err.str());
+  return result;
 }
 
 }  // namespace
@@ -486,57 +553,30 @@ PYBIND11_MODULE(galsculpt, m) {
       .def("save_project", &PySimulation::saveProject, py::arg("path"),
            "Saves the session as a project (.gsproj) that reopens to the same bits");
 
-  m.def(
-      "play",
-      [](const py::object& scriptPath, const py::object& outPath, const py::kwargs& flags) {
-        const std::string script = pathArgument(scriptPath, "script");
-        const std::string out = pathArgument(outPath, "out");
-        if (!fs::exists(script)) raise(PyExc_FileNotFoundError, script + ": no such file");
-        std::vector<std::string> args = {"play", script, "--out", out};
-        const std::vector<std::string> more = commandFlags(flags);
-        args.insert(args.end(), more.begin(), more.end());
-        const std::string printed = runCommandLine(args);
-        py::dict result;
-        result["output"] = printed;
-        result["metrics"] = readMetrics(fs::path(out) / "metrics.csv");
-        result["final_surface"] = (fs::path(out) / "final.obj").string();
-        return result;
-      },
-      py::arg("script"), py::arg("out"),
-      "`galsculpt play SCRIPT --out OUT [flags]`: what it prints, its metrics rows, its final "
-      "surface; keyword arguments are play's flags (threads=2, solver_option={...}, ...)");
-  m.def(
-      "bench",
-      [](const std::vector<std::string>& scenes, int frames, bool quick, const std::string& preset,
-         const py::kwargs& flags) {
-        if (flags.contains("json"))
-          throw py::value_error("json: bench's JSON is what this function returns");
-        static std::atomic<int> calls{0};
-        const fs::path json =
-            fs::temp_directory_path() / ("galsculpt-bench-" + std::to_string(::getpid()) + "-" +
-                                         std::to_string(calls++) + ".json");
-        std::vector<std::string> args = {"bench", "--json", json.string()};
-        if (!scenes.empty()) {
-          std::string list;
-          for (const std::string& s : scenes) list += (list.empty() ? "" : ",") + s;
-          args.insert(args.end(), {"--scene", list});
-        }
-        if (frames != 0) args.insert(args.end(), {"--frames", std::to_string(frames)});
-        if (quick) args.push_back("--quick");
-        if (!preset.empty()) args.insert(args.end(), {"--preset", preset});
-        const std::vector<std::string> more = commandFlags(flags);
-        args.insert(args.end(), more.begin(), more.end());
-        const std::string printed = runCommandLine(args);
-        std::ifstream in(json);
-        nlohmann::json j = nlohmann::json::parse(in);
-        in.close();
-        fs::remove(json);
-        py::dict result = fromJson(j).cast<py::dict>();
-        result["output"] = printed;
-        return result;
-      },
-      py::arg("scenes") = std::vector<std::string>{}, py::arg("frames") = 0,
-      py::arg("quick") = false, py::arg("preset") = "",
-      "`galsculpt bench --json [flags]`: its JSON (machine, results) and what it prints; "
-      "keyword arguments are bench's other flags (threads=2, cracks=True, settle=[0, 40], ...)");
+  m.def("play", &play, py::arg("script"), py::arg("out"), py::kw_only(),
+        py::arg("metrics") = py::none(), py::arg("export_every") = 0,
+        py::arg("export_format") = "obj", py::arg("export_tets") = false, py::arg("png_every") = 0,
+        py::arg("size") = std::pair<int, int>{1280, 800}, py::arg("solver") = "scene",
+        py::arg("solver_option") = py::none(), py::arg("backend") = py::none(),
+        py::arg("threads") = py::none(),
+        "`galsculpt play SCRIPT --out OUT`, in this process: the script's frames with their "
+        "outputs in `out`. Keywords are play's flags (docs/cli.md): metrics (default "
+        "out/metrics.csv), export_every, export_format, export_tets, png_every, size (w, h), "
+        "solver ('scene' or 'reference'), solver_option (a dict of solver keys), backend, "
+        "threads (for this call). Returns {output: what it prints, metrics: each frame's row "
+        "as a dict, final_surface, metrics_file, files: the names written in out, warnings, "
+        "notes}. FileNotFoundError for a missing script, ValueError naming the key");
+  m.def("bench", &bench, py::arg("scenes") = std::vector<std::string>{}, py::arg("frames") = 0,
+        py::arg("quick") = false, py::arg("preset") = py::none(), py::kw_only(),
+        py::arg("sweep") = false, py::arg("cracks") = false,
+        py::arg("settle") = std::vector<int>{0}, py::arg("debris") = py::none(),
+        py::arg("reference_dir") = py::none(), py::arg("json") = py::none(),
+        py::arg("solver_option") = py::none(), py::arg("backend") = py::none(),
+        py::arg("threads") = py::none(),
+        "`galsculpt bench`, in this process: speed against error. scenes: names (default all; "
+        "quick's pair; cracks's sphere); frames (0: 60, 20 with quick); preset ('converged' or "
+        "'paper'); sweep, cracks, settle (window starts), debris ('keep' or 'remove'), "
+        "reference_dir, json (also written there), solver_option, backend, threads as bench's "
+        "flags (docs/cli.md). Returns its JSON document (machine, frames, settle_frames, "
+        "settle_windows, results) with output (what it prints), warnings and notes");
 }

@@ -337,10 +337,39 @@ def test_a_script_played_from_python_is_the_commands_bit_for_bit(tmp_path):
     assert (tmp_path / "one" / "final.node").exists()
     with pytest.raises(FileNotFoundError, match=r"^\S*missing\.json: no such file$"):
         galsculpt.play(str(tmp_path / "missing.json"), str(tmp_path / "x"))
-    with pytest.raises(ValueError, match=r"--frames must be in \[1, 100000\], got -1"):
+    # Typed keywords: checked as the command checks its flags, the error naming the keyword.
+    with pytest.raises(ValueError, match=r"^frames expects an integer in \[1, 100000\], got -1$"):
         galsculpt.bench(frames=-1)
-    with pytest.raises(ValueError, match="unknown scene 'nosuch'"):
-        galsculpt.bench(scenes=["nosuch"])
+    with pytest.raises(ValueError, match=r"^scene: unknown scene 'sphre' \(did you mean sphere\?\)"):
+        galsculpt.bench(scenes=["sphre"])
+    with pytest.raises(ValueError, match=r"^settle takes several counts only with cracks$"):
+        galsculpt.bench(settle=[0, 40])
+    with pytest.raises(ValueError, match=r"^export_format must be obj, ply, stl, gltf or glb"):
+        galsculpt.play(SCRIPT, tmp_path / "f", export_format="fbx")
+    with pytest.raises(ValueError, match=r"^size expects WIDTHxHEIGHT between 16 and 8192"):
+        galsculpt.play(SCRIPT, tmp_path / "f", size=(8, 8))
+    with pytest.raises(ValueError, match=r"^backend must be auto, cpu or cuda, got 'gpu'$"):
+        galsculpt.play(SCRIPT, tmp_path / "f", backend="gpu")
+    with pytest.raises(ValueError, match=r"^threads expects an integer in \[1, 1024\], got 0$"):
+        galsculpt.play(SCRIPT, tmp_path / "f", threads=0)
+    with pytest.raises(TypeError):
+        galsculpt.play(SCRIPT, tmp_path / "f", nosuch_flag=3)
+    assert not (tmp_path / "f").exists(), "nothing written for a call refused"
+
+
+def test_play_returns_each_frames_row_as_the_metrics_file_holds_it(tmp_path):
+    played = galsculpt.play(SCRIPT, tmp_path / "o", metrics=tmp_path / "m.csv", png_every=60,
+                            size=(64, 48))
+    assert played["metrics_file"] == str(tmp_path / "m.csv")
+    lines = (tmp_path / "m.csv").read_text().splitlines()
+    header = lines[0].split(",")
+    assert len(lines) - 1 == len(played["metrics"])
+    for line, row in zip(lines[1:], played["metrics"]):
+        for name, cell in zip(header, line.split(",")):
+            assert float(cell) == pytest.approx(float(row[name]), rel=1e-5, abs=1e-12), name
+    assert {"final.obj", "final.png", "frame_00060.png"} <= set(played["files"])
+    assert all((tmp_path / "o" / name).exists() for name in played["files"])
+    assert isinstance(played["warnings"], list) and isinstance(played["notes"], list)
 
 
 def test_bench_returns_what_the_command_writes(tmp_path, monkeypatch):
@@ -361,7 +390,13 @@ def test_bench_returns_what_the_command_writes(tmp_path, monkeypatch):
     one = galsculpt.bench(scenes=["sphere"], frames=2, threads=1,
                           solver_option={"newton_iters": 3}, debris="keep")
     assert all(row["threads"] == 1 for row in one["results"])
-    with pytest.raises(ValueError, match="nosuch"):
+    with pytest.raises(TypeError):
         galsculpt.bench(scenes=["sphere"], frames=2, nosuch_flag=3)
-    with pytest.raises(ValueError, match="json"):
-        galsculpt.bench(json="x.json")
+    # json: the same document written there too.
+    written = galsculpt.bench(scenes=["sphere"], frames=2, json=tmp_path / "b.json",
+                              reference_dir=tmp_path / "refs")
+    on_disk = json.loads((tmp_path / "b.json").read_text())
+    assert on_disk["frames"] == written["frames"] == 2
+    assert [r["solver"] for r in on_disk["results"]] == [r["solver"] for r in written["results"]]
+    again = galsculpt.bench(scenes=["sphere"], frames=2, reference_dir=tmp_path / "refs")
+    assert again["results"][0].get("reference_cached") is True
