@@ -7,9 +7,9 @@
   scripts/bench_page.py render                         renders every docs/bench/*.json again
 
 Each results file fills the part of docs/benchmarks.md between the lines
-`<!-- bench_page NAME begin -->` and `<!-- bench_page NAME end -->`, and the index of
-docs/notes/ fills `<!-- bench_page notes begin -->` ... `end -->`; the rest of the page is
-written by hand. Options: --galsculpt PATH (default build/app/galsculpt); with `run`, everything
+`<!-- bench_page NAME begin -->` and `<!-- bench_page NAME end -->` (docs/bench/shipped.json,
+written by scripts/bench_shipped.py, fills `shipped`), and the index of docs/notes/ fills
+`<!-- bench_page notes begin -->` ... `end -->`; the rest of the page is written by hand. Options: --galsculpt PATH (default build/app/galsculpt); with `run`, everything
 after NAME goes to `galsculpt bench` (--reference-dir keeps the references between runs).
 """
 import datetime
@@ -39,19 +39,26 @@ def git(*args):
     return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True).stdout.strip()
 
 
+def provenance(command):
+    """Where and how a results file was made: commit, date, machine, command."""
+    # Changes to the documentation alone do not change what was measured.
+    changed = git("status", "--porcelain", "--untracked-files=no", "--", ".", ":!docs", ":!README.md")
+    dirty = " (with uncommitted changes)" if changed else ""
+    return {
+        "commit": git("rev-parse", "--short", "HEAD") + dirty,
+        "date": datetime.date.today().isoformat(),
+        "machine": f"{cpu_model()}, {os.cpu_count()} cores",
+        "command": command,
+    }
+
+
 def run(name, galsculpt, options):
     out = os.path.join(BENCH, name + ".json")
     os.makedirs(BENCH, exist_ok=True)
     command = [galsculpt, "bench", *options, "--json", out + ".tmp"]
     subprocess.run(command, cwd=ROOT, check=True)
     doc = json.load(open(out + ".tmp"))
-    dirty = " (with uncommitted changes)" if git("status", "--porcelain", "--untracked-files=no") else ""
-    doc["provenance"] = {
-        "commit": git("rev-parse", "--short", "HEAD") + dirty,
-        "date": datetime.date.today().isoformat(),
-        "machine": f"{cpu_model()}, {os.cpu_count()} cores",
-        "command": "galsculpt bench " + " ".join(options),
-    }
+    doc["provenance"] = provenance("galsculpt bench " + " ".join(options))
     with open(out + ".tmp", "w") as f:
         json.dump(doc, f, indent=2)
         f.write("\n")
@@ -100,6 +107,25 @@ def table(doc):
     return "\n".join(lines)
 
 
+def shipped_table(doc):
+    """scripts/bench_shipped.py's results: every shipped scene and script, a row each."""
+    p = doc.get("provenance", {})
+    lines = [
+        f"Machine: {p.get('machine', '?')}; commit {p.get('commit', '?')}, {p.get('date', '?')}; "
+        f"`{p.get('command', 'scripts/bench_shipped.py')}` (`galsculpt run assets/scenes/S.json "
+        "--frames N`, `galsculpt play assets/scripts/P.json`, default thread count, one after the "
+        "other).",
+        "",
+        "| scene or script | frames | unconverged frames | warnings | median ms a frame | p95 ms |",
+        "| --- | --- | --- | --- | --- | --- |",
+    ]
+    for r in doc["results"]:
+        name = r["name"] if r["kind"] == "run" else f"`play` {r['name']}"
+        lines.append(f"| {name} | {r['frames']} | {r['unconverged_frames']} | {r['warnings']} "
+                     f"| {number(r['ms_per_frame'], 1)} | {number(r['ms_p95'], 1)} |")
+    return "\n".join(lines)
+
+
 def notes_index():
     """The notes, newest first, each by its title (its first line)."""
     folder = os.path.join(ROOT, "docs", "notes")
@@ -125,8 +151,9 @@ def render():
             print(f"bench_page: docs/benchmarks.md has no place for {name} ({begin})", file=sys.stderr)
             continue
         doc = json.load(open(os.path.join(BENCH, file)))
+        text = shipped_table(doc) if name == "shipped" else table(doc)
         page = re.sub(re.escape(begin) + ".*?" + re.escape(end),
-                      lambda _: f"{begin}\n{table(doc)}\n{end}", page, flags=re.S)
+                      lambda _: f"{begin}\n{text}\n{end}", page, flags=re.S)
     with open(PAGE + ".tmp", "w") as f:
         f.write(page)
     os.replace(PAGE + ".tmp", PAGE)
