@@ -350,20 +350,28 @@ MaterialDesc materialPreset(const std::string& name) {
   return m;
 }
 
-SceneDescription loadScene(const fs::path& file) {
-  // A mesh where a scene is expected is a slip worth a hint, not a JSON syntax error.
-  static const std::set<std::string> kMeshExtensions{".node", ".ele", ".face", ".msh",
-                                                     ".vtk",  ".obj", ".ply",  ".stl",
-                                                     ".gltf", ".glb", ".off",  ".damage"};
+void refuseMeshAsJson(const fs::path& file) {
+  // A surface goes in a scene's mesh.import (meshed with TetGen), a tet mesh in its mesh.file.
+  static const std::set<std::string> kTetMeshExtensions{".node", ".ele", ".face",
+                                                        ".msh",  ".vtk", ".damage"};
+  static const std::set<std::string> kSurfaceExtensions{".obj",  ".ply", ".stl",
+                                                        ".gltf", ".glb", ".off"};
   std::string extension = file.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (kMeshExtensions.count(extension)) {
-    throw InputError(file.string(), 0,
-                     "a mesh, not a scene: open it with 'galsculpt open " + file.string() +
-                         "' (sculpted as clay), or name it in a scene's mesh.file "
-                         "(docs/scenes.md)");
-  }
+  const bool surface = kSurfaceExtensions.count(extension) > 0;
+  if (!surface && !kTetMeshExtensions.count(extension)) return;
+  // (Appended piece by piece: GCC 12 warns of a restrict overlap, wrongly, in a chain of +.)
+  std::string message = "a mesh, not a scene: open it with 'galsculpt open ";
+  message.append(file.string());
+  message.append("' (sculpted as clay), or name it in a scene's ");
+  message.append(surface ? "mesh.import with mesh.tets (docs/quick-start.md)"
+                         : "mesh.file (docs/scenes.md)");
+  throw InputError(file.string(), 0, message);
+}
+
+SceneDescription loadScene(const fs::path& file) {
+  refuseMeshAsJson(file);
   return parseScene(parseJsonFile(file), file);
 }
 

@@ -159,6 +159,9 @@ AnchorDesc readAnchorDesc(JsonObject o);
 
 // Reads and validates a scene; throws InputError naming file and JSON path.
 SceneDescription loadScene(const std::filesystem::path& file);
+// A mesh file (by its extension) where a scene or a script is expected: an InputError that says
+// how to open it or which scene key takes it, instead of a JSON syntax error.
+void refuseMeshAsJson(const std::filesystem::path& file);
 // The same for a scene already parsed; `file` names it in errors and anchors relative paths.
 SceneDescription parseScene(const nlohmann::json& root, const std::filesystem::path& file);
 

@@ -142,6 +142,7 @@ ToolEvent readEvent(JsonObject o) {
 }  // namespace
 
 PlaybackScript loadPlaybackScript(const fs::path& file) {
+  refuseMeshAsJson(file);
   return parsePlaybackScript(parseJsonFile(file), file);
 }
 

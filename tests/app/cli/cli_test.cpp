@@ -102,6 +102,12 @@ TEST(Cli, AMeshWhereASceneIsExpectedSaysWhatToDo) {
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find("a mesh, not a scene: open it with 'galsculpt open"), std::string::npos)
       << r.err;
+  EXPECT_NE(r.err.find("mesh.file"), std::string::npos) << r.err;
+  // A surface: the scene key that meshes it.
+  const CliRun surface = run({"play", "model.OBJ", "--out", "o"});
+  EXPECT_EQ(surface.code, kExitBadInput);
+  EXPECT_NE(surface.err.find("name it in a scene's mesh.import with mesh.tets"), std::string::npos)
+      << surface.err;
   test::TempDir dir;
   const fs::path script = fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scripts" / "sphere_cut.json";
   EXPECT_NE(run({"run", script.string(), "--frames", "1", "--out", (dir / "o").string()})
