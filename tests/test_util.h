@@ -12,8 +12,8 @@
 #include <string>
 
 #include "solver/frame/cpu_backend.h"
-#include "solver/frame/solver_options.h"
 #include "solver/mesh/tet_mesh.h"
+#include "solver/model/solver_options.h"
 
 namespace galsculpt::test {
 
@@ -138,7 +138,7 @@ inline TetMesh gridBar(int nx, int ny, int nz, double size) {
 
 namespace galsculpt {
 
-// The converged preset's settings (solver/frame/solver_options.h) on a small mesh: 12 coarse
+// The converged preset's settings (solver/model/solver_options.h) on a small mesh: 12 coarse
 // handles.
 inline StepSettings convergedPreset() {
   StepSettings s = stepSettings(solverPreset(SolverPreset::Converged), 1.0 / 60.0, 1);

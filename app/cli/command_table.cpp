@@ -49,11 +49,13 @@ std::string wrapWords(const std::string& text, size_t column, size_t width) {
   bool first = true;
   for (std::string word; words >> word;) {
     if (!first && at + 1 + word.size() > width) {
-      out += "\n" + std::string(column, ' ');
+      out.push_back('\n');
+      out.append(column, ' ');
       at = column;
       first = true;
     }
-    out += (first ? "" : " ") + word;
+    if (!first) out.push_back(' ');
+    out.append(word);
     at += word.size() + (first ? 0 : 1);
     first = false;
   }
@@ -180,9 +182,9 @@ std::string commandUsage(const CommandSpec& command) {
     return f.value.empty() ? f.name : f.name + " " + f.value;
   };
   for (const FlagSpec& f : command.flags)
-    if (f.required) usage += " " + flagText(f);
+    if (f.required) usage.append(" ").append(flagText(f));
   for (const FlagSpec& f : command.flags)
-    if (!f.required) usage += " [" + flagText(f) + "]";
+    if (!f.required) usage.append(" [").append(flagText(f)).append("]");
   return usage;
 }
 
@@ -203,10 +205,12 @@ std::string wrapUsage(const std::string& usage, size_t width, size_t indent) {
       out = piece;
       column = piece.size();
     } else if (column + 1 + piece.size() > width) {
-      out += "\n" + std::string(indent, ' ') + piece;
+      out.push_back('\n');
+      out.append(indent, ' ').append(piece);
       column = indent + piece.size();
     } else {
-      out += " " + piece;
+      out.push_back(' ');
+      out.append(piece);
       column += 1 + piece.size();
     }
   }

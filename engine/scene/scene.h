@@ -14,7 +14,7 @@
 #include "engine/scene/json_reader.h"
 #include "solver/fem/colliders.h"
 #include "solver/fem/material_types.h"
-#include "solver/frame/solver_options.h"
+#include "solver/model/solver_options.h"
 
 namespace galsculpt {
 
@@ -113,7 +113,7 @@ const char* materialModelName(MaterialModel m);
 const char* debrisRuleName(DebrisRule rule);
 std::optional<DebrisRule> debrisRuleFromName(const std::string& name);
 
-// The solver's options: solver/frame/solver_options.h (one table drives the struct, its
+// The solver's options: solver/model/solver_options.h (one table drives the struct, its
 // presets, the scene reader, the command line and the panel).
 
 // Optional measurements written as metrics columns.

@@ -1,4 +1,4 @@
-// The solver options' table (solver/frame/solver_options.h) read from and written to a scene's
+// The solver options' table (solver/model/solver_options.h) read from and written to a scene's
 // "solver" object, and set from the command line's --solver-option KEY=VALUE: every key the
 // table has, and no other, with the table's ranges and checks.
 #pragma once
@@ -11,7 +11,7 @@
 
 #include "engine/scene/json_reader.h"
 #include "engine/scene/scene.h"
-#include "solver/frame/solver_options.h"
+#include "solver/model/solver_options.h"
 
 namespace galsculpt {
 

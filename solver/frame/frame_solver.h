@@ -8,7 +8,6 @@
 //   incremental_potential.h the potential, its gradient g and the Newton system H (the element
 //                           pass in element_pass.h, the contact term in contact_term.h)
 //   linear_solve.h          delta = H^-1 (-g): the Galerkin multigrid, or CHOLMOD for the reference
-//   secant_history.h        L-BFGS's correction of a chord step (StepSettings::lbfgsPairs)
 //   local_region.h          where an iteration after the first solves: the region of the residual
 //   line_search.h           backtracking, lengthening and the vertex guard
 //   piece_residual.h        the residual piece by piece; piece_tracker.h the pieces themselves
@@ -43,7 +42,6 @@
 #include "solver/frame/local_region.h"
 #include "solver/frame/piece_residual.h"
 #include "solver/frame/plastic_state.h"
-#include "solver/frame/secant_history.h"
 #include "solver/frame/step.h"
 #include "solver/frame/timing.h"
 #include "solver/io/stop_request.h"
@@ -98,15 +96,11 @@ class FrameSolver {
     colliderStates_.resize(model_.colliders.size());
     d_.settings = &settings;
     anchors_ = &state.anchors;
-    if (settings.multigrid) linear_.ensureHierarchy(settings, damage_.host(), damage_.revision());
+    if (settings.multigrid()) linear_.ensureHierarchy(settings, damage_.host(), damage_.revision());
     // The stiffness frozen at x_n for damping, kept apart only with several Newton iterations
     // (allocated here: never inside a captured section).
     if (settings.newtonIterations > 1 && d_.frozen.size() != d_.stiffness.size())
       d_.frozen.resize(d_.stiffness.size());
-    if (settings.lbfgsPairs <= 0 || !settings.reuseStiffness)
-      secant_.reset();
-    else if (!secant_ || secant_->capacity() != settings.lbfgsPairs)
-      secant_ = std::make_unique<SecantHistory<Exec>>(ex_, 3 * d_.n, settings.lbfgsPairs);
   }
 
   // Writes positions, velocities, damage and plastic state back (positions through the
@@ -233,7 +227,7 @@ class FrameSolver {
       // residual is a small share of the body's. A local system holds the other rows still: no
       // chord is taken on it, nor after it.
       const bool wasLocal = local;
-      local = s.localNewton && s.multigrid && residual > s.residualTolerance &&
+      local = s.localNewton && s.multigrid() && residual > s.residualTolerance &&
               !(wasLocal && !(residual < 0.5 * lastResidual)) &&
               region_.choose(s.residualTolerance * std::max(weight(), forceScale_));
       if (local || wasLocal) reuse = false;
@@ -307,7 +301,6 @@ class FrameSolver {
   void beginSubstep(double h) {
     d_.h = h;
     pieceTargetCap_ = std::numeric_limits<double>::infinity();
-    if (secant_) secant_->clear();
     linear_.resetIterations();
     held_.prepare(*anchors_, time_ + h);
     contact_.place(colliderStates_, time_ + h, h);
@@ -379,7 +372,6 @@ class FrameSolver {
     if (!(read.inverted > 0.0)) return false;
     ex_.copy(d_.x.data(), d_.xn.data(), 3 * d_.n);
     held_.place();
-    if (secant_) secant_->clear();  // its last point was the prediction
     return true;
   }
 
@@ -401,7 +393,7 @@ class FrameSolver {
     // The Newton step and its full-length trial: launches only, captured as one graph and
     // replayed, unless a dense Cholesky, PCG or the direct solve needs host reads in between.
     const bool capturable =
-        s.multigrid && !s.multigridSettings.coarseCholesky && !s.multigridSettings.pcg && !d_.local;
+        s.multigrid() && s.coarseSolver != CoarseSolver::Cholesky && !s.pcg() && !d_.local;
     if (capturable) {
       ex_.captured(0, graphKey(h, it) ^ (reuse ? 0x9e3779b97f4a7c15ull : 0),
                    [&] { newtonStep(it, reuse, result); });
@@ -465,12 +457,10 @@ class FrameSolver {
     }
     // Under PCG a fresh iteration may find the gradient already within the solve's target: the
     // step is null, and nothing past the gradient is needed (takeNullStep).
-    const bool mayBeNull =
-        !reuse && !d_.local && s.multigrid && s.multigridSettings.pcg && s.skipNullSolves;
+    const bool mayBeNull = !reuse && !d_.local && s.multigrid() && s.pcg() && s.skipNullSolves;
     potential_.contact(x, d_.grad.data(), &d_.sc()->contact);
     potential_.dampedProduct(x, d_.dampedK.data());
     potential_.backwardEulerGradient(x, d_.grad.data(), d_.dampedK.data(), d_.g.data());
-    if (secant_) secant_->record(x, d_.g.data());
     double bodyResidual = 0.0;
     // A null step for the body is none for a piece still above its own tolerance: it sets the
     // cap, and this iteration solves (a settled body can hide a piece that still spins).
@@ -481,10 +471,10 @@ class FrameSolver {
     }
     systemSkipped_ = false;
     if (!reuse) potential_.buildSystem(x);
-    if (s.multigrid) {
+    if (s.multigrid()) {
       if (!reuse && !d_.local) linear_.refresh(s);  // (a local solve has no multigrid)
       // A chord step's direction is L-BFGS's where pairs are kept (a chord is never local).
-      linear_.solve(s, pcgTarget(), reuse ? secant_.get() : nullptr);
+      linear_.solve(s, pcgTarget());
     } else {
       linear_.solveDirect(s);
     }
@@ -573,7 +563,6 @@ class FrameSolver {
         .mixPointer(plastic_.inverse())
         .mix(plastic_.active())
         .mix(d_.local)
-        .mix(static_cast<std::uint64_t>(secant_ ? secant_->recorded() : 0))
         .value();
   }
 
@@ -625,7 +614,6 @@ class FrameSolver {
   AcceleratedStart<Exec> accelerated_;            // the pieces' starts (startPiecesAccelerated)
   PieceResidual<Exec> pieceResidual_;             // the residual piece by piece
   std::unique_ptr<FracturePass<Exec>> fracture_;  // with the model's fracture field
-  std::unique_ptr<SecantHistory<Exec>> secant_;   // chord steps' pairs (StepSettings::lbfgsPairs)
   const std::vector<AnchorConstraint>* anchors_ = nullptr;  // the stepped state's
   double time_ = 0.0, modelSize_ = 1.0, massNorm_ = 0.0;
   double forceScale_ = 0.0;      // the last residual's scale (N): the next solves' target

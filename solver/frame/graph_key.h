@@ -24,16 +24,13 @@ class GraphKey {
   GraphKey& mixPointer(const void* p) { return mix(reinterpret_cast<std::uintptr_t>(p)); }
   // The step settings a captured Newton step or sub-step end reads.
   GraphKey& mixSettings(const StepSettings& s) {
-    const MultigridSettings& m = s.multigridSettings;
     mix(static_cast<std::uint64_t>(s.newtonIterations));
-    mix(static_cast<std::uint64_t>(m.preSweeps) << 32 | static_cast<std::uint32_t>(m.postSweeps));
-    mix(static_cast<std::uint64_t>(m.coarseIterations) << 32 |
-        static_cast<std::uint32_t>(m.cycles));
-    mix(m.jacobi);
-    mix(m.jacobiOnDevice);
-    mixDouble(m.jacobiWeight);
+    mix(static_cast<std::uint64_t>(s.fineSweeps));
+    mix(static_cast<std::uint64_t>(s.coarseIterations) << 32 |
+        static_cast<std::uint32_t>(s.cycles));
+    mix(static_cast<std::uint64_t>(s.smoother));
+    mixDouble(s.pcgTolerance);  // (under PCG the device's smoother: multigrid_cycle.h)
     mixDouble(s.stiffnessTolerance);
-    mix(static_cast<std::uint64_t>(s.lbfgsPairs));
     return mix(s.reuseStiffness);  // the trial counts switched cracks only for chord steps
   }
   std::uint64_t value() const { return key_; }

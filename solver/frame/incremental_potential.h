@@ -384,7 +384,7 @@ class IncrementalPotential {
     ex_.maximum(
         3 * d_.n, [=] GALSCULPT_LAMBDA(int i) { return fabs(delta[i]); }, &sc->deltaMax);
     // What the vertex guard compares its trials with (the contact term holds x's energies here).
-    if (d_.settings->vertexGuard)
+    if (d_.settings->vertexGuard())
       vertexPotential(x, d_.elemEnergy.data(), d_.dampedK.data(), d_.potentialAtX.data());
   }
 

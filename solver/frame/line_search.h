@@ -74,12 +74,11 @@ class LineSearch {
     double stepLength = 1.0;
     double inverting = 0.0;  // the longest length refused only because it inverted elements
     double refused = 0.0;    // the shortest length refused so far (0: none)
-    bool guarded = !s.vertexGuard, folded = false;
+    bool guarded = !s.vertexGuard(), folded = false;
     for (;; ex_.read(d_.sc(), &read, 1)) {
       if (stepLength == 1.0)
-        result.linearResidualReduction = s.multigridSettings.pcg
-                                             ? pcgReduction
-                                             : (read.r0 > 0.0 ? std::sqrt(read.r1 / read.r0) : 0.0);
+        result.linearResidualReduction =
+            s.pcg() ? pcgReduction : (read.r0 > 0.0 ? std::sqrt(read.r1 / read.r0) : 0.0);
       if (read.bad > 0.0 || !std::isfinite(read.elastic)) return -1.0;
       // A null step (the linear solve had nothing to do: the gradient was already within its
       // target) moves nothing and is taken. Judged by the energy it could be refused: e0 and e1

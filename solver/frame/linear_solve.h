@@ -15,7 +15,6 @@
 #include "solver/frame/direct_solver.h"
 #include "solver/frame/frame_data.h"
 #include "solver/frame/region_solve.h"
-#include "solver/frame/secant_history.h"
 #include "solver/frame/step.h"
 #include "solver/model/sim_model.h"
 #include "solver/multigrid/multigrid.h"
@@ -26,7 +25,7 @@ namespace galsculpt {
 // Why a frame with these settings cannot run on the CUDA executor ("" when it can).
 inline std::string cudaUnsupportedReason([[maybe_unused]] const SimModel& model,
                                          const StepSettings& s) {
-  if (!s.multigrid) return "the reference solver (direct sparse Cholesky) runs on the CPU only";
+  if (!s.multigrid()) return "the reference solver (direct sparse Cholesky) runs on the CPU only";
   return "";
 }
 
@@ -43,8 +42,7 @@ class LinearSolve {
     multigrid_ = std::make_unique<Multigrid>(model_.pattern, model_.mesh.vertices, model_.edges,
                                              s.gridHandles);
     gridHandles_ = s.gridHandles;
-    if (s.multigridSettings.splitAggregates)
-      multigrid_->updateDamage(model_.edges, damaged, damageRevision);
+    if (s.splitAggregates) multigrid_->updateDamage(model_.edges, damaged, damageRevision);
     mg_.upload(buildMultigridLayout(*multigrid_, model_.pattern));
     ++revision_;
   }
@@ -52,7 +50,7 @@ class LinearSolve {
   // With splitAggregates, the hierarchy's aggregates split where the damage parts them (host).
   void followDamage(const StepSettings& s, const std::vector<std::uint8_t>& damaged,
                     std::uint64_t damageRevision) {
-    if (s.multigrid && s.multigridSettings.splitAggregates &&
+    if (s.multigrid() && s.splitAggregates &&
         multigrid_->updateDamage(model_.edges, damaged, damageRevision)) {
       mg_.upload(buildMultigridLayout(*multigrid_, model_.pattern));
       ++revision_;
@@ -68,7 +66,7 @@ class LinearSolve {
   void refresh(const StepSettings& s) {
     mg_.setFixed(d_.fixed.data());
     // Under PCG the V-cycle only preconditions: its smoother may read floats.
-    mg_.refresh(d_.system.data(), s.multigridSettings.coarseCholesky, s.multigridSettings.pcg);
+    mg_.refresh(d_.system.data(), s.coarseSolver == CoarseSolver::Cholesky, s.pcg());
   }
 
   // Whether PCG would return the null step: |b| = |g| (all 3n entries, as PCG reads them) within
@@ -82,8 +80,7 @@ class LinearSolve {
     double r0 = 0.0;
     ex_.read(&sc->r0, &r0, 1);
     bnorm = std::sqrt(r0);
-    if (bnorm > std::max(s.multigridSettings.pcgTolerance * std::max(bnorm, 1e-300), target))
-      return false;
+    if (bnorm > std::max(s.pcgTolerance * std::max(bnorm, 1e-300), target)) return false;
     reduction_ = bnorm > 0.0 ? 1.0 : 0.0;  // what PCG returns after no iteration
     return true;
   }
@@ -91,42 +88,35 @@ class LinearSolve {
   // delta = H^-1 (-g) by the multigrid: V-cycles (the residual norms go to r0 and r1; no host
   // read) or PCG to `target` (absolute; host reads; its reduction in reduction()). In a local
   // iteration, PCG on the region's rows (region_solve.h; the multigrid is not refreshed).
-  // With `secant`, the step is L-BFGS's: the multigrid solves for its recursion's middle
-  // (secant_history.h), never in a local iteration.
-  void solve(const StepSettings& s, double target, SecantHistory<Exec>* secant = nullptr) {
-    const MultigridSettings& ms = s.multigridSettings;
+  void solve(const StepSettings& s, double target) {
     if (d_.local) {
       startFromZero();
       const auto r = region_.solve(d_.system.data(), d_.rhs.data(), d_.delta.data(),
-                                   ms.pcg ? ms.pcgTolerance : kRegionTolerance, target);
+                                   s.pcg() ? s.pcgTolerance : kRegionTolerance, target);
       reduction_ = r.reduction;
       iterations_ += r.iterations;
       return;
     }
-    MultigridSettings mgs = ms;  // the smoother is Jacobi on a device under PCG (multigrid.h)
-    mgs.jacobi = ms.jacobi || (!Exec::kHostMemory && ms.jacobiOnDevice && ms.pcg);
     double* delta = d_.delta.data();
     double* b = d_.rhs.data();
     const std::uint8_t* fixed = d_.fixed.data();
     startFromZero();
-    if (secant) secant->firstLoop(b);
     const double* a = d_.system.data();
     FrameScalars* sc = d_.sc();
     double* ap = d_.product.data();
-    if (!ms.pcg) {  // (PCG sums |b|^2 itself; r0 and r1 are read only for the V-cycles)
+    if (!s.pcg()) {  // (PCG sums |b|^2 itself; r0 and r1 are read only for the V-cycles)
       ex_.sum(
           3 * d_.n, [=] GALSCULPT_LAMBDA(int i) { return b[i] * b[i]; }, &sc->r0);
-      mg_.cycles(a, b, delta, mgs);
+      mg_.cycles(a, b, delta, s);
       mg_.multiplyFine(a, delta, ap);
       ex_.sum(
           3 * d_.n, [=] GALSCULPT_LAMBDA(int i) { return (b[i] - ap[i]) * (b[i] - ap[i]); },
           &sc->r1);
     } else {
-      const auto r = mg_.pcg(a, b, delta, mgs, ms.pcgTolerance, ms.pcgMaxIterations, target);
+      const auto r = mg_.pcg(a, b, delta, s, s.pcgTolerance, s.pcgMaxIterations, target);
       reduction_ = r.reduction;
       iterations_ += r.iterations;
     }
-    if (secant) secant->secondLoop(delta);
     ex_.forEach(3 * d_.n, [=] GALSCULPT_LAMBDA(int i) {
       if (fixed[i / 3]) delta[i] = 0.0;
     });

@@ -8,17 +8,32 @@
 
 namespace galsculpt {
 
+StepSettings::StepSettings() : SolverOptions(solverPreset(SolverPreset::Paper)) {
+  type = SolverType::Reference;  // a direct solve
+  acceleratedStart = true;       // (read only with predictedStart)
+}
+
+StepSettings stepSettings(const SolverOptions& o, double dt, int substeps) {
+  StepSettings s;
+  static_cast<SolverOptions&>(s) = o;
+  s.dt = dt;
+  s.substeps = substeps;
+  if (o.type == SolverType::Reference) return referenceSettings(s);
+  s.gridHandles = parseGridSetup(o.grid);
+  return s;
+}
+
 StepSettings referenceSettings(StepSettings base) {
+  base.type = SolverType::Reference;  // a direct solve
   base.newtonIterations = 50;
   base.lineSearch = true;
   base.tolerance = 1e-10;
   base.residualTolerance = 0.0;  // Newton runs to its step test, not to the default's residual
   base.frameBudgetMs = 0.0;
   base.reuseStiffness = false;
-  base.lbfgsPairs = 0;
-  base.localNewton = false;       // the reference solves the whole body every iteration
-  base.vertexGuard = false;       // the reference backs off the whole step (a plain line search)
-  base.stiffnessTolerance = 0.0;  // and evaluates every element's stiffness
+  base.localNewton = false;              // the reference solves the whole body every iteration
+  base.energyGuard = EnergyGuard::Body;  // and backs off the whole step (a plain line search)
+  base.stiffnessTolerance = 0.0;         // and evaluates every element's stiffness
   return base;
 }
 

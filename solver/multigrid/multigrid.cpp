@@ -88,37 +88,6 @@ double levelScale(const std::vector<Vec3>& points, int handles) {
 
 }  // namespace
 
-std::vector<int> parseGridSetup(const std::string& grid) {
-  std::vector<std::string> parts;
-  size_t start = 0;
-  while (true) {
-    const size_t slash = grid.find('/', start);
-    parts.push_back(grid.substr(start, slash - start));
-    if (slash == std::string::npos) break;
-    start = slash + 1;
-  }
-  if (parts.size() < 2 || parts.back() != "all") {
-    throw std::invalid_argument(
-        "grid '" + grid +
-        "' must list coarse vertex counts and end in 'all', e.g. 50/all or 50/1000/all");
-  }
-  std::vector<int> counts;  // coarse to fine as written
-  for (size_t i = 0; i + 1 < parts.size(); ++i) {
-    const std::string& p = parts[i];
-    if (p.empty() || p.size() > 9 || p.find_first_not_of("0123456789") != std::string::npos) {
-      throw std::invalid_argument("grid level '" + p + "' is not a vertex count");
-    }
-    const int n = std::stoi(p);
-    if (n < 1 || (!counts.empty() && n <= counts.back())) {
-      throw std::invalid_argument(
-          "grid levels must be positive and increase from coarse to fine, got '" + grid + "'");
-    }
-    counts.push_back(n);
-  }
-  std::reverse(counts.begin(), counts.end());  // finest coarse level first
-  return counts;
-}
-
 std::vector<int> farthestPointSamples(const std::vector<Vec3>& points,
                                       const std::vector<Edge>& edges,
                                       const std::vector<int>& candidates, int count,

@@ -26,10 +26,6 @@
 
 namespace galsculpt {
 
-// "50/1000/all" -> {1000, 50}: handle counts from the finest coarse level down. Throws
-// std::invalid_argument on a malformed setup.
-std::vector<int> parseGridSetup(const std::string& grid);
-
 // Farthest-point sampling of `count` vertices among `candidates` with geodesic distances over
 // the edge graph; the first sample is the candidate farthest from candidates[0] (deterministic).
 // Also returns, for every vertex, its nearest sample (index into the result) in `nearest`.
@@ -53,27 +49,6 @@ struct MultigridLevel {
   std::vector<int> finerToCoarseBlock;    // levels > 1: finer coarse block -> this level's block
   std::vector<std::vector<int>> colors;   // handles grouped for parallel Gauss-Seidel
   std::vector<std::vector<int>> members;  // (handles) rows of the finer level in each aggregate
-};
-
-struct MultigridSettings {
-  int preSweeps = 3;
-  int postSweeps = 3;
-  bool jacobi = false;  // false: symmetric multi-colour Gauss-Seidel
-  // With jacobi false, Jacobi all the same on a device (`!Exec::kHostMemory`) where the V-cycle
-  // preconditions CG (pcg): a colour sweep there is a launch per colour, a Jacobi sweep one
-  // launch, and CG takes the weaker smoother to the same tolerance. Without CG (the paper's one
-  // V-cycle) the smoother is the solve, and Gauss-Seidel stays
-  // (docs/notes/2026-12-04-gpu-second-run.md has the measurements). False: the same smoother on
-  // every executor.
-  bool jacobiOnDevice = true;
-  double jacobiWeight = 0.66;
-  bool coarseCholesky = false;  // false: CG on the coarsest level
-  int coarseIterations = 20;
-  int cycles = 1;              // V-cycles per solve when not used as a preconditioner
-  bool pcg = false;            // CG preconditioned by one V-cycle per iteration
-  double pcgTolerance = 1e-6;  // relative residual
-  int pcgMaxIterations = 100;
-  bool splitAggregates = true;  // crack-aware: split aggregates that damage disconnects
 };
 
 class Multigrid {

@@ -21,6 +21,7 @@
 
 #include "solver/fem/block_sparse.h"
 #include "solver/fem/dense_kernels.h"
+#include "solver/model/solver_options.h"
 #include "solver/multigrid/coarse_cholesky.h"
 #include "solver/multigrid/fine_smoother.h"
 #include "solver/multigrid/fragment_correction.h"
@@ -323,9 +324,20 @@ class MultigridCycle {
   }
   void adoptKeptCoarseMatrix(std::vector<double> blocks) { adopted_ = std::move(blocks); }
 
-  // The solve's settings are the scene's (multigrid.h); the cycle reads the sweeps, the
-  // smoother, the coarsest solve and the cycle count, not the PCG fields (linear_solve.h's).
-  using Settings = MultigridSettings;
+  // The solve's settings are the solver options (solver/model/solver_options.h): the cycle reads
+  // fine_sweeps (before and after the coarse correction), the smoother, the coarse solver and
+  // its iterations and the cycle count; PCG's tolerance is linear_solve.h's.
+  using Settings = SolverOptions;
+  // Jacobi where the options ask for it, and with `smoother: auto` on a device where the V-cycle
+  // preconditions CG: a colour sweep there is a launch per colour, a Jacobi sweep one launch,
+  // and CG takes the weaker smoother to the same tolerance. Without CG (the paper's one V-cycle)
+  // the smoother is the solve, and Gauss-Seidel stays
+  // (docs/notes/2026-12-04-gpu-second-run.md has the measurements).
+  static bool jacobi(const Settings& s) {
+    return s.smoother == Smoother::Jacobi ||
+           (!Exec::kHostMemory && s.smoother == Smoother::Auto && s.pcgTolerance > 0.0);
+  }
+  static constexpr double kJacobiWeight = 0.66;
 
   // x <- x + V-cycles for A x = b (A: fine blocks, 9 doubles each). No host waits.
   void cycles(const double* a, const double* b, double* x, const Settings& s) {
@@ -364,10 +376,10 @@ class MultigridCycle {
     }
     double* ax = l == 0 ? ax_.data() : levels_[l - 1].ax.data();
     if (l == 0) {
-      smoothFine(a, b, x, s.preSweeps, false, s);
+      smoothFine(a, b, x, s.fineSweeps, false, s);
       multiplySmoother(a, x, ax);
     } else {
-      smoothCoarse(l, b, x, s.preSweeps, false, s);
+      smoothCoarse(l, b, x, s.fineSweeps, false, s);
       multiplyCoarse(l - 1, x, ax);
     }
     Level& next = levels_[l];
@@ -379,9 +391,9 @@ class MultigridCycle {
     if (l == 0) {
       if (fragments_.fragments() > 0)
         fragments_.correct(a, fineRowStart_.data(), fineColumns_.data(), b, x);
-      smoothFine(a, b, x, s.postSweeps, true, s);
+      smoothFine(a, b, x, s.fineSweeps, true, s);
     } else {
-      smoothCoarse(l, b, x, s.postSweeps, true, s);
+      smoothCoarse(l, b, x, s.fineSweeps, true, s);
     }
   }
 
@@ -451,10 +463,10 @@ class MultigridCycle {
     const double* inverse = smoother_.diagonalInverse();
     const int* rowOf = fineColorRows_.data();
     for (int sweep = 0; sweep < sweeps; ++sweep) {
-      if (s.jacobi) {
+      if (jacobi(s)) {
         double* ax = ax_.data();
         multiplySmoother(a, x, ax);
-        const double w = s.jacobiWeight;
+        const double w = kJacobiWeight;
         ex_.forEach(
             rows_,
             [=] GALSCULPT_LAMBDA(int i) {
@@ -512,10 +524,10 @@ class MultigridCycle {
     const double* blocks = d.blocks.data();
     const double* factor = d.diagonalFactor.data();
     for (int sweep = 0; sweep < sweeps; ++sweep) {
-      if (s.jacobi) {
+      if (jacobi(s)) {
         double* ax = d.ax.data();
         multiplyCoarse(l - 1, x, ax);
-        const double w = s.jacobiWeight;
+        const double w = kJacobiWeight;
         ex_.forEach(
             d.handles,
             [=] GALSCULPT_LAMBDA(int r) {
@@ -657,7 +669,7 @@ class MultigridCycle {
   void solveCoarsest(const double* b, double* x, const Settings& s) {
     const Level& c = levels_.back();
     const int n = 12 * c.handles;
-    if (s.coarseCholesky && factored_) {
+    if (s.coarseSolver == CoarseSolver::Cholesky && factored_) {
       ex_.copy(x, b, n);
       if constexpr (Exec::kHostMemory)
         sparse_->solve(x);

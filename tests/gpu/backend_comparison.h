@@ -45,7 +45,7 @@ struct Comparison {
 // every frame, relative to the largest displacement from the start.
 inline Comparison compareWithCpu(const Simulation& sim, StepBackend& backend, int frames,
                                  StepSettings settings = {}) {
-  if (settings.gridHandles.empty() || !settings.multigrid) settings = sim.settings();
+  if (settings.gridHandles.empty() || !settings.multigrid()) settings = sim.settings();
   SimState cpu = sim.state();
   SimState device = sim.state();
   CpuStepBackend cpuBackend(sim.model());
@@ -123,9 +123,8 @@ inline double relativeDifference(const Trajectory& a, const Trajectory& b,
 inline StepSettings tightlyConverged(StepSettings s) {
   s.residualTolerance = 1e-9;
   s.newtonIterations = 40;
-  s.multigridSettings.pcg = true;
-  s.multigridSettings.pcgTolerance = 1e-12;
-  s.multigridSettings.pcgMaxIterations = 1000;
+  s.pcgTolerance = 1e-12;
+  s.pcgMaxIterations = 1000;
   return s;
 }
 

@@ -32,7 +32,7 @@ TEST(Cli, BackendFlag) {
   std::string reason;
   const SimModel probe = buildSimModel(test::gridBar(1, 1, 1, 0.1), MaterialParams{});
   StepSettings multigrid;
-  multigrid.multigrid = true;
+  multigrid.type = SolverType::Multigrid;
   if (!gpu::makeCudaStepBackend(probe, multigrid, reason)) {
     EXPECT_NE(cuda.err.find("note: the CUDA backend is not available (" + reason + ")"),
               std::string::npos)

@@ -38,7 +38,6 @@ SolverOptions unusual() {
   o.residualTolerance = 0.003;
   o.frameBudgetMs = 25.0;
   o.reuseStiffness = true;
-  o.lbfgsPairs = 4;
   o.localNewton = true;
   o.predictedStart = true;
   o.acceleratedStart = true;

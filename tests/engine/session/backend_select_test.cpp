@@ -16,7 +16,7 @@ SimModel smallModel() {
 
 StepSettings multigridSettings() {
   StepSettings s;
-  s.multigrid = true;
+  s.type = SolverType::Multigrid;
   s.gridHandles = {4};
   return s;
 }

@@ -1,4 +1,4 @@
-// The vertex energy guard (scene solver.energy_guard "vertex", StepSettings::vertexGuard): when
+// The vertex energy guard (scene solver.energy_guard "vertex", StepSettings::vertexGuard()): when
 // a Newton step raises the incremental potential, shorten the steps of the vertices whose share
 // rose instead of the whole step. Judged where steps overshoot: the paper preset's one
 // linearized step on StVK clay under grabs that jerk a patch of the surface 2-3 cm in two frames

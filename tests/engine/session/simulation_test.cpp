@@ -231,7 +231,7 @@ TEST(Simulation, HangingSphereSagsAndSettlesWithAnchorsHeld) {
     EXPECT_EQ(sim.state().x[v], sim.model().mesh.vertices[v]) << "anchored vertices do not move";
   }
   EXPECT_TRUE(sim.surface().mesh.numFaces() > 0);
-  EXPECT_TRUE(sim.settings().multigrid) << "the scene default solver is the Galerkin multigrid";
+  EXPECT_TRUE(sim.settings().multigrid()) << "the scene default solver is the Galerkin multigrid";
   EXPECT_EQ(sim.settings().gridHandles, std::vector<int>{50});
 }
 
@@ -267,10 +267,11 @@ TEST(Simulation, TheSmootherIsTheScenesAndAutoPicksJacobiOnDevicesOnly) {
         *name ? std::string(R"(, "solver": {"smoother": ")") + name + "\"}" : "";
     const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + key + "}");
     const Simulation sim(scene, loadSceneMesh(scene));
-    const MultigridSettings& m = sim.settings().multigridSettings;
     const std::string n = name;
-    EXPECT_EQ(m.jacobi, n == "jacobi") << name;
-    EXPECT_EQ(m.jacobiOnDevice, n.empty() || n == "auto") << name;
+    const Smoother expected = n == "jacobi"         ? Smoother::Jacobi
+                              : n == "gauss_seidel" ? Smoother::GaussSeidel
+                                                    : Smoother::Auto;
+    EXPECT_EQ(sim.settings().smoother, expected) << name;
   }
 }
 

@@ -138,11 +138,10 @@ TensionRun pullApart(bool multigrid, double kernel) {
   const SimModel& m = c.model;
   SimState& s = c.state;
   StepSettings st;
-  st.multigrid = multigrid;
+  st.type = multigrid ? SolverType::Multigrid : SolverType::Reference;
   st.gridHandles = {12};
-  st.multigridSettings.pcg = true;
-  st.multigridSettings.pcgTolerance = 1e-8;
-  st.multigridSettings.pcgMaxIterations = 500;
+  st.pcgTolerance = 1e-8;
+  st.pcgMaxIterations = 500;
   if (!multigrid) st = referenceSettings(st);  // the multigrid takes one linearized step
   TensionRun run;
   int previous = 0;

@@ -162,11 +162,11 @@ TEST(Knife, CutHalvesMoveIndependentlyUnderReferenceAndMultigrid) {
     cutAlongSurface(b.model, b.state, planarCut(0.4));
     StepSettings s;
     b.state.anchors.push_back({anchorTop(b.model), {}, {}, {}});
-    s.multigrid = multigrid;
+    s.type = multigrid ? SolverType::Multigrid : SolverType::Reference;
     s.gridHandles = {12};
-    s.multigridSettings.splitAggregates = split;
-    s.multigridSettings.cycles = 3;
-    s.multigridSettings.coarseCholesky = true;
+    s.splitAggregates = split;
+    s.cycles = 3;
+    s.coarseSolver = CoarseSolver::Cholesky;
     if (!multigrid) s = referenceSettings(s);
     for (int f = 0; f < 10; ++f) {
       const StepReport r = step(b.model, b.state, s);
@@ -200,7 +200,7 @@ TEST(Knife, FiftyRandomCutsStayFiniteAndSolvable) {
   Bar b = makeBar();
   StepSettings s;
   b.state.anchors.push_back({anchorTop(b.model), {}, {}, {}});
-  s.multigrid = true;
+  s.type = SolverType::Multigrid;
   s.gridHandles = {12};
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);

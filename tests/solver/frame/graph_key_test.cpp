@@ -15,11 +15,11 @@ TEST(GraphKey, EverySettingACapturedStepReadsChangesTheKey) {
   EXPECT_EQ(key(base), key(base));
   std::vector<StepSettings> changed(8, base);
   changed[0].newtonIterations += 1;
-  changed[1].multigridSettings.preSweeps += 1;
-  changed[2].multigridSettings.postSweeps += 1;
-  changed[3].multigridSettings.coarseIterations += 1;
-  changed[4].multigridSettings.jacobi = !base.multigridSettings.jacobi;
-  changed[5].multigridSettings.jacobiWeight *= 0.5;
+  changed[1].fineSweeps += 1;
+  changed[2].cycles += 1;
+  changed[3].coarseIterations += 1;
+  changed[4].smoother = Smoother::Jacobi;
+  changed[5].pcgTolerance = 1e-3;  // (the device's smoother under PCG)
   changed[6].stiffnessTolerance += 1e-3;
   changed[7].reuseStiffness = !base.reuseStiffness;
   for (size_t i = 0; i < changed.size(); ++i) EXPECT_NE(key(changed[i]), key(base)) << i;

@@ -34,7 +34,7 @@ struct System {
   int n = model.numVertices();
 
   System() {
-    settings.multigrid = true;
+    settings.type = SolverType::Multigrid;
     settings.gridHandles = {8};
     d.settings = &settings;
     d.h = 0.01;
@@ -65,8 +65,7 @@ struct System {
   }
   // PCG's step to `tolerance` (relative), its iterations counted from zero.
   std::vector<double> pcgStep(double tolerance) {
-    settings.multigridSettings.pcg = true;
-    settings.multigridSettings.pcgTolerance = tolerance;
+    settings.pcgTolerance = tolerance;
     linear.resetIterations();
     linear.solve(settings, 0.0);
     return step();
@@ -77,7 +76,7 @@ TEST(LinearSolve, PcgWithTheMultigridGivesTheDirectSolvesStep) {
   System s;
   s.linear.solveDirect(s.settings);
   const std::vector<double> direct = s.step();
-  s.settings.multigridSettings.pcg = true;  // (the refresh for a V-cycle that preconditions)
+  s.settings.pcgTolerance = 1e-6;  // (the refresh for a V-cycle that preconditions)
   s.linear.refresh(s.settings);
   const std::vector<double> pcg = s.pcgStep(1e-12);
   EXPECT_GT(s.linear.iterations(), 0);

@@ -28,7 +28,7 @@ TEST(Multigrid, TheCoarsestFactorIsKeptOnlyWhileItsMatrixBarelyMoves) {
     Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {handles});
     Cycle c(s, mg, true);
     MultigridCycle<CpuExecutor>::Settings st = Cycle::settings();
-    st.coarseCholesky = true;
+    st.coarseSolver = CoarseSolver::Cholesky;
     const int n = 12 * handles;
     Eigen::VectorXd b(n), exact(n), x(n);
     for (int i = 0; i < n; ++i) b[i] = std::sin(0.7 * i) + 0.2;

@@ -31,7 +31,7 @@ void expectCoarsestSolvedExactly(const System& s, const Multigrid& mg, int handl
   Eigen::VectorXd b(coarse.rows()), x(coarse.rows());
   for (int i = 0; i < b.size(); ++i) b[i] = std::sin(0.7 * i) * coarse(i, i);
   typename MultigridCycle<Exec>::Settings st;
-  st.coarseCholesky = true;
+  st.coarseSolver = CoarseSolver::Cholesky;
   cycle.solveCoarsest(b.data(), x.data(), st);
   const Eigen::VectorXd exact = coarse.ldlt().solve(b);
   EXPECT_LT((x - exact).norm(), 1e-8 * exact.norm());

@@ -60,8 +60,9 @@ struct Cycle {
     for (const Eigen::Matrix3d& blk : s.a.blocks) a.insert(a.end(), blk.data(), blk.data() + 9);
     cycle.refresh(a.data(), coarseCholesky);
   }
+  // The paper's V-cycle: Gauss-Seidel, CG on the coarsest level.
   static MultigridCycle<CpuExecutor>::Settings settings(int cycles = 1) {
-    MultigridCycle<CpuExecutor>::Settings st;
+    MultigridCycle<CpuExecutor>::Settings st = solverPreset(SolverPreset::Paper);
     st.cycles = cycles;
     return st;
   }

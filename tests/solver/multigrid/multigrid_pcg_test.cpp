@@ -44,8 +44,8 @@ TEST(Multigrid, VCycleReducesTheResidualAndPcgReachesTheDirectSolution) {
   EXPECT_LT((s.b - s.a.toEigen() * xp).norm(), 1.0001e-4 * bnorm) << "the residual it reports";
 
   MultigridCycle<CpuExecutor>::Settings jacobi = Cycle::settings(30);
-  jacobi.coarseCholesky = true;
-  jacobi.jacobi = true;
+  jacobi.coarseSolver = CoarseSolver::Cholesky;
+  jacobi.smoother = Smoother::Jacobi;
   EXPECT_LT(c.solve(x, jacobi), 1e-3) << "Jacobi smoothing converges too, slower";
   MultigridCycle<CpuExecutor>::Settings cg = Cycle::settings(10);
   EXPECT_LT(c.solve(x, cg), 1e-3) << "and the coarse CG as well as the Cholesky";

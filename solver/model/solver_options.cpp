@@ -1,6 +1,7 @@
-#include "solver/frame/solver_options.h"
+#include "solver/model/solver_options.h"
 
-#include "solver/multigrid/multigrid.h"
+#include <algorithm>
+#include <stdexcept>
 
 namespace galsculpt {
 
@@ -41,6 +42,37 @@ std::span<const EnumName<BackendRequest>> namesOf(BackendRequest) {
   return kBackendNames;
 }
 
+std::vector<int> parseGridSetup(const std::string& grid) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  while (true) {
+    const size_t slash = grid.find('/', start);
+    parts.push_back(grid.substr(start, slash - start));
+    if (slash == std::string::npos) break;
+    start = slash + 1;
+  }
+  if (parts.size() < 2 || parts.back() != "all") {
+    throw std::invalid_argument(
+        "grid '" + grid +
+        "' must list coarse vertex counts and end in 'all', e.g. 50/all or 50/1000/all");
+  }
+  std::vector<int> counts;  // coarse to fine as written
+  for (size_t i = 0; i + 1 < parts.size(); ++i) {
+    const std::string& p = parts[i];
+    if (p.empty() || p.size() > 9 || p.find_first_not_of("0123456789") != std::string::npos) {
+      throw std::invalid_argument("grid level '" + p + "' is not a vertex count");
+    }
+    const int n = std::stoi(p);
+    if (n < 1 || (!counts.empty() && n <= counts.back())) {
+      throw std::invalid_argument(
+          "grid levels must be positive and increase from coarse to fine, got '" + grid + "'");
+    }
+    counts.push_back(n);
+  }
+  std::reverse(counts.begin(), counts.end());  // finest coarse level first
+  return counts;
+}
+
 void checkGridSetup(const std::string& grid) {
   parseGridSetup(grid);
 }
@@ -50,37 +82,6 @@ SolverOptions solverPreset(SolverPreset preset) {
   o.preset = preset;
   forEachSolverOption([&](const auto& field) { o.*field.member = field.presetValue(preset); });
   return o;
-}
-
-StepSettings stepSettings(const SolverOptions& o, double dt, int substeps) {
-  StepSettings s;
-  s.dt = dt;
-  s.substeps = substeps;
-  s.newtonIterations = o.newtonIterations;
-  s.residualTolerance = o.residualTolerance;
-  s.frameBudgetMs = o.frameBudgetMs;
-  s.reuseStiffness = o.reuseStiffness;
-  s.lbfgsPairs = o.lbfgsPairs;
-  s.localNewton = o.localNewton;
-  s.predictedStart = o.predictedStart;
-  s.acceleratedStart = o.acceleratedStart;
-  s.convergePieces = o.convergePieces;
-  s.vertexGuard = o.energyGuard == EnergyGuard::Vertex;
-  s.stiffnessTolerance = o.stiffnessTolerance;
-  if (o.type == SolverType::Reference) return referenceSettings(s);
-  s.multigrid = true;
-  s.gridHandles = parseGridSetup(o.grid);
-  MultigridSettings& mg = s.multigridSettings;
-  mg.preSweeps = mg.postSweeps = o.fineSweeps;
-  mg.jacobi = o.smoother == Smoother::Jacobi;
-  mg.jacobiOnDevice = o.smoother == Smoother::Auto;
-  mg.coarseCholesky = o.coarseSolver == CoarseSolver::Cholesky;
-  mg.coarseIterations = o.coarseIterations;
-  mg.cycles = o.cycles;
-  mg.splitAggregates = o.splitAggregates;
-  mg.pcg = o.pcgTolerance > 0.0;
-  if (mg.pcg) mg.pcgTolerance = o.pcgTolerance;
-  return s;
 }
 
 }  // namespace galsculpt

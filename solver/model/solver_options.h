@@ -1,20 +1,25 @@
 // The solver's options, one row each, with the two presets' values beside them: the table that
 // drives the struct below, its presets (solverPreset), the scene reader and writer
 // (engine/scene), the command line's --solver-option, the Scene panel and the check of
-// docs/scenes.md (tests/engine/scene/scene_test.cpp). stepSettings turns a set of options into
-// the frame's numerical settings, the one place where the two meet.
+// docs/scenes.md (tests/engine/scene/scene_test.cpp). The frame and the multigrid read the
+// struct itself: StepSettings (solver/frame/step.h) is a SolverOptions with the frame's
+// numerical constants beside it, so an option is its row and nothing copies it.
+// (It lives with the model, as MuJoCo's mjOption lives in mjModel: the multigrid below the frame
+// reads it too.)
 //
 // Adding an option: its row below (type, member, scene key, panel label, the `converged` and
 // `paper` presets' values, the range a scene may give, a check or nullptr), its row in
-// docs/scenes.md, and what it sets in stepSettings (solver_options.cpp). An option of a new
-// enum type also needs the enum's names (namesOf below).
+// docs/scenes.md, and the code that reads it. An option of a new enum type also needs the enum's
+// names (namesOf below).
 #pragma once
 
 #include <optional>
+#include <version>
+#if __cplusplus >= 202002L
 #include <span>
+#endif
 #include <string>
-
-#include "solver/frame/step.h"
+#include <vector>
 
 namespace galsculpt {
 
@@ -23,13 +28,16 @@ enum class SolverType { Multigrid, Reference };
 // The multigrid's defaults: `converged` (Newton with multigrid-preconditioned CG until the
 // residual is within tolerance) or `paper` (the paper's one linearized step, one V-cycle).
 enum class SolverPreset { Converged, Paper };
-// Auto: Gauss-Seidel on the CPU, Jacobi on a GPU (MultigridSettings::jacobiOnDevice).
+// Auto: Gauss-Seidel, except on a device where the V-cycle preconditions CG (multigrid_cycle.h).
 enum class Smoother { Auto, GaussSeidel, Jacobi };
 enum class CoarseSolver { Cg, Cholesky };
-// What a Newton step that raised the potential shortens first (StepSettings::vertexGuard).
+// What a Newton step that raised the potential shortens first (line_search.h).
 enum class EnergyGuard { Vertex, Body };
 enum class BackendRequest { Auto, Cpu, Cuda };
 
+// "50/1000/all" -> {1000, 50}: handle counts from the finest coarse level down. Throws
+// std::invalid_argument on a malformed setup.
+std::vector<int> parseGridSetup(const std::string& grid);
 // The grid setup's check: throws std::invalid_argument for a malformed one ("50/1000/all").
 void checkGridSetup(const std::string& grid);
 
@@ -55,7 +63,6 @@ void checkGridSetup(const std::string& grid);
   X(double, frameBudgetMs, "frame_budget_ms", "frame budget (ms, 0: none)", 0.0, 0.0, 0.0, 1e6,    \
     nullptr)                                                                                       \
   X(bool, reuseStiffness, "reuse_stiffness", "chord steps", true, false, 0, 0, nullptr)            \
-  X(int, lbfgsPairs, "lbfgs_pairs", "L-BFGS pairs (0: none)", 0, 0, 0, 8, nullptr)                 \
   X(bool, localNewton, "local_newton", "solve where the residual is", true, false, 0, 0, nullptr)  \
   X(bool, predictedStart, "predicted_start", "predicted start", true, false, 0, 0, nullptr)        \
   X(bool, acceleratedStart, "accelerated_start", "accelerated start", true, false, 0, 0, nullptr)  \
@@ -77,7 +84,9 @@ struct SolverOptions {
   GALSCULPT_SOLVER_OPTIONS(GALSCULPT_OPTION_MEMBER)
 #undef GALSCULPT_OPTION_MEMBER
 
+#if __cplusplus >= 202002L  // (CUDA sources compile as C++17: the frame reads the struct only)
   bool operator==(const SolverOptions&) const = default;
+#endif
 };
 
 // One row of the table, typed.
@@ -85,7 +94,8 @@ template <typename T>
 struct OptionField {
   const char* key;
   const char* label;
-  T SolverOptions::*member;
+  using Member = T SolverOptions::*;
+  Member member;
   T converged, paper;
   double min, max;  // numbers only
   void (*check)(const std::string&);
@@ -106,11 +116,7 @@ void forEachSolverOption(F&& f) {
 // The options a preset stands for (keys a scene gives override them).
 SolverOptions solverPreset(SolverPreset preset);
 
-// The frame's numerical settings for `options` at time step `dt` in `substeps` sub-steps; a
-// `reference` type gives the reference solver's (referenceSettings: Newton with line search and
-// a direct solve), which keeps only the start options (predicted, accelerated, pieces).
-StepSettings stepSettings(const SolverOptions& options, double dt, int substeps);
-
+#if __cplusplus >= 202002L  // (the names are the host's: scenes, the command line, the panel)
 // An enum value and its name as written in scenes, on the command line and in the panel.
 template <typename E>
 struct EnumName {
@@ -142,5 +148,6 @@ std::optional<E> enumFromName(const std::string& name) {
     if (name == n.name) return n.value;
   return std::nullopt;
 }
+#endif
 
 }  // namespace galsculpt

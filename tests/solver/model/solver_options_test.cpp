@@ -1,4 +1,6 @@
-#include "solver/frame/solver_options.h"
+#include "solver/model/solver_options.h"
+
+#include "solver/frame/step.h"
 
 #include <gtest/gtest.h>
 
@@ -19,7 +21,7 @@ TEST(SolverOptions, KeysAndLabelsAreUniqueAndEveryRowIsVisited) {
     EXPECT_TRUE(labels.insert(f.label).second) << f.label;
     EXPECT_NE(std::string(f.key), "preset") << "the preset chooses the columns; it is no row";
   });
-  EXPECT_EQ(rows, 21);
+  EXPECT_EQ(rows, 20);
 }
 
 // The struct's defaults are the converged column; each preset sets every row to its column.
@@ -93,64 +95,46 @@ TEST(SolverOptions, GridCheckRefusesMalformedSetups) {
   EXPECT_THROW(checkGridSetup("x/all"), std::invalid_argument);
 }
 
-// The converged preset: Newton to the residual tolerance, each step by CG preconditioned with
-// a V-cycle, a direct coarsest level, chords and kept stiffnesses.
-TEST(SolverOptions, ConvergedPresetsStepSettings) {
-  const StepSettings s = stepSettings(SolverOptions{}, 0.01, 2);
-  EXPECT_EQ(s.dt, 0.01);
-  EXPECT_EQ(s.substeps, 2);
-  EXPECT_TRUE(s.multigrid);
-  EXPECT_EQ(s.gridHandles, std::vector<int>{50});
-  EXPECT_EQ(s.newtonIterations, 40);
-  EXPECT_EQ(s.residualTolerance, 1e-2);
-  EXPECT_TRUE(s.reuseStiffness);
-  EXPECT_TRUE(s.predictedStart);
-  EXPECT_TRUE(s.acceleratedStart);
-  EXPECT_TRUE(s.convergePieces);
-  EXPECT_FALSE(s.vertexGuard);
-  EXPECT_EQ(s.stiffnessTolerance, 1e-3);
-  EXPECT_FALSE(s.lineSearch);
-  const MultigridSettings& mg = s.multigridSettings;
-  EXPECT_TRUE(mg.pcg);
-  EXPECT_EQ(mg.pcgTolerance, 1e-2);
-  EXPECT_TRUE(mg.coarseCholesky);
-  EXPECT_EQ(mg.preSweeps, 3);
-  EXPECT_EQ(mg.postSweeps, 3);
-  EXPECT_FALSE(mg.jacobi);
-  EXPECT_TRUE(mg.jacobiOnDevice);
-  EXPECT_EQ(mg.coarseIterations, 20);
-  EXPECT_TRUE(mg.splitAggregates);
+// The frame reads the options themselves: stepSettings keeps every row as given (the converged
+// and paper presets, and a set with every kind of row changed) and adds what follows from them.
+TEST(SolverOptions, StepSettingsAreTheOptionsThemselves) {
+  SolverOptions changed = solverPreset(SolverPreset::Paper);
+  changed.grid = "20/300/all";
+  changed.fineSweeps = 5;
+  changed.coarseIterations = 7;
+  changed.smoother = Smoother::Jacobi;
+  changed.cycles = 3;
+  changed.frameBudgetMs = 12.0;
+  changed.energyGuard = EnergyGuard::Vertex;
+  changed.splitAggregates = false;
+  for (const SolverOptions& o :
+       {solverPreset(SolverPreset::Converged), solverPreset(SolverPreset::Paper), changed}) {
+    const StepSettings s = stepSettings(o, 0.01, 2);
+    EXPECT_EQ(static_cast<const SolverOptions&>(s), o);
+    EXPECT_EQ(s.dt, 0.01);
+    EXPECT_EQ(s.substeps, 2);
+    EXPECT_TRUE(s.multigrid());
+    EXPECT_EQ(s.gridHandles, parseGridSetup(o.grid));
+    EXPECT_EQ(s.pcg(), o.pcgTolerance > 0.0);
+    EXPECT_EQ(s.vertexGuard(), o.energyGuard == EnergyGuard::Vertex);
+    EXPECT_FALSE(s.lineSearch);
+  }
+  EXPECT_EQ(stepSettings(changed, 0.01, 1).gridHandles, (std::vector<int>{300, 20}));
+  EXPECT_TRUE(stepSettings(SolverOptions{}, 0.01, 1).pcg()) << "the converged preset runs PCG";
+  EXPECT_FALSE(stepSettings(changed, 0.01, 1).pcg()) << "pcg_tolerance 0: V-cycles are the solve";
 }
 
-TEST(SolverOptions, EachOptionReachesItsSetting) {
-  SolverOptions o = solverPreset(SolverPreset::Paper);
-  o.grid = "20/300/all";
-  o.fineSweeps = 5;
-  o.coarseIterations = 7;
-  o.smoother = Smoother::Jacobi;
-  o.cycles = 3;
-  o.frameBudgetMs = 12.0;
-  o.energyGuard = EnergyGuard::Vertex;
-  o.splitAggregates = false;
-  const StepSettings s = stepSettings(o, 1.0 / 60.0, 1);
-  EXPECT_EQ(s.gridHandles, (std::vector<int>{300, 20}));
+// StepSettings{} is the paper's one linearized step with a direct solve.
+TEST(SolverOptions, DefaultStepSettingsAreThePapersStepSolvedDirectly) {
+  const StepSettings s;
+  EXPECT_FALSE(s.multigrid());
   EXPECT_EQ(s.newtonIterations, 1);
-  EXPECT_EQ(s.frameBudgetMs, 12.0);
-  EXPECT_TRUE(s.vertexGuard);
+  EXPECT_FALSE(s.lineSearch);
+  EXPECT_FALSE(s.pcg());
   EXPECT_FALSE(s.predictedStart);
-  EXPECT_FALSE(s.acceleratedStart);
-  const MultigridSettings& mg = s.multigridSettings;
-  EXPECT_EQ(mg.preSweeps, 5);
-  EXPECT_EQ(mg.postSweeps, 5);
-  EXPECT_EQ(mg.coarseIterations, 7);
-  EXPECT_TRUE(mg.jacobi);
-  EXPECT_FALSE(mg.jacobiOnDevice);
-  EXPECT_FALSE(mg.pcg) << "pcg_tolerance 0: the V-cycles are the solve";
-  EXPECT_FALSE(mg.coarseCholesky);
-  EXPECT_EQ(mg.cycles, 3);
-  EXPECT_FALSE(mg.splitAggregates);
-  o.smoother = Smoother::GaussSeidel;
-  EXPECT_FALSE(stepSettings(o, 1.0 / 60.0, 1).multigridSettings.jacobiOnDevice);
+  EXPECT_FALSE(s.reuseStiffness);
+  EXPECT_EQ(s.coarseSolver, CoarseSolver::Cg);
+  EXPECT_EQ(s.fineSweeps, 3);
 }
 
 // The reference: Newton with line search and a direct solve to Newton's step test, whatever
@@ -161,11 +145,11 @@ TEST(SolverOptions, ReferenceTypeGivesTheReferenceSettings) {
   o.predictedStart = false;
   o.energyGuard = EnergyGuard::Vertex;
   const StepSettings s = stepSettings(o, 1.0 / 60.0, 1);
-  EXPECT_FALSE(s.multigrid);
+  EXPECT_FALSE(s.multigrid());
   EXPECT_TRUE(s.lineSearch);
   EXPECT_EQ(s.residualTolerance, 0.0);
   EXPECT_EQ(s.newtonIterations, 50);
-  EXPECT_FALSE(s.vertexGuard);
+  EXPECT_FALSE(s.vertexGuard());
   EXPECT_FALSE(s.reuseStiffness);
   EXPECT_EQ(s.stiffnessTolerance, 0.0);
   EXPECT_FALSE(s.predictedStart);
