@@ -84,9 +84,8 @@ std::optional<Command> keyCommand(int key, bool ctrl, bool shift, const std::str
     }
     return std::nullopt;
   }
-  for (int t = 0; t < kToolCount; ++t)
-    if (key == toolKey(static_cast<Tool>(t)))
-      return Command{AppCommand::Tool, toolName(static_cast<Tool>(t))};
+  for (const ToolRow& row : toolTable())
+    if (key == row.key) return Command{AppCommand::Tool, row.label};
   switch (key) {
     case ' ':
       return Command{AppCommand::TogglePlay, ""};

@@ -109,9 +109,9 @@ bool SculptApp::applyToTools(const Command& command) {
       return true;
     case AppCommand::Tool:
       if (controller_ && controller_->strokeActive()) return true;  // a stroke keeps its tool
-      for (int t = 0; t < kToolCount; ++t)
-        if (argument == toolName(static_cast<Tool>(t))) {
-          toolSettings_.tool = static_cast<Tool>(t);
+      for (const ToolRow& row : toolTable())  // (the window's label or the script's name)
+        if (argument == row.label || argument == row.name) {
+          toolSettings_.tool = row.tool;
           return true;
         }
       throw std::runtime_error("unknown tool '" + argument + "'");

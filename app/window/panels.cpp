@@ -34,7 +34,7 @@ void pickNamed(const char* label, E& value) {
     value = namesOf(value)[current].value;
 }
 
-// The widget of one solver option (solver/frame/solver_options.h), by its type; numbers are
+// The widget of one solver option (solver/model/solver_options.h), by its type; numbers are
 // held in the range a scene may give.
 template <typename T>
 void editOption(const OptionField<T>& f, T& value) {
@@ -137,11 +137,10 @@ void SculptApp::drawMenu() {
 void SculptApp::drawToolsPanel() {
   ImGui::SetNextWindowPos(ImVec2(10, 30), ImGuiCond_FirstUseEver);
   ImGui::Begin("Tools", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-  for (int t = 0; t < kToolCount; ++t) {
-    const std::string label =
-        std::string(toolName(static_cast<Tool>(t))) + " (" + toolKey(static_cast<Tool>(t)) + ")";
-    if (ImGui::RadioButton(label.c_str(), toolSettings_.tool == static_cast<Tool>(t)))
-      execute({AppCommand::Tool, toolName(static_cast<Tool>(t))});
+  for (const ToolRow& row : toolTable()) {
+    const std::string label = std::string(row.label) + " (" + row.key + ")";
+    if (ImGui::RadioButton(label.c_str(), toolSettings_.tool == row.tool))
+      execute({AppCommand::Tool, row.label});
   }
   ImGui::Separator();
   float radius = static_cast<float>(toolSettings_.radius);
@@ -324,8 +323,7 @@ void SculptApp::drawCursor() {
   const Vec3 r = camera_.project(hit->point + toolSettings_.radius * side, width, height);
   const float pixels = static_cast<float>((r - c).head<2>().norm());
   const ImU32 color =
-      toolSettings_.tool == Tool::AnchorPaint || toolSettings_.tool == Tool::AnchorErase
-          ? IM_COL32(60, 110, 255, 255)
+      toolRow(toolSettings_.tool).kind == ToolKind::Paint ? IM_COL32(60, 110, 255, 255)
           : IM_COL32(255, 255, 255, 220);
   draw->AddCircle(ImVec2(float(c.x()), float(c.y())), pixels, color, 48, 1.5f);
   if (toolSettings_.symmetry) {
@@ -338,8 +336,8 @@ void SculptApp::drawCursor() {
 
 // The drawn surface's point under the cursor (none for the knife and navigation).
 std::optional<RayHit> SculptApp::hoverShown() {
-  if (!shown_.valid || toolSettings_.tool == Tool::Navigate || toolSettings_.tool == Tool::Knife)
-    return std::nullopt;
+  const ToolKind kind = toolRow(toolSettings_.tool).kind;
+  if (!shown_.valid || kind == ToolKind::Navigate || kind == ToolKind::Knife) return std::nullopt;
   if (shown_.damageRevision != bvhDamage_ || shown_.surface.numFaces() != bvhFaces_) {
     shownBvh_.build(shown_.surface);
   } else if (shown_.generation != bvhGeneration_) {

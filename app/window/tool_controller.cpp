@@ -5,36 +5,6 @@
 
 namespace galsculpt {
 
-namespace {
-
-constexpr const char* kToolNames[] = {"navigate", "knife", "grab",         "push",        "pull",
-                                      "inflate",  "pinch", "anchor paint", "anchor erase"};
-constexpr char kToolKeys[] = {'N', 'K', 'G', 'B', 'U', 'I', 'P', 'A', 'E'};
-
-BrushKind brushOf(Tool tool) {
-  switch (tool) {
-    case Tool::Push:
-      return BrushKind::Push;
-    case Tool::Pull:
-      return BrushKind::Pull;
-    case Tool::Inflate:
-      return BrushKind::Inflate;
-    case Tool::Pinch:
-      return BrushKind::Pinch;
-    default:
-      return BrushKind::Grab;
-  }
-}
-
-}  // namespace
-
-const char* toolName(Tool tool) {
-  return kToolNames[static_cast<int>(tool)];
-}
-char toolKey(Tool tool) {
-  return kToolKeys[static_cast<int>(tool)];
-}
-
 ToolController::ToolController(SculptSession& session, OrbitCamera& camera,
                                const ToolSettings& settings)
     : session_(session), camera_(camera), settings_(settings) {}
@@ -102,10 +72,10 @@ void ToolController::mouseButton(MouseButton button, bool pressed, bool shift) {
     active_ = Active::Orbit;
     return;
   }
-  switch (settings_.tool) {
-    case Tool::Navigate:
+  switch (toolRow(settings_.tool).kind) {
+    case ToolKind::Navigate:
       break;
-    case Tool::Knife: {
+    case ToolKind::Knife: {
       // The blade reaches through the whole body along every ray: from in front of its
       // bounding sphere to behind it.
       const BoundingBox box = boundingBox(session_.simulation().state().x);
@@ -117,16 +87,15 @@ void ToolController::mouseButton(MouseButton button, bool pressed, bool shift) {
       camera_.ray(x_, y_, width_, height_, origin, direction);
       bladeNear_ = origin + knifeNear_ * direction;
       bladeFar_ = origin + knifeFar_ * direction;
-      session_.beginAction("knife");
+      session_.beginAction(toolRow(settings_.tool).label);
       active_ = Active::Knife;
       knifeCut_ = 0;
       break;
     }
-    case Tool::AnchorPaint:
-    case Tool::AnchorErase: {
+    case ToolKind::Paint: {
       const std::optional<RayHit> hit = pick(x_, y_);
       if (!hit) break;
-      session_.beginAction(toolName(settings_.tool));
+      session_.beginAction(toolRow(settings_.tool).label);
       paintSeed_ = session_.simulation().surface().cellVertex[hit->face];
       lastDab_ = hit->point;
       session_.paint(hit->point, settings_.radius, paintSeed_, settings_.tool == Tool::AnchorErase,
@@ -134,12 +103,12 @@ void ToolController::mouseButton(MouseButton button, bool pressed, bool shift) {
       active_ = Active::Paint;
       break;
     }
-    default: {
+    case ToolKind::Brush: {
       const std::optional<RayHit> hit = pick(x_, y_);
       if (!hit) break;
-      session_.beginAction(toolName(settings_.tool));
+      session_.beginAction(toolRow(settings_.tool).label);
       BrushStroke stroke;
-      stroke.kind = brushOf(settings_.tool);
+      stroke.kind = settings_.tool;
       stroke.center = hit->point;
       stroke.normal = hit->normal;
       stroke.radius = settings_.radius;

@@ -19,11 +19,7 @@
 
 namespace galsculpt {
 
-enum class Tool { Navigate, Knife, Grab, Push, Pull, Inflate, Pinch, AnchorPaint, AnchorErase };
-constexpr int kToolCount = 9;
-const char* toolName(Tool tool);
-// The key that selects each tool (N, K, G, B, U, I, P, A, E).
-char toolKey(Tool tool);
+// The tools are the table's (engine/session/tool_table.h): their labels, keys and kinds.
 
 enum class MouseButton { Left, Right, Middle };
 

@@ -55,11 +55,11 @@ Vec3 readUnit(JsonObject& o, const std::string& key) {
 
 void readStroke(JsonObject& o, ToolEvent& e) {
   if (!o.has("center")) o.fail("center", "is required for a brush stroke");
-  e.center = o.vec3("center", Vec3::Zero(), kMaxCoordinate);
-  e.normal = readUnit(o, "normal");
-  e.radius = o.requiredNumber("radius", 1e-9, 1e9);
-  e.strength = o.number("strength", 0.0, 0.0, 1e9);
-  e.seed = o.integer("seed", -1, 0, 2000000000);
+  e.stroke.center = o.vec3("center", Vec3::Zero(), kMaxCoordinate);
+  e.stroke.normal = readUnit(o, "normal");
+  e.stroke.radius = o.requiredNumber("radius", 1e-9, 1e9);
+  e.stroke.strength = o.number("strength", 0.0, 0.0, 1e9);
+  e.stroke.seed = o.integer("seed", -1, 0, 2000000000);
   e.end = o.integer("end", e.frame, e.frame, 100000000);
   const auto moves = o.array("moves");
   int last = e.frame;
@@ -84,29 +84,39 @@ void readStroke(JsonObject& o, ToolEvent& e) {
 ToolEvent readEvent(JsonObject o) {
   ToolEvent e;
   e.path = o.path();
-  const std::string tool = o.string("tool", "",
-                                    {"knife", "brush", "anchor", "grab", "push", "pull", "inflate",
-                                     "pinch", "anchor_paint", "anchor_erase", "camera"});
-  if (tool.empty())
-    o.fail("tool",
-           "is required (knife, brush, anchor, grab, push, pull, inflate, pinch, anchor_paint, "
-           "anchor_erase or camera)");
+  // The tools of the table (tool_table.h) that a script can hold, and the script's own events:
+  // a fixed drag (brush), an anchor by shape, the camera.
+  static const std::vector<std::string> kEventNames = [] {
+    std::vector<std::string> names;
+    for (const ToolRow& row : toolTable())
+      if (row.kind != ToolKind::Navigate) names.push_back(row.name);
+    for (const char* scriptOnly : {"brush", "anchor", "camera"}) names.push_back(scriptOnly);
+    return names;
+  }();
+  const std::string tool = o.string("tool", "", kEventNames);
+  if (tool.empty()) {
+    std::string names;
+    for (size_t i = 0; i < kEventNames.size(); ++i)
+      names += (i == 0 ? "" : i + 1 == kEventNames.size() ? " or " : ", ") + kEventNames[i];
+    o.fail("tool", "is required (" + names + ")");
+  }
   e.frame = o.integer("frame", 0, 0, 100000000);
   e.duration = o.integer("duration", 1, 1, 100000000);
   if (tool == "knife") {
-    e.tool = ToolEvent::Tool::Knife;
+    e.kind = ToolEvent::Kind::Knife;
+    e.stroke.kind = Tool::Knife;
     std::tie(e.from0, e.from1) = readBlade(o, "from");
     std::tie(e.to0, e.to1) = readBlade(o, "to");
-    e.symmetry = readSymmetry(o);
+    e.stroke.symmetry = readSymmetry(o);
   } else if (tool == "brush") {
-    e.tool = ToolEvent::Tool::Brush;
+    e.kind = ToolEvent::Kind::Drag;
     if (!o.has("center")) o.fail("center", "is required for a brush");
-    e.center = o.vec3("center", Vec3::Zero(), kMaxCoordinate);
-    e.radius = o.requiredNumber("radius", 1e-9, 1e9);
+    e.stroke.center = o.vec3("center", Vec3::Zero(), kMaxCoordinate);
+    e.stroke.radius = o.requiredNumber("radius", 1e-9, 1e9);
     e.offset = o.vec3("offset", Vec3::Zero(), kMaxCoordinate);
     e.hold = o.boolean("hold", false);
   } else if (tool == "anchor") {
-    e.tool = ToolEvent::Tool::Anchor;
+    e.kind = ToolEvent::Kind::Anchor;
     e.add = o.string("action", "add", {"add", "remove"}) == "add";
     e.name = o.string("name", "");
     if (e.add) {
@@ -118,22 +128,22 @@ ToolEvent readEvent(JsonObject o) {
       if (e.name.empty() == (e.sceneAnchor < 0))
         o.fail("name", "give either the name of an added anchor or scene_anchor (an index)");
     }
-  } else if (tool == "anchor_paint" || tool == "anchor_erase") {
-    e.tool = ToolEvent::Tool::Paint;
-    e.erase = tool == "anchor_erase";
-    if (!o.has("center")) o.fail("center", "is required for anchor paint");
-    e.center = o.vec3("center", Vec3::Zero(), kMaxCoordinate);
-    e.radius = o.requiredNumber("radius", 1e-9, 1e9);
-    e.seed = o.integer("seed", -1, 0, 2000000000);
-    e.symmetry = readSymmetry(o);
   } else if (tool == "camera") {
-    e.tool = ToolEvent::Tool::Camera;
+    e.kind = ToolEvent::Kind::Camera;
     e.camera = readCameraPose(o);
+  } else if (toolRow(*toolNamed(tool)).kind == ToolKind::Paint) {  // (a tool: o.string checked)
+    e.kind = ToolEvent::Kind::Paint;
+    e.stroke.kind = *toolNamed(tool);
+    if (!o.has("center")) o.fail("center", "is required for anchor paint");
+    e.stroke.center = o.vec3("center", Vec3::Zero(), kMaxCoordinate);
+    e.stroke.radius = o.requiredNumber("radius", 1e-9, 1e9);
+    e.stroke.seed = o.integer("seed", -1, 0, 2000000000);
+    e.stroke.symmetry = readSymmetry(o);
   } else {
-    e.tool = ToolEvent::Tool::Stroke;
-    e.brush = brushFromName(tool);
+    e.kind = ToolEvent::Kind::Stroke;
+    e.stroke.kind = *toolNamed(tool);  // (a brush: the other names are read above)
     readStroke(o, e);
-    e.symmetry = readSymmetry(o);
+    e.stroke.symmetry = readSymmetry(o);
   }
   o.rejectUnknownKeys();
   return e;
@@ -180,7 +190,7 @@ PlaybackScript parsePlaybackScript(const nlohmann::json& root, const fs::path& f
   // Names must be added before they are removed, and scene anchors must exist.
   std::map<std::string, int> added;
   for (const ToolEvent& e : s.events) {
-    if (e.tool != ToolEvent::Tool::Anchor) continue;
+    if (e.kind != ToolEvent::Kind::Anchor) continue;
     if (e.add && !e.name.empty()) ++added[e.name];
     if (!e.add && !e.name.empty() && added[e.name]-- <= 0)
       throw InputError(file.string(), 0,
@@ -222,27 +232,27 @@ nlohmann::json toolEventJson(const ToolEvent& e) {
   nlohmann::json j;
   j["frame"] = e.frame;
   auto symmetry = [&] {
-    if (e.symmetry.enabled())
-      j["symmetry"] = {{"axis", std::string(1, static_cast<char>('x' + e.symmetry.axis))},
-                       {"offset", e.symmetry.offset}};
+    if (e.stroke.symmetry.enabled())
+      j["symmetry"] = {{"axis", std::string(1, static_cast<char>('x' + e.stroke.symmetry.axis))},
+                       {"offset", e.stroke.symmetry.offset}};
   };
-  switch (e.tool) {
-    case ToolEvent::Tool::Knife:
+  switch (e.kind) {
+    case ToolEvent::Kind::Knife:
       j["tool"] = "knife";
       j["duration"] = e.duration;
       j["from"] = {vec3Json(e.from0), vec3Json(e.from1)};
       j["to"] = {vec3Json(e.to0), vec3Json(e.to1)};
       symmetry();
       break;
-    case ToolEvent::Tool::Brush:
+    case ToolEvent::Kind::Drag:
       j["tool"] = "brush";
       j["duration"] = e.duration;
-      j["center"] = vec3Json(e.center);
-      j["radius"] = e.radius;
+      j["center"] = vec3Json(e.stroke.center);
+      j["radius"] = e.stroke.radius;
       j["offset"] = vec3Json(e.offset);
       if (e.hold) j["hold"] = true;
       break;
-    case ToolEvent::Tool::Anchor: {
+    case ToolEvent::Kind::Anchor: {
       // Written by hand in a script the app replayed or given to SculptSession::apply: kept as
       // written, at the frame where it acted.
       if (e.source.is_null()) throw std::invalid_argument("an anchor event with no source");
@@ -250,13 +260,13 @@ nlohmann::json toolEventJson(const ToolEvent& e) {
       source["frame"] = e.frame;
       return source;
     }
-    case ToolEvent::Tool::Stroke: {
-      j["tool"] = brushName(e.brush);
-      j["center"] = vec3Json(e.center);
-      j["normal"] = vec3Json(e.normal);
-      j["radius"] = e.radius;
-      j["strength"] = e.strength;
-      if (e.seed >= 0) j["seed"] = e.seed;
+    case ToolEvent::Kind::Stroke: {
+      j["tool"] = toolRow(e.stroke.kind).name;
+      j["center"] = vec3Json(e.stroke.center);
+      j["normal"] = vec3Json(e.stroke.normal);
+      j["radius"] = e.stroke.radius;
+      j["strength"] = e.stroke.strength;
+      if (e.stroke.seed >= 0) j["seed"] = e.stroke.seed;
       j["end"] = e.end;
       nlohmann::json moves = nlohmann::json::array();
       for (const StrokeKey& k : e.moves)
@@ -266,14 +276,14 @@ nlohmann::json toolEventJson(const ToolEvent& e) {
       symmetry();
       break;
     }
-    case ToolEvent::Tool::Paint:
-      j["tool"] = e.erase ? "anchor_erase" : "anchor_paint";
-      j["center"] = vec3Json(e.center);
-      j["radius"] = e.radius;
-      if (e.seed >= 0) j["seed"] = e.seed;
+    case ToolEvent::Kind::Paint:
+      j["tool"] = toolRow(e.stroke.kind).name;
+      j["center"] = vec3Json(e.stroke.center);
+      j["radius"] = e.stroke.radius;
+      if (e.stroke.seed >= 0) j["seed"] = e.stroke.seed;
       symmetry();
       break;
-    case ToolEvent::Tool::Camera:
+    case ToolEvent::Kind::Camera:
       j.update(cameraPoseJson(e.camera));
       j["tool"] = "camera";
       break;
@@ -295,11 +305,11 @@ void writePlaybackScript(const fs::path& file, const fs::path& scene, int frames
 }
 
 void checkToolEvent(const ToolEvent& e, const Simulation& sim, const std::string& file) {
-  if (e.tool == ToolEvent::Tool::Anchor && e.add)
+  if (e.kind == ToolEvent::Kind::Anchor && e.add)
     sim.selectVertices(e.shape, file, e.path + ".anchor");
-  if (e.seed >= sim.model().numVertices())
+  if (e.stroke.seed >= sim.model().numVertices())
     throw InputError(file, 0,
-                     e.path + ".seed: " + std::to_string(e.seed) +
+                     e.path + ".seed: " + std::to_string(e.stroke.seed) +
                          " is not a vertex of the mesh (it has " +
                          std::to_string(sim.model().numVertices()) + ")");
 }
@@ -321,15 +331,15 @@ void ToolApplier::prepareFrame(const std::vector<ToolEvent>& events, int frame) 
 
 void ToolApplier::applyTrailing(const std::vector<ToolEvent>& events, int lastFrame) {
   for (const ToolEvent& e : events) {
-    if (e.tool == ToolEvent::Tool::Knife && e.frame == lastFrame) apply(e, lastFrame);
+    if (e.kind == ToolEvent::Kind::Knife && e.frame == lastFrame) apply(e, lastFrame);
   }
 }
 
 int ToolApplier::apply(const ToolEvent& e, int frame) {
   const int step = frame - e.frame;
   const double dt = sim_.settings().dt;
-  switch (e.tool) {
-    case ToolEvent::Tool::Knife: {
+  switch (e.kind) {
+    case ToolEvent::Kind::Knife: {
       if (step < 0 || step >= e.duration) break;
       // The blade moves linearly over the stroke; each frame cuts everything across the slit
       // it has swept so far, at the current positions: material that moved across the slit
@@ -338,7 +348,7 @@ int ToolApplier::apply(const ToolEvent& e, int frame) {
       auto at = [](const Vec3& a, const Vec3& b, double u) { return Vec3((1.0 - u) * a + u * b); };
       const std::vector<BladeTriangle> blade =
           sweptBladeSurface(e.from0, e.from1, at(e.from0, e.to0, u1), at(e.from1, e.to1, u1));
-      const int cut = sculptor_.cut(blade, e.symmetry);
+      const int cut = sculptor_.cut(blade, e.stroke.symmetry);
       const std::string key = e.path + "@" + std::to_string(e.frame);
       knifeCuts_[key] += cut;
       if (step == e.duration - 1) {
@@ -352,18 +362,18 @@ int ToolApplier::apply(const ToolEvent& e, int frame) {
       }
       return cut;
     }
-    case ToolEvent::Tool::Brush: {
+    case ToolEvent::Kind::Drag: {
       if (step != 0) break;
-      const std::vector<int> grabbed = sim_.verticesNear(e.center, e.radius);
+      const std::vector<int> grabbed = sim_.verticesNear(e.stroke.center, e.stroke.radius);
       if (grabbed.empty()) {  // a brush stroke in empty space moves nothing, and says so
-        reportIdle(e, frame, "reached no vertex: " + nearestText(e.center, e.radius));
+        reportIdle(e, frame, "reached no vertex: " + nearestText(e.stroke.center, e.stroke.radius));
         break;
       }
       sim_.addAnchor(grabbed, {{0.0, Vec3::Zero()}, {e.duration * dt, e.offset}},
                      e.hold ? -1 : e.frame + e.duration);
       break;
     }
-    case ToolEvent::Tool::Anchor: {
+    case ToolEvent::Kind::Anchor: {
       if (step != 0) break;
       if (e.add) {
         sim_.addAnchor(sim_.selectVertices(e.shape, file_, e.path + ".anchor"), {}, -1, e.name);
@@ -378,38 +388,30 @@ int ToolApplier::apply(const ToolEvent& e, int frame) {
       }
       break;
     }
-    case ToolEvent::Tool::Stroke: {
+    case ToolEvent::Kind::Stroke: {
       if (frame < e.frame || frame > e.end) break;
       if (step == 0) {
-        BrushStroke b;
-        b.kind = e.brush;
-        b.center = e.center;
-        b.normal = e.normal;
-        b.radius = e.radius;
-        b.strength = e.strength;
-        b.seed = e.seed;
-        b.symmetry = e.symmetry;
-        sculptor_.beginBrush(b);
+        sculptor_.beginBrush(e.stroke);
       }
       for (const StrokeKey& k : e.moves)
         if (k.frame == frame) sculptor_.moveBrush(k.center, k.normal);
       if (frame == e.end) {
         // A stroke that never acted (begun and ended in one frame) has reached nothing to say.
-        if (sculptor_.strokeReach() == 0 && (e.end > e.frame || e.brush == BrushKind::Grab))
-          reportIdle(e, frame, "reached no vertex: " + nearestText(e.center, e.radius));
+        if (sculptor_.strokeReach() == 0 && (e.end > e.frame || e.stroke.kind == Tool::Grab))
+          reportIdle(e, frame, "reached no vertex: " + nearestText(e.stroke.center, e.stroke.radius));
         sculptor_.endBrush();
       }
       break;
     }
-    case ToolEvent::Tool::Paint:
+    case ToolEvent::Kind::Paint:
       if (step == 0 &&
-          sculptor_.paintAnchors(e.center, e.radius, e.seed, e.erase, e.symmetry) == 0) {
+          sculptor_.paintAnchors(e.stroke.center, e.stroke.radius, e.stroke.seed, e.erase(), e.stroke.symmetry) == 0) {
         reportIdle(e, frame,
-                   std::string(e.erase ? "freed" : "anchored") +
-                       " no vertex: " + nearestText(e.center, e.radius));
+                   std::string(e.erase() ? "freed" : "anchored") +
+                       " no vertex: " + nearestText(e.stroke.center, e.stroke.radius));
       }
       break;
-    case ToolEvent::Tool::Camera:
+    case ToolEvent::Kind::Camera:
       if (step == 0) camera_ = e.camera;
       break;
   }

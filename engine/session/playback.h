@@ -30,20 +30,27 @@ struct StrokeKey {
   Vec3 normal = Vec3::UnitY();
 };
 
+// One event of a script or a recording. What a tool does with the mouse is a BrushStroke
+// (sculptor.h: the tool, where, how wide, the piece, the mirror plane); an event holds one and
+// adds when it acts and what else the kind of event needs.
 struct ToolEvent {
-  // Brush: a fixed drag by `offset` (scripts). Stroke: a brush of sculptor.h following moves
-  // (what the app records). Paint: anchor paint / erase. Camera: the view (no effect on physics).
-  enum class Tool { Knife, Brush, Anchor, Stroke, Paint, Camera };
-  Tool tool = Tool::Knife;
+  // Knife: a blade swept over `duration` frames. Drag: a script's fixed drag of what lies within
+  // the radius by `offset` ("brush" in scripts). Anchor: an anchor added by shape or removed.
+  // Stroke: a brush of the tool table following `moves` (what the app records). Paint: anchor
+  // paint or erase. Camera: the view (no effect on the physics).
+  enum class Kind { Knife, Drag, Anchor, Stroke, Paint, Camera };
+  Kind kind = Kind::Knife;
   int frame = 0;     // acts on the frames after this one (0: from the start)
-  int duration = 1;  // frames it lasts (knife sweep, brush drag)
+  int duration = 1;  // frames it lasts (knife sweep, drag)
   std::string path;  // JSON path, for messages
+  // The tool and where it acts: stroke.kind is the tool (Knife, a brush, AnchorPaint or
+  // AnchorErase); center, radius and seed for strokes, paint and drags; symmetry for the knife,
+  // strokes and paint; normal and strength for brushes.
+  BrushStroke stroke;
   // Knife: the blade segment at the start and at the end of the stroke.
   Vec3 from0 = Vec3::Zero(), from1 = Vec3::Zero(), to0 = Vec3::Zero(), to1 = Vec3::Zero();
-  // Brush: grabs the vertices within radius of center (current positions) and drags them by
-  // offset over the duration; released at the end unless hold is set.
-  Vec3 center = Vec3::Zero();
-  double radius = 0.0;
+  // Drag: moves the vertices within the radius by offset over the duration; released at the
+  // end unless hold is set.
   Vec3 offset = Vec3::Zero();
   bool hold = false;
   // Anchor: add (shape, fixed where the vertices are) or remove (by name or scene index).
@@ -51,21 +58,16 @@ struct ToolEvent {
   std::string name;
   AnchorDesc shape;
   int sceneAnchor = -1;
-  // Stroke and paint (center and radius above): the brush, its settings and its moves; the
-  // stroke ends (lets go) before frame `end` + 1.
-  BrushKind brush = BrushKind::Grab;
-  Vec3 normal = Vec3::UnitY();
-  double strength = 0.0;
-  int seed = -1;
+  // Stroke: its moves; it ends (lets go) before frame `end` + 1.
   std::vector<StrokeKey> moves;
   int end = 0;
-  bool erase = false;
-  Symmetry symmetry;  // knife, stroke and paint
   CameraPose camera;
   nlohmann::json source;  // the event as read from a file (anchor events are written back so)
   // Given to a session as a script's event (SculptSession::apply), not made by the app's tools:
   // it acts through the frames as in a script, also after an undo or redo lands before its end.
   bool scripted = false;
+
+  bool erase() const { return stroke.kind == Tool::AnchorErase; }
 };
 
 struct PlaybackScript {

@@ -18,7 +18,7 @@ SculptSession::SculptSession(const SceneDescription& scene, const TetMesh& mesh)
 void SculptSession::record(ToolEvent e) {
   e.frame = sim_->frame();
   e.path = "$.events[" + std::to_string(recording_.size()) + "]";
-  if (e.tool != ToolEvent::Tool::Camera) dirty_ = true;  // a view alone is no reason to save
+  if (e.kind != ToolEvent::Kind::Camera) dirty_ = true;  // a view alone is no reason to save
   recording_.push_back(std::move(e));
 }
 
@@ -38,12 +38,13 @@ void SculptSession::beginAction(const std::string& label) {
 int SculptSession::knife(const Vec3& from0, const Vec3& from1, const Vec3& to0, const Vec3& to1,
                          const Symmetry& symmetry) {
   ToolEvent e;
-  e.tool = ToolEvent::Tool::Knife;
+  e.kind = ToolEvent::Kind::Knife;
+  e.stroke.kind = Tool::Knife;
   e.from0 = from0;
   e.from1 = from1;
   e.to0 = to0;
   e.to1 = to1;
-  e.symmetry = symmetry;
+  e.stroke.symmetry = symmetry;
   e.frame = sim_->frame();
   const int cut = tools_->apply(e, e.frame);
   record(e);
@@ -53,14 +54,8 @@ int SculptSession::knife(const Vec3& from0, const Vec3& from1, const Vec3& to0, 
 void SculptSession::beginStroke(const BrushStroke& stroke) {
   endStroke();
   ToolEvent e;
-  e.tool = ToolEvent::Tool::Stroke;
-  e.brush = stroke.kind;
-  e.center = stroke.center;
-  e.normal = stroke.normal;
-  e.radius = stroke.radius;
-  e.strength = stroke.strength;
-  e.seed = stroke.seed;
-  e.symmetry = stroke.symmetry;
+  e.kind = ToolEvent::Kind::Stroke;
+  e.stroke = stroke;
   e.frame = sim_->frame();
   e.end = std::numeric_limits<int>::max();  // open until endStroke
   tools_->apply(e, e.frame);
@@ -85,12 +80,12 @@ void SculptSession::endStroke() {
 int SculptSession::paint(const Vec3& center, double radius, int seed, bool erase,
                          const Symmetry& symmetry) {
   ToolEvent e;
-  e.tool = ToolEvent::Tool::Paint;
-  e.center = center;
-  e.radius = radius;
-  e.seed = seed;
-  e.erase = erase;
-  e.symmetry = symmetry;
+  e.kind = ToolEvent::Kind::Paint;
+  e.stroke.center = center;
+  e.stroke.radius = radius;
+  e.stroke.seed = seed;
+  e.stroke.kind = erase ? Tool::AnchorErase : Tool::AnchorPaint;
+  e.stroke.symmetry = symmetry;
   const int changed = tools_->sculptor().paintAnchors(center, radius, seed, erase, symmetry);
   record(e);
   return changed;
@@ -99,13 +94,13 @@ int SculptSession::paint(const Vec3& center, double radius, int seed, bool erase
 void SculptSession::setCamera(const CameraPose& pose) {
   if (!recording_.empty()) {
     ToolEvent& last = recording_.back();
-    if (last.tool == ToolEvent::Tool::Camera && last.frame == sim_->frame()) {
+    if (last.kind == ToolEvent::Kind::Camera && last.frame == sim_->frame()) {
       last.camera = pose;
       return;
     }
   }
   ToolEvent e;
-  e.tool = ToolEvent::Tool::Camera;
+  e.kind = ToolEvent::Kind::Camera;
   e.camera = pose;
   record(e);
 }
@@ -115,8 +110,8 @@ namespace {
 // The last frame before which a script's event acts (ToolApplier::apply); a brush's release is
 // its anchor's, in the state.
 int lastActingFrame(const ToolEvent& e) {
-  if (e.tool == ToolEvent::Tool::Knife) return e.frame + e.duration - 1;
-  if (e.tool == ToolEvent::Tool::Stroke) return e.end;
+  if (e.kind == ToolEvent::Kind::Knife) return e.frame + e.duration - 1;
+  if (e.kind == ToolEvent::Kind::Stroke) return e.end;
   return e.frame;
 }
 
@@ -124,13 +119,13 @@ int lastActingFrame(const ToolEvent& e) {
 
 void SculptSession::apply(ToolEvent event, const std::string& source) {
   checkToolEvent(event, *sim_, source);
-  if (event.tool == ToolEvent::Tool::Anchor && !event.add) {
+  if (event.kind == ToolEvent::Kind::Anchor && !event.add) {
     if (event.sceneAnchor >= static_cast<int>(scene_.anchors.size()))
       throw InputError(source, 0,
                        event.path + ".scene_anchor: the scene has " +
                            std::to_string(scene_.anchors.size()) + " anchor(s)");
     const bool toBeAdded = std::any_of(acting_.begin(), acting_.end(), [&](const ToolEvent& e) {
-      return e.tool == ToolEvent::Tool::Anchor && e.add && e.name == event.name;
+      return e.kind == ToolEvent::Kind::Anchor && e.add && e.name == event.name;
     });
     if (!event.name.empty() && !sim_->namedAnchor(event.name) && !toBeAdded)
       throw InputError(source, 0,

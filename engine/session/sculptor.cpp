@@ -7,8 +7,6 @@ namespace galsculpt {
 
 namespace {
 
-constexpr const char* kBrushNames[] = {"grab", "push", "pull", "inflate", "pinch"};
-
 double falloff(double distance, double radius) {
   const double s = 1.0 - (distance * distance) / (radius * radius);
   return s > 0.0 ? s * s : 0.0;
@@ -33,16 +31,6 @@ Vec3 Symmetry::direction(const Vec3& d) const {
   Vec3 q = d;
   if (enabled()) q[axis] = -d[axis];
   return q;
-}
-
-const char* brushName(BrushKind kind) {
-  return kBrushNames[static_cast<int>(kind)];
-}
-
-BrushKind brushFromName(const std::string& name) {
-  for (int i = 0; i < 5; ++i)
-    if (name == kBrushNames[i]) return static_cast<BrushKind>(i);
-  throw std::invalid_argument("unknown brush '" + name + "' (grab, push, pull, inflate, pinch)");
 }
 
 int Sculptor::cut(const std::vector<BladeTriangle>& blade, const Symmetry& symmetry) {
@@ -74,6 +62,9 @@ void Sculptor::selectUnderBrush(const Vec3& a, const Vec3& b, double radius, int
 }
 
 void Sculptor::beginBrush(const BrushStroke& stroke) {
+  if (toolRow(stroke.kind).kind != ToolKind::Brush)
+    throw std::invalid_argument(std::string(toolRow(stroke.kind).name) + " is not a brush (" +
+                                toolNames(ToolKind::Brush) + ")");
   endBrush();
   stroke_ = stroke;
   strokeReach_ = 0;
@@ -87,7 +78,7 @@ void Sculptor::beginBrush(const BrushStroke& stroke) {
     if (side.mirrored && (side.center - stroke.center).norm() < 0.5 * stroke.radius) break;
     side.startCenter = side.previousCenter = side.center;
     side.seed = side.mirrored || stroke.seed < 0 ? sim_.nearestVertex(side.center) : stroke.seed;
-    if (stroke.kind == BrushKind::Grab) {
+    if (stroke.kind == Tool::Grab) {
       selectUnderBrush(side.center, side.center, stroke.radius, side.seed, side.vertices,
                        side.weights);
       strokeReach_ += static_cast<int>(side.vertices.size());
@@ -104,7 +95,7 @@ void Sculptor::moveBrush(const Vec3& center, const Vec3& normal) {
   for (Side& side : sides_) {
     side.center = side.mirrored ? stroke_.symmetry.point(center) : center;
     side.normal = side.mirrored ? stroke_.symmetry.direction(normal) : normal;
-    if (stroke_.kind != BrushKind::Grab || side.anchor < 0) continue;
+    if (stroke_.kind != Tool::Grab || side.anchor < 0) continue;
     const Vec3 offset = side.center - side.startCenter;
     std::vector<Vec3> targets(side.vertices.size());
     for (size_t i = 0; i < side.vertices.size(); ++i) targets[i] = side.start[i] + offset;
@@ -120,28 +111,28 @@ void Sculptor::endBrush() {
 
 Vec3 Sculptor::brushDirection(const Side& side, const Vec3& x, const Vec3& nearest) const {
   switch (stroke_.kind) {
-    case BrushKind::Push:
+    case Tool::Push:
       return -side.normal;
-    case BrushKind::Pull:
+    case Tool::Pull:
       return side.normal;
-    case BrushKind::Inflate: {
+    case Tool::Inflate: {
       const Vec3 d = x - (nearest - stroke_.radius * side.normal);
       const double len = d.norm();
       return len > 0.0 ? Vec3(d / len) : side.normal;
     }
-    case BrushKind::Pinch: {
+    case Tool::Pinch: {
       Vec3 d = nearest - x;
       d -= d.dot(side.normal) * side.normal;  // towards the axis, not into the surface
       return d / stroke_.radius;
     }
-    case BrushKind::Grab:
+    default:  // grab moves what it holds with it; the other tools are no brushes
       break;
   }
   return Vec3::Zero();
 }
 
 void Sculptor::beforeFrame() {
-  if (stroke_.kind == BrushKind::Grab) return;
+  if (stroke_.kind == Tool::Grab) return;
   const double step = stroke_.strength * sim_.settings().dt;
   for (Side& side : sides_) {
     if (side.anchor >= 0) sim_.removeAnchor(side.anchor);

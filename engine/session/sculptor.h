@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "engine/session/simulation.h"
+#include "engine/session/tool_table.h"
 #include "solver/fracture/knife.h"
 
 namespace galsculpt {
@@ -39,13 +40,9 @@ struct Symmetry {
   Vec3 direction(const Vec3& d) const;
 };
 
-enum class BrushKind { Grab, Push, Pull, Inflate, Pinch };
-const char* brushName(BrushKind kind);
-// Throws std::invalid_argument for an unknown name.
-BrushKind brushFromName(const std::string& name);
-
 struct BrushStroke {
-  BrushKind kind = BrushKind::Grab;
+  // A brush of the tool table (ToolKind::Brush); in a ToolEvent also the knife or anchor paint.
+  Tool kind = Tool::Grab;
   Vec3 center = Vec3::Zero();   // on the surface, current positions
   Vec3 normal = Vec3::UnitY();  // outward surface normal at the centre
   double radius = 0.01;         // m

@@ -40,12 +40,11 @@ TEST(AppCommand, KeysMapToTheCommandsTheGuideDocuments) {
   EXPECT_EQ(key(']', false, true)->argument, "1.25");
   EXPECT_EQ(key('F')->kind, AppCommand::FrameAll);
   EXPECT_EQ(key('F', false, true)->kind, AppCommand::FramePiece);
-  for (int t = 0; t < kToolCount; ++t) {
-    const Tool tool = static_cast<Tool>(t);
-    const std::optional<Command> c = key(toolKey(tool));
-    ASSERT_TRUE(c) << toolName(tool);
+  for (const ToolRow& row : toolTable()) {
+    const std::optional<Command> c = key(row.key);
+    ASSERT_TRUE(c) << row.label;
     EXPECT_EQ(c->kind, AppCommand::Tool);
-    EXPECT_EQ(c->argument, toolName(tool));
+    EXPECT_EQ(c->argument, row.label);
   }
   EXPECT_FALSE(key('Q')) << "Q alone does nothing";
   EXPECT_FALSE(key('A', true));

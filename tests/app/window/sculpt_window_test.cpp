@@ -302,7 +302,7 @@ TEST(AppUi, OpensAPlaybackScriptReplayedAndRefusesABadOne) {
   ASSERT_GE(run.project.recording.size(), script.events.size()) << "its events start the recording";
   EXPECT_TRUE(std::any_of(run.project.recording.begin(),
                           run.project.recording.begin() + script.events.size(),
-                          [](const ToolEvent& e) { return e.tool == ToolEvent::Tool::Knife; }))
+                          [](const ToolEvent& e) { return e.kind == ToolEvent::Kind::Knife; }))
       << "the script's knife is among them";
 }
 

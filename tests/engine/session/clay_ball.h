@@ -40,7 +40,7 @@ inline double weightAt(double distance, double radius) {
   return s > 0.0 ? s * s : 0.0;
 }
 
-inline BrushStroke brushAt(BrushKind kind, const Vec3& center, const Vec3& normal, double radius,
+inline BrushStroke brushAt(Tool kind, const Vec3& center, const Vec3& normal, double radius,
                            double strength = 0.1) {
   BrushStroke b;
   b.kind = kind;

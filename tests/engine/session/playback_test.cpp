@@ -64,7 +64,7 @@ TEST(Playback, TheValidationScriptsLoad) {
   EXPECT_FALSE(whip.scene.anchors[0].path.empty()) << "the clamp moves";
   for (const PlaybackScript* s : {&ball, &bar, &whip}) {
     EXPECT_GE(s->events.size(), 1u) << s->file;
-    for (const ToolEvent& e : s->events) EXPECT_EQ(e.tool, ToolEvent::Tool::Knife) << s->file;
+    for (const ToolEvent& e : s->events) EXPECT_EQ(e.kind, ToolEvent::Kind::Knife) << s->file;
   }
 }
 
@@ -225,16 +225,16 @@ TEST(Playback, MalformedScriptsNameTheJsonPath) {
 // changed their last bits and broke the exact replay of the app's recordings).
 TEST(Playback, RecordedEventsRoundTripBitForBit) {
   ToolEvent e;
-  e.tool = ToolEvent::Tool::Stroke;
-  e.brush = BrushKind::Push;
+  e.kind = ToolEvent::Kind::Stroke;
+  e.stroke.kind = Tool::Push;
   e.frame = 3;
   e.end = 9;
-  e.center = Vec3(0.1, 0.2, 0.3) / 7.0;
-  e.normal = Vec3(0.3, -0.7, 0.2).normalized();
-  e.radius = 0.1 / 3.0;
-  e.strength = 0.2 / 3.0;
-  e.seed = 12;
-  e.symmetry = {2, -0.25};
+  e.stroke.center = Vec3(0.1, 0.2, 0.3) / 7.0;
+  e.stroke.normal = Vec3(0.3, -0.7, 0.2).normalized();
+  e.stroke.radius = 0.1 / 3.0;
+  e.stroke.strength = 0.2 / 3.0;
+  e.stroke.seed = 12;
+  e.stroke.symmetry = {2, -0.25};
   int changedByRenormalizing = 0;
   for (int i = 0; i < 50; ++i) {
     const Vec3 n = Vec3(std::sin(i), std::cos(3.0 * i), 0.3 + i).normalized();
@@ -243,16 +243,16 @@ TEST(Playback, RecordedEventsRoundTripBitForBit) {
   }
   ASSERT_GT(changedByRenormalizing, 0) << "some unit normals change when normalized again";
   const ToolEvent back = parseToolEvent(toolEventJson(e), "$.events[0]", "x.json");
-  EXPECT_EQ(back.brush, e.brush);
+  EXPECT_EQ(back.stroke.kind, e.stroke.kind);
   EXPECT_EQ(back.frame, e.frame);
   EXPECT_EQ(back.end, e.end);
-  EXPECT_EQ(back.center, e.center);
-  EXPECT_EQ(back.normal, e.normal);
-  EXPECT_EQ(back.radius, e.radius);
-  EXPECT_EQ(back.strength, e.strength);
-  EXPECT_EQ(back.seed, e.seed);
-  EXPECT_EQ(back.symmetry.axis, 2);
-  EXPECT_EQ(back.symmetry.offset, -0.25);
+  EXPECT_EQ(back.stroke.center, e.stroke.center);
+  EXPECT_EQ(back.stroke.normal, e.stroke.normal);
+  EXPECT_EQ(back.stroke.radius, e.stroke.radius);
+  EXPECT_EQ(back.stroke.strength, e.stroke.strength);
+  EXPECT_EQ(back.stroke.seed, e.stroke.seed);
+  EXPECT_EQ(back.stroke.symmetry.axis, 2);
+  EXPECT_EQ(back.stroke.symmetry.offset, -0.25);
   ASSERT_EQ(back.moves.size(), e.moves.size());
   for (size_t i = 0; i < e.moves.size(); ++i) {
     EXPECT_EQ(back.moves[i].frame, e.moves[i].frame);

@@ -26,7 +26,7 @@ struct SculptedBall {
     session.knife(Vec3(0.05, 0.2, -0.2), Vec3(0.05, 0.2, 0.2), Vec3(0.05, 0.0, -0.2),
                   Vec3(0.05, 0.0, 0.2), {});
     BrushStroke push;
-    push.kind = BrushKind::Push;
+    push.kind = Tool::Push;
     push.center = Vec3(-0.02, 0.098, 0.0);
     push.radius = 0.03;
     push.strength = 0.2;
@@ -289,7 +289,7 @@ TEST(ProjectFile, AReopenedProjectRunsOnToTheSameBitsAsTheSessionThatSavedIt) {
     same("untouched");
   }
   BrushStroke pull;
-  pull.kind = BrushKind::Pull;
+  pull.kind = Tool::Pull;
   pull.center = Vec3(0.0, -0.098, 0.02);
   pull.radius = 0.03;
   pull.strength = 0.2;
@@ -349,7 +349,7 @@ TEST(ProjectFile, APushUnderWayKeepsItsSpringsAndBadWeightsAreRefused) {
   test::TempDir dir;
   SculptedBall ball;
   BrushStroke push;
-  push.kind = BrushKind::Push;
+  push.kind = Tool::Push;
   push.center = Vec3(0.0, 0.1, 0.0);
   push.radius = 0.03;
   ball.session.beginStroke(push);

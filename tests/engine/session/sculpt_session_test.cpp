@@ -31,7 +31,7 @@ TEST(SculptSession, UndoAndRedoReturnTheExactStates) {
       << "the knife recorded where it crossed";
   const size_t recordedB = s.recording().size();
   s.beginAction("push");
-  s.beginStroke(brushAt(BrushKind::Push, Vec3(-0.02, 0.098, 0.0), Vec3::UnitY(), 0.03, 0.2));
+  s.beginStroke(brushAt(Tool::Push, Vec3(-0.02, 0.098, 0.0), Vec3::UnitY(), 0.03, 0.2));
   for (int f = 0; f < 4; ++f) s.step();
   s.endStroke();
   s.step();
@@ -99,7 +99,7 @@ TEST(SculptSession, ARecordedSessionReplaysExactly) {
           Vec3(0.05, 0.05, 0.2), mirrorX);
   s.step();
   s.beginAction("grab");
-  BrushStroke grab = brushAt(BrushKind::Grab, Vec3(0.0, 0.1, 0.0), Vec3::UnitY(), 0.03);
+  BrushStroke grab = brushAt(Tool::Grab, Vec3(0.0, 0.1, 0.0), Vec3::UnitY(), 0.03);
   s.beginStroke(grab);
   for (int f = 1; f <= 4; ++f) {
     s.moveStroke(grab.center + f * Vec3(0.003, 0.002, 0.0), Vec3::UnitY());
@@ -107,7 +107,7 @@ TEST(SculptSession, ARecordedSessionReplaysExactly) {
   }
   s.endStroke();
   s.beginAction("inflate");
-  BrushStroke inflate = brushAt(BrushKind::Inflate, Vec3(0.0, 0.0, 0.1), Vec3::UnitZ(), 0.03, 0.2);
+  BrushStroke inflate = brushAt(Tool::Inflate, Vec3(0.0, 0.0, 0.1), Vec3::UnitZ(), 0.03, 0.2);
   inflate.symmetry = mirrorX;
   s.beginStroke(inflate);
   s.step();
@@ -115,7 +115,7 @@ TEST(SculptSession, ARecordedSessionReplaysExactly) {
   s.step();
   s.endStroke();
   s.beginAction("undone pinch");
-  s.beginStroke(brushAt(BrushKind::Pinch, Vec3(0.0, 0.0, -0.1), -Vec3::UnitZ(), 0.03, 0.2));
+  s.beginStroke(brushAt(Tool::Pinch, Vec3(0.0, 0.0, -0.1), -Vec3::UnitZ(), 0.03, 0.2));
   s.step();
   s.undo();
   s.beginAction("paint");

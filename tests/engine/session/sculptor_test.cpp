@@ -20,7 +20,7 @@ TEST(Sculptor, GrabMovesTheHeldVerticesTogetherAndTheBodyFollows) {
   const Vec3 top(0.0, 0.1, 0.0);
   const double radius = 0.03;
   const size_t anchorsBefore = sim.state().anchors.size();
-  s.beginStroke(brushAt(BrushKind::Grab, top, Vec3::UnitY(), radius));
+  s.beginStroke(brushAt(Tool::Grab, top, Vec3::UnitY(), radius));
   const Vec3 offset(0.02, 0.01, 0.0);
   s.moveStroke(top + offset, Vec3::UnitY());
   s.step();
@@ -47,7 +47,7 @@ TEST(Sculptor, PushDentsClayForGoodWhileRubberSpringsBack) {
     SculptSession s(scene, clayBall().mesh);
     const Vec3 top(0.0, 0.1, 0.0);
     const int apex = s.simulation().nearestVertex(top);
-    s.beginStroke(brushAt(BrushKind::Push, top, Vec3::UnitY(), 0.04, 0.12));
+    s.beginStroke(brushAt(Tool::Push, top, Vec3::UnitY(), 0.04, 0.12));
     for (int f = 0; f < 15; ++f) s.step();
     const double pushed = 0.1 - s.simulation().state().x[apex].y();
     s.endStroke();
@@ -73,7 +73,7 @@ TEST(Sculptor, APushSolvesWhereTheBrushIsAndEndsWhereTheWholeBodySolveDoes) {
     SculptSession s(scene, clayBall().mesh);
     const Vec3 top(0.0, 0.1, 0.0);
     localIterations = 0;
-    s.beginStroke(brushAt(BrushKind::Push, top, Vec3::UnitY(), 0.03, 0.12));
+    s.beginStroke(brushAt(Tool::Push, top, Vec3::UnitY(), 0.03, 0.12));
     for (int f = 0; f < 20; ++f) {
       if (f == 12) s.endStroke();
       const FrameMetrics m = s.step();
@@ -106,7 +106,7 @@ TEST(Sculptor, APushSolvesWhereTheBrushIsAndEndsWhereTheWholeBodySolveDoes) {
 TEST(Sculptor, PullInflateAndPinchMoveTheHeldVerticesTheirWay) {
   const Vec3 top(0.0, 0.1, 0.0);
   const double radius = 0.05;
-  auto motion = [&](BrushKind kind) {
+  auto motion = [&](Tool kind) {
     SculptSession s(clayBall().scene, clayBall().mesh);
     const std::vector<Vec3> start = s.simulation().state().x;
     s.beginStroke(brushAt(kind, top, Vec3::UnitY(), radius, 0.6));
@@ -117,7 +117,7 @@ TEST(Sculptor, PullInflateAndPinchMoveTheHeldVerticesTheirWay) {
   };
   const double step = 0.6 * clayBall().scene.timeStep;
   {
-    const auto [start, d] = motion(BrushKind::Pull);
+    const auto [start, d] = motion(Tool::Pull);
     int checked = 0;
     for (size_t i = 0; i < start.size(); ++i) {
       const double w = weightAt((start[i] - top).norm(), radius);
@@ -128,7 +128,7 @@ TEST(Sculptor, PullInflateAndPinchMoveTheHeldVerticesTheirWay) {
     EXPECT_GT(checked, 5);
   }
   {
-    const auto [start, d] = motion(BrushKind::Inflate);
+    const auto [start, d] = motion(Tool::Inflate);
     int checked = 0;
     for (size_t i = 0; i < start.size(); ++i) {
       if (weightAt((start[i] - top).norm(), radius) < 0.5) continue;
@@ -140,7 +140,7 @@ TEST(Sculptor, PullInflateAndPinchMoveTheHeldVerticesTheirWay) {
     EXPECT_GT(checked, 5);
   }
   {
-    const auto [start, d] = motion(BrushKind::Pinch);
+    const auto [start, d] = motion(Tool::Pinch);
     int checked = 0;
     for (size_t i = 0; i < start.size(); ++i) {
       const Vec3 radial(start[i].x() - top.x(), 0.0, start[i].z() - top.z());
@@ -161,7 +161,7 @@ TEST(Sculptor, AFastStrokeCoversTheWholeSegmentItSwept) {
   const std::vector<Vec3> start = s.simulation().state().x;
   const double radius = 0.02;
   const Vec3 a(-0.07, 0.06, 0.0), b(0.07, 0.06, 0.0);
-  s.beginStroke(brushAt(BrushKind::Pull, a, Vec3::UnitY(), radius, 0.6));
+  s.beginStroke(brushAt(Tool::Pull, a, Vec3::UnitY(), radius, 0.6));
   s.moveStroke(b, Vec3::UnitY());
   s.step();
   // Vertices near the middle of the segment, far from both ends, were held and pulled.
@@ -192,7 +192,7 @@ TEST(Sculptor, SymmetryMirrorsTheKnifeTheBrushesAndAnchorPaint) {
   {
     SculptSession s(clayBall().scene, clayBall().mesh);
     const std::vector<Vec3> start = s.simulation().state().x;
-    BrushStroke b = brushAt(BrushKind::Grab, Vec3(0.05, 0.086, 0.0), Vec3(0.5, 0.86, 0.0), 0.02);
+    BrushStroke b = brushAt(Tool::Grab, Vec3(0.05, 0.086, 0.0), Vec3(0.5, 0.86, 0.0), 0.02);
     b.symmetry = mirrorX;
     s.beginStroke(b);
     s.moveStroke(b.center + Vec3(0.01, 0.0, 0.0), b.normal);
@@ -243,7 +243,7 @@ TEST(Sculptor, ABrushActsOnlyOnThePieceItTouches) {
   const Vec3 center(0.004, 0.099, 0.0);  // right beside the cut
   const int seed = s.simulation().nearestVertex(Vec3(0.02, 0.098, 0.0));
   ASSERT_GT(start[seed].x(), 0.0);
-  BrushStroke b = brushAt(BrushKind::Grab, center, Vec3::UnitY(), 0.02);
+  BrushStroke b = brushAt(Tool::Grab, center, Vec3::UnitY(), 0.02);
   b.seed = seed;
   s.beginStroke(b);
   s.moveStroke(center + Vec3(0.0, 0.02, 0.0), Vec3::UnitY());
