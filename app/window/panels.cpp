@@ -322,9 +322,9 @@ void SculptApp::drawCursor() {
   const Vec3 c = camera_.project(hit->point, width, height);
   const Vec3 r = camera_.project(hit->point + toolSettings_.radius * side, width, height);
   const float pixels = static_cast<float>((r - c).head<2>().norm());
-  const ImU32 color =
-      toolRow(toolSettings_.tool).kind == ToolKind::Paint ? IM_COL32(60, 110, 255, 255)
-          : IM_COL32(255, 255, 255, 220);
+  const ImU32 color = toolRow(toolSettings_.tool).kind == ToolKind::Paint
+                          ? IM_COL32(60, 110, 255, 255)
+                          : IM_COL32(255, 255, 255, 220);
   draw->AddCircle(ImVec2(float(c.x()), float(c.y())), pixels, color, 48, 1.5f);
   if (toolSettings_.symmetry) {
     const Symmetry plane{toolSettings_.symmetryAxis, toolSettings_.symmetryOffset};

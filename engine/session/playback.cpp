@@ -398,14 +398,15 @@ int ToolApplier::apply(const ToolEvent& e, int frame) {
       if (frame == e.end) {
         // A stroke that never acted (begun and ended in one frame) has reached nothing to say.
         if (sculptor_.strokeReach() == 0 && (e.end > e.frame || e.stroke.kind == Tool::Grab))
-          reportIdle(e, frame, "reached no vertex: " + nearestText(e.stroke.center, e.stroke.radius));
+          reportIdle(e, frame,
+                     "reached no vertex: " + nearestText(e.stroke.center, e.stroke.radius));
         sculptor_.endBrush();
       }
       break;
     }
     case ToolEvent::Kind::Paint:
-      if (step == 0 &&
-          sculptor_.paintAnchors(e.stroke.center, e.stroke.radius, e.stroke.seed, e.erase(), e.stroke.symmetry) == 0) {
+      if (step == 0 && sculptor_.paintAnchors(e.stroke.center, e.stroke.radius, e.stroke.seed,
+                                              e.erase(), e.stroke.symmetry) == 0) {
         reportIdle(e, frame,
                    std::string(e.erase() ? "freed" : "anchored") +
                        " no vertex: " + nearestText(e.stroke.center, e.stroke.radius));

@@ -18,20 +18,20 @@ enum class ToolKind { Navigate, Knife, Brush, Paint };
 
 // X(id, name, label, key, kind, effect): the name scripts and Python use ("anchor_paint"), the
 // window's label ("anchor paint"), the key, the kind, a line of what it does.
-#define GALSCULPT_TOOLS(X)                                                                       \
-  X(Navigate, "navigate", "navigate", 'N', Navigate,                                             \
-    "the left button orbits the camera, as the right button always does")                        \
-  X(Knife, "knife", "knife", 'K', Knife, "damages every edge the swept blade crosses")           \
-  X(Grab, "grab", "grab", 'G', Brush,                                                            \
-    "holds the vertices under the brush and moves them with it, through the physics")            \
-  X(Push, "push", "push", 'B', Brush, "presses the surface in along its normal")                 \
-  X(Pull, "pull", "pull", 'U', Brush, "draws the surface out along its normal")                  \
-  X(Inflate, "inflate", "inflate", 'I', Brush,                                                   \
-    "swells the surface from a point one radius below it")                                       \
-  X(Pinch, "pinch", "pinch", 'P', Brush, "draws the surface towards the brush's axis")           \
-  X(AnchorPaint, "anchor_paint", "anchor paint", 'A', Paint,                                     \
-    "holds the vertices within the radius where they are")                                       \
-  X(AnchorErase, "anchor_erase", "anchor erase", 'E', Paint,                                     \
+#define GALSCULPT_TOOLS(X)                                                             \
+  X(Navigate, "navigate", "navigate", 'N', Navigate,                                   \
+    "the left button orbits the camera, as the right button always does")              \
+  X(Knife, "knife", "knife", 'K', Knife, "damages every edge the swept blade crosses") \
+  X(Grab, "grab", "grab", 'G', Brush,                                                  \
+    "holds the vertices under the brush and moves them with it, through the physics")  \
+  X(Push, "push", "push", 'B', Brush, "presses the surface in along its normal")       \
+  X(Pull, "pull", "pull", 'U', Brush, "draws the surface out along its normal")        \
+  X(Inflate, "inflate", "inflate", 'I', Brush,                                         \
+    "swells the surface from a point one radius below it")                             \
+  X(Pinch, "pinch", "pinch", 'P', Brush, "draws the surface towards the brush's axis") \
+  X(AnchorPaint, "anchor_paint", "anchor paint", 'A', Paint,                           \
+    "holds the vertices within the radius where they are")                             \
+  X(AnchorErase, "anchor_erase", "anchor erase", 'E', Paint,                           \
     "frees the vertices within the radius (scene anchors too)")
 
 enum class Tool {

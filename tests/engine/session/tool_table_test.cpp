@@ -46,8 +46,7 @@ TEST(ToolTable, NamesLabelsAndKeysAreUniqueAndFoundAgain) {
 TEST(ToolTable, EveryToolIsAScriptEventOfItsName) {
   for (const ToolRow& row : toolTable()) {
     if (row.kind == ToolKind::Navigate) {
-      EXPECT_THROW(parseToolEvent(nlohmann::json{{"tool", row.name}}, "$", "t.json"),
-                   InputError)
+      EXPECT_THROW(parseToolEvent(nlohmann::json{{"tool", row.name}}, "$", "t.json"), InputError)
           << "navigation is the window's alone";
       continue;
     }
