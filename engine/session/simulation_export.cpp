@@ -2,6 +2,10 @@
 #include <algorithm>
 
 #include "engine/session/simulation.h"
+#include "solver/io/atomic_file.h"
+#include "solver/io/damage_io.h"
+#include "solver/io/tetgen_io.h"
+#include "solver/io/vtk_io.h"
 
 namespace galsculpt {
 
@@ -81,6 +85,85 @@ ExportedSurface Simulation::exportSurface() const {
   out.removedPieces = static_cast<int>(removedPieces.size());
   out.carvedCorners = static_cast<int>(std::count(carved.begin(), carved.end(), 1));
   return out;
+}
+
+namespace {
+
+// Removes the vertices no tet uses, the others keeping their order; returns each kept vertex's
+// index before.
+std::vector<int> dropUnusedVertices(TetMesh& mesh) {
+  std::vector<int> number(mesh.numVertices(), -1);
+  for (const Tet& t : mesh.tets)
+    for (int v : t) number[v] = 0;
+  std::vector<int> original;
+  std::vector<Vec3> vertices;
+  for (int v = 0; v < mesh.numVertices(); ++v) {
+    if (number[v] < 0) continue;
+    number[v] = static_cast<int>(original.size());
+    original.push_back(v);
+    vertices.push_back(mesh.vertices[v]);
+  }
+  mesh.vertices = std::move(vertices);
+  for (Tet& t : mesh.tets)
+    for (int& v : t) v = number[v];
+  return original;
+}
+
+}  // namespace
+
+int Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
+  TetMesh now = model_.mesh;
+  now.vertices = state_.x;
+  // A tet parted between pieces carries nothing between them and may have been crushed flat
+  // as they moved; a mesh reader refuses a zero-volume tet, so such tets are left out of the
+  // set (their edges' damage with them). A flat tet of one piece is written as it is.
+  TetMesh kept = now;
+  kept.tets.clear();
+  for (const Tet& t : now.tets) {
+    const bool parted = pieceNumber_[t[0]] != pieceNumber_[t[1]] ||
+                        pieceNumber_[t[0]] != pieceNumber_[t[2]] ||
+                        pieceNumber_[t[0]] != pieceNumber_[t[3]];
+    if (!parted ||
+        !isFlatTet(now.vertices[t[0]], now.vertices[t[1]], now.vertices[t[2]], now.vertices[t[3]]))
+      kept.tets.push_back(t);
+  }
+  const int leftOut = now.numTets() - kept.numTets();
+  std::vector<Edge> edges = model_.edges;
+  std::vector<std::uint8_t> damaged = state_.damaged;
+  std::vector<float> crossing = state_.crossing;
+  if (leftOut > 0) {
+    // Vertices of left-out tets alone go too (a vertex in no tet has no mass).
+    const std::vector<int> original = dropUnusedVertices(kept);
+    edges = uniqueEdges(kept);
+    damaged.assign(edges.size(), 0);
+    crossing.assign(edges.size(), kNoCrossing);
+    for (size_t e = 0; e < edges.size(); ++e) {
+      Edge was{original[edges[e][0]], original[edges[e][1]]};
+      if (was[0] > was[1]) std::swap(was[0], was[1]);
+      const size_t at =
+          std::lower_bound(model_.edges.begin(), model_.edges.end(), was) - model_.edges.begin();
+      damaged[e] = state_.damaged[at];
+      crossing[e] = state_.crossing[at];
+    }
+  }
+  // The mesh and its damage are one set: committed together, stamped alike.
+  FileSet set;
+  addTetGen(set, stem, kept);
+  addDamage(set, stem.string() + ".damage", edges, damaged, crossing);
+  set.commit();
+  // Piece of each tet: numbered in tet order when all four corners share it, otherwise -1.
+  std::vector<int> label(model_.numVertices(), -1);
+  int pieces = 0;
+  VtkCellField piece{"piece", std::vector<double>(model_.numTets(), -1.0)};
+  for (int t = 0; t < model_.numTets(); ++t) {
+    if (!countedTets_[t]) continue;
+    int& id = label[pieceNumber_[model_.mesh.tets[t][0]]];
+    if (id < 0) id = pieces++;
+    piece.values[t] = id;
+  }
+  writeVtk(stem.string() + ".vtk", now,
+           {{"damage", tetDamageFraction(model_.tetEdges, state_.damaged)}, piece});
+  return leftOut;
 }
 
 }  // namespace galsculpt
