@@ -124,134 +124,7 @@ class MultigridCycle {
   // float copy of the fine blocks (smoothFine) and, in host memory, the coarsest level keeps
   // its last factorization while its matrix stays within kCoarseReuse of the one factored
   // (kept_coarse_factor.h).
-  void refresh(const double* fine, bool coarseCholesky, bool preconditions = false) {
-    smoother_.refresh(fine, preconditions, fineColorRows_.data(), fineDiagonal_.data());
-    for (size_t l = 0; l < levels_.size(); ++l) {
-      Level& d = levels_[l];
-      const double* finer = l == 0 ? fine : levels_[l - 1].blocks.data();
-      const int* finerColumns = l == 0 ? fineColumns_.data() : levels_[l - 1].columns.data();
-      const double* y = d.y.data();
-      const double* toParent = d.toParent.data();
-      const int* start = d.contribStart.data();
-      const int* block = d.contribBlock.data();
-      const int* row = d.contribRow.data();
-      double* out = d.blocks.data();
-      const bool first = l == 0;
-      const std::uint8_t* fixed = fixed_;
-      if constexpr (!Exec::kHostMemory) {
-        galerkinByEntries(d.nnz, start, block, row, finerColumns, first, fixed, y, toParent, finer,
-                          out);
-      } else {
-        // A block's terms come finer row by finer row (multigrid_layout.h): each row's blocks
-        // times their columns' modes are summed first, then taken into the row's modes once
-        // (addBlockTimesModes, addTransposedProduct12), not each block on both sides.
-        ex_.forEach(
-            d.nnz,
-            [=] GALSCULPT_LAMBDA(int b) {
-              double acc[144];
-              for (double& a : acc) a = 0.0;
-              double rowSum[144];
-              for (int i = start[b]; i < start[b + 1];) {
-                const int r = row[i];
-                int end = i + 1;
-                while (end < start[b + 1] && row[end] == r) ++end;
-                if (first) {
-                  if (!(fixed && fixed[r])) {
-                    for (int e = 0; e < 36; ++e) rowSum[e] = 0.0;
-                    for (int q = i; q < end; ++q) {
-                      const int k = block[q], c = finerColumns[k];
-                      if (!(fixed && fixed[c]))
-                        addBlockTimesModes(y + 4 * c, finer + 9 * k, rowSum);
-                    }
-                    addModesTimesRow(y + 4 * r, rowSum, acc);
-                  }
-                } else {
-                  for (double& e : rowSum) e = 0.0;
-                  for (int q = i; q < end; ++q) {
-                    const int k = block[q];
-                    addProduct12(finer + 144 * k, toParent + 144 * finerColumns[k], rowSum);
-                  }
-                  addTransposedProduct12(toParent + 144 * r, rowSum, acc);
-                }
-                i = end;
-              }
-              for (int i = 0; i < 144; ++i) out[144 * b + i] = acc[i];
-            },
-            d.refreshCost);
-      }
-      // Modes no fine vertex sees: a relative shift (identity for a handle without rows).
-      const int* diagonal = d.diagonal.data();
-      const std::uint8_t* empty = d.empty.data();
-      double* factor = d.diagonalFactor.data();
-      ex_.forEach(
-          d.handles,
-          [=] GALSCULPT_LAMBDA(int h) {
-            double* blk = out + 144 * diagonal[h];
-            double trace = 0.0;
-            for (int i = 0; i < 12; ++i) trace += blk[13 * i];
-            // A handle whose rows are all anchored sees nothing either.
-            const double shift = empty[h] || !(trace > 0.0) ? 1.0 : 1e-9 * trace / 12.0;
-            for (int i = 0; i < 12; ++i) blk[13 * i] += shift;
-            double* f = factor + 144 * h;
-            for (int i = 0; i < 144; ++i) f[i] = blk[i];
-            cholesky(12, f);
-          },
-          1000);
-    }
-    if (fragments_.fragments() > 0)
-      fragments_.factorize(fine, fineRowStart_.data(), fineColumns_.data());
-    if (pieceCount_ >= 2) factorPieces();
-    if (!coarseCholesky) {
-      factored_ = false;
-      return;
-    }
-    const Level& c = levels_.back();
-    if constexpr (Exec::kHostMemory) {
-      if (!adopted_.empty()) {
-        // Only a matrix of this hierarchy's pattern: one saved under other damage is dropped.
-        if (adopted_.size() == c.blocks.size()) {
-          if (!sparse_) sparse_ = std::make_unique<CoarseCholesky>();
-          factored_ =
-              sparse_->factor(c.handles, c.rowStart.data(), c.columns.data(), adopted_.data());
-          kept_.remember(factored_, adopted_.data(), adopted_.size(), c.diagonal.data(), c.handles);
-        }
-        adopted_.clear();
-      }
-      if (preconditions && factored_ &&
-          kept_.keeps(c.blocks.data(), c.blocks.size(), c.rowStart.data(), c.columns.data(),
-                      c.handles)) {
-        ++coarseFactorsKept_;
-        return;
-      }
-    }
-    factored_ = false;
-    // In host memory by 12x12 blocks along the handle graph, whatever its size
-    // (coarse_cholesky.h); a device factors the dense matrix.
-    if constexpr (Exec::kHostMemory) {
-      if (!sparse_) sparse_ = std::make_unique<CoarseCholesky>();
-      factored_ = sparse_->factor(c.handles, c.rowStart.data(), c.columns.data(), c.blocks.data());
-      rememberFactored(c);
-      return;
-    }
-    dense_.resize(static_cast<size_t>(denseSize_) * denseSize_);
-    double* dense = dense_.data();
-    const double* blocks = c.blocks.data();
-    const int* rowStart = c.rowStart.data();
-    const int* columns = c.columns.data();
-    const int n = denseSize_;
-    ex_.forEach(n * n, [=] GALSCULPT_LAMBDA(int i) { dense[i] = 0.0; });
-    // A thread per row of the dense matrix (twelve per handle: a handle's thread wrote 1,500
-    // entries serially on a device).
-    ex_.forEach(12 * c.handles, [=] GALSCULPT_LAMBDA(int e) {
-      const int r = e / 12, i = e % 12;
-      for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
-        const int col = columns[k];
-        for (int j = 0; j < 12; ++j)
-          dense[e + static_cast<size_t>(n) * (12 * col + j)] = blocks[144 * k + i + 12 * j];
-      }
-    });
-    factored_ = ex_.denseCholesky(n, dense);
-  }
+  void refresh(const double* fine, bool coarseCholesky, bool preconditions = false);
 
   // The Galerkin product of refresh() on a device, a thread per entry of each coarse block (a
   // block's row of 12 on the levels below the first) instead of one per block, whose thread
@@ -260,55 +133,7 @@ class MultigridCycle {
   // extended lambdas in private member functions.
   void galerkinByEntries(int nnz, const int* start, const int* block, const int* row,
                          const int* finerColumns, bool first, const std::uint8_t* fixed,
-                         const double* y, const double* toParent, const double* finer,
-                         double* out) {
-    if (first) {
-      ex_.forEach(144 * nnz, [=] GALSCULPT_LAMBDA(int e) {
-        const int b = e / 144, entry = e % 144;
-        const int rowIn = entry % 12, colIn = entry / 12;  // (3 i + r, 3 j + c)
-        const int i = rowIn / 3, r = rowIn % 3, j = colIn / 3, c = colIn % 3;
-        double acc = 0.0;
-        for (int q = start[b]; q < start[b + 1];) {
-          const int vr = row[q];
-          double sum = 0.0;  // the finer row's blocks times their columns' modes
-          for (; q < start[b + 1] && row[q] == vr; ++q) {
-            const int k = block[q], vc = finerColumns[k];
-            if (!(fixed && fixed[vc])) sum += y[4 * vc + j] * finer[9 * k + r + 3 * c];
-          }
-          if (!(fixed && fixed[vr])) acc += y[4 * vr + i] * sum;
-        }
-        out[e] = acc;
-      });
-      return;
-    }
-    ex_.forEach(12 * nnz, [=] GALSCULPT_LAMBDA(int e) {
-      const int b = e / 12, c = e % 12;  // a column of the block
-      double acc[12];
-      for (double& a : acc) a = 0.0;
-      for (int q = start[b]; q < start[b + 1];) {
-        const int vr = row[q];
-        double bt[12];  // column c of the finer row's sum of B T_c
-        for (double& v : bt) v = 0.0;
-        for (; q < start[b + 1] && row[q] == vr; ++q) {
-          const int k = block[q];
-          const double* bk = finer + 144 * k;
-          const double* tc = toParent + 144 * finerColumns[k] + 12 * c;
-          for (int r = 0; r < 12; ++r) {
-            double sum = 0.0;
-            for (int m = 0; m < 12; ++m) sum += bk[r + 12 * m] * tc[m];
-            bt[r] += sum;
-          }
-        }
-        const double* tr = toParent + 144 * vr;
-        for (int r = 0; r < 12; ++r) {
-          double sum = 0.0;
-          for (int m = 0; m < 12; ++m) sum += tr[m + 12 * r] * bt[m];
-          acc[r] += sum;
-        }
-      }
-      for (int r = 0; r < 12; ++r) out[144 * b + r + 12 * c] = acc[r];
-    });
-  }
+                         const double* y, const double* toParent, const double* finer, double* out);
 
   // (kept_coarse_factor.h)
   static constexpr double kCoarseReuse = KeptCoarseFactor::kReuse;
@@ -454,57 +279,7 @@ class MultigridCycle {
   // arithmetic as a plain Gauss-Seidel sweep (the paper's V-cycle, which is the whole solve).
   // `a` is the operator of the last refresh().
   void smoothFine(const double* a, const double* b, double* x, int sweeps, bool reverse,
-                  const Settings& s) {
-    const int* rowStart = smoother_.rowStart();
-    const int* columns = smoother_.columns();
-    const int* source = smoother_.source();
-    const float* single = smoother_.singleBlocks();
-    const bool inFloat = smoother_.single();
-    const double* inverse = smoother_.diagonalInverse();
-    const int* rowOf = fineColorRows_.data();
-    for (int sweep = 0; sweep < sweeps; ++sweep) {
-      if (jacobi(s)) {
-        double* ax = ax_.data();
-        multiplySmoother(a, x, ax);
-        const double w = kJacobiWeight;
-        ex_.forEach(
-            rows_,
-            [=] GALSCULPT_LAMBDA(int i) {
-              const int r = rowOf[i];
-              double res[3], dx[3];
-              for (int k = 0; k < 3; ++k) res[k] = b[3 * r + k] - ax[3 * r + k];
-              multiply3(inverse + 9 * i, res, dx);
-              for (int k = 0; k < 3; ++k) x[3 * r + k] += w * dx[k];
-            },
-            16);
-        continue;
-      }
-      if constexpr (Exec::kHostMemory) {
-        const fine_rows::SweepRow row = inFloat ? fine_rows::sweepRow() : nullptr;
-        if (row) {
-          const fine_rows::Rows m = smoother_.hostRows(rowOf);
-          forEachColour(
-              fineColorStart_, reverse, [=](int i) { row(m, i, b, x); },
-              FineSmoother<Exec>::kRowCost);
-          continue;
-        }
-      }
-      forEachColour(
-          fineColorStart_, reverse,
-          [=] GALSCULPT_LAMBDA(int i) {
-            const int r = rowOf[i];
-            double rhs[3] = {b[3 * r], b[3 * r + 1], b[3 * r + 2]};
-            for (int k = rowStart[i]; k < rowStart[i + 1]; ++k) {
-              if (inFloat)
-                subtractMultiply3(single + 9 * static_cast<size_t>(k), x + 3 * columns[k], rhs);
-              else
-                subtractMultiply3(a + 9 * static_cast<size_t>(source[k]), x + 3 * columns[k], rhs);
-            }
-            multiply3(inverse + 9 * i, rhs, x + 3 * r);
-          },
-          FineSmoother<Exec>::kRowCost);
-    }
-  }
+                  const Settings& s);
 
   // y = A x with the smoother's operator (the V-cycle's residual): the float copy after a
   // single-precision refresh, the fine blocks otherwise.
@@ -516,48 +291,7 @@ class MultigridCycle {
   }
 
   // Smoothing of the operator of levels_[l - 1] (the rows of vcycle level l).
-  void smoothCoarse(int l, const double* b, double* x, int sweeps, bool reverse,
-                    const Settings& s) {
-    Level& d = levels_[l - 1];
-    const int* rowStart = d.rowStart.data();
-    const int* columns = d.columns.data();
-    const double* blocks = d.blocks.data();
-    const double* factor = d.diagonalFactor.data();
-    for (int sweep = 0; sweep < sweeps; ++sweep) {
-      if (jacobi(s)) {
-        double* ax = d.ax.data();
-        multiplyCoarse(l - 1, x, ax);
-        const double w = kJacobiWeight;
-        ex_.forEach(
-            d.handles,
-            [=] GALSCULPT_LAMBDA(int r) {
-              double res[12];
-              for (int i = 0; i < 12; ++i) res[i] = b[12 * r + i] - ax[12 * r + i];
-              choleskySolve(12, factor + 144 * r, res);
-              for (int i = 0; i < 12; ++i) x[12 * r + i] += w * res[i];
-            },
-            300);
-        continue;
-      }
-      const int* colorRows = d.colorRows.data();
-      forEachColour(
-          d.colorStart, reverse,
-          [=] GALSCULPT_LAMBDA(int i) {
-            const int r = colorRows[i];
-            double rhs[12];
-            for (int j = 0; j < 12; ++j) rhs[j] = b[12 * r + j];
-            for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
-              if (columns[k] == r) continue;
-              double t[12] = {};
-              addMultiply12(blocks + 144 * k, x + 12 * columns[k], t);
-              for (int j = 0; j < 12; ++j) rhs[j] -= t[j];
-            }
-            choleskySolve(12, factor + 144 * r, rhs);
-            for (int j = 0; j < 12; ++j) x[12 * r + j] = rhs[j];
-          },
-          d.rowCost);
-    }
-  }
+  void smoothCoarse(int l, const double* b, double* x, int sweeps, bool reverse, const Settings& s);
 
   // y = C x with C the operator of levels_[li].
   void multiplyCoarse(int li, const double* x, double* y) {
@@ -666,63 +400,7 @@ class MultigridCycle {
     }
   }
 
-  void solveCoarsest(const double* b, double* x, const Settings& s) {
-    const Level& c = levels_.back();
-    const int n = 12 * c.handles;
-    if (s.coarseSolver == CoarseSolver::Cholesky && factored_) {
-      ex_.copy(x, b, n);
-      if constexpr (Exec::kHostMemory)
-        sparse_->solve(x);
-      else
-        ex_.denseCholeskySolve(n, dense_.data(), x);
-      return;
-    }
-    // CG for a fixed number of iterations; with pieces, from the exact per-piece affine
-    // solution. Its stopping tests are device scalars read by the launches that follow.
-    double* r = cgR_.data();
-    double* p = cgP_.data();
-    double* ap = cgAp_.data();
-    double* sc = scalars_.data();
-    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
-      x[i] = 0.0;
-      r[i] = b[i];
-    });
-    if (pieceCount_ >= 2) startFromPieces(b, x);
-    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) { p[i] = r[i]; });
-    ex_.sum(
-        n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * r[i]; }, sc + kRr);
-    ex_.sum(
-        n, [=] GALSCULPT_LAMBDA(int i) { return b[i] * b[i]; }, sc + kBB);
-    ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
-      sc[kStop] = 1e-30 * fmax(sc[kBB], 1e-300);
-      sc[kDone] = 0.0;
-    });
-    // Each launch of an iteration decides alone whether the iteration is live, from scalars no
-    // launch of that iteration writes before the last one: 3 launches and 2 reductions each.
-    for (int it = 0; it < s.coarseIterations; ++it) {
-      multiplyCoarse(numLevels() - 1, p, ap);
-      ex_.sum(
-          n, [=] GALSCULPT_LAMBDA(int i) { return p[i] * ap[i]; }, sc + kPap);
-      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
-        if (!cgLive(sc)) return;
-        const double alpha = sc[kRr] / sc[kPap];
-        x[i] += alpha * p[i];
-        r[i] -= alpha * ap[i];
-      });
-      ex_.sum(
-          n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * r[i]; }, sc + kRrNew);
-      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
-        if (cgLive(sc)) p[i] = r[i] + (sc[kRrNew] / sc[kRr]) * p[i];
-      });
-      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
-        if (cgLive(sc)) {
-          sc[kRr] = sc[kRrNew];
-        } else {
-          sc[kDone] = 1.0;  // stopped for good: the later launches do nothing
-        }
-      });
-    }
-  }
+  void solveCoarsest(const double* b, double* x, const Settings& s);
 
   // The coarse CG's start with two or more pieces: each piece's exact affine solution (its
   // 12x12 system), so that CG only corrects within pieces; r = b - A x. A start that is not
@@ -829,3 +507,6 @@ class MultigridCycle {
 };
 
 }  // namespace galsculpt
+
+#include "solver/multigrid/multigrid_refresh.h"  // (the refresh's definitions)
+#include "solver/multigrid/multigrid_smooth.h"   // (the smoothers' and the coarsest solve's)
