@@ -4,6 +4,7 @@
 // parts each do one job over the arrays they share (frame_data.h):
 //   frame_loop.h            sub-steps, retries, plastic flow and fracture re-solves (runFrame)
 //   held_vertices.h         anchors on their paths and removed debris, per sub-step
+//   substep_start.h         a sub-step's start: x_n, v_n, the target, the prediction kept or not
 //   accelerated_start.h     the free pieces' start on their paths with their acceleration
 //   incremental_potential.h the potential, its gradient g and the Newton system H (the element
 //                           pass in element_pass.h, the contact term in contact_term.h)
@@ -298,82 +299,17 @@ class FrameSolver {
   }
 
   // x_n, v_n and the inertial target from the state; anchored vertices on their paths.
-  void beginSubstep(double h) {
-    d_.h = h;
-    pieceTargetCap_ = std::numeric_limits<double>::infinity();
-    linear_.resetIterations();
-    held_.prepare(*anchors_, time_ + h);
-    contact_.place(colliderStates_, time_ + h, h);
-    double* x = d_.x.data();
-    double* v = d_.v.data();
-    double* xn = d_.xn.data();
-    double* vn = d_.vn.data();
-    double* xhat = d_.xhat.data();
-    ex_.forEach(3 * d_.n, [=] GALSCULPT_LAMBDA(int i) {
-      xn[i] = x[i];
-      vn[i] = v[i];
-      xhat[i] = x[i] + h * v[i];
-    });
-    const bool gradientAtXn = gradientAtX_;
-    gradientAtX_ = false;  // x moves on from x_n below
-    // Not where a brush or an anchor has just let go: the prediction would carry the vertices it
-    // moved on past where it let them go, and plastic clay stops there (its flow is in the
-    // energy: a start deep in the flow region makes Newton unload it across the yield kink).
-    predicted_ = d_.settings->predictedStart && !held_.letGo();
-    if (predicted_) {
-      ex_.copy(x, xhat, 3 * d_.n);
-      if (d_.settings->acceleratedStart) startPiecesAccelerated(h, gradientAtXn);
-    }
-    // Stiffnesses are kept within a sub-step only: a frame's result must follow from the state
-    // alone (a reopened project runs on identically), and rest shapes change between sub-steps.
-    if (d_.settings->stiffnessTolerance > 0.0) {
-      double* keptF = d_.stiffnessF.data();
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      ex_.forEach(d_.tets, [=] GALSCULPT_LAMBDA(int t) { keptF[9 * t] = nan; });
-    }
-    held_.place();
-    d_.frozenIsK = true;
-  }
+  void beginSubstep(double h);
 
   // Pieces nothing holds start on their path with their acceleration (accelerated_start.h).
   // Called once the held vertices and the colliders are placed (fixed and the poses are the
   // sub-step's).
-  void startPiecesAccelerated(double h, bool gradientAtXn) {
-    const ElementModel element{potential_.elementInputs(), model_.material.model,
-                               model_.material.elementLame(), model_.material.compressionResists};
-    const typename AcceleratedStart<Exec>::SubstepInputs inputs{
-        d_.anchorCount > 0,
-        d_.fixed.data(),
-        d_.removed.data(),
-        d_.xn.data(),
-        d_.xhat.data(),
-        d_.vn.data(),
-        d_.mass.data(),
-        contact_.poses(),
-        contact_.colliders(),
-        h,
-        model_.material.dampingMass,
-        {model_.gravity.x(), model_.gravity.y(), model_.gravity.z()}};
-    // Copied on the host executor only: its element kernel is compiled without contracted
-    // multiply-adds, so the copy is the evaluation bit for bit and a frame still follows from
-    // the state alone. nvcc contracts them as each kernel's inlining allows, so on the GPU the
-    // two could differ in their last bits; there the elements are evaluated, in parallel.
-    const bool copy = gradientAtXn && Exec::kHostMemory;
-    accelerated_.start(ex_, model_, damage_.pieces(), inputs, element,
-                       copy ? d_.elemGrad.data() : nullptr, d_.x.data());
-  }
+  void startPiecesAccelerated(double h, bool gradientAtXn);
 
   // Newton starts from x_n when the prediction x_n + h v_n turned an intact element inside out
   // (the line search only refuses steps that invert more: it would keep those). `read`: the
   // scalars after the first Newton step.
-  bool dropInvertingPrediction(const FrameScalars& read) {
-    if (!predicted_) return false;
-    predicted_ = false;
-    if (!(read.inverted > 0.0)) return false;
-    ex_.copy(d_.x.data(), d_.xn.data(), 3 * d_.n);
-    held_.place();
-    return true;
-  }
+  bool dropInvertingPrediction(const FrameScalars& read);
 
   // Converged: the step was below Newton's step test; Stalled: no step length descends (a
   // failure before any progress, else the end of the iterations, converged only if the
@@ -635,3 +571,5 @@ class FrameSolver {
 };
 
 }  // namespace galsculpt
+
+#include "solver/frame/substep_start.h"  // (the sub-step's start: x_n, v_n, the prediction)
