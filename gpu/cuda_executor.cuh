@@ -25,6 +25,7 @@
 
 #include "gpu/cusolver_loader.h"
 #include "gpu/launch_profile.h"
+#include "solver/frame/device_counters.h"
 
 namespace galsculpt::gpu {
 
@@ -160,6 +161,7 @@ class CudaExecutor {
       GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
     }
     void upload(const T* src, size_t n) {
+      ::galsculpt::detail::transfers.hostToDevice += static_cast<double>(n * sizeof(T));
       allocate(n);
       if (n)
         GALSCULPT_CUDA_CHECK(
@@ -175,6 +177,7 @@ class CudaExecutor {
     // Setup and rare transfers; per-frame ones go through CudaExecutor::download (pinned).
     void download(T* dst, size_t n) const {
       if (!n) return;
+      ::galsculpt::detail::transfers.deviceToHost += static_cast<double>(n * sizeof(T));
       GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(static_cast<void*>(dst), p_, n * sizeof(T),
                                            cudaMemcpyDeviceToHost, GALSCULPT_CUDA_STREAM));
       GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
@@ -225,9 +228,20 @@ class CudaExecutor {
   CudaExecutor(const CudaExecutor&) = delete;
   CudaExecutor& operator=(const CudaExecutor&) = delete;
 
+  // What a frame costs the device (solver/frame/device_counters.h); the kernels of a replayed
+  // graph are those counted when it was recorded.
+  using Counters = DeviceCounters;
+  Counters counters() const {
+    Counters c = counters_;
+    c.hostToDeviceBytes = ::galsculpt::detail::transfers.hostToDevice;
+    c.deviceToHostBytes = ::galsculpt::detail::transfers.deviceToHost + readBytes_;
+    return c;
+  }
+
   template <typename F>
   void forEach(int n, const F& f, long /*cost: a CPU's threading hint*/ = 1) const {
     if (n <= 0) return;
+    ++counters_.launches;
     if (profile_) profile_->begin(GALSCULPT_CUDA_STREAM);
     forEachKernel<<<(n + kThreads - 1) / kThreads, kThreads, 0, GALSCULPT_CUDA_STREAM>>>(n, f);
     GALSCULPT_CUDA_CHECK(cudaGetLastError());
@@ -243,18 +257,22 @@ class CudaExecutor {
   }
   template <typename T>
   void copy(T* dst, const T* src, size_t n) const {
+    if (n) ++counters_.copies;
     if (n)
       GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(dst, src, n * sizeof(T), cudaMemcpyDeviceToDevice,
                                            GALSCULPT_CUDA_STREAM));
   }
   template <typename T>
   void read(const T* deviceValues, T* host, int n) const {
+    ++counters_.reads;
     download(deviceValues, host, static_cast<size_t>(n));
   }
   // Device to host through the pinned staging buffer (one DMA, one wait, one memcpy).
   template <typename T>
   void download(const T* device, T* host, size_t n) const {
     if (!n) return;
+    ++counters_.waits;
+    readBytes_ += static_cast<double>(n * sizeof(T));
     void* pinned = staging_.get(n * sizeof(T));
     GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(pinned, device, n * sizeof(T), cudaMemcpyDeviceToHost,
                                          GALSCULPT_CUDA_STREAM));
@@ -273,6 +291,7 @@ class CudaExecutor {
       workspaceSize_ = lwork;
     }
     GALSCULPT_CUSOLVER_CHECK(cusolver_.potrf(n, a, workspace_, lwork, info_));
+    ++counters_.waits;
     int info = 0;
     GALSCULPT_CUDA_CHECK(
         cudaMemcpyAsync(&info, info_, sizeof(int), cudaMemcpyDeviceToHost, GALSCULPT_CUDA_STREAM));
@@ -294,6 +313,7 @@ class CudaExecutor {
     if (slot >= static_cast<int>(slots_.size())) slots_.resize(slot + 1);
     Graph& g = slots_[slot];
     if (!g.exec || g.key != key) {
+      const Counters before = counters_;
       if (g.exec) GALSCULPT_CUDA_CHECK(cudaGraphExecDestroy(g.exec));
       g.exec = nullptr;
       cudaGraph_t graph = nullptr;
@@ -310,7 +330,15 @@ class CudaExecutor {
       GALSCULPT_CUDA_CHECK(cudaGraphInstantiate(&g.exec, graph, 0));
       GALSCULPT_CUDA_CHECK(cudaGraphDestroy(graph));
       g.key = key;
+      g.launches = counters_.launches - before.launches;
+      g.reductions = counters_.reductions - before.reductions;
+      g.copies = counters_.copies - before.copies;
+    } else {  // the recorded kernels run again
+      counters_.launches += g.launches;
+      counters_.reductions += g.reductions;
+      counters_.copies += g.copies;
     }
+    ++counters_.graphs;
     GALSCULPT_CUDA_CHECK(cudaGraphLaunch(g.exec, GALSCULPT_CUDA_STREAM));
   }
   void synchronize() const { GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM)); }
@@ -319,6 +347,7 @@ class CudaExecutor {
   template <typename F, typename Op>
   void reduce(int n, const F& f, Op op, double identity, double* out) const {
     const int blocks = n <= 0 ? 1 : std::min(kReduceBlocks, (n + kThreads - 1) / kThreads);
+    ++counters_.reductions;
     if (profile_) profile_->begin(GALSCULPT_CUDA_STREAM);
     reduceKernel<<<blocks, kThreads, 0, GALSCULPT_CUDA_STREAM>>>(n, f, op, identity, partial_);
     GALSCULPT_CUDA_CHECK(cudaGetLastError());
@@ -329,6 +358,7 @@ class CudaExecutor {
   struct Graph {
     std::uint64_t key = 0;
     cudaGraphExec_t exec = nullptr;
+    long launches = 0, reductions = 0, copies = 0;  // the kernels it holds
   };
   double* partial_ = nullptr;
   CusolverLibrary cusolver_;
@@ -339,6 +369,8 @@ class CudaExecutor {
   bool graphs_ = true;
   std::unique_ptr<LaunchProfile> profile_;  // GALSCULPT_CUDA_PROFILE=1
   mutable PinnedStaging staging_;
+  mutable Counters counters_;
+  mutable double readBytes_ = 0.0;  // host reads and downloads
   std::vector<Graph> slots_;
 };
 

@@ -8,12 +8,21 @@
 # (under compute-sanitizer), bench:SCENE[:FRAMES[:EXTRA]] (bench --backend cuda), nographs:SCENE
 # (the same without CUDA graphs), profile:SCENE (the same, each launch timed: gpu/launch_profile.h),
 # play:SCRIPT (a shipped playback script with --backend cuda), run:SCENE[:FRAMES] (run --backend
-# cuda on assets/scenes/SCENE.json, for scenes without a reference here). Each step gets what is left of SECONDS; every log and JSON goes
-# to $OUT/results.tar.gz (rewritten after each step) and a summary ends the output.
+# cuda on assets/scenes/SCENE.json, for scenes without a reference here). With no STEP, the whole
+# check: gpu_tests, bench on the sphere, the human figure, Charpy, Charpy after the break and the
+# cut sphere, the armadillo's run and the face demo (about 6 minutes on an H200 with kept
+# references). Each step gets what is left of SECONDS; every log and JSON goes to
+# $OUT/results.tar.gz (rewritten after each step) and a summary ends the output: bench's rows
+# (ms a frame beside error in motion, and the device's kernels and host waits a frame) and, for
+# play and run, frames, ms, unconverged frames, kernels and waits a frame.
 set -u
 pack=$1
 budget=$2
 shift 2
+if [ $# -eq 0 ]; then
+  set -- tests bench:sphere:60 bench:human:60 bench:charpy:60 bench:charpy_after_break:60 \
+    bench:sphere_cut:60 run:armadillo:30 play:sculpted_face
+fi
 start=$(date +%s)
 # Logs and JSON go to a work folder packed into $OUT/results.tar.gz after each step, the summary
 # beside it: two files come back, whatever the number of steps.
@@ -96,7 +105,9 @@ ms = sorted(float(r["ms_total"]) for r in rows)
 if ms:
     print(f"{len(ms)} frames, median {statistics.median(ms):.2f} ms, "
           f"p95 {ms[int(0.95 * (len(ms) - 1))]:.2f} ms, "
-          f"unconverged {sum(r['converged'] != '1' for r in rows)}")
+          f"unconverged {sum(r['converged'] != '1' for r in rows)}, "
+          f"{statistics.mean(float(r.get('launches', 0)) for r in rows):.0f} kernels and "
+          f"{statistics.mean(float(r.get('syncs', 0)) for r in rows):.1f} host waits a frame")
 PY
       ;;
     *) echo "unknown step $step" >>"$summary"; rc=2 ;;

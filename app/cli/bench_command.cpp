@@ -143,29 +143,6 @@ void describeSetting(const Setting& setting, nlohmann::json& r) {
   }
 }
 
-// The reference run writes its positions; the others are compared with them: the largest
-// position difference relative to the reference's largest displacement (-1: no reference).
-double positionError(const std::vector<Vec3>& x, const TetMesh& mesh, bool reference,
-                     const fs::path& referencePositions) {
-  if (reference) {
-    writeFileAtomically(referencePositions, [&](std::ostream& out) {
-      out.write(reinterpret_cast<const char*>(x.data()),
-                static_cast<std::streamsize>(x.size() * sizeof(Vec3)));
-    });
-    return 0.0;
-  }
-  std::vector<Vec3> ref(x.size());
-  std::ifstream in(referencePositions, std::ios::binary);
-  in.read(reinterpret_cast<char*>(ref.data()),
-          static_cast<std::streamsize>(ref.size() * sizeof(Vec3)));
-  double err = 0.0, disp = 0.0;
-  for (size_t v = 0; v < x.size(); ++v) {
-    err = std::max(err, (x[v] - ref[v]).norm());
-    disp = std::max(disp, (ref[v] - mesh.vertices[v]).norm());
-  }
-  return in ? err / std::max(disp, 1e-300) : -1.0;
-}
-
 // The frame at which the error in motion is measured: the scene's in-motion frame, within the run.
 int motionFrame(int frames) {
   return std::min(frames, 20);
@@ -178,6 +155,8 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
   std::vector<double> ms, msSurface, msElements, msSolve, msFracture, msOther;
   FrameMetrics last;
   double newton = 0.0, cg = 0.0, residualMax = 0.0, motionError = -1.0, msSum = 0.0;
+  // What the frames cost a device (the device backends; 0 on the CPU): sums, for the means.
+  double launches = 0.0, syncs = 0.0, graphs = 0.0, h2d = 0.0, d2h = 0.0;
   std::vector<double> pieceResidual;
   int unconverged = 0;
   const int atMotion = motionFrame(frames);
@@ -193,6 +172,11 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
     msOther.push_back(last.msOther);
     newton += last.newtonIterations;
     cg += last.cgIterations;
+    launches += last.launches;
+    syncs += last.syncs;
+    graphs += last.graphs;
+    h2d += last.hostToDeviceBytes;
+    d2h += last.deviceToHostBytes;
     residualMax = std::max(residualMax, last.residual);
     pieceResidual.push_back(last.pieceResidual);
     unconverged += last.converged ? 0 : 1;
@@ -232,6 +216,11 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
   r["ms_fracture"] = medianOf(msFracture);
   r["ms_other"] = medianOf(msOther);
   r["newton_iters_mean"] = newton / frames;
+  r["launches"] = launches / frames;
+  r["syncs"] = syncs / frames;
+  r["graphs"] = graphs / frames;
+  r["h2d_bytes"] = h2d / frames;
+  r["d2h_bytes"] = d2h / frames;
   r["cg_iters_mean"] = cg / frames;
   // What a Newton iteration costs, apart from how many a motion takes (the mean frame over the
   // mean iterations).

@@ -63,4 +63,27 @@ void ReferenceCache::store(const fs::path& refFile, const nlohmann::json& rows) 
   writeFileAtomically(file(".json"), [&](std::ostream& o) { o << rows.dump(2) << '\n'; });
 }
 
+// The reference run writes its positions; the others are compared with them: the largest
+// position difference relative to the reference's largest displacement (-1: no reference).
+double positionError(const std::vector<Vec3>& x, const TetMesh& mesh, bool reference,
+                     const fs::path& referencePositions) {
+  if (reference) {
+    writeFileAtomically(referencePositions, [&](std::ostream& out) {
+      out.write(reinterpret_cast<const char*>(x.data()),
+                static_cast<std::streamsize>(x.size() * sizeof(Vec3)));
+    });
+    return 0.0;
+  }
+  std::vector<Vec3> ref(x.size());
+  std::ifstream in(referencePositions, std::ios::binary);
+  in.read(reinterpret_cast<char*>(ref.data()),
+          static_cast<std::streamsize>(ref.size() * sizeof(Vec3)));
+  double err = 0.0, disp = 0.0;
+  for (size_t v = 0; v < x.size(); ++v) {
+    err = std::max(err, (x[v] - ref[v]).norm());
+    disp = std::max(disp, (ref[v] - mesh.vertices[v]).norm());
+  }
+  return in ? err / std::max(disp, 1e-300) : -1.0;
+}
+
 }  // namespace galsculpt

@@ -35,4 +35,9 @@ class ReferenceCache {
   std::filesystem::path base_;
 };
 
+// The reference run writes its positions; the others are compared with them: the largest
+// position difference relative to the reference's largest displacement (-1: no reference).
+double positionError(const std::vector<Vec3>& x, const TetMesh& mesh, bool reference,
+                     const std::filesystem::path& referencePositions);
+
 }  // namespace galsculpt

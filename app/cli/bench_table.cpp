@@ -21,7 +21,7 @@ std::string benchHeader() {
   return "scene" + std::string(kSceneColumn - 5, ' ') +
          "tets    solver    grid                     fine coarse  ms/frame      fps  "
          "peak MB  pos err %  vol chg %  surf ms    max  backend  motion err %   p95 ms  newton"
-         "      cg  max resid  unconv threads";
+         "      cg  max resid  unconv threads  launches  syncs";
 }
 
 std::string benchRow(const nlohmann::json& r) {
@@ -87,7 +87,9 @@ std::string benchRow(const nlohmann::json& r) {
     << std::setprecision(1) << r["newton_iters_mean"].get<double>() << std::setw(8)
     << r["cg_iters_mean"].get<double>() << std::setw(11) << std::scientific << std::setprecision(1)
     << r["residual_max"].get<double>() << std::fixed << std::setw(8)
-    << r["unconverged_frames"].get<int>() << std::setw(8) << r.value("threads", 0);
+    << r["unconverged_frames"].get<int>() << std::setw(8) << r.value("threads", 0) << std::setw(10)
+    << std::setprecision(0) << r.value("launches", 0.0) << std::setw(7) << std::setprecision(1)
+    << r.value("syncs", 0.0);
   return s.str();
 }
 

@@ -138,7 +138,8 @@ std::pair<int, int> CliArgs::sizeValue(const std::string& flag,
 }
 
 std::optional<BackendRequest> backendOption(const CliArgs& args) {
-  return namedOption(args, "--backend", enumFromName<BackendRequest>, "auto, cpu or cuda");
+  return namedOption(args, "--backend", enumFromName<BackendRequest>,
+                     "auto, cpu, cuda or device-like");
 }
 
 SolverOverrides solverOverrides(const CliArgs& args) {

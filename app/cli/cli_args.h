@@ -72,7 +72,7 @@ std::optional<E> namedOption(const CliArgs& args, const std::string& flag,
   return value;
 }
 
-// --backend auto|cpu|cuda (run, play, bench, open): empty when absent, UsageError otherwise.
+// --backend auto|cpu|cuda|device-like (run, play, bench, open): empty when absent, UsageError otherwise.
 std::optional<BackendRequest> backendOption(const CliArgs& args);
 
 // --solver-option KEY=VALUE[,KEY=VALUE...] and --backend (run, play, bench, open): the solver

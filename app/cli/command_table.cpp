@@ -10,9 +10,9 @@ namespace galsculpt {
 
 namespace {
 
-const FlagSpec kBackend{"--backend", "auto|cpu|cuda",
+const FlagSpec kBackend{"--backend", "auto|cpu|cuda|device-like",
                         "the solver's backend (default: the scene's; auto: CUDA where there is a "
-                        "GPU, else the CPU)"};
+                        "GPU, else the CPU; device-like: the GPU's paths on the CPU, counted)"};
 const FlagSpec kThreads{"--threads", "N",
                         "the CPU's threads (default: GALSCULPT_THREADS, else OMP_NUM_THREADS, "
                         "else every core)"};

@@ -386,7 +386,7 @@ SolverOverrides commandSolverOverrides(const py::object& solverOption,
   }
   if (backend) {
     if (!enumFromName<BackendRequest>(*backend))
-      throw py::value_error("backend must be auto, cpu or cuda, got '" + *backend + "'");
+      throw py::value_error("backend must be auto, cpu, cuda or device-like, got '" + *backend + "'");
     overrides.emplace_back("backend", *backend);
   }
   return overrides;

@@ -45,6 +45,11 @@ const std::vector<MetricsColumn>& metricsColumns() {
       {"piece_residual", &M::pieceResidual},
       {"local_iterations", &M::localIterations},
       {"idle_tools", &M::idleTools},
+      {"launches", &M::launches},
+      {"syncs", &M::syncs},
+      {"graphs", &M::graphs},
+      {"h2d_bytes", &M::hostToDeviceBytes},
+      {"d2h_bytes", &M::deviceToHostBytes},
   };
   return columns;
 }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/frame/device_counters.h"
 #include "solver/frame/parallel.h"
 
 namespace galsculpt {
@@ -43,17 +44,20 @@ class CpuExecutor {
     }
     void upload(const T* src, size_t n) {
       detail::forbidInCapture("an upload");
+      detail::transfers.hostToDevice += static_cast<double>(n * sizeof(T));
       v_.assign(src, src + n);
     }
     void upload(const std::vector<T>& src) { upload(src.data(), src.size()); }
     // Takes the host array over (on this executor, without a copy); `src` is left empty.
     void adopt(std::vector<T>&& src) {
       detail::forbidInCapture("an upload");
+      detail::transfers.hostToDevice += static_cast<double>(src.size() * sizeof(T));
       v_ = std::move(src);
       src = std::vector<T>();
     }
     void download(T* dst, size_t n) const {
       detail::forbidInCapture("a download");
+      detail::transfers.deviceToHost += static_cast<double>(n * sizeof(T));
       std::copy(v_.begin(), v_.begin() + n, dst);
     }
 
@@ -69,6 +73,7 @@ class CpuExecutor {
    public:
     void mirror(const T* src, size_t n) {
       detail::forbidInCapture("an upload");
+      detail::transfers.hostToDevice += static_cast<double>(n * sizeof(T));
       p_ = src;
       n_ = n;
     }
@@ -81,22 +86,23 @@ class CpuExecutor {
     size_t n_ = 0;
   };
 
-  // What a frame costs in launches: counted here, so that the CUDA path's launch and
-  // synchronization counts are known without a GPU (docs/benchmarks.md).
-  struct Counters {
-    long launches = 0;    // forEach (kernels)
-    long reductions = 0;  // sum / maximum (two kernels each on the GPU)
-    long reads = 0;       // host reads (a synchronization each)
-    long copies = 0;      // device-to-device copies
-  };
-  const Counters& counters() const { return counters_; }
+  // What a frame costs a device (device_counters.h): counted here too, so that the CUDA path's
+  // counts are known without a GPU (on the device-like executor, whose paths are the CUDA
+  // executor's).
+  using Counters = DeviceCounters;
+  Counters counters() const {
+    Counters c = counters_;
+    c.hostToDeviceBytes = detail::transfers.hostToDevice;
+    c.deviceToHostBytes = detail::transfers.deviceToHost + readBytes_;
+    return c;
+  }
 
   // `cost`: about how many operations one item takes, so that few heavy items (coarse blocks,
   // handles) are spread over the threads as well as many light ones; results do not depend on
   // it (every item writes its own outputs).
   template <typename F>
   void forEach(int n, const F& f, long cost = 1) const {
-    ++counters_.launches;
+    countLaunch();
     parallelFor(n, f, cost);
   }
   // *out = sum of f(i) over i < n.
@@ -119,17 +125,22 @@ class CpuExecutor {
   void read(const T* deviceValues, T* host, int n) const {
     detail::forbidInCapture("a host read");
     ++counters_.reads;
+    ++counters_.waits;
+    readBytes_ += static_cast<double>(n * sizeof(T));
     std::copy(deviceValues, deviceValues + n, host);
   }
   // Device to host (the CUDA executor's pinned path).
   template <typename T>
   void download(const T* device, T* host, size_t n) const {
     detail::forbidInCapture("a download");
+    ++counters_.waits;
+    readBytes_ += static_cast<double>(n * sizeof(T));
     std::copy(device, device + n, host);
   }
   // In-place dense Cholesky (lower, column-major); false when not positive definite.
   bool denseCholesky(int n, double* a) const {
     detail::forbidInCapture("a dense factorization (it waits for its status)");
+    ++counters_.waits;
     Eigen::Map<Eigen::MatrixXd> m(a, n, n);
     Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(m);
     return llt.info() == Eigen::Success;
@@ -147,12 +158,17 @@ class CpuExecutor {
       Flag() { detail::capturing = true; }
       ~Flag() { detail::capturing = false; }
     } flag;
+    ++counters_.graphs;
     body();
   }
   void synchronize() const {}
 
+ protected:
+  void countLaunch() const { ++counters_.launches; }
+
  private:
   mutable Counters counters_;
+  mutable double readBytes_ = 0.0;  // host reads and downloads
 
   template <typename F, typename Op>
   void reduce(int n, const F& f, double* out, double identity, const Op& op) const {

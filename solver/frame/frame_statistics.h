@@ -51,7 +51,14 @@ enum class FrameStatisticRule { Sum, Time, Last, All, Frame };
     "Newton iterations that solved only where the residual was (StepSettings::localNewton)")       \
   X(int, invertedElements, 0, Last,                                                                \
     "intact elements inside out at the frame's end (a warning): the line search refuses steps "    \
-    "that invert more of them unless no descending step avoids it")
+    "that invert more of them unless no descending step avoids it")                                \
+  X(int, launches, 0, Frame,                                                                       \
+    "kernels a device backend ran for the frame, in graphs or not (device_counters.h; 0 on the "   \
+    "CPU backend)")                                                                                \
+  X(int, syncs, 0, Frame, "times the host waited for the device: scalar reads, downloads")         \
+  X(int, graphs, 0, Frame, "graph launches (captured sections)")                                   \
+  X(double, hostToDeviceBytes, 0.0, Frame, "bytes copied host to device")                          \
+  X(double, deviceToHostBytes, 0.0, Frame, "bytes copied device to host")
 
 struct FrameStatistics {
 #define GALSCULPT_STATISTIC_MEMBER(T, member, initial, rule, meaning) T member = initial;

@@ -19,7 +19,10 @@ constexpr EnumName<CoarseSolver> kCoarseSolverNames[] = {{CoarseSolver::Cg, "cg"
 constexpr EnumName<EnergyGuard> kEnergyGuardNames[] = {{EnergyGuard::Vertex, "vertex"},
                                                        {EnergyGuard::Body, "body"}};
 constexpr EnumName<BackendRequest> kBackendNames[] = {
-    {BackendRequest::Auto, "auto"}, {BackendRequest::Cpu, "cpu"}, {BackendRequest::Cuda, "cuda"}};
+    {BackendRequest::Auto, "auto"},
+    {BackendRequest::Cpu, "cpu"},
+    {BackendRequest::Cuda, "cuda"},
+    {BackendRequest::DeviceLike, "device-like"}};
 
 }  // namespace
 

@@ -33,7 +33,9 @@ enum class Smoother { Auto, GaussSeidel, Jacobi };
 enum class CoarseSolver { Cg, Cholesky };
 // What a Newton step that raised the potential shortens first (line_search.h).
 enum class EnergyGuard { Vertex, Body };
-enum class BackendRequest { Auto, Cpu, Cuda };
+// DeviceLike: the CUDA backend's paths on the CPU (solver/frame/device_like_backend.h), for
+// the device's launch and synchronization counts on any machine.
+enum class BackendRequest { Auto, Cpu, Cuda, DeviceLike };
 
 // "50/1000/all" -> {1000, 50}: handle counts from the finest coarse level down. Throws
 // std::invalid_argument on a malformed setup.

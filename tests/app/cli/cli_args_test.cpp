@@ -53,7 +53,7 @@ TEST(Cli, BackendFlag) {
     args.insert(args.end(), {"--backend", "gpu"});
     const CliRun r = run(args);
     EXPECT_EQ(r.code, kExitUsage) << args[0];
-    EXPECT_NE(r.err.find("--backend must be auto, cpu or cuda"), std::string::npos)
+    EXPECT_NE(r.err.find("--backend must be auto, cpu, cuda or device-like"), std::string::npos)
         << args[0] << ": " << r.err;
   }
 }

@@ -348,7 +348,7 @@ def test_a_script_played_from_python_is_the_commands_bit_for_bit(tmp_path):
         galsculpt.play(SCRIPT, tmp_path / "f", export_format="fbx")
     with pytest.raises(ValueError, match=r"^size expects WIDTHxHEIGHT between 16 and 8192"):
         galsculpt.play(SCRIPT, tmp_path / "f", size=(8, 8))
-    with pytest.raises(ValueError, match=r"^backend must be auto, cpu or cuda, got 'gpu'$"):
+    with pytest.raises(ValueError, match=r"^backend must be auto, cpu, cuda or device-like, got 'gpu'$"):
         galsculpt.play(SCRIPT, tmp_path / "f", backend="gpu")
     with pytest.raises(ValueError, match=r"^threads expects an integer in \[1, 1024\], got 0$"):
         galsculpt.play(SCRIPT, tmp_path / "f", threads=0)

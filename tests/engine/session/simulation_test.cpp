@@ -375,7 +375,8 @@ TEST(Simulation, MetricsCsvHasTheContractColumns) {
             "damaged_edges,pieces,warnings,newton_iterations,contact_force_n,ms_fracture,opening_m,"
             "load_n,backtracks,cg_iterations,converged,energy_passes,debris_pieces,"
             "debris_volume_pct,inverted_pieces,striker_displacement_m,absorbed_energy_j,"
-            "debris_mass_kg,piece_residual,local_iterations,idle_tools");
+            "debris_mass_kg,piece_residual,local_iterations,idle_tools,launches,syncs,graphs,h2d_bytes,"
+            "d2h_bytes");
   FrameMetrics m;
   m.frame = 3;
   m.timeS = 0.05;

@@ -4,7 +4,7 @@
 
 #include "solver/frame/cpu_executor.h"
 #include "solver/multigrid/multigrid_cycle.h"
-#include "tests/gpu/device_like_executor.h"
+#include "solver/frame/device_like_executor.h"
 #include "tests/solver/multigrid/multigrid_fixture.h"
 
 namespace galsculpt {
