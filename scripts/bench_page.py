@@ -75,6 +75,13 @@ def setting(r):
     return f"{r.get('preset', 'multigrid')} {r['grid']}"
 
 
+def device(r):
+    """What a frame cost a device backend (bench's launches and syncs), or a dash."""
+    if not r.get("launches"):
+        return "—"
+    return f"{r['launches']:,.0f} / {r['syncs']:.1f}"
+
+
 def table(doc):
     """One row per measured setting, speed beside error, as the issues ask for them."""
     p = doc.get("provenance", {})
@@ -87,12 +94,12 @@ def table(doc):
         "",
         "| scene | tets | setting | backend | threads | ms/frame | p95 ms | fps | error in motion % "
         "| error at the end % | Newton / CG a frame | largest residual | unconverged frames "
-        "| peak MB |",
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+        "| peak MB | device kernels / waits a frame |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
     ]
     for r in doc["results"]:
         if "error" in r:
-            lines.append(f"| {r.get('scene', '?')} | | failed: {r['error']} | | | | | | | | | | | |")
+            lines.append(f"| {r.get('scene', '?')} | | failed: {r['error']} | | | | | | | | | | | | |")
             continue
         motion = r.get("rel_position_error_motion")
         end = r.get("rel_position_error")
@@ -103,7 +110,8 @@ def table(doc):
             f"| {number(None if motion is None else 100 * motion, 3)} "
             f"| {number(None if end is None else 100 * end, 3)} "
             f"| {r['newton_iters_mean']:.2f} / {r['cg_iters_mean']:.1f} | {r['residual_max']:.2g} "
-            f"| {r['unconverged_frames']} of {r['frames']} | {r['peak_rss_mb']:.0f} |")
+            f"| {r['unconverged_frames']} of {r['frames']} | {r['peak_rss_mb']:.0f} "
+            f"| {device(r)} |")
     return "\n".join(lines)
 
 
