@@ -269,7 +269,8 @@ INSTANTIATE_TEST_SUITE_P(
             std::string("{") + kMesh + R"(, "solver": {"smoother": "sor"}})",
             "$.solver.smoother: unknown value 'sor' (expected one of: auto, gauss_seidel, jacobi)"},
         BadScene{std::string("{") + kMesh + R"(, "solver": {"backend": "gpu"}})",
-                 "$.solver.backend: unknown value 'gpu' (expected one of: auto, cpu, cuda)"},
+                 "$.solver.backend: unknown value 'gpu' (expected one of: auto, cpu, cuda, "
+                 "device-like)"},
         BadScene{std::string("{") + kMesh + R"(, "solver": {"energy_guard": "local"}})",
                  "$.solver.energy_guard: unknown value 'local' (expected one of: vertex, body)"},
         BadScene{std::string("{") + kMesh + R"(, "initial_velocity": {"linear": [1, 0]}})",
