@@ -1,5 +1,6 @@
-// The incremental potential of backward Euler and its derivatives, on the executor: inertia,
-// gravity and Rayleigh damping per coordinate, the elastic term (the element pass and its
+// The incremental potential of backward Euler and its derivatives, on the executor: the
+// coordinate terms (coordinate_terms.h: inertia, gravity, Rayleigh damping, the soft anchors'
+// springs, summed per coordinate in one launch), the elastic term (the element pass and its
 // gathers into the gradient and the stiffness blocks) and the contact term (contact_term.h);
 // the backward-Euler gradient g and the Newton system H; the potential at a trial step, whole
 // or vertex by vertex (the vertex guard). Its functions launch and reduce into the frame's
@@ -17,6 +18,7 @@
 #include "solver/fem/dense_kernels.h"
 #include "solver/fem/element_lanes.h"
 #include "solver/frame/contact_term.h"
+#include "solver/frame/coordinate_terms.h"
 #include "solver/frame/element_pass.h"
 #include "solver/frame/frame_data.h"
 #include "solver/frame/plastic_state.h"
@@ -217,31 +219,14 @@ class IncrementalPotential {
     contact_.energy(y, d_.fixed.data(), d_.mass.data(), d_.h, gradient, energyOut);
   }
 
-  // The terms of the incremental potential that belong to one coordinate: inertia, gravity,
-  // damping (dampedK: beta K0 (y - x_n)) and a soft anchor's spring.
-  struct DofPotential {
-    const double *xhat, *xn, *mass, *springK, *springTarget;
-    double h, alpha, gravity[3];
-    GALSCULPT_HD double operator()(int i, const double* y, const double* dampedK) const {
-      const double m = mass[i / 3];
-      const double g = gravity[i % 3];
-      const double inertia = y[i] - xhat[i], dx = y[i] - xn[i];
-      double e = 0.5 / (h * h) * inertia * (m * inertia) - m * g * y[i] +
-                 0.5 / h * (alpha * dx * (m * dx) + dx * dampedK[i]);
-      const double k = springK[i / 3];
-      if (k > 0.0) {
-        const double s = y[i] - springTarget[i];
-        e += 0.5 * k * s * s;
-      }
-      return e;
-    }
-  };
-  DofPotential dofPotential() const {
+  // What the coordinate terms (coordinate_terms.h) read, with βK₀(y - x_n) for the y at hand.
+  CoordinateInputs coordinateInputs(const double* dampedK) const {
     return {d_.xhat.data(),
             d_.xn.data(),
             d_.mass.data(),
             d_.springK.data(),
             d_.springTarget.data(),
+            dampedK,
             d_.h,
             model_.material.dampingMass,
             {model_.gravity.x(), model_.gravity.y(), model_.gravity.z()}};
@@ -251,9 +236,9 @@ class IncrementalPotential {
   // summed, in *elastic and *contactEnergy).
   void objective(const double* y, const double* elastic, const double* contactEnergy,
                  const double* dampedK, double* out) {
-    const DofPotential dof = dofPotential();
+    const CoordinateInputs c = coordinateInputs(dampedK);
     ex_.sum(
-        3 * d_.n, [=] GALSCULPT_LAMBDA(int i) { return dof(i, y, dampedK); }, out);
+        3 * d_.n, [=] GALSCULPT_LAMBDA(int i) { return CoordinateTerms::energy(c, i, y); }, out);
     ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { *out += *elastic + *contactEnergy; });
   }
 
@@ -261,42 +246,26 @@ class IncrementalPotential {
   // around it, its own inertia, gravity, damping and contact terms (they sum to the potential).
   // `energy`: the elements' energies at y; the contact term's must be y's.
   void vertexPotential(const double* y, const double* energy, const double* dampedK, double* out) {
-    const DofPotential dof = dofPotential();
+    const CoordinateInputs c = coordinateInputs(dampedK);
     const int* vStart = d_.vertexSlotStart.data();
     const int* vSlots = d_.vertexSlots.data();
     const double* contactEnergy = contact_.perVertex();
     ex_.forEach(d_.n, [=] GALSCULPT_LAMBDA(int v) {
       double sum = contactEnergy ? contactEnergy[v] : 0.0;
       for (int i = vStart[v]; i < vStart[v + 1]; ++i) sum += 0.25 * energy[vSlots[i] / 4];
-      for (int k = 0; k < 3; ++k) sum += dof(3 * v + k, y, dampedK);
+      for (int k = 0; k < 3; ++k) sum += CoordinateTerms::energy(c, 3 * v + k, y);
       out[v] = sum;
     });
   }
 
-  // g = M (y - xhat)/h^2 + grad - f_ext + (alpha M dx + dampedK)/h + k (y - t) (+ contact,
-  // already in grad), zero on anchored vertices.
+  // g: the coordinate terms' gradients with the pass terms' (elastic and contact, in `grad`),
+  // zero on anchored vertices.
   void backwardEulerGradient(const double* y, const double* grad, const double* dampedK,
                              double* g) {
-    const double* xhat = d_.xhat.data();
-    const double* xn = d_.xn.data();
-    const double* mass = d_.mass.data();
+    const CoordinateInputs c = coordinateInputs(dampedK);
     const std::uint8_t* fixed = d_.fixed.data();
-    const double* springK = d_.springK.data();
-    const double* springTarget = d_.springTarget.data();
-    const double h = d_.h;
-    const double alpha = model_.material.dampingMass;
-    const double gx = model_.gravity.x(), gy = model_.gravity.y(), gz = model_.gravity.z();
     ex_.forEach(3 * d_.n, [=] GALSCULPT_LAMBDA(int i) {
-      if (fixed[i / 3]) {
-        g[i] = 0.0;
-        return;
-      }
-      const double m = mass[i / 3];
-      const double gravity = i % 3 == 0 ? gx : (i % 3 == 1 ? gy : gz);
-      g[i] = m * (y[i] - xhat[i]) / (h * h) + grad[i] - m * gravity +
-             (alpha * (m * (y[i] - xn[i])) + dampedK[i]) / h;
-      const double k = springK[i / 3];
-      if (k > 0.0) g[i] += k * (y[i] - springTarget[i]);
+      g[i] = fixed[i / 3] ? 0.0 : CoordinateTerms::gradient(c, i, y, grad[i]);
     });
   }
 
@@ -312,11 +281,10 @@ class IncrementalPotential {
     // A local iteration's solve reads the region's rows only.
     const std::uint8_t* rows = d_.local ? d_.regionVertex.data() : nullptr;
     const double* mass = d_.mass.data();
-    const double* springK = d_.springK.data();
     const double h = d_.h;
     const auto contactStiffness = contact_.stiffness(mass, h);
     const double betaOverH = model_.material.dampingStiffness / h;
-    const double alpha = model_.material.dampingMass;
+    const CoordinateInputs coords = coordinateInputs(nullptr);
     ex_.forEach(d_.blocks, [=] GALSCULPT_LAMBDA(int b) {
       const int r = blockRow[b], c = columns[b];
       if (rows && !rows[r]) return;
@@ -324,10 +292,10 @@ class IncrementalPotential {
       for (int i = 0; i < 9; ++i) out[i] = kb[9 * b + i] + betaOverH * frozen[9 * b + i];
       if (r == c) {
         if (!fixed[r]) contactStiffness.add(r, y, out);
-        const double m = mass[r] * (1.0 / (h * h) + alpha / h);
+        const double m = mass[r] * CoordinateTerms::massCoefficient(coords);
         for (int i = 0; i < 3; ++i) out[4 * i] += m;
-        if (springK[r] > 0.0)
-          for (int i = 0; i < 3; ++i) out[4 * i] += springK[r];
+        const double own = CoordinateTerms::diagonal(coords, r);
+        for (int i = 0; i < 3; ++i) out[4 * i] += own;
       }
       if (fixed[r] || fixed[c]) {
         const double diag = r == c ? mass[r] / (h * h) : 0.0;
