@@ -3,22 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <iomanip>
 #include <limits>
-#include <sstream>
-#include <type_traits>
-#include <variant>
 
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/backend_select.h"
 #include "solver/fracture/debris.h"
 #include "solver/frame/timing.h"
-#include "solver/io/damage_io.h"
 #include "solver/io/input_error.h"
 #include "solver/io/memory_limits.h"
 #include "solver/io/stop_request.h"
-#include "solver/io/tetgen_io.h"
-#include "solver/io/vtk_io.h"
 
 namespace galsculpt {
 
