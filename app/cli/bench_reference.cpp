@@ -63,8 +63,6 @@ void ReferenceCache::store(const fs::path& refFile, const nlohmann::json& rows) 
   writeFileAtomically(file(".json"), [&](std::ostream& o) { o << rows.dump(2) << '\n'; });
 }
 
-// The reference run writes its positions; the others are compared with them: the largest
-// position difference relative to the reference's largest displacement (-1: no reference).
 double positionError(const std::vector<Vec3>& x, const TetMesh& mesh, bool reference,
                      const fs::path& referencePositions) {
   if (reference) {

@@ -93,13 +93,13 @@ class FrameRenderer {
   OrbitCamera camera_;
 };
 
-// The frame loop shared by run and play: metrics CSV, surface exports, final.obj, summary.
+// The frame loop shared by run and play: metrics CSV, surface exports, final.obj, summary. The
+// callers check the options (checkRunOptions) before any work, meshing included.
 RunSummary simulateFrames(const std::string& name, int frames, Simulation& sim, const RunOptions& o,
                           const std::function<FrameMetrics()>& advance, std::ostream& out,
                           std::ostream& err, const FrameSink& onFrame = {},
                           const std::function<std::optional<CameraPose>()>& camera = {},
                           const std::function<std::vector<std::string>()>& toolReports = {}) {
-  checkRunOptions(o);
   auto pose = [&camera]() -> std::optional<CameraPose> { return camera ? camera() : std::nullopt; };
   const fs::path& outDir = o.outDir;
   const fs::path metricsPath = o.metricsPath.empty() ? outDir / "metrics.csv" : o.metricsPath;
