@@ -28,6 +28,19 @@ TEST(BackendSelect, CpuIsTakenAsAskedWithoutANote) {
   EXPECT_TRUE(c.note.empty());
 }
 
+// device-like: the GPU's paths on the CPU, for the multigrid (the reference's direct solve has no
+// device path: it runs on the CPU and says so).
+TEST(BackendSelect, DeviceLikeRunsTheMultigridOrSaysWhyNot) {
+  const SimModel m = smallModel();
+  const BackendChoice c = chooseBackend(BackendRequest::DeviceLike, m, multigridSettings());
+  EXPECT_EQ(c.backend->name(), "device-like");
+  EXPECT_TRUE(c.backend->offloads());
+  EXPECT_TRUE(c.note.empty());
+  const BackendChoice reference = chooseBackend(BackendRequest::DeviceLike, m, StepSettings{});
+  EXPECT_EQ(reference.backend->name(), "cpu");
+  EXPECT_NE(reference.note.find("multigrid only"), std::string::npos) << reference.note;
+}
+
 // Where the CUDA backend cannot run (no GPU here, or a build without nvcc), auto and cuda both
 // fall back to the CPU; cuda, asked for, says why as a note, auto keeps the reason apart (the
 // user did not ask for a GPU); where it can, they take it.
