@@ -253,6 +253,7 @@ FractureDesc readFracture(JsonObject o) {
   f.thresholdJitter = o.number("threshold_jitter", 0.0, 0.0, 0.99);
   f.seed = static_cast<unsigned>(o.integer("seed", 1, 0, std::numeric_limits<int>::max()));
   f.compressionResists = o.boolean("compression_resists", true);
+  f.crackWidth = o.number("crack_width", f.crackWidth, 0.0, 0.1);
   f.iterations = o.integer("iterations", 1, 1, 100);
   f.compressiveThreshold = stressThreshold(o, "compressive_threshold", 0.0);
   f.criticalFraction = o.number("critical_fraction", 0.0, 0.0, 1.0);

@@ -57,9 +57,10 @@ void checkSceneAnchors(const SceneDescription& scene, const TetMesh& mesh) {
                          "$.anchors[" + std::to_string(i) + "]");
 }
 
-MaterialParams materialFromScene(const MaterialDesc& m, bool compressionResists) {
+MaterialParams materialFromScene(const MaterialDesc& m, const FractureDesc& fracture) {
   MaterialParams p;
-  p.compressionResists = compressionResists;
+  p.compressionResists = fracture.compressionResists;
+  p.crackWidth = fracture.crackWidth;
   p.model = m.model;
   p.lame = lameFromYoungPoisson(m.youngsModulus, m.poissonRatio);
   p.density = m.density;
@@ -80,8 +81,7 @@ const TetMesh& withMemoryFor(const TetMesh& mesh) {
 }  // namespace
 
 Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, SolverChoice choice)
-    : model_(buildSimModel(withMemoryFor(mesh),
-                           materialFromScene(scene.material, scene.fracture.compressionResists))),
+    : model_(buildSimModel(withMemoryFor(mesh), materialFromScene(scene.material, scene.fracture))),
       state_(initialState(model_)),
       surfaceBuilder_(model_) {
   SolverOptions options = scene.solver;

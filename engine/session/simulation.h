@@ -105,7 +105,7 @@ std::string metricsCsvRow(const FrameMetrics& m);
 void checkSceneAnchors(const SceneDescription& scene, const TetMesh& mesh);
 
 // Solver-side material from a scene material; throws InputError for an unknown model.
-MaterialParams materialFromScene(const MaterialDesc& m, bool compressionResists = true);
+MaterialParams materialFromScene(const MaterialDesc& m, const FractureDesc& fracture = {});
 
 // What a simulation takes for each tet: the model, the state, the solver's matrices and levels,
 // the surfaces (docs/notes/2026-12-07-memory-before-starting.md). Checked before one is built.

@@ -96,8 +96,8 @@ unsigned evaluateCrackedLanes(const Lame& lame, const CrackedLaneInputs& in,
         epsl[r] = eps[r][l];
         for (int c = 0; c < 6; ++c) kl[r][c] = k[r][c][l];
       }
-      openCracks(kl, epsl, static_cast<std::uint8_t>(damaged[l] & ~oneWay[l]), oneWay[l], true,
-                 state);
+      openCracks(kl, epsl, static_cast<std::uint8_t>(damaged[l] & ~oneWay[l]), oneWay[l],
+                 lame.crackWidth, true, state);
       opened[l] = state.opened;
     }
     for (int r = 0; r < 6; ++r) {

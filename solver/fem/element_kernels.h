@@ -19,6 +19,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "solver/fem/crack_law.h"
 #include "solver/fem/hencky_strain.h"
 #include "solver/fem/kernel_math.h"
 #include "solver/fem/material_types.h"
@@ -237,18 +238,6 @@ GALSCULPT_HD void eliminateEdges(const double k[6][6], const double rhs[6], std:
 #endif
 }
 
-// The strain-space state of a damaged element: the edge forces tau = dPsi/d eps (eps the six
-// raw edge Green strains), the elastic edge strains z (what the material is strained by once the
-// cracks have opened: the stress is C B^-1 z), the energy, and d2Psi/d eps2.
-struct CrackedStrainState {
-  double tau[6];
-  double z[6];
-  double energy;
-  double stiffness[6][6];
-  bool unloaded;        // every crack open: all of the above is zero
-  std::uint8_t opened;  // the damaged edges whose cracks are open (the active set)
-};
-
 // How far a one-way crack's edge strain may fall below zero before the crack closes: far above
 // the round-off of an edge's Green strain (a few 1e-16 relative to the body's size over the
 // edge's, and growing with the frames that two executors' different roundings put between their
@@ -271,7 +260,7 @@ inline constexpr double kCrackClosingStrain = 5e-11;
 // open and closed; it counts as open, so that a freshly cut body's linearized step lets its
 // sides part (counted closed, its stiffness would glue them for that step).
 GALSCULPT_HD void addOpenedCrackEnergy(const double k[6][6], const double raw[6], std::uint8_t free,
-                                       std::uint8_t oneWay, bool wantStiffness,
+                                       std::uint8_t oneWay, double width, bool wantStiffness,
                                        CrackedStrainState& out) {
   double eps[6];
   for (int e = 0; e < 6; ++e) eps[e] = ((oneWay >> e) & 1) ? raw[e] + kCrackClosingStrain : raw[e];
@@ -299,6 +288,10 @@ GALSCULPT_HD void addOpenedCrackEnergy(const double k[6][6], const double raw[6]
     }
     if (violated < 0) break;
     opened ^= static_cast<std::uint8_t>(1u << violated);
+  }
+  if (width > 0.0 && (oneWay & ~opened)) {
+    addSmoothCrackEnergy(k, eps, free, oneWay, width, c, wantStiffness, out);
+    return;
   }
   // H on the closed edges only: the opened edges' strains enter nothing, exactly (a vertex whose
   // edges all opened moves no other force, bit for bit).
@@ -359,7 +352,7 @@ GALSCULPT_HD void crackedStrainState(const Lame& lame, const RestData& rest, con
   edgeStrainStiffness(lame, rest, k);
   if (!holdsTwoPieces(intact)) {
     addOpenedCrackEnergy(k, eps, static_cast<std::uint8_t>(damaged & ~oneWay), oneWay,
-                         wantStiffness, out);
+                         lame.crackWidth, wantStiffness, out);
     return;
   }
   for (int e = 0; e < 6; ++e) {
@@ -377,7 +370,7 @@ GALSCULPT_HD void crackedStrainState(const Lame& lame, const RestData& rest, con
   }
   // The intact edges enter the opening problem as free (each bar is accounted above), so the
   // set it reports carries them too: the damaged edges' cracks are what `opened` names.
-  if (oneWay) addOpenedCrackEnergy(k, eps, intact, oneWay, wantStiffness, out);
+  if (oneWay) addOpenedCrackEnergy(k, eps, intact, oneWay, lame.crackWidth, wantStiffness, out);
   out.opened &= damaged;
 }
 

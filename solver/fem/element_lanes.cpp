@@ -74,8 +74,8 @@ LaneKernel laneKernel(LaneBuild build) {
 }
 
 void openCracks(const double k[6][6], const double eps[6], std::uint8_t free, std::uint8_t oneWay,
-                bool wantStiffness, CrackedStrainState& out) {
-  addOpenedCrackEnergy(k, eps, free, oneWay, wantStiffness, out);
+                double width, bool wantStiffness, CrackedStrainState& out) {
+  addOpenedCrackEnergy(k, eps, free, oneWay, width, wantStiffness, out);
 }
 
 CrackedLaneKernel crackedLaneKernel(LaneBuild build) {

@@ -80,7 +80,7 @@ const char* laneBuildName(LaneBuild build);
 // element_kernels.h's addOpenedCrackEnergy, compiled with the program's own flags: what the
 // damaged elements' lanes call for each element's opening problem.
 void openCracks(const double k[6][6], const double eps[6], std::uint8_t free, std::uint8_t oneWay,
-                bool wantStiffness, CrackedStrainState& out);
+                double width, bool wantStiffness, CrackedStrainState& out);
 
 namespace avx2 {
 unsigned evaluateIntactLanes(MaterialModel, const Lame&, const LaneInputs&, const LaneOutputs&);

@@ -381,4 +381,36 @@ GALSCULPT_HD void rotationVariantSvd(const M3& f, M3& u, double s[3], M3& v) {
   if (!(svdFromNormalMatrix(f, false, u, s, v) < 1e-11)) svdFromNormalMatrix(f, true, u, s, v);
 }
 
+// In-place Cholesky A = L L^T of an n x n column-major block (lower triangle); false when not
+// positive definite.
+GALSCULPT_HD bool cholesky(int n, double* a) {
+  for (int j = 0; j < n; ++j) {
+    double d = a[j + n * j];
+    for (int k = 0; k < j; ++k) d -= a[j + n * k] * a[j + n * k];
+    if (!(d > 0.0)) return false;
+    d = sqrt(d);
+    a[j + n * j] = d;
+    for (int i = j + 1; i < n; ++i) {
+      double s = a[i + n * j];
+      for (int k = 0; k < j; ++k) s -= a[i + n * k] * a[j + n * k];
+      a[i + n * j] = s / d;
+    }
+  }
+  return true;
+}
+
+// Solves L L^T x = b in place (b becomes x).
+GALSCULPT_HD void choleskySolve(int n, const double* l, double* b) {
+  for (int i = 0; i < n; ++i) {
+    double s = b[i];
+    for (int k = 0; k < i; ++k) s -= l[i + n * k] * b[k];
+    b[i] = s / l[i + n * i];
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    double s = b[i];
+    for (int k = i + 1; k < n; ++k) s -= l[k + n * i] * b[k];
+    b[i] = s / l[i + n * i];
+  }
+}
+
 }  // namespace galsculpt::kernels

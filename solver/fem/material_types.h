@@ -15,6 +15,10 @@ struct Lame {
   // modulus. The frame sets them per element from its plastic strain (ElementInputs::lame).
   double yield = 0.0;
   double hardening = 0.0;
+  // How far a damaged edge's crack faces may press into each other (a strain) under the smooth
+  // closing law (crack_law.h); 0: the hard law, the faces resisting with the whole stiffness at
+  // contact. A property of the damaged material, fixed for a run (MaterialParams::crackWidth).
+  double crackWidth = 0.0;
 };
 
 }  // namespace galsculpt

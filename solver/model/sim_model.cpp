@@ -66,6 +66,7 @@ Vec3 anchorOffset(const AnchorConstraint& anchor, double time) {
 
 Lame MaterialParams::elementLame() const {
   Lame out = lame;
+  out.crackWidth = crackWidth;
   if (materialInfo(model).flowInEnergy && plastic.yieldStress > 0.0) {
     out.yield = plastic.yieldStress;
     out.hardening = plastic.hardening;

@@ -235,6 +235,15 @@ TEST(Simulation, HangingSphereSagsAndSettlesWithAnchorsHeld) {
   EXPECT_EQ(sim.settings().gridHandles, std::vector<int>{50});
 }
 
+// The elastic energy of the simulation's body with every edge damaged, squeezed to 90 %.
+double squeezedDamagedEnergy(const Simulation& sim, Eigen::VectorXd& gradient) {
+  SimState state = sim.state();
+  std::fill(state.damaged.begin(), state.damaged.end(), 1);
+  std::vector<Vec3> squeezed = state.x;
+  for (Vec3& p : squeezed) p *= 0.9;
+  return assembleElastic(sim.model(), squeezed, state, gradient, nullptr);
+}
+
 // Whether damaged edges resist compression is the material's (SimModel), from the scene's
 // fracture section: a fully damaged sphere squeezed to 90 % stores energy only when they do.
 TEST(Simulation, CompressionResistanceOfCracksIsTheModelsFromTheScene) {
@@ -247,15 +256,40 @@ TEST(Simulation, CompressionResistanceOfCracksIsTheModelsFromTheScene) {
                            (resists ? "true" : "false") + "}}");
     const Simulation sim(scene, loadSceneMesh(scene));
     EXPECT_EQ(sim.model().material.compressionResists, resists == 1);
-    SimState state = sim.state();
-    std::fill(state.damaged.begin(), state.damaged.end(), 1);
-    std::vector<Vec3> squeezed = state.x;
-    for (Vec3& p : squeezed) p *= 0.9;
     Eigen::VectorXd gradient;
-    energy[resists] = assembleElastic(sim.model(), squeezed, state, gradient, nullptr);
+    energy[resists] = squeezedDamagedEnergy(sim, gradient);
   }
   EXPECT_EQ(energy[0], 0.0) << "open cracks: a damaged body offers no resistance";
   EXPECT_GT(energy[1], 0.0) << "closed cracks bear compression";
+}
+
+// The crack faces' closing width is the material's too (fracture.crack_width, also with
+// fracture off: the knife's cracks close by it): squeezed by a strain far past the width, a
+// fully damaged sphere stores a little less than under the hard law, and still some. A width
+// out of range is refused with its path.
+TEST(Simulation, CrackWidthIsTheModelsFromTheScene) {
+  test::TempDir dir;
+  double energy[2] = {};
+  const char* widths[2] = {"0", "0.01"};
+  for (int i = 0; i < 2; ++i) {
+    const SceneDescription scene =
+        sceneFrom(dir, std::string("{") + kSmallSphere + R"(, "material": {"preset": "rubber"},
+        "fracture": {"enabled": false, "crack_width": )" +
+                           widths[i] + "}}");
+    const Simulation sim(scene, loadSceneMesh(scene));
+    EXPECT_DOUBLE_EQ(sim.model().material.crackWidth, i == 0 ? 0.0 : 0.01);
+    EXPECT_DOUBLE_EQ(sim.model().material.elementLame().crackWidth, i == 0 ? 0.0 : 0.01);
+    Eigen::VectorXd gradient;
+    energy[i] = squeezedDamagedEnergy(sim, gradient);
+    EXPECT_TRUE(gradient.allFinite());
+  }
+  EXPECT_EQ(sceneFrom(dir, std::string("{") + kSmallSphere + "}").fracture.crackWidth, 0.0)
+      << "the hard law by default";
+  EXPECT_GT(energy[1], 0.5 * energy[0]) << "the faces still bear the squeeze";
+  EXPECT_LT(energy[1], energy[0]) << "after closing by up to the width";
+  EXPECT_THROW_WITH(
+      sceneFrom(dir, std::string("{") + kSmallSphere + R"(, "fracture": {"crack_width": 0.5}})"),
+      InputError, "$.fracture.crack_width");
 }
 
 // The scene's smoother reaches the multigrid: `auto` (the default) is Gauss-Seidel on the CPU
@@ -369,14 +403,15 @@ TEST(Simulation, MetricsCsvHasTheContractColumns) {
         << column;
   }
   // The columns and their order are a contract (docs/cli.md): exactly these.
-  EXPECT_EQ(header,
-            "frame,time_s,ms_total,ms_elements,ms_solve,ms_plastic,ms_other,volume,"
-            "volume_change_pct,kinetic_energy,elastic_energy,residual,max_displacement,"
-            "damaged_edges,pieces,warnings,newton_iterations,contact_force_n,ms_fracture,opening_m,"
-            "load_n,backtracks,cg_iterations,converged,energy_passes,debris_pieces,"
-            "debris_volume_pct,inverted_pieces,striker_displacement_m,absorbed_energy_j,"
-            "debris_mass_kg,piece_residual,local_iterations,idle_tools,launches,syncs,graphs,h2d_bytes,"
-            "d2h_bytes");
+  EXPECT_EQ(
+      header,
+      "frame,time_s,ms_total,ms_elements,ms_solve,ms_plastic,ms_other,volume,"
+      "volume_change_pct,kinetic_energy,elastic_energy,residual,max_displacement,"
+      "damaged_edges,pieces,warnings,newton_iterations,contact_force_n,ms_fracture,opening_m,"
+      "load_n,backtracks,cg_iterations,converged,energy_passes,debris_pieces,"
+      "debris_volume_pct,inverted_pieces,striker_displacement_m,absorbed_energy_j,"
+      "debris_mass_kg,piece_residual,local_iterations,idle_tools,launches,syncs,graphs,h2d_bytes,"
+      "d2h_bytes");
   FrameMetrics m;
   m.frame = 3;
   m.timeS = 0.05;
