@@ -208,9 +208,9 @@ ScalarCracked scalarCracked(const Lame& lame, const RestData& rest, const double
 // Every damaged-edge set the cracked lanes take (all but intact and the three two-pieces
 // sets), with and without crack contact, over random deformations (some
 // pressing cracks shut, some pulling them open, so that the pivoting flips): the scalar
-// kernel's bits, in groups of 1-4 lanes of mixed sets.
+// kernel's bits, in groups of 1-4 lanes of mixed sets, under both closing laws.
 TEST(ElementLanes, DamagedElementsGetTheScalarKernelsBits) {
-  const Lame lame{3.4e4, 1.4e5};
+  Lame lame{3.4e4, 1.4e5};
   std::vector<std::uint8_t> sets;
   for (int m = 0; m < kIntact; ++m)
     if (!holdsTwoPieces(static_cast<std::uint8_t>(m))) sets.push_back(static_cast<std::uint8_t>(m));
@@ -234,70 +234,76 @@ TEST(ElementLanes, DamagedElementsGetTheScalarKernelsBits) {
     }
     elements.push_back(e);
   }
-  for (LaneBuild build : builds()) {
-    const CrackedLaneKernel kernel = crackedLaneKernel(build);
-    ASSERT_NE(kernel, nullptr);
-    int handedBack = 0, flipped = 0, unloaded = 0, cutFree = 0;
-    size_t next = 0;
-    for (int group = 0; next < elements.size(); ++group) {
-      const int count = std::min<int>(1 + group % kLanes, static_cast<int>(elements.size() - next));
-      CrackedLaneInputs in;
-      LaneOutputs out;
-      ScalarCracked got[kLanes];
-      for (int l = 0; l < count; ++l) {
-        const size_t i = next + l;
-        in.rest[l] = &elements[i].rest;
-        std::memcpy(in.x[l], elements[i].x, sizeof elements[i].x);
-        in.intact[l] = sets[(i * 7) % sets.size()];
-        in.resists[l] = (i / 3) % 4 != 0;
-        got[l].energy = -12345.0;
-        out.energy[l] = &got[l].energy;
-        out.gradient[l] = got[l].gradient;
-        out.packedHessian[l] = got[l].packed;
-        out.opened[l] = &got[l].opened;
-      }
-      in.count = count;
-      const unsigned back = kernel(lame, in, out);
-      EXPECT_EQ(back >> count, 0u);
-      for (int l = 0; l < count; ++l) {
-        if (back >> l & 1u) {
-          ++handedBack;
-          continue;
+  // The hard closing law and the smooth one (crack_law.h), whose openings the same per-element
+  // call solves.
+  for (double width : {0.0, 1e-2})
+    for (LaneBuild build : builds()) {
+      SCOPED_TRACE(::testing::Message() << "crack width " << width);
+      lame.crackWidth = width;
+      const CrackedLaneKernel kernel = crackedLaneKernel(build);
+      ASSERT_NE(kernel, nullptr);
+      int handedBack = 0, flipped = 0, unloaded = 0, cutFree = 0;
+      size_t next = 0;
+      for (int group = 0; next < elements.size(); ++group) {
+        const int count =
+            std::min<int>(1 + group % kLanes, static_cast<int>(elements.size() - next));
+        CrackedLaneInputs in;
+        LaneOutputs out;
+        ScalarCracked got[kLanes];
+        for (int l = 0; l < count; ++l) {
+          const size_t i = next + l;
+          in.rest[l] = &elements[i].rest;
+          std::memcpy(in.x[l], elements[i].x, sizeof elements[i].x);
+          in.intact[l] = sets[(i * 7) % sets.size()];
+          in.resists[l] = (i / 3) % 4 != 0;
+          got[l].energy = -12345.0;
+          out.energy[l] = &got[l].energy;
+          out.gradient[l] = got[l].gradient;
+          out.packedHessian[l] = got[l].packed;
+          out.opened[l] = &got[l].opened;
         }
-        const size_t i = next + l;
-        const ScalarCracked want =
-            scalarCracked(lame, elements[i].rest, elements[i].x, in.intact[l], in.resists[l]);
-        const std::uint8_t damaged = static_cast<std::uint8_t>(~in.intact[l] & kIntact);
-        unloaded += want.energy == 0.0 && want.opened == damaged;
-        // The pivoting starts from the damaged edges not pressed shorter: count the elements
-        // where it flipped some.
-        double d[6][3], strain[6];
-        edgeGreenStrains(elements[i].rest, elements[i].x, d, strain);
-        std::uint8_t guess = in.resists[l] ? 0 : damaged;
-        for (int e = 0; e < 6; ++e)
-          if ((damaged >> e & 1) && strain[e] >= 0.0) guess |= static_cast<std::uint8_t>(1u << e);
-        flipped += want.opened != guess;
-        ASSERT_EQ(want.opened, got[l].opened) << laneBuildName(build) << " element " << i;
-        ASSERT_EQ(std::memcmp(&want.energy, &got[l].energy, sizeof(double)), 0)
-            << laneBuildName(build) << " element " << i;
-        ASSERT_EQ(std::memcmp(want.gradient, got[l].gradient, sizeof want.gradient), 0)
-            << laneBuildName(build) << " element " << i;
-        if (in.intact[l] == 0 && want.opened == kIntact) {
-          // Zero, and not written: the caller skips it.
-          for (double v : want.packed) ASSERT_EQ(v, 0.0);
-          ++cutFree;
-          continue;
+        in.count = count;
+        const unsigned back = kernel(lame, in, out);
+        EXPECT_EQ(back >> count, 0u);
+        for (int l = 0; l < count; ++l) {
+          if (back >> l & 1u) {
+            ++handedBack;
+            continue;
+          }
+          const size_t i = next + l;
+          const ScalarCracked want =
+              scalarCracked(lame, elements[i].rest, elements[i].x, in.intact[l], in.resists[l]);
+          const std::uint8_t damaged = static_cast<std::uint8_t>(~in.intact[l] & kIntact);
+          unloaded += want.energy == 0.0 && want.opened == damaged;
+          // The pivoting starts from the damaged edges not pressed shorter: count the elements
+          // where it flipped some.
+          double d[6][3], strain[6];
+          edgeGreenStrains(elements[i].rest, elements[i].x, d, strain);
+          std::uint8_t guess = in.resists[l] ? 0 : damaged;
+          for (int e = 0; e < 6; ++e)
+            if ((damaged >> e & 1) && strain[e] >= 0.0) guess |= static_cast<std::uint8_t>(1u << e);
+          flipped += want.opened != guess;
+          ASSERT_EQ(want.opened, got[l].opened) << laneBuildName(build) << " element " << i;
+          ASSERT_EQ(std::memcmp(&want.energy, &got[l].energy, sizeof(double)), 0)
+              << laneBuildName(build) << " element " << i;
+          ASSERT_EQ(std::memcmp(want.gradient, got[l].gradient, sizeof want.gradient), 0)
+              << laneBuildName(build) << " element " << i;
+          if (in.intact[l] == 0 && want.opened == kIntact) {
+            // Zero, and not written: the caller skips it.
+            for (double v : want.packed) ASSERT_EQ(v, 0.0);
+            ++cutFree;
+            continue;
+          }
+          ASSERT_EQ(std::memcmp(want.packed, got[l].packed, sizeof want.packed), 0)
+              << laneBuildName(build) << " element " << i;
         }
-        ASSERT_EQ(std::memcmp(want.packed, got[l].packed, sizeof want.packed), 0)
-            << laneBuildName(build) << " element " << i;
+        next += count;
       }
-      next += count;
+      EXPECT_EQ(handedBack, 0) << laneBuildName(build);
+      EXPECT_GT(unloaded, 20) << "the set of unloaded elements is exercised";
+      EXPECT_GT(flipped, 200) << "the pivoting's flips are exercised";
+      EXPECT_GT(cutFree, 20) << "elements whose stiffness is zero are exercised";
     }
-    EXPECT_EQ(handedBack, 0) << laneBuildName(build);
-    EXPECT_GT(unloaded, 20) << "the set of unloaded elements is exercised";
-    EXPECT_GT(flipped, 200) << "the pivoting's flips are exercised";
-    EXPECT_GT(cutFree, 20) << "elements whose stiffness is zero are exercised";
-  }
 }
 
 // A NaN corner goes back, its group's other lanes are written with the scalar kernel's bits.
