@@ -50,6 +50,24 @@ GALSCULPT_HD CrackBarrier crackBarrier(double c, double kappa, double width) {
   return g;
 }
 
+// The edges of `mask` in order (index[0..n)); n.
+GALSCULPT_HD int edgesOf(std::uint8_t mask, int index[6]) {
+  int n = 0;
+  for (int e = 0; e < 6; ++e)
+    if ((mask >> e) & 1) index[n++] = e;
+  return n;
+}
+
+// K_UU + diag(curvature_U), column-major n x n, U = index[0..n) (curvature indexed by edge): the
+// opening problem's Newton matrix and, at the solution, the matrix its Schur complement inverts.
+GALSCULPT_HD void openingMatrix(const double k[6][6], const int index[6], int n,
+                                const double curvature[6], double m[36]) {
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) m[i + n * j] = k[index[i]][index[j]];
+    m[i + n * i] += curvature[index[i]];
+  }
+}
+
 // The openings c that minimize 1/2 (eps - c)^T K (eps - c) + sum over oneWay edges of g(c_e),
 // with c_e free on `free` edges and 0 on the others, by Newton's method from `c` (the hard law's
 // openings: a start on the right side of every barrier). The problem is strictly convex (K is
@@ -57,10 +75,8 @@ GALSCULPT_HD CrackBarrier crackBarrier(double c, double kappa, double width) {
 // inside the barriers converges, quadratically near the end. `c` returns the openings.
 GALSCULPT_HD void smoothCrackOpenings(const double k[6][6], const double eps[6], std::uint8_t free,
                                       std::uint8_t oneWay, double width, double c[6]) {
-  const std::uint8_t unknown = free | oneWay;
-  int index[6], n = 0;
-  for (int e = 0; e < 6; ++e)
-    if ((unknown >> e) & 1) index[n++] = e;
+  int index[6];
+  const int n = edgesOf(free | oneWay, index);
   if (n == 0) return;
   double scale = width;
   for (int e = 0; e < 6; ++e) scale = fabs(eps[e]) > scale ? fabs(eps[e]) : scale;
@@ -77,21 +93,20 @@ GALSCULPT_HD void smoothCrackOpenings(const double k[6][6], const double eps[6],
   };
   double current = objective(c);
   for (int iteration = 0; iteration < 60; ++iteration) {
-    double m[36], step[6];
+    double m[36], step[6], curvature[6] = {};
     for (int i = 0; i < n; ++i) {
       const int e = index[i];
       double force = 0.0;  // (K (eps - c))_e
       for (int b = 0; b < 6; ++b) force += k[e][b] * (eps[b] - c[b]);
-      double slope = 0.0, curvature = 0.0;
+      double slope = 0.0;
       if ((oneWay >> e) & 1) {
         const CrackBarrier g = crackBarrier(c[e], k[e][e], width);
         slope = g.slope;
-        curvature = g.curvature;
+        curvature[e] = g.curvature;
       }
       step[i] = force - slope;  // minus the objective's gradient in c_e
-      for (int j = 0; j < n; ++j) m[i + n * j] = k[e][index[j]];
-      m[i + n * i] += curvature;
     }
+    openingMatrix(k, index, n, curvature, m);
     if (!cholesky(n, m)) return;
     choleskySolve(n, m, step);
     // Inside every barrier: at most 9/10 of the way to it.
@@ -134,8 +149,8 @@ struct CrackedStrainState {
   std::uint8_t opened;  // the damaged edges whose cracks are open (the active set)
 };
 
-// The smooth law's energy, forces and stiffness at the openings c (crack_law.h), started from the
-// hard law's openings `c`.
+// The smooth law's energy, forces and stiffness at its openings, found from the hard law's
+// openings `c` (smoothCrackOpenings; `c` returns them).
 GALSCULPT_HD void addSmoothCrackEnergy(const double k[6][6], const double eps[6], std::uint8_t free,
                                        std::uint8_t oneWay, double width, double c[6],
                                        bool wantStiffness, CrackedStrainState& out) {
@@ -163,15 +178,11 @@ GALSCULPT_HD void addSmoothCrackEnergy(const double k[6][6], const double eps[6]
   }
   if (!wantStiffness) return;
   // d2 Psi / d eps2 = K - K_:U (K_UU + G'')^-1 K_U: (U the damaged edges).
-  int index[6], n = 0;
-  for (int e = 0; e < 6; ++e)
-    if ((unknown >> e) & 1) index[n++] = e;
+  int index[6];
+  const int n = edgesOf(unknown, index);
   double m[36], x[6][6];
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) m[i + n * j] = k[index[i]][index[j]];
-    m[i + n * i] += curvature[index[i]];
-  }
-  cholesky(n, m);
+  openingMatrix(k, index, n, curvature, m);
+  if (!cholesky(n, m)) return;  // only with a NaN strain: the forces carry it
   for (int col = 0; col < 6; ++col) {
     double rhs[6];
     for (int i = 0; i < n; ++i) rhs[i] = k[index[i]][col];
