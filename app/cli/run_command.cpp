@@ -81,7 +81,7 @@ class FrameRenderer {
   void write(const Simulation& sim, const fs::path& file, const std::optional<CameraPose>& pose) {
     snapshots_.setMesh(makeRenderMesh(sim.surface(), kSurfaceColor, kCrackColor));
     std::vector<Vec3> anchored;
-    for (int v : sim.anchoredVertices()) anchored.push_back(sim.state().x[v]);
+    for (int v : sim.anchors().heldVertices()) anchored.push_back(sim.state().x[v]);
     snapshots_.setPoints(anchored, kAnchorColor);
     OrbitCamera camera = camera_;
     if (pose) camera.setPose(*pose);

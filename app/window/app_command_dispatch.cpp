@@ -14,7 +14,7 @@ void SculptApp::execute(const Command& command) {
   const std::string& argument = command.argument;
   // Without a path, a file command asks for one.
   if (takesPath(command.kind) && argument.empty()) {
-    if (command.kind == AppCommand::Open || session_) askingPath_ = command.kind;
+    if (command.kind == AppCommand::Open || session_) panels_.askPath(command.kind);
     return;
   }
   if (applyAtOnce(command)) return;
@@ -82,7 +82,7 @@ bool SculptApp::applyAtOnce(const Command& command) {
       toolSettings_.symmetry = !toolSettings_.symmetry;
       return true;
     case AppCommand::Screenshot:
-      pendingScreenshot_ = argument;  // what this window frame draws, panels included
+      presenter_.screenshotNext(argument);  // what this window frame draws, panels included
       return true;
     default:
       return false;
@@ -94,12 +94,12 @@ bool SculptApp::applyToTools(const Command& command) {
   const std::string& argument = command.argument;
   switch (command.kind) {
     case AppCommand::Open:
-      startLoading(argument);
+      opener_.start(argument, options_.solver);
       return true;
     case AppCommand::Recover: {  // as the Recover button of the crash-recovery offer
       const std::vector<fs::path> orphans = recovery_->orphans();
       if (orphans.empty()) throw std::runtime_error("nothing to recover");
-      startLoading(orphans.front());
+      opener_.start(orphans.front(), options_.solver);
       return true;
     }
     case AppCommand::View:
@@ -174,11 +174,11 @@ void SculptApp::applyToSession(const Command& command) {
       session_->reset();
       break;
     case AppCommand::Preset:  // as the Scene settings panel: edit, then apply
-      editing_.material = materialPreset(argument);
+      panels_.editing().material = materialPreset(argument);
       applySceneSettings();
       break;
     case AppCommand::Grid:
-      editing_.solver.grid = argument;
+      panels_.editing().solver.grid = argument;
       applySceneSettings();
       break;
     case AppCommand::FrameAll:
@@ -207,7 +207,7 @@ void SculptApp::frameHoveredPiece() {
 
 void SculptApp::applySceneSettings() {
   try {
-    SceneSettings s = editing_;
+    SceneSettings s = panels_.editing();
     const SceneDescription scene = editScene(session_->scene(), s);
     const TetMesh mesh = session_->simulation().model().mesh;
     OpenedSession opened;

@@ -31,7 +31,7 @@ FrameView makeFrameView(const SculptSession& session, SurfaceStyle style,
   }
   view.mesh = makeRenderMesh(surface, style, values);
   view.surface = surface.mesh;
-  for (int v : sim.anchoredVertices()) view.anchors.push_back(sim.state().x[v]);
+  for (int v : sim.anchors().heldVertices()) view.anchors.push_back(sim.state().x[v]);
   view.backendName = sim.backendName();
   view.notes = sim.notes();
   view.historyBytes = session.historyBytes();

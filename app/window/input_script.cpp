@@ -89,4 +89,33 @@ InputScript loadInputScript(const std::filesystem::path& file) {
   return script;
 }
 
+InputScriptRunner::Turn InputScriptRunner::next(int viewsShown, bool inputNotYetShown) {
+  using Kind = Turn::Kind;
+  if (wait_ > 0) {
+    --wait_;
+    return {Kind::Hold};
+  }
+  if (waitViews_ >= 0) {
+    if (viewsShown < waitViews_) return {Kind::Hold};
+    waitViews_ = -1;
+  }
+  if (next_ >= script_.steps.size()) return {Kind::Done};
+  const InputStep& s = script_.steps[next_];
+  if (s.kind == InputStep::Kind::Command && s.command == AppCommand::Screenshot && inputNotYetShown)
+    return {Kind::Hold};
+  ++next_;
+  if (s.kind == InputStep::Kind::Wait) {
+    wait_ = s.frames;
+    return {Kind::Hold};
+  }
+  if (s.kind == InputStep::Kind::WaitFrames) {
+    if (script_.realtime)
+      waitViews_ = viewsShown + s.frames;
+    else
+      wait_ = s.frames;
+    return {Kind::Hold};
+  }
+  return {Kind::Act, &s};
+}
+
 }  // namespace galsculpt

@@ -40,4 +40,34 @@ struct InputScript {
 // Throws InputError naming the file and the JSON path of a bad step.
 InputScript loadInputScript(const std::filesystem::path& file);
 
+// Where a window's input script stands: the next step, and the wait a step asked for. The
+// window asks once a window frame what to do.
+class InputScriptRunner {
+ public:
+  void load(InputScript script) {
+    script_ = std::move(script);
+    active_ = true;
+  }
+  bool active() const { return active_; }
+  // Frames run on the worker as with a user (the script's "realtime").
+  bool realtime() const { return active_ && script_.realtime; }
+
+  struct Turn {
+    enum class Kind { Hold, Act, Done } kind = Kind::Hold;
+    const InputStep* step = nullptr;  // Act: the step to act on
+  };
+  // This window frame's turn: Hold while a wait lasts, Done after the last step, else the next
+  // step to act on (waits are the runner's own). `viewsShown`: views of finished frames drawn
+  // so far (what "wait_frames" waits for in real time); `inputNotYetShown`: a screenshot waits
+  // until what the steps before it did is on the screen.
+  Turn next(int viewsShown, bool inputNotYetShown);
+
+ private:
+  InputScript script_;
+  bool active_ = false;
+  size_t next_ = 0;
+  int wait_ = 0;        // window frames still to wait
+  int waitViews_ = -1;  // "wait_frames" in real time: wait until viewsShown reaches it
+};
+
 }  // namespace galsculpt

@@ -32,79 +32,26 @@ double threadCpuMs() {
 }
 }  // namespace
 
-void SculptApp::takeScreenshot(int width, int height) {
-  if (pendingScreenshot_.empty()) return;
-  std::vector<std::uint8_t> pixels(static_cast<size_t>(width) * height * 4), flipped(pixels.size());
-  glReadBuffer(GL_BACK);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-  const size_t row = static_cast<size_t>(width) * 4;
-  for (int y = 0; y < height; ++y)
-    std::memcpy(&flipped[y * row], &pixels[(height - 1 - y) * row], row);
-  try {
-    writePng(pendingScreenshot_, width, height, flipped);
-    report("wrote " + pendingScreenshot_);
-  } catch (const std::exception& e) {
-    fail(e.what());
-  }
-  pendingScreenshot_.clear();
-}
-
-// What the window shows (its front buffer, read back from the X server by Mesa's software
-// rasterizer) against the whole back buffer, the picture it should show: a partial present that
-// left a stale part would differ (GALSCULPT_CHECK_PRESENT=1; the UI tests use it).
-void SculptApp::checkPresent(int width, int height) {
-  const size_t size = static_cast<size_t>(width) * height * 4;
-  std::vector<std::uint8_t> back(size);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadBuffer(GL_BACK);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, back.data());
-  const std::vector<std::uint8_t> screen = present_->readScreen(width, height);
-  long differing = screen.size() == size ? 0 : width * static_cast<long>(height);
-  for (size_t i = 0; screen.size() == size && i < size; i += 4) {
-    if (back[i] != screen[i] || back[i + 1] != screen[i + 1] || back[i + 2] != screen[i + 2])
-      ++differing;
-  }
-  ++presentChecks_;
-  presentDiffering_ += differing;
-}
-
 bool SculptApp::init(std::string* error) {
   if (!renderer_.init(error)) return false;
-  renderer_.setCached(softwareRenderer_);
-  if (softwareRenderer_ && partialRedraws_) {
-    present_ = std::make_unique<SubBufferPresent>(window_);
-    if (!present_->supported()) present_.reset();
-  }
+  renderer_.setCached(pacer_.software());
+  presenter_.init(window_, pacer_.software());
   playing_ = options_.startPlaying;
   recovery_ = std::make_unique<RecoveryStore>();
-  if (options_.offerRecovery) {
-    recoverable_ = recovery_->orphans();
-    askRecovery_ = !recoverable_.empty();
-  }
-  if (options_.inputScript) {
-    const InputScript script = loadInputScript(*options_.inputScript);
-    script_ = script.steps;
-    realtime_ = script.realtime;
-    scripted_ = true;
-  }
-  startLoading(options_.file);
+  if (options_.offerRecovery) panels_.offerRecovery(recovery_->orphans());
+  if (options_.inputScript) script_.load(loadInputScript(*options_.inputScript));
+  opener_.start(options_.file, options_.solver);
   return true;
 }
 
 void SculptApp::report(const std::string& message) {
-  status_ = message;
+  panels_.setStatus(message);
   log_ << message << '\n';
 }
 
 void SculptApp::fail(const std::string& message) {
-  error_ = message;
-  showError_ = true;
+  panels_.showError(message);
   log_ << "error: " << message << '\n';
-}
-
-void SculptApp::startLoading(const fs::path& file) {
-  opener_.start(file, options_.solver);
 }
 
 void SculptApp::finishLoading() {
@@ -131,8 +78,8 @@ void SculptApp::adopt(OpenedSession opened, const fs::path& file) {
   toolSettings_.radius = 0.1 * size;
   toolSettings_.strength = 0.5 * size;
   shown_ = FrameView{};  // the new body is drawn at once (updateScene)
-  frameInput_.reset();
-  editing_ = sceneSettings(session_->scene());
+  meters_.frameDropped();
+  panels_.editing() = sceneSettings(session_->scene());
   const std::string title = "Galsculpt - " + session_->scene().name;
   glfwSetWindowTitle(window_, title.c_str());
   report("opened " + file.string() + " (" +
@@ -147,15 +94,15 @@ void SculptApp::handleEvent(const InputEvent& e) {
       break;
     case InputEvent::Kind::Button:
       // A press over a panel belongs to the panel; a release always ends what a press began.
-      if (!controller_ || (e.pressed && io.WantCaptureMouse && !scripted_) || busy()) break;
+      if (!controller_ || (e.pressed && io.WantCaptureMouse && !script_.active()) || busy()) break;
       controller_->mouseButton(e.button, e.pressed, e.shift);
       if (std::string notice = controller_->takeNotice(); !notice.empty()) report(notice);
       break;
     case InputEvent::Kind::Scroll:
-      if (controller_ && !(io.WantCaptureMouse && !scripted_)) controller_->scroll(e.y);
+      if (controller_ && !(io.WantCaptureMouse && !script_.active())) controller_->scroll(e.y);
       break;
     case InputEvent::Kind::Key:
-      if (!(io.WantCaptureKeyboard && !scripted_) && !busy()) {
+      if (!(io.WantCaptureKeyboard && !script_.active()) && !busy()) {
         if (const auto c = keyCommand(e.key, e.ctrl, e.shift, projectFile_.string())) execute(*c);
       }
       break;
@@ -167,40 +114,25 @@ void SculptApp::handleEvent(const InputEvent& e) {
 
 void SculptApp::enqueue(InputEvent e) {
   e.at = Clock::now();
-  ++wakeups_;
+  pacer_.wake();
   if (e.kind == InputEvent::Kind::Move) {
-    cursorX_ = e.x;
-    cursorY_ = e.y;
-    if (trailing_) trail_.emplace_back(static_cast<float>(e.x), static_cast<float>(e.y));
+    panels_.cursorAt(e.x, e.y);
   } else if (e.kind == InputEvent::Kind::Button && e.button == MouseButton::Left) {
-    const bool overPanel = ImGui::GetIO().WantCaptureMouse && !scripted_;
-    trailing_ = e.pressed && toolSettings_.tool == Tool::Knife && !overPanel && session_;
-    trail_.clear();
-    if (trailing_) trail_.emplace_back(static_cast<float>(cursorX_), static_cast<float>(cursorY_));
+    const bool overPanel = ImGui::GetIO().WantCaptureMouse && !script_.active();
+    panels_.knifeStroke(e.pressed && toolSettings_.tool == Tool::Knife && !overPanel && session_);
   }
   queue_.push_back(e);
 }
 
 void SculptApp::runScriptStep() {
-  if (!scripted_ || busy()) return;
-  if (scriptWait_ > 0) {
-    --scriptWait_;
+  if (!script_.active() || busy()) return;
+  const InputScriptRunner::Turn turn = script_.next(meters_.framesArrived(), inputNotYetShown());
+  if (turn.kind == InputScriptRunner::Turn::Kind::Done) {
+    if (queue_.empty() && !presenter_.screenshotPending()) glfwSetWindowShouldClose(window_, 1);
     return;
   }
-  if (scriptWaitViews_ >= 0) {
-    if (viewsShown_ < scriptWaitViews_) return;
-    scriptWaitViews_ = -1;
-  }
-  if (scriptNext_ >= script_.size()) {
-    if (queue_.empty() && pendingScreenshot_.empty()) glfwSetWindowShouldClose(window_, 1);
-    return;
-  }
-  // A screenshot shows what the steps before it did: it waits until their input has acted
-  // and the view that holds it is on the screen (input waits for the frame in flight).
-  if (script_[scriptNext_].kind == InputStep::Kind::Command &&
-      script_[scriptNext_].command == AppCommand::Screenshot && inputNotYetShown())
-    return;
-  const InputStep& s = script_[scriptNext_++];
+  if (turn.kind == InputScriptRunner::Turn::Kind::Hold) return;
+  const InputStep& s = *turn.step;
   int width = 1, height = 1;
   glfwGetWindowSize(window_, &width, &height);
   InputEvent e;
@@ -208,14 +140,8 @@ void SculptApp::runScriptStep() {
   e.ctrl = s.ctrl;
   switch (s.kind) {
     case InputStep::Kind::Wait:
-      scriptWait_ = s.frames;
-      break;
     case InputStep::Kind::WaitFrames:
-      if (realtime_)
-        scriptWaitViews_ = viewsShown_ + s.frames;
-      else
-        scriptWait_ = s.frames;
-      break;
+      break;  // the runner's own
     case InputStep::Kind::Move:
       e.kind = InputEvent::Kind::Move;
       for (const auto& [fx, fy] : s.points) {
@@ -256,7 +182,7 @@ bool SculptApp::restyled() const {
 }
 
 bool SculptApp::inputNotYetShown() const {
-  return !queue_.empty() || pendingInput_ || frameInput_ || (session_ && restyled());
+  return !queue_.empty() || meters_.inputWaiting() || (session_ && restyled());
 }
 
 bool SculptApp::navigationOnly(const InputEvent& e) const {
@@ -286,7 +212,7 @@ void SculptApp::processInput() {
     const InputEvent& e = events[i];
     if (stepInFlight() && (!controller_ || !navigationOnly(e))) break;
     // What acts on the session shows in the next view: the latency runs from its arrival.
-    if (controller_ && !navigationOnly(e) && !pendingInput_) pendingInput_ = e.at;
+    if (controller_ && !navigationOnly(e)) meters_.inputActs(e.at);
     handleEvent(e);
   }
   queue_.assign(events.begin() + static_cast<long>(i), events.end());
@@ -295,17 +221,8 @@ void SculptApp::processInput() {
 void SculptApp::finishStep() {
   if (!frames_.inFlight()) return;
   FrameView view = frames_.wait();
-  simulationRate_.tick(Clock::now());
-  ++viewsShown_;
-  ++runFrames_;
-  runFrameMs_.add(view.metrics.msTotal);
-  runViewMs_.add(view.msView);
-  if (playing_) lastReadyAt_ = view.readyAt;
+  meters_.frameArrives(view.metrics.msTotal, view.msView, view.readyAt, playing_);
   show(std::move(view));
-}
-
-void SculptApp::collectStep() {
-  if (frames_.ready()) finishStep();
 }
 
 // A finished frame's view goes on the screen (uploaded now, drawn this window frame).
@@ -315,8 +232,7 @@ void SculptApp::show(FrameView view) {
   shown_ = std::move(view);
   shown_.mesh = RenderMesh{};  // uploaded: the window keeps only what it reads
 
-  if (frameInput_ && (!drawnInput_ || *frameInput_ < *drawnInput_)) drawnInput_ = frameInput_;
-  frameInput_.reset();
+  meters_.frameShown();
 }
 
 void SculptApp::advanceSimulation() {
@@ -325,15 +241,12 @@ void SculptApp::advanceSimulation() {
   if (!frameShouldStart()) return;
   session_->setCamera(camera_.pose());
   stepOnce_ = false;
-  frameInput_ = pendingInput_;
-  pendingInput_.reset();
-  if (playing_ && lastReadyAt_)
-    runIdleMs_.add(std::chrono::duration<double, std::milli>(Clock::now() - *lastReadyAt_).count());
-  lastReadyAt_.reset();
+  meters_.frameStarts(playing_);
   // The frame and its view run on a worker thread: the window keeps drawing and navigating
   // meanwhile, and wakes when they are done.
   frames_.start(*session_, style_, [] { glfwPostEmptyEvent(); });
-  if (scripted_ && !realtime_) finishStep();  // scripted input counts frames exactly
+  if (script_.active() && !script_.realtime())
+    finishStep();  // scripted input counts frames exactly
 }
 
 bool SculptApp::frameShouldStart() const {
@@ -350,8 +263,7 @@ void SculptApp::updateScene() {
     show(makeFrameView(*session_, style_, shown_.metrics));
   // What acted between frames is on the screen from this draw, whether it changed the body
   // (a tool, undo) or only the panels (a tool chosen).
-  if (pendingInput_ && (!drawnInput_ || *pendingInput_ < *drawnInput_)) drawnInput_ = pendingInput_;
-  pendingInput_.reset();
+  meters_.actedBetweenFramesShown();
 }
 
 void SculptApp::autosave() {
@@ -362,7 +274,7 @@ void SculptApp::autosave() {
   try {
     recovery_->save(*session_, camera_.pose());
   } catch (const std::exception& e) {
-    status_ = std::string("autosave failed: ") + e.what();
+    panels_.setStatus(std::string("autosave failed: ") + e.what());
   }
 }
 
@@ -390,22 +302,8 @@ void SculptApp::finish() {
   }
   // What the run cost, measured (docs/benchmarks.md, "Threads and the window"): the window's draws,
   // the simulation's frames in the window, and input to screen.
-  const double seconds = std::chrono::duration<double>(Clock::now() - runStart_).count();
-  char line[768];
-  std::snprintf(line, sizeof line,
-                "window: %d draws, %.1f a second, median %.1f ms between draws, %.2f ms of its "
-                "thread a draw; simulation: %d frames, median %.1f ms a frame; input to screen: "
-                "median %.0f ms over %zu samples; %d threads; between frames: median %.1f ms "
-                "building the view, %.1f ms waiting for the window; during strokes: %.1f draws "
-                "a second over %.1f s",
-                runDraws_, runDraws_ / std::max(seconds, 1e-9), runWindowMs_.median(),
-                runWindowCpuMs_.median(), runFrames_, runFrameMs_.median(), runLatencyMs_.median(),
-                runLatencyMs_.size(), threadCount(), runViewMs_.median(), runIdleMs_.median(),
-                strokeIntervals_ / std::max(strokeSeconds_, 1e-9), strokeSeconds_);
-  log_ << line << '\n';
-  if (checkPresent_)
-    log_ << "present check: " << presentChecks_ << " partial draws, " << presentDiffering_
-         << " pixels on the screen unlike the picture\n";
+  log_ << meters_.runSummary(threadCount()) << '\n';
+  if (const std::string check = presenter_.checkSummary(); !check.empty()) log_ << check << '\n';
 }
 
 void SculptApp::run() {
@@ -414,8 +312,7 @@ void SculptApp::run() {
     waitForWork();
     // Draws keep to a grid of the period: a late one brings the next forward, so the rate holds
     // (one more than a period late, the grid starts again from now).
-    const Clock::time_point now = Clock::now();
-    nextDraw_ = (now - nextDraw_ > drawPeriod() ? now : nextDraw_) + drawPeriod();
+    pacer_.drawStarts(Clock::now());
     const double cpuAtStart = threadCpuMs();
     runScriptStep();
     ImGui_ImplOpenGL3_NewFrame();
@@ -426,15 +323,16 @@ void SculptApp::run() {
     ImGui::Render();
     int fbWidth = 0, fbHeight = 0;
     glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
-    const std::optional<std::vector<PixelRect>> changed = drawScreen(fbWidth, fbHeight);
-    takeScreenshot(fbWidth, fbHeight);
-    if (changed) {
-      present_->present(*changed);
-      if (checkPresent_) checkPresent(fbWidth, fbHeight);
-    } else {
-      glfwSwapBuffers(window_);
+    const std::optional<std::vector<PixelRect>> changed =
+        presenter_.draw(renderer_, camera_, RenderOptions{wireframe_, 7.0f}, fbWidth, fbHeight);
+    try {
+      if (const std::optional<std::string> written = presenter_.writeScreenshot(fbWidth, fbHeight))
+        report("wrote " + *written);
+    } catch (const std::exception& e) {
+      fail(e.what());
     }
-    afterSwap(cpuAtStart);
+    presenter_.present(window_, changed, fbWidth, fbHeight);
+    meters_.drawn(threadCpuMs() - cpuAtStart, controller_ && controller_->strokeActive());
     autosave();
   }
   opener_.wait();
@@ -443,51 +341,38 @@ void SculptApp::run() {
   finish();
 }
 
-// The scene and the panels into the back buffer. With the scene cached (a software rasterizer)
-// and the window shown by copying parts of a back buffer that is never swapped, only what
-// changed is drawn again (partial_redraw.h), and the parts to copy are returned; otherwise
-// everything is drawn, for a swap.
-std::optional<std::vector<PixelRect>> SculptApp::drawScreen(int width, int height) {
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  const RenderOptions options{wireframe_, 7.0f};
-  ImDrawData* ui = ImGui::GetDrawData();
-  PixelRect sceneChanged;
-  if (!renderer_.cached()) {
-    renderer_.draw(camera_, width, height, options);
-    ImGui_ImplOpenGL3_RenderDrawData(ui);
-    return std::nullopt;
-  }
-  if (!renderer_.update(camera_, width, height, options, &sceneChanged)) {
-    ImGui_ImplOpenGL3_RenderDrawData(ui);  // drawn straight to the screen: no cache here
-    return std::nullopt;
-  }
-  // Everything is drawn and shown after a resize or an expose, and without partial presents.
-  const bool full = !present_ || presentAll_ || width != drawnWidth_ || height != drawnHeight_;
-  presentAll_ = false;
-  drawnWidth_ = width;
-  drawnHeight_ = height;
-  RedrawPlan plan = panelRedraws_.plan(*ui, sceneChanged, width, height, full);
-  renderer_.present(plan.restore);
-  DrawDataSubset subset(*ui, plan.lists);
-  ImGui_ImplOpenGL3_RenderDrawData(subset.get());
-  if (!present_) return std::nullopt;
-  return std::move(plan.restore);
+// The panels read the window's state through a context and act through execute.
+void SculptApp::drawUi() {
+  PanelContext c{window_,
+                 session_.get(),
+                 controller_.get(),
+                 toolSettings_,
+                 style_,
+                 wireframe_,
+                 playing_,
+                 script_.active(),
+                 shown_,
+                 camera_,
+                 meters_,
+                 opener_,
+                 *recovery_,
+                 currentFile_,
+                 projectFile_,
+                 [this](const Command& command) { execute(command); }};
+  panels_.draw(c);
 }
 
 // A finished frame is taken, the input that waited for it acts, the screen's view catches up
 // and the next frame starts: in the window's loop, and also while the window waits for its
 // next draw, so that the simulation never waits for the window's rate.
 void SculptApp::betweenFrames() {
-  collectStep();
+  if (frames_.ready()) finishStep();
   finishLoading();
   int width = 1, height = 1;
   glfwGetWindowSize(window_, &width, &height);
   if (controller_) controller_->setViewport(width, height);
   processInput();
-  if (applySettings_ && !stepInFlight()) {
-    applySettings_ = false;
-    applySceneSettings();
-  }
+  if (!stepInFlight() && panels_.takeApply()) applySceneSettings();
   updateScene();
   // Here, between two frames, is where a playing simulation can be saved at all: elsewhere a
   // frame is in flight almost always.
@@ -495,54 +380,22 @@ void SculptApp::betweenFrames() {
   advanceSimulation();
 }
 
-void SculptApp::afterSwap(double cpuAtStart) {
-  const Clock::time_point now = Clock::now();
-  const double cpu = threadCpuMs() - cpuAtStart;
-  windowCpuMs_.add(cpu);
-  runWindowCpuMs_.add(cpu);
-  const bool inStroke = controller_ && controller_->strokeActive();
-  if (lastDraw_ != Clock::time_point{}) {
-    const double ms = std::chrono::duration<double, std::milli>(now - lastDraw_).count();
-    windowMs_.add(ms);
-    runWindowMs_.add(ms);
-    if (inStroke && lastDrawInStroke_) {
-      ++strokeIntervals_;
-      strokeSeconds_ += ms / 1000.0;
-    }
-  }
-  lastDrawInStroke_ = inStroke;
-  lastDraw_ = now;
-  windowRate_.tick(now);
-  ++runDraws_;
-  if (drawnInput_) {
-    const double ms = std::chrono::duration<double, std::milli>(now - *drawnInput_).count();
-    latencyMs_.add(ms);
-    runLatencyMs_.add(ms);
-  }
-  drawnInput_.reset();
-}
-
 // The window draws at 60 Hz (30 on a software rasterizer) while something moves on it (input in the
 // last moments, a stroke, loading, a script) and otherwise only when a frame's view arrives or an
 // event comes: paused and untouched, it sleeps in glfwWaitEvents.
 bool SculptApp::wantsSteadyDraws() const {
-  if (scripted_ || busy() || redraw_ > 0 || stepOnce_) return true;
+  if (script_.active() || busy() || pacer_.settling() || stepOnce_) return true;
   if (controller_ && !controller_->navigating()) return true;
-  return Clock::now() - lastInput_ < std::chrono::milliseconds(500);
-}
-
-Clock::duration SculptApp::drawPeriod() const {
-  const double windowHz = softwareRenderer_ ? 30.0 : 60.0;
-  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / windowHz));
+  return pacer_.recentInput(Clock::now());
 }
 
 void SculptApp::waitForWork() {
-  if (scripted_ && !realtime_) {  // synchronous scripts run as fast as they can
+  if (script_.active() && !script_.realtime()) {  // synchronous scripts run as fast as they can
     glfwPollEvents();
     return;
   }
-  const Clock::time_point next = nextDraw_;
-  if (redraw_ > 0) --redraw_;
+  const Clock::time_point next = pacer_.nextDraw();
+  pacer_.drawnOneToSettle();
   for (;;) {
     if (glfwWindowShouldClose(window_) || stopRequested()) break;
     const bool steady = wantsSteadyDraws();
@@ -554,11 +407,10 @@ void SculptApp::waitForWork() {
     if (!queue_.empty() && !stepInFlight()) break;  // input that waited for a frame
     const double left = steady ? std::chrono::duration<double>(next - Clock::now()).count() : 1.0;
     if (left <= 0.0) break;
-    const std::size_t before = wakeups_;
+    const std::size_t before = pacer_.wakeups();
     glfwWaitEventsTimeout(left);
-    if (wakeups_ != before) {
-      lastInput_ = Clock::now();
-      redraw_ = 2;  // ImGui settles its hover and its layout over a frame or two
+    if (pacer_.wakeups() != before) {
+      pacer_.woken(Clock::now());
     } else if (!steady) {
       autosave();  // idle: its clock still runs
     }

@@ -17,18 +17,10 @@ void ToolController::setViewport(int width, int height) {
 std::optional<RayHit> ToolController::pick(double x, double y) {
   const Simulation& sim = session_.simulation();
   const VisualSurface& surface = sim.surface();
-  if (sim.state().damageRevision != bvhTopology_ || surface.mesh.numFaces() != bvhFaces_) {
-    bvh_.build(surface.mesh);
-    bvhTopology_ = sim.state().damageRevision;
-    bvhFaces_ = surface.mesh.numFaces();
-    bvhGeneration_ = sim.generation();
-  } else if (sim.generation() != bvhGeneration_) {
-    bvh_.refit(surface.mesh);
-    bvhGeneration_ = sim.generation();
-  }
   Vec3 origin, direction;
   camera_.ray(x, y, width_, height_, origin, direction);
-  return bvh_.intersect(surface.mesh, origin, direction);
+  return picker_.intersect(surface.mesh, sim.state().damageRevision, sim.generation(), origin,
+                           direction);
 }
 
 void ToolController::cutTo(double x, double y) {

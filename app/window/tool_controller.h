@@ -72,10 +72,7 @@ class ToolController {
   int width_ = 1, height_ = 1;
   double x_ = 0.0, y_ = 0.0;
   Active active_ = Active::None;
-  SurfaceBvh bvh_;
-  std::uint64_t bvhTopology_ = ~0ull;
-  std::uint64_t bvhGeneration_ = ~0ull;
-  int bvhFaces_ = -1;
+  SurfacePicker picker_;
   // Knife: the blade of the last sample (near and far ends of its ray through the body).
   Vec3 bladeNear_ = Vec3::Zero(), bladeFar_ = Vec3::Zero();
   double knifeNear_ = 0.0, knifeFar_ = 0.0;

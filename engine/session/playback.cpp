@@ -324,7 +324,7 @@ Playback::Playback(const PlaybackScript& script, Simulation& sim)
 }
 
 void ToolApplier::prepareFrame(const std::vector<ToolEvent>& events, int frame) {
-  sim_.releaseAnchorsDue(frame);
+  sim_.anchors().releaseDue(frame);
   for (const ToolEvent& e : events) apply(e, frame);
   sculptor_.beforeFrame();
 }
@@ -369,22 +369,22 @@ int ToolApplier::apply(const ToolEvent& e, int frame) {
         reportIdle(e, frame, "reached no vertex: " + nearestText(e.stroke.center, e.stroke.radius));
         break;
       }
-      sim_.addAnchor(grabbed, {{0.0, Vec3::Zero()}, {e.duration * dt, e.offset}},
-                     e.hold ? -1 : e.frame + e.duration);
+      sim_.anchors().add(grabbed, {{0.0, Vec3::Zero()}, {e.duration * dt, e.offset}},
+                         e.hold ? -1 : e.frame + e.duration);
       break;
     }
     case ToolEvent::Kind::Anchor: {
       if (step != 0) break;
       if (e.add) {
-        sim_.addAnchor(sim_.selectVertices(e.shape, file_, e.path + ".anchor"), {}, -1, e.name);
+        sim_.anchors().add(sim_.selectVertices(e.shape, file_, e.path + ".anchor"), {}, -1, e.name);
       } else if (!e.name.empty()) {
-        const std::optional<int> id = sim_.namedAnchor(e.name);
+        const std::optional<int> id = sim_.anchors().named(e.name);
         if (!id)
           throw InputError(file_, 0,
                            e.path + ".name: no anchor named \"" + e.name + "\" holds now");
-        sim_.removeAnchor(*id);
+        sim_.anchors().remove(*id);
       } else {
-        sim_.removeAnchor(-e.sceneAnchor - 1);
+        sim_.anchors().remove(-e.sceneAnchor - 1);
       }
       break;
     }

@@ -127,7 +127,7 @@ void SculptSession::apply(ToolEvent event, const std::string& source) {
     const bool toBeAdded = std::any_of(acting_.begin(), acting_.end(), [&](const ToolEvent& e) {
       return e.kind == ToolEvent::Kind::Anchor && e.add && e.name == event.name;
     });
-    if (!event.name.empty() && !sim_->namedAnchor(event.name) && !toBeAdded)
+    if (!event.name.empty() && !sim_->anchors().named(event.name) && !toBeAdded)
       throw InputError(source, 0,
                        event.path + ".name: no anchor named \"" + event.name + "\" holds now");
   }

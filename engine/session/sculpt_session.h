@@ -47,7 +47,7 @@ class SculptSession {
   // A playback script's event (docs/scripts.md), acting from the next frame on as it would in
   // the script: an undoable action, recorded. After an undo or redo, such events of the
   // recording that have not finished act on as a replay would (a brush drag under way lets go
-  // at its end: its release frame is part of the state, Simulation::addAnchor). Checked first as
+  // at its end: its release frame is part of the state, AnchorRegistry::add). Checked first as
   // a script's events are (InputError naming `source` and the event's path; nothing recorded):
   // its seed and anchor selection against the mesh, a scene anchor it removes against the scene,
   // a named anchor it removes against those that hold or are to be added.

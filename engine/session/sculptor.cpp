@@ -83,7 +83,7 @@ void Sculptor::beginBrush(const BrushStroke& stroke) {
                        side.weights);
       strokeReach_ += static_cast<int>(side.vertices.size());
       if (!side.vertices.empty()) {
-        side.anchor = sim_.addAnchor(side.vertices);
+        side.anchor = sim_.anchors().add(side.vertices);
         for (int v : side.vertices) side.start.push_back(sim_.state().x[v]);
       }
     }
@@ -99,13 +99,13 @@ void Sculptor::moveBrush(const Vec3& center, const Vec3& normal) {
     const Vec3 offset = side.center - side.startCenter;
     std::vector<Vec3> targets(side.vertices.size());
     for (size_t i = 0; i < side.vertices.size(); ++i) targets[i] = side.start[i] + offset;
-    sim_.setAnchorTargets(side.anchor, targets);
+    sim_.anchors().setTargets(side.anchor, targets);
   }
 }
 
 void Sculptor::endBrush() {
   for (const Side& side : sides_)
-    if (side.anchor >= 0) sim_.removeAnchor(side.anchor);
+    if (side.anchor >= 0) sim_.anchors().remove(side.anchor);
   sides_.clear();
 }
 
@@ -135,7 +135,7 @@ void Sculptor::beforeFrame() {
   if (stroke_.kind == Tool::Grab) return;
   const double step = stroke_.strength * sim_.settings().dt;
   for (Side& side : sides_) {
-    if (side.anchor >= 0) sim_.removeAnchor(side.anchor);
+    if (side.anchor >= 0) sim_.anchors().remove(side.anchor);
     side.anchor = -1;
     const Vec3 from = side.previousCenter;
     side.previousCenter = side.center;
@@ -155,9 +155,9 @@ void Sculptor::beforeFrame() {
       kept.emplace(v, targets[i]);
     }
     side.targets = std::move(kept);
-    side.anchor = sim_.addAnchor(side.vertices);
-    sim_.setAnchorTargets(side.anchor, targets);
-    sim_.setAnchorSprings(side.anchor, side.weights);
+    side.anchor = sim_.anchors().add(side.vertices);
+    sim_.anchors().setTargets(side.anchor, targets);
+    sim_.anchors().setSprings(side.anchor, side.weights);
   }
 }
 
@@ -173,12 +173,12 @@ int Sculptor::paintAnchors(const Vec3& center, double radius, int seed, bool era
     std::sort(vertices.begin(), vertices.end());
     vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
   }
-  if (erase) return sim_.unanchor(vertices);
-  const std::vector<int> held = sim_.anchoredVertices();
+  if (erase) return sim_.anchors().unanchor(vertices);
+  const std::vector<int> held = sim_.anchors().heldVertices();
   std::vector<int> fresh;
   std::set_difference(vertices.begin(), vertices.end(), held.begin(), held.end(),
                       std::back_inserter(fresh));
-  if (!fresh.empty()) sim_.addAnchor(fresh);
+  if (!fresh.empty()) sim_.anchors().add(fresh);
   return static_cast<int>(fresh.size());
 }
 

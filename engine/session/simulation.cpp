@@ -7,7 +7,6 @@
 
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/backend_select.h"
-#include "solver/fracture/debris.h"
 #include "solver/frame/timing.h"
 #include "solver/io/input_error.h"
 #include "solver/io/memory_limits.h"
@@ -83,7 +82,10 @@ const TetMesh& withMemoryFor(const TetMesh& mesh) {
 Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, SolverChoice choice)
     : model_(buildSimModel(withMemoryFor(mesh), materialFromScene(scene.material, scene.fracture))),
       state_(initialState(model_)),
-      surfaceBuilder_(model_) {
+      anchors_(model_, state_),
+      pieces_(scene.fracture.debrisFraction, scene.fracture.debris == DebrisRule::Remove),
+      surface_(model_),
+      probes_(scene.measure, mesh) {
   SolverOptions options = scene.solver;
   if (choice == SolverChoice::Reference) options.type = SolverType::Reference;
   settings_ = stepSettings(options, scene.timeStep, scene.substeps);
@@ -94,9 +96,8 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
     AnchorConstraint a;
     a.vertices = selectAnchorVertices(scene.anchors[i], mesh, scene.file.string(),
                                       "$.anchors[" + std::to_string(i) + "]");
-    anchorTags_.push_back({-static_cast<int>(i) - 1, -1, {}});
     for (const PathKey& k : scene.anchors[i].path) a.path.push_back({k.time, k.offset});
-    state_.anchors.push_back(std::move(a));
+    anchors_.addSceneAnchor(static_cast<int>(i), std::move(a));
   }
   for (const ColliderDesc& c : scene.colliders) {
     model_.colliders.push_back(c);  // the scene's collider is the model's, less its friction
@@ -129,17 +130,6 @@ Simulation::Simulation(const SceneDescription& scene, const TetMesh& mesh, Solve
   backend_ = std::move(backend.backend);
   if (!backend.note.empty()) notes_.push_back(backend.note);
   backendFallback_ = backend.fallback;
-  for (const Vec3& p : scene.measure.opening) {
-    int best = 0;
-    for (int v = 1; v < mesh.numVertices(); ++v) {
-      if ((mesh.vertices[v] - p).squaredNorm() < (mesh.vertices[best] - p).squaredNorm()) best = v;
-    }
-    openingVertices_.push_back(best);
-  }
-  loadCollider_ = scene.measure.loadCollider;
-  loadAnchor_ = scene.measure.loadAnchor;
-  debrisFraction_ = scene.fracture.debrisFraction;
-  removesDebris_ = scene.fracture.debris == DebrisRule::Remove;
   applyInitialVelocity(scene.initialVelocity);
   // An exported tet mesh reopens with the cracks it was written with.
   if (std::optional<EdgeDamageState> damage = sceneMeshDamage(scene, mesh)) {
@@ -199,124 +189,35 @@ void Simulation::setPositionsAndVelocities(const std::vector<Vec3>* x, const std
   restore(s);
 }
 
-void Simulation::updatePieces() {
-  if (piecesRevision_ == state_.damageRevision) return;
-  piecesRevision_ = state_.damageRevision;
-  const PieceCensus& census = pieceTracker_.census(model_, state_.damaged, state_.damageRevision);
-  pieces_ = census.pieces;
-  pieceNumber_ = census.pieceOfVertex;
-  bodyRestVolume_ = census.bodyRestVolume;
-  // A tet whose corners lie in different pieces is no longer material (its vertices have
-  // parted): volumes count only tets inside one piece, at rest and now alike.
-  countedTets_ = census.isWhole;
-  restVolume_ = census.wholeRestVolume;
-  debrisPiece_ = debrisPieces(census, debrisFraction_);
-  debrisPieces_ = 0;
-  debrisRestVolume_ = 0.0;
-  debrisMass_ = 0.0;
-  for (int p = 0; p < pieces_; ++p) {
-    if (!debrisPiece_[p]) continue;
-    ++debrisPieces_;
-    debrisRestVolume_ += census.restVolume[p];
-  }
-  for (int v = 0; v < model_.numVertices(); ++v)
-    if (debrisPiece_[pieceNumber_[v]]) debrisMass_ += model_.mass[v];
-}
-
-int Simulation::invertedPieces() const {
-  if (pieces_ <= 1) return 0;
-  const VisualSurface& surf = surface();
-  std::vector<double> sixVolume(pieces_, 0.0);
-  for (int f = 0; f < surf.mesh.numFaces(); ++f) {
-    const Tri& tri = surf.mesh.faces[f];
-    const Vec3& a = surf.mesh.vertices[tri[0]];
-    sixVolume[pieceNumber_[surf.cellVertex[f]]] +=
-        a.dot(surf.mesh.vertices[tri[1]].cross(surf.mesh.vertices[tri[2]]));
-  }
-  int inverted = 0;
-  for (int p = 0; p < pieces_; ++p) {
-    // Removed debris has no surface any more: it is no piece to look at.
-    if (removesDebris_ && debrisPiece_[p]) continue;
-    inverted += !(sixVolume[p] > 0.0);
-  }
-  return inverted;
+int Simulation::cut(const std::vector<BladeTriangle>& surface) {
+  const int n = cutAlongSurface(model_, state_, surface);
+  toolDamage_ += n;
+  if (n > 0) updatePieces();  // volumes and exports see the new pieces before the next frame
+  return n;
 }
 
 double Simulation::currentVolume() const {
-  double sum = 0.0;
-  for (int t = 0; t < model_.numTets(); ++t) {
-    if (!countedTets_[t]) continue;
-    const Tet& tet = model_.mesh.tets[t];
-    sum +=
-        tetSixVolume(state_.x[tet[0]], state_.x[tet[1]], state_.x[tet[2]], state_.x[tet[3]]) / 6.0;
-  }
-  return sum;
-}
-
-double Simulation::anchorLoad(int id) const {
-  const auto it = std::find_if(anchorTags_.begin(), anchorTags_.end(),
-                               [&](const AnchorTag& t) { return t.id == id; });
-  if (it == anchorTags_.end()) return 0.0;  // removed
-  return elasticGradientSum(model_, state_.x, state_,
-                            state_.anchors[it - anchorTags_.begin()].vertices)
-      .norm();
-}
-
-double Simulation::debrisVolumePercent() const {
-  return bodyRestVolume_ > 0.0 ? 100.0 * debrisRestVolume_ / bodyRestVolume_ : 0.0;
+  return pieces_.currentVolume(model_, state_.x);
 }
 
 Simulation::PieceStats Simulation::pieceStats() {
   updatePieces();
   PieceStats p;
-  p.pieces = pieces_;
-  p.debrisPieces = debrisPieces_;
-  p.debrisVolumePct = debrisVolumePercent();
-  p.debrisMassKg = debrisMass_;
-  p.invertedPieces = invertedPieces();
+  p.pieces = pieces_.count();
+  p.debrisPieces = pieces_.debrisPieces();
+  p.debrisVolumePct = pieces_.debrisVolumePercent();
+  p.debrisMassKg = pieces_.debrisMassKg();
+  p.invertedPieces = pieces_.invertedPieces(surface());
   return p;
 }
 
 double Simulation::volumeChangePercent() const {
-  return restVolume_ > 0.0 ? 100.0 * (currentVolume() - restVolume_) / restVolume_ : 0.0;
+  const double rest = pieces_.restVolume();
+  return rest > 0.0 ? 100.0 * (currentVolume() - rest) / rest : 0.0;
 }
 
 const VisualSurface& Simulation::surface(SurfaceUpdateStats* stats) const {
-  // Positions change only in advance() and damage only with its revision: a second call for the
-  // same state (final.png, final.obj, final.EXT) reuses the surface.
-  if (surfaceFrame_ != frame_ || surfaceRevision_ != state_.damageRevision) {
-    const SurfaceUpdateStats s = surfaceBuilder_.update(model_, state_);
-    surfaceFrame_ = frame_;
-    surfaceRevision_ = state_.damageRevision;
-    lastSurfaceUpdate_ = s;
-    if (stats) *stats = s;
-    if (removesDebris_ && debrisPieces_ > 0) shownSurface_ = withoutRemovedDebris();
-  } else if (stats) {
-    *stats = SurfaceUpdateStats{};
-  }
-  return removesDebris_ && debrisPieces_ > 0 ? shownSurface_ : surfaceBuilder_.surface();
-}
-
-VisualSurface Simulation::withoutRemovedDebris() const {
-  const VisualSurface& all = surfaceBuilder_.surface();
-  VisualSurface shown;
-  std::vector<int> number(all.mesh.numVertices(), -1);
-  for (int f = 0; f < all.mesh.numFaces(); ++f) {
-    if (removed(all.cellVertex[f])) continue;
-    Tri tri = all.mesh.faces[f];
-    for (int& v : tri) {
-      int& n = number[v];
-      if (n < 0) {
-        n = shown.mesh.numVertices();
-        shown.mesh.vertices.push_back(all.mesh.vertices[v]);
-      }
-      v = n;
-    }
-    shown.mesh.faces.push_back(tri);
-    shown.tags.push_back(all.tags[f]);
-    shown.cellVertex.push_back(all.cellVertex[f]);
-  }
-  return shown;
+  return surface_.get(model_, state_, frame_, pieces_, stats);
 }
 
 std::vector<int> Simulation::selectVertices(const AnchorDesc& shape, const std::string& file,
@@ -405,8 +306,8 @@ SimulationSnapshot Simulation::snapshot() const {
   s.time = state_.time;
   s.frame = frame_;
   s.anchors = state_.anchors;
-  s.anchorTags = anchorTags_;
-  s.nextAnchorId = nextAnchorId_;
+  s.anchorTags = anchors_.tags();
+  s.nextAnchorId = anchors_.nextId();
   s.toolDamage = toolDamage_;
   return s;
 }
@@ -437,10 +338,9 @@ void Simulation::restore(const SimulationSnapshot& s) {
   state_.time = s.time;
   frame_ = s.frame;
   state_.anchors = s.anchors;
-  anchorTags_ = s.anchorTags;
-  nextAnchorId_ = s.nextAnchorId;
+  anchors_.restore(s.anchorTags, s.nextAnchorId);
   toolDamage_ = s.toolDamage;
-  surfaceFrame_ = -1;  // positions changed without a frame
+  surface_.invalidate();  // positions changed without a frame
   ++generation_;
   backend_->adoptCarriedState(s.solverCarry);
   updatePieces();
@@ -503,7 +403,7 @@ FrameMetrics Simulation::advance() {
       ++state_.damageRevision;  // a new revision: whatever saw the frame's damage looks again
       updatePieces();
     }
-    surfaceFrame_ = -1;
+    surface_.invalidate();
     throw Interrupted(stopSignal());
   }
   const bool diverged = !allFinite(state_.x) || !allFinite(state_.v);
@@ -533,29 +433,16 @@ FrameMetrics Simulation::advance() {
   for (const Vec3& f : r.contactForces) contact += f;
   m.contactForceN = contact.norm();
   m.newlyDamaged += toolDamage_;  // edges broken this frame: fracture and tools
-  if (loadCollider_ >= 0 && loadCollider_ < static_cast<int>(r.contactForces.size())) {
-    m.loadN = r.contactForces[loadCollider_].norm();
-    const Collider& c = model_.colliders[loadCollider_];
-    const ColliderState& now = state_.colliders[loadCollider_];
-    m.strikerDisplacementM = (colliderCentre(c, state_.time, &now) - c.center).norm();
-    if (c.motion.rigidPendulum())
-      m.absorbedEnergyJ = pendulumEnergy(c, initialColliderState(c), model_.gravity) -
-                          pendulumEnergy(c, now, model_.gravity);
-  }
-  if (loadAnchor_ >= 0) m.loadN = anchorLoad(-loadAnchor_ - 1);
-  if (openingVertices_.size() == 2) {
-    const int a = openingVertices_[0], b = openingVertices_[1];
-    m.openingM = (state_.x[a] - state_.x[b]).norm() -
-                 (model_.mesh.vertices[a] - model_.mesh.vertices[b]).norm();
-  }
+  probes_.read(model_, state_, anchors_, r.contactForces, m);
   toolDamage_ = 0;
   updatePieces();
-  m.pieces = pieces_;
+  m.pieces = pieces_.count();
   m.volume = currentVolume();
-  m.debrisPieces = debrisPieces_;
-  m.debrisVolumePct = debrisVolumePercent();
-  m.debrisMassKg = debrisMass_;
-  m.volumeChangePct = restVolume_ > 0.0 ? 100.0 * (m.volume - restVolume_) / restVolume_ : 0.0;
+  m.debrisPieces = pieces_.debrisPieces();
+  m.debrisVolumePct = pieces_.debrisVolumePercent();
+  m.debrisMassKg = pieces_.debrisMassKg();
+  const double rest = pieces_.restVolume();
+  m.volumeChangePct = rest > 0.0 ? 100.0 * (m.volume - rest) / rest : 0.0;
   for (int v = 0; v < model_.numVertices(); ++v) {
     m.kineticEnergy += 0.5 * model_.mass[v] * state_.v[v].squaredNorm();
     m.maxDisplacement = std::max(m.maxDisplacement, (state_.x[v] - model_.mesh.vertices[v]).norm());
@@ -565,7 +452,7 @@ FrameMetrics Simulation::advance() {
   m.msOther = std::max(0.0, m.msTotal - m.msElements - m.msSolve - m.msPlastic - m.msFracture);
   // Outside the frame's time, as exports are: it brings the visualization surface up to date
   // (the window does so to draw the frame anyway; on the fractured Charpy bar about 5 ms).
-  m.invertedPieces = invertedPieces();
+  m.invertedPieces = pieces_.invertedPieces(surface());
   return m;
 }
 

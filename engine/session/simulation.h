@@ -9,11 +9,14 @@
 #include <vector>
 
 #include "engine/scene/scene.h"
+#include "engine/session/anchor_registry.h"
+#include "engine/session/body_pieces.h"
+#include "engine/session/frame_probes.h"
+#include "engine/session/surface_cache.h"
 #include "engine/surface/export_surface.h"
 #include "engine/surface/surface_builder.h"
 #include "solver/fracture/knife.h"
 #include "solver/frame/cpu_backend.h"
-#include "solver/frame/piece_tracker.h"
 #include "solver/frame/step.h"
 
 namespace galsculpt {
@@ -22,13 +25,6 @@ enum class SolverChoice { FromScene, Reference };
 
 // Everything a sculpting action can change, for undo: positions, velocities, damage, plastic
 // state, time and the anchors (with their ids). Restoring one gives back that state exactly.
-// What the session knows of each anchor of SimState::anchors besides what the solver reads.
-struct AnchorTag {
-  int id = 0;             // addAnchor's id; a scene's anchor i: -i - 1
-  int releaseFrame = -1;  // the frame from which it lets go (a script brush's drag), -1: never
-  std::string name;       // a script's named anchor ("anchor" events with "name"), or empty
-  bool operator==(const AnchorTag&) const = default;
-};
 
 struct SimulationSnapshot {
   std::vector<Vec3> x, v;                       // (nVerts)
@@ -128,32 +124,10 @@ class Simulation {
   // Tools (engine/session/playback.h drives them from scripts; the app from the mouse).
   // Damages every edge crossing the blade surface (current positions); returns how many.
   int cut(const std::vector<BladeTriangle>& surface);
-  // Holds `vertices` where they are now, moved by `path` offsets (times from now); returns an
-  // id for removeAnchor. `releaseFrame` (>= 0): releaseAnchorsDue lets it go from that frame
-  // on. `name`: found by namedAnchor. Both are part of the state (snapshots, projects): after
-  // an undo or in a reopened project a brush lets go and a name is found as before.
-  int addAnchor(const std::vector<int>& vertices, const std::vector<AnchorKey>& path = {},
-                int releaseFrame = -1, const std::string& name = {});
-  // Removes the anchors whose release frame is at or before `frame`.
-  void releaseAnchorsDue(int frame);
-  // The id of the latest anchor named `name` still holding (names stack as a script's adds and
-  // removes do), or nullopt.
-  std::optional<int> namedAnchor(const std::string& name) const;
-  // Moves an anchor's vertices to `targets` (same order as its vertices) from the next frame
-  // on: brushes drag what they hold this way. Throws std::out_of_range for an unknown id.
-  void setAnchorTargets(int id, const std::vector<Vec3>& targets);
-  // Makes an anchor soft: each vertex pulled toward its target by a spring of weight `weights[i]`
-  // in [0, 1] (AnchorConstraint::springWeights) instead of held there. Throws std::out_of_range
-  // for an unknown id, std::invalid_argument unless one weight per vertex.
-  void setAnchorSprings(int id, const std::vector<double>& weights);
-  // Frees the given vertices from every anchor (scene, script and painted ones alike);
-  // returns how many anchor entries were dropped.
-  int unanchor(const std::vector<int>& vertices);
-  // Every vertex some anchor holds, ascending.
-  std::vector<int> anchoredVertices() const;
-  // Removes an anchor added by addAnchor or, with id < 0, the scene's anchor -id - 1. Throws
-  // std::out_of_range for an unknown id.
-  void removeAnchor(int id);
+  // The anchors (the scene's, scripts', brushes' and anchor paint's): added, moved, released
+  // and removed through the registry.
+  AnchorRegistry& anchors() { return anchors_; }
+  const AnchorRegistry& anchors() const { return anchors_; }
   // Vertices whose rest position the anchor description selects (throws InputError naming
   // the file and JSON path when it selects none).
   std::vector<int> selectVertices(const AnchorDesc& shape, const std::string& file,
@@ -170,10 +144,10 @@ class Simulation {
   };
   PieceStats pieceStats();
   // The number of the piece (part joined by undamaged edges) `vertex` lies in.
-  int pieceOf(int vertex) const { return pieceNumber_[vertex]; }
+  int pieceOf(int vertex) const { return pieces_.of(vertex); }
   // Whether `vertex` lies in debris that the debris rule removed (fracture.debris: hidden from
   // the surface and exports, held out of the solve).
-  bool removed(int vertex) const { return removesDebris_ && debrisPiece_[pieceNumber_[vertex]]; }
+  bool removed(int vertex) const { return pieces_.removed(vertex); }
   // Per vertex, for the views: the fraction of its edges that are damaged, and the largest
   // tensile edge normal stress (Pa) of the tets around it.
   std::vector<double> vertexDamage() const;
@@ -216,7 +190,7 @@ class Simulation {
   // What the last update of the surface cost, whoever asked for it: a frame of a body in
   // several pieces brings the surface up to date itself (its inverted-piece count reads it), so
   // a later surface() call finds nothing to do.
-  const SurfaceUpdateStats& lastSurfaceUpdate() const { return lastSurfaceUpdate_; }
+  const SurfaceUpdateStats& lastSurfaceUpdate() const { return surface_.lastUpdate(); }
   // Writes the tet mesh at the current positions with its damage: stem.node/.ele/.face,
   // stem.damage (solver/io/damage_io.h) and stem.vtk (cell data: damage, piece). Tets parted
   // between pieces and crushed flat are left out of the .node/.ele set (a reader refuses them;
@@ -250,42 +224,14 @@ class Simulation {
   FrameStart frameStart_;
   int divergedFrames_ = 0;  // each has a note, up to kDivergenceNotes (its warning counts all)
   static constexpr int kDivergenceNotes = 5;
-  mutable SurfaceBuilder surfaceBuilder_;
-  mutable int surfaceFrame_ = -1;  // the state the surface was last brought up to
-  mutable std::uint64_t surfaceRevision_ = 0;
-  mutable SurfaceUpdateStats lastSurfaceUpdate_;
-  std::vector<AnchorTag> anchorTags_;      // one per entry of state_.anchors
-  AnchorConstraint& anchorWithId(int id);  // throws std::out_of_range for an unknown id
-  int nextAnchorId_ = 0;
+  // Declared after model_ and state_, which they refer to or are built from.
+  AnchorRegistry anchors_;
+  BodyPieces pieces_;
+  mutable SurfaceCache surface_;
+  FrameProbes probes_;
   int toolDamage_ = 0;  // edges cut by tools since the last frame
-  void updatePieces();  // pieces and counted tets, when the damage changed
   void applyInitialVelocity(const InitialVelocityDesc& initial);
-  std::uint64_t piecesRevision_ = ~0ull;
-  PieceTracker pieceTracker_;
-  std::vector<std::uint8_t> countedTets_;
-  int pieces_ = 1;
-  std::vector<int> pieceNumber_;           // each vertex's piece, numbered 0 .. pieces_ - 1
-  std::vector<std::uint8_t> debrisPiece_;  // (pieces_) 1 for debris
-  int debrisPieces_ = 0;
-  double debrisRestVolume_ = 0.0;
-  double debrisMass_ = 0.0;     // kg
-  bool removesDebris_ = false;  // fracture.debris: remove
-  // The surface without removed debris (when there is any).
-  mutable VisualSurface shownSurface_;
-  VisualSurface withoutRemovedDebris() const;
-  double bodyRestVolume_ = 0.0;  // every tet's, damaged or not
-  double debrisFraction_ = 0.01;
-  // Pieces whose closed surface (the visualization surface, brought up to date) encloses no
-  // positive volume; 0 while the body is one piece (no surface is built for it).
-  int invertedPieces() const;
-  double debrisVolumePercent() const;
-  std::vector<int> openingVertices_;  // measure.opening: the two probed vertices
-  int loadCollider_ = -1;
-  int loadAnchor_ = -1;  // measure.load_anchor: a scene anchor
-  // The elastic force the body exerts on the vertices of the anchor with this id (N; 0 once it
-  // is removed).
-  double anchorLoad(int id) const;
-  double restVolume_ = 0.0;
+  void updatePieces() { pieces_.update(model_, state_); }
   int frame_ = 0;
   std::uint64_t generation_ = 0;
 };

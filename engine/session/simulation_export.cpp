@@ -21,7 +21,7 @@ constexpr int kCarveRounds = 8;
 
 ExportedSurface Simulation::exportSurface() const {
   surface();  // brings the builder up to the current state
-  std::vector<int> piece = pieceNumber_;
+  std::vector<int> piece = pieces_.ofVertices();
   std::vector<int> removedPieces;
   for (int v = 0; v < model_.numVertices(); ++v) {
     if (!removed(v)) continue;
@@ -53,10 +53,10 @@ ExportedSurface Simulation::exportSurface() const {
     builder.update(model_, state);
     return makeExportSurface(builder.surface(), builder.heldCentres(state), piece);
   };
-  ExportedSurface out =
-      sealedEdges == 0
-          ? makeExportSurface(surfaceBuilder_.surface(), surfaceBuilder_.heldCentres(state_), piece)
-          : exportOf(sealed);
+  ExportedSurface out = sealedEdges == 0
+                            ? makeExportSurface(surface_.builder().surface(),
+                                                surface_.builder().heldCentres(state_), piece)
+                            : exportOf(sealed);
 
   // Where faces still cross (a broken end's crack band folded through itself), the corners
   // whose cells bound them are carved out: every edge at them parted for the export, so each
@@ -120,9 +120,9 @@ int Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
   TetMesh kept = now;
   kept.tets.clear();
   for (const Tet& t : now.tets) {
-    const bool parted = pieceNumber_[t[0]] != pieceNumber_[t[1]] ||
-                        pieceNumber_[t[0]] != pieceNumber_[t[2]] ||
-                        pieceNumber_[t[0]] != pieceNumber_[t[3]];
+    const bool parted = pieces_.of(t[0]) != pieces_.of(t[1]) ||
+                        pieces_.of(t[0]) != pieces_.of(t[2]) ||
+                        pieces_.of(t[0]) != pieces_.of(t[3]);
     if (!parted ||
         !isFlatTet(now.vertices[t[0]], now.vertices[t[1]], now.vertices[t[2]], now.vertices[t[3]]))
       kept.tets.push_back(t);
@@ -156,8 +156,8 @@ int Simulation::writeTetsWithDamage(const std::filesystem::path& stem) const {
   int pieces = 0;
   VtkCellField piece{"piece", std::vector<double>(model_.numTets(), -1.0)};
   for (int t = 0; t < model_.numTets(); ++t) {
-    if (!countedTets_[t]) continue;
-    int& id = label[pieceNumber_[model_.mesh.tets[t][0]]];
+    if (!pieces_.counted(t)) continue;
+    int& id = label[pieces_.of(model_.mesh.tets[t][0])];
     if (id < 0) id = pieces++;
     piece.values[t] = id;
   }

@@ -202,4 +202,18 @@ double SurfaceBvh::distance(const TriMesh& mesh, const Vec3& p) const {
   return std::sqrt(best);
 }
 
+std::optional<RayHit> SurfacePicker::intersect(const TriMesh& mesh, std::uint64_t topology,
+                                               std::uint64_t generation, const Vec3& origin,
+                                               const Vec3& direction) {
+  if (topology != topology_ || mesh.numFaces() != faces_) {
+    bvh_.build(mesh);
+  } else if (generation != generation_) {
+    bvh_.refit(mesh);
+  }
+  topology_ = topology;
+  faces_ = mesh.numFaces();
+  generation_ = generation;
+  return bvh_.intersect(mesh, origin, direction);
+}
+
 }  // namespace galsculpt

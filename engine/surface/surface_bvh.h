@@ -3,6 +3,7 @@
 // positions moved (every frame), so a pick costs O(log n) instead of a scan of every triangle.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -40,6 +41,21 @@ class SurfaceBvh {
   int buildNode(const TriMesh& mesh, std::vector<Vec3>& centroids, int first, int count);
   std::vector<Node> nodes_;
   std::vector<int> faces_;  // face ids in leaf order
+};
+
+// Picking on a surface that changes between picks (the simulation's, the window's drawn copy):
+// one BVH, rebuilt when the surface's faces may have changed (another `topology` key, another
+// face count) and refitted when only its positions moved (another `generation`).
+class SurfacePicker {
+ public:
+  std::optional<RayHit> intersect(const TriMesh& mesh, std::uint64_t topology,
+                                  std::uint64_t generation, const Vec3& origin,
+                                  const Vec3& direction);
+
+ private:
+  SurfaceBvh bvh_;
+  std::uint64_t topology_ = ~0ull, generation_ = ~0ull;
+  int faces_ = -1;
 };
 
 }  // namespace galsculpt

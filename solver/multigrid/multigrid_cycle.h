@@ -29,6 +29,7 @@
 #include "solver/multigrid/multigrid.h"
 #include "solver/multigrid/multigrid_layout.h"
 #include "solver/multigrid/multigrid_pcg.h"
+#include "solver/multigrid/piece_coarse_start.h"
 
 namespace galsculpt {
 
@@ -40,7 +41,7 @@ class MultigridCycle {
 
   // `fine`: the model's block pattern, read in place (it must outlive the cycle).
   MultigridCycle(Exec& ex, const BlockPattern& fine)
-      : ex_(ex), finePattern_(fine), smoother_(ex), pcg_(ex), fragments_(ex) {
+      : ex_(ex), finePattern_(fine), smoother_(ex), pcg_(ex), pieces_(ex), fragments_(ex) {
     rows_ = fine.rows;
     fineRowStart_.mirror(fine.rowStart);
     fineColumns_.mirror(fine.columns);
@@ -91,18 +92,7 @@ class MultigridCycle {
     cgR_.resize(12 * c.handles);
     cgP_.resize(12 * c.handles);
     cgAp_.resize(12 * c.handles);
-    pieceCount_ = m.pieceCount;
-    if (pieceCount_ >= 2) {
-      pieceOfHandle_.upload(m.pieceOfHandle);
-      pieceMap_.upload(m.pieceMap);
-      pieceContribStart_.upload(m.pieceContribStart);
-      pieceContribBlock_.upload(m.pieceContribBlock);
-      pieceContribRow_.upload(m.pieceContribRow);
-      pieceHandleStart_.upload(m.pieceHandleStart);
-      pieceHandles_.upload(m.pieceHandles);
-      pieceFactor_.resize(144 * static_cast<size_t>(pieceCount_));
-      pieceSolution_.resize(12 * static_cast<size_t>(pieceCount_));
-    }
+    pieces_.upload(m);
     fragments_.upload(m, rows_);
     denseSize_ = 12 * c.handles;
     factored_ = false;
@@ -411,26 +401,7 @@ class MultigridCycle {
     double* r = cgR_.data();
     double* ap = cgAp_.data();
     double* sc = scalars_.data();
-    const int* hStart = pieceHandleStart_.data();
-    const int* handles = pieceHandles_.data();
-    const int* pieceOf = pieceOfHandle_.data();
-    const double* map = pieceMap_.data();
-    const double* factor = pieceFactor_.data();
-    double* e = pieceSolution_.data();
-    ex_.forEach(pieceCount_, [=] GALSCULPT_LAMBDA(int q) {
-      double rhs[12] = {};
-      for (int i = hStart[q]; i < hStart[q + 1]; ++i) {
-        const int h = handles[i];
-        addMultiplyTransposed12(map + 144 * h, b + 12 * h, rhs);
-      }
-      choleskySolve(12, factor + 144 * q, rhs);
-      for (int k = 0; k < 12; ++k) e[12 * q + k] = rhs[k];
-    });
-    ex_.forEach(c.handles, [=] GALSCULPT_LAMBDA(int h) {
-      double out[12] = {};
-      addMultiply12(map + 144 * h, e + 12 * pieceOf[h], out);
-      for (int k = 0; k < 12; ++k) x[12 * h + k] = out[k];
-    });
+    pieces_.solve(c.handles, b, x);
     multiplyCoarse(numLevels() - 1, x, ap);
     ex_.sum(
         n, [=] GALSCULPT_LAMBDA(int i) { return x[i] == x[i] && fabs(x[i]) < 1e300 ? 0.0 : 1.0; },
@@ -450,29 +421,6 @@ class MultigridCycle {
     return sc[kDone] == 0.0 && sc[kRr] > sc[kStop] && sc[kPap] > 0.0;
   }
 
-  void factorPieces() {
-    const Level& c = levels_.back();
-    const int* start = pieceContribStart_.data();
-    const int* block = pieceContribBlock_.data();
-    const int* row = pieceContribRow_.data();
-    const int* columns = c.columns.data();
-    const double* blocks = c.blocks.data();
-    const double* map = pieceMap_.data();
-    double* factor = pieceFactor_.data();
-    ex_.forEach(pieceCount_, [=] GALSCULPT_LAMBDA(int q) {
-      double m[144] = {};
-      for (int i = start[q]; i < start[q + 1]; ++i) {
-        const int k = block[i], h = row[i], g = columns[k];
-        addTripleProduct12(map + 144 * h, blocks + 144 * k, map + 144 * g, m);
-      }
-      double trace = 0.0;
-      for (int i = 0; i < 12; ++i) trace += m[13 * i];
-      for (int i = 0; i < 12; ++i) m[13 * i] += 1e-12 * fmax(trace / 12.0, 1e-300);
-      cholesky(12, m);
-      for (int i = 0; i < 144; ++i) factor[144 * q + i] = m[i];
-    });
-  }
-
  private:
   void rememberFactored(const Level& c) {
     kept_.remember(factored_, c.blocks.data(), c.blocks.size(), c.diagonal.data(), c.handles);
@@ -490,10 +438,7 @@ class MultigridCycle {
   Buffer<double> ax_, scalars_;
   MultigridPcg<Exec> pcg_;
   Buffer<double> cgR_, cgP_, cgAp_;
-  int pieceCount_ = 0;
-  Buffer<int> pieceOfHandle_, pieceContribStart_, pieceContribBlock_, pieceContribRow_;
-  Buffer<int> pieceHandleStart_, pieceHandles_;
-  Buffer<double> pieceMap_, pieceFactor_, pieceSolution_;
+  PieceCoarseStart<Exec> pieces_;       // the coarsest level's start with two or more pieces
   FragmentCorrection<Exec> fragments_;  // the fine level's
   int denseSize_ = 0;
   Buffer<double> dense_;  // a device's factorization of the coarsest level

@@ -83,7 +83,8 @@ void MultigridCycle<Exec>::refresh(const double* fine, bool coarseCholesky, bool
   }
   if (fragments_.fragments() > 0)
     fragments_.factorize(fine, fineRowStart_.data(), fineColumns_.data());
-  if (pieceCount_ >= 2) factorPieces();
+  if (pieces_.active())
+    pieces_.factorize(levels_.back().columns.data(), levels_.back().blocks.data());
   if (!coarseCholesky) {
     factored_ = false;
     return;

@@ -127,7 +127,7 @@ void MultigridCycle<Exec>::solveCoarsest(const double* b, double* x, const Setti
     x[i] = 0.0;
     r[i] = b[i];
   });
-  if (pieceCount_ >= 2) startFromPieces(b, x);
+  if (pieces_.active()) startFromPieces(b, x);
   ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) { p[i] = r[i]; });
   ex_.sum(
       n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * r[i]; }, sc + kRr);

@@ -56,5 +56,50 @@ TEST(InputScript, BadStepsNameTheirPath) {
   EXPECT_THROW_WITH(loadInputScript(dir / "t.json"), InputError, "steps");
 }
 
+// The runner takes a step a window frame, holds through its waits, keeps a screenshot until
+// what came before it is on the screen, and says when the script is done.
+TEST(InputScriptRunner, HoldsThroughWaitsAndScreenshotsUntilShown) {
+  test::TempDir dir;
+  test::writeText(dir / "s.json", R"({"steps": [
+    {"wait": 2}, {"move": [0.5, 0.5]}, {"wait_frames": 1},
+    {"command": "screenshot", "argument": "a.png"}]})");
+  InputScriptRunner runner;
+  EXPECT_FALSE(runner.active());
+  runner.load(loadInputScript(dir / "s.json"));
+  ASSERT_TRUE(runner.active());
+  EXPECT_FALSE(runner.realtime());
+  using Kind = InputScriptRunner::Turn::Kind;
+  std::vector<Kind> turns;
+  const InputStep* acted = nullptr;
+  for (int frame = 0; frame < 8; ++frame) {
+    const InputScriptRunner::Turn t = runner.next(0, frame < 6);  // input shown from frame 6
+    turns.push_back(t.kind);
+    if (t.kind == Kind::Act && !acted) acted = t.step;
+  }
+  // wait 2: taken, then two frames held; the move; wait_frames 1 (window frames when not in
+  // real time): taken, one held; the screenshot held until frame 6; then done.
+  EXPECT_EQ(turns, (std::vector<Kind>{Kind::Hold, Kind::Hold, Kind::Hold, Kind::Act, Kind::Hold,
+                                      Kind::Hold, Kind::Act, Kind::Done}));
+  ASSERT_NE(acted, nullptr);
+  EXPECT_EQ(acted->kind, InputStep::Kind::Move);
+}
+
+// In real time "wait_frames" waits for views of finished frames, however many window frames.
+TEST(InputScriptRunner, RealTimeWaitFramesCountsViewsShown) {
+  test::TempDir dir;
+  test::writeText(dir / "s.json", R"({"realtime": true, "steps": [
+    {"wait_frames": 2}, {"key": "space"}]})");
+  InputScriptRunner runner;
+  runner.load(loadInputScript(dir / "s.json"));
+  EXPECT_TRUE(runner.realtime());
+  using Kind = InputScriptRunner::Turn::Kind;
+  EXPECT_EQ(runner.next(5, false).kind, Kind::Hold);  // taken: wait until 7 views
+  for (int k = 0; k < 10; ++k) EXPECT_EQ(runner.next(6, false).kind, Kind::Hold);
+  const InputScriptRunner::Turn t = runner.next(7, false);
+  ASSERT_EQ(t.kind, Kind::Act);
+  EXPECT_EQ(t.step->key, ' ');
+  EXPECT_EQ(runner.next(7, false).kind, Kind::Done);
+}
+
 }  // namespace
 }  // namespace galsculpt

@@ -78,8 +78,8 @@ TEST(ProjectFile, RoundTripRestoresTheSessionExactlyAndItRunsOnIdentically) {
   for (size_t t = 0; t < a.plasticInverse.size(); ++t)
     ASSERT_TRUE(a.plasticInverse[t] == b.plasticInverse[t]);
   EXPECT_EQ(a.anchorTags, b.anchorTags);
-  EXPECT_EQ(reopened->simulation().anchoredVertices(),
-            ball.session.simulation().anchoredVertices());
+  EXPECT_EQ(reopened->simulation().anchors().heldVertices(),
+            ball.session.simulation().anchors().heldVertices());
   for (int f = 0; f < 3; ++f) {
     ball.session.step();
     reopened->step();

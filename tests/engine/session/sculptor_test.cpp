@@ -205,9 +205,9 @@ TEST(Sculptor, SymmetryMirrorsTheKnifeTheBrushesAndAnchorPaint) {
   }
   {
     SculptSession s(clayBall().scene, clayBall().mesh);
-    const size_t before = s.simulation().anchoredVertices().size();
+    const size_t before = s.simulation().anchors().heldVertices().size();
     s.paint(Vec3(0.07, 0.07, 0.0), 0.02, -1, false, mirrorX);
-    const std::vector<int> held = s.simulation().anchoredVertices();
+    const std::vector<int> held = s.simulation().anchors().heldVertices();
     const int right = s.simulation().nearestVertex(Vec3(0.07, 0.07, 0.0));
     const int left = s.simulation().nearestVertex(Vec3(-0.07, 0.07, 0.0));
     EXPECT_TRUE(std::binary_search(held.begin(), held.end(), right));
@@ -230,7 +230,7 @@ TEST(Sculptor, PaintedAnchorsHoldAndErasedOnesLetGo) {
   const int far = s.simulation().nearestVertex(Vec3(-0.1, 0.0, 0.0));
   EXPECT_LT(s.simulation().state().x[far].y(), -0.0005) << "the ball sags around the anchor";
   EXPECT_GT(s.paint(side, 0.05, -1, true, {}), 3);
-  EXPECT_TRUE(s.simulation().anchoredVertices().empty());
+  EXPECT_TRUE(s.simulation().anchors().heldVertices().empty());
   for (int f = 0; f < 10; ++f) s.step();
   EXPECT_LT(s.simulation().state().x[held].y(), at.y() - 0.005) << "erased: it falls";
 }

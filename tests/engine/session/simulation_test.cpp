@@ -632,7 +632,7 @@ TEST(Simulation, ACutClayHalfPulledAwayLeavesTheOtherHalfAsItIs) {
   std::vector<int> far, near;
   for (int v = 0; v < sim.model().numVertices(); ++v)
     (n.dot(sim.model().mesh.vertices[v] - c) > 0 ? far : near).push_back(v);
-  sim.addAnchor(far, {{0.0, Vec3::Zero()}, {0.3, 0.06 * n}});
+  sim.anchors().add(far, {{0.0, Vec3::Zero()}, {0.3, 0.06 * n}});
   for (int f = 0; f < 30; ++f) sim.advance();
   double moved = 0.0, pulled = 1e9;
   for (int v : near)

@@ -137,5 +137,33 @@ TEST(SurfaceBvh, APickAfterACutReachesThePieceUnderTheCursor) {
   EXPECT_EQ(rightPiece, sim.pieceOf(sim.nearestVertex(Vec3(0.09, 0, 0))));
 }
 
+// The picker follows its surface: moved positions under a new generation (a refit), other faces
+// under the same topology key (the face count changed: a rebuild), and another key.
+TEST(SurfacePicker, RefitsOnANewGenerationAndRebuildsOnNewFaces) {
+  TriMesh m = sphereSurface();
+  SurfacePicker picker;
+  const Vec3 down(0, -1, 0), above(0, 2, 0);
+  const auto first = picker.intersect(m, 1, 1, above, down);
+  ASSERT_TRUE(first);
+  for (Vec3& p : m.vertices) p.y() += 0.25;
+  const auto moved = picker.intersect(m, 1, 2, above, down);
+  ASSERT_TRUE(moved);
+  EXPECT_NEAR(moved->distance, first->distance - 0.25, 1e-12);
+  const int face = moved->face;
+  m.faces.erase(m.faces.begin() + face);  // the face under the ray goes: another face count
+  const auto rebuilt = picker.intersect(m, 1, 2, above, down);
+  ASSERT_TRUE(rebuilt);
+  EXPECT_NE(rebuilt->face, face);
+  SurfaceBvh fresh;
+  fresh.build(m);
+  EXPECT_DOUBLE_EQ(rebuilt->distance, fresh.intersect(m, above, down)->distance);
+  // The same count under another key (new damage) is rebuilt too.
+  std::swap(m.faces.front(), m.faces.back());
+  fresh.build(m);
+  const auto swapped = picker.intersect(m, 2, 2, above, down);
+  ASSERT_TRUE(swapped);
+  EXPECT_EQ(swapped->face, fresh.intersect(m, above, down)->face);
+}
+
 }  // namespace
 }  // namespace galsculpt

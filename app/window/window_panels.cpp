@@ -1,4 +1,4 @@
-#include "app/window/sculpt_app.h"
+#include "app/window/window_panels.h"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -72,117 +72,117 @@ constexpr float kOverlayTextWidth = 340.0f;
 
 }  // namespace
 
-void SculptApp::drawUi() {
-  drawMenu();
-  drawToolsPanel();
-  drawScenePanel();
-  drawOverlay();
-  drawCursor();
-  drawDialogs();
+void WindowPanels::draw(PanelContext& c) {
+  drawMenu(c);
+  drawToolsPanel(c);
+  drawScenePanel(c);
+  drawOverlay(c);
+  drawCursor(c);
+  drawDialogs(c);
 }
 
-void SculptApp::drawMenu() {
+void WindowPanels::drawMenu(PanelContext& c) {
   if (!ImGui::BeginMainMenuBar()) return;
   if (ImGui::BeginMenu("File")) {
-    const bool open = session_ != nullptr;
-    if (ImGui::MenuItem("Open...", "Ctrl+O")) execute({AppCommand::Open, ""});
+    const bool open = c.session != nullptr;
+    if (ImGui::MenuItem("Open...", "Ctrl+O")) c.execute({AppCommand::Open, ""});
     if (ImGui::MenuItem("Save project", "Ctrl+S", false, open))
-      execute({AppCommand::SaveProject, projectFile_.string()});
+      c.execute({AppCommand::SaveProject, c.projectFile.string()});
     if (ImGui::MenuItem("Save project as...", "Ctrl+Shift+S", false, open))
-      execute({AppCommand::SaveProject, ""});
+      c.execute({AppCommand::SaveProject, ""});
     if (ImGui::MenuItem("Save recording...", nullptr, false, open))
-      execute({AppCommand::SaveRecording, ""});
+      c.execute({AppCommand::SaveRecording, ""});
     ImGui::Separator();
     if (ImGui::MenuItem("Export surface...", "Ctrl+E", false, open))
-      execute({AppCommand::Export, ""});
+      c.execute({AppCommand::Export, ""});
     if (ImGui::MenuItem("Export tet mesh...", nullptr, false, open))
-      execute({AppCommand::ExportTets, ""});
+      c.execute({AppCommand::ExportTets, ""});
     ImGui::Separator();
-    if (ImGui::MenuItem("Quit", "Ctrl+Q")) execute({AppCommand::Quit, ""});
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) c.execute({AppCommand::Quit, ""});
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Edit")) {
     const std::string undo =
-        session_ && session_->canUndo() ? "Undo " + session_->undoLabel() : "Undo";
+        c.session && c.session->canUndo() ? "Undo " + c.session->undoLabel() : "Undo";
     const std::string redo =
-        session_ && session_->canRedo() ? "Redo " + session_->redoLabel() : "Redo";
-    if (ImGui::MenuItem(undo.c_str(), "Ctrl+Z", false, session_ && session_->canUndo()))
-      execute({AppCommand::Undo, ""});
-    if (ImGui::MenuItem(redo.c_str(), "Ctrl+Shift+Z", false, session_ && session_->canRedo()))
-      execute({AppCommand::Redo, ""});
-    if (ImGui::MenuItem("Reset to the start", nullptr, false, session_ != nullptr))
-      execute({AppCommand::Reset, ""});
+        c.session && c.session->canRedo() ? "Redo " + c.session->redoLabel() : "Redo";
+    if (ImGui::MenuItem(undo.c_str(), "Ctrl+Z", false, c.session && c.session->canUndo()))
+      c.execute({AppCommand::Undo, ""});
+    if (ImGui::MenuItem(redo.c_str(), "Ctrl+Shift+Z", false, c.session && c.session->canRedo()))
+      c.execute({AppCommand::Redo, ""});
+    if (ImGui::MenuItem("Reset to the start", nullptr, false, c.session != nullptr))
+      c.execute({AppCommand::Reset, ""});
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
-    if (ImGui::MenuItem("Shaded", nullptr, style_.view == SurfaceView::Shaded))
-      style_.view = SurfaceView::Shaded;
-    if (ImGui::MenuItem("Damage", nullptr, style_.view == SurfaceView::Damage))
-      style_.view = SurfaceView::Damage;
-    if (ImGui::MenuItem("Stress", nullptr, style_.view == SurfaceView::Stress))
-      style_.view = SurfaceView::Stress;
-    ImGui::MenuItem("Wireframe", "W", &wireframe_);
-    ImGui::MenuItem("Tint crack faces", "C", &style_.tintCracks);
+    if (ImGui::MenuItem("Shaded", nullptr, c.style.view == SurfaceView::Shaded))
+      c.style.view = SurfaceView::Shaded;
+    if (ImGui::MenuItem("Damage", nullptr, c.style.view == SurfaceView::Damage))
+      c.style.view = SurfaceView::Damage;
+    if (ImGui::MenuItem("Stress", nullptr, c.style.view == SurfaceView::Stress))
+      c.style.view = SurfaceView::Stress;
+    ImGui::MenuItem("Wireframe", "W", &c.wireframe);
+    ImGui::MenuItem("Tint crack faces", "C", &c.style.tintCracks);
     ImGui::Separator();
-    if (ImGui::MenuItem("Frame", "F", false, session_ != nullptr))
-      execute({AppCommand::FrameAll, ""});
-    if (ImGui::MenuItem("Front", "1")) execute({AppCommand::ViewFront, ""});
-    if (ImGui::MenuItem("Side", "3")) execute({AppCommand::ViewSide, ""});
-    if (ImGui::MenuItem("Top", "7")) execute({AppCommand::ViewTop, ""});
+    if (ImGui::MenuItem("Frame", "F", false, c.session != nullptr))
+      c.execute({AppCommand::FrameAll, ""});
+    if (ImGui::MenuItem("Front", "1")) c.execute({AppCommand::ViewFront, ""});
+    if (ImGui::MenuItem("Side", "3")) c.execute({AppCommand::ViewSide, ""});
+    if (ImGui::MenuItem("Top", "7")) c.execute({AppCommand::ViewTop, ""});
     ImGui::EndMenu();
   }
   ImGui::EndMainMenuBar();
 }
 
-void SculptApp::drawToolsPanel() {
+void WindowPanels::drawToolsPanel(PanelContext& c) {
   ImGui::SetNextWindowPos(ImVec2(10, 30), ImGuiCond_FirstUseEver);
   ImGui::Begin("Tools", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   for (const ToolRow& row : toolTable()) {
     const std::string label = std::string(row.label) + " (" + row.key + ")";
-    if (ImGui::RadioButton(label.c_str(), toolSettings_.tool == row.tool))
-      execute({AppCommand::Tool, row.label});
+    if (ImGui::RadioButton(label.c_str(), c.tools.tool == row.tool))
+      c.execute({AppCommand::Tool, row.label});
   }
   ImGui::Separator();
-  float radius = static_cast<float>(toolSettings_.radius);
+  float radius = static_cast<float>(c.tools.radius);
   if (ImGui::SliderFloat("radius (m)", &radius, 1e-4f, 1.0f, "%.4f", ImGuiSliderFlags_Logarithmic))
-    toolSettings_.radius = radius;
-  float strength = static_cast<float>(toolSettings_.strength);
+    c.tools.radius = radius;
+  float strength = static_cast<float>(c.tools.strength);
   if (ImGui::SliderFloat("strength (m/s)", &strength, 1e-4f, 10.0f, "%.4f",
                          ImGuiSliderFlags_Logarithmic))
-    toolSettings_.strength = strength;
-  ImGui::Checkbox("symmetry (X)", &toolSettings_.symmetry);
-  if (toolSettings_.symmetry) {
+    c.tools.strength = strength;
+  ImGui::Checkbox("symmetry (X)", &c.tools.symmetry);
+  if (c.tools.symmetry) {
     ImGui::SameLine();
     const char* axes[] = {"x", "y", "z"};
     ImGui::SetNextItemWidth(50);
-    ImGui::Combo("plane", &toolSettings_.symmetryAxis, axes, 3);
-    float offset = static_cast<float>(toolSettings_.symmetryOffset);
-    if (ImGui::InputFloat("offset (m)", &offset)) toolSettings_.symmetryOffset = offset;
+    ImGui::Combo("plane", &c.tools.symmetryAxis, axes, 3);
+    float offset = static_cast<float>(c.tools.symmetryOffset);
+    if (ImGui::InputFloat("offset (m)", &offset)) c.tools.symmetryOffset = offset;
   }
   ImGui::Separator();
-  if (ImGui::Button(playing_ ? "Pause (space)" : "Play (space)"))
-    execute({AppCommand::TogglePlay, ""});
+  if (ImGui::Button(c.playing ? "Pause (space)" : "Play (space)"))
+    c.execute({AppCommand::TogglePlay, ""});
   ImGui::SameLine();
-  if (ImGui::Button("Step (.)")) execute({AppCommand::Step, ""});
+  if (ImGui::Button("Step (.)")) c.execute({AppCommand::Step, ""});
   ImGui::SameLine();
-  if (ImGui::Button("Reset")) execute({AppCommand::Reset, ""});
+  if (ImGui::Button("Reset")) c.execute({AppCommand::Reset, ""});
   const char* views[] = {"shaded", "damage", "stress"};
-  int view = static_cast<int>(style_.view);
-  if (ImGui::Combo("view (V)", &view, views, 3)) style_.view = static_cast<SurfaceView>(view);
-  if (style_.view == SurfaceView::Stress) {
-    float scale = static_cast<float>(style_.scaleMax);
+  int view = static_cast<int>(c.style.view);
+  if (ImGui::Combo("view (V)", &view, views, 3)) c.style.view = static_cast<SurfaceView>(view);
+  if (c.style.view == SurfaceView::Stress) {
+    float scale = static_cast<float>(c.style.scaleMax);
     if (ImGui::SliderFloat("hottest (Pa)", &scale, 1.0f, 1e9f, "%.3g",
                            ImGuiSliderFlags_Logarithmic))
-      style_.scaleMax = scale;
+      c.style.scaleMax = scale;
   }
-  ImGui::Checkbox("wireframe (W)", &wireframe_);
+  ImGui::Checkbox("wireframe (W)", &c.wireframe);
   ImGui::SameLine();
-  ImGui::Checkbox("tint cracks (C)", &style_.tintCracks);
+  ImGui::Checkbox("tint cracks (C)", &c.style.tintCracks);
   ImGui::TextDisabled("left: tool   right: orbit   middle: pan   wheel: zoom");
   ImGui::End();
 }
 
-void SculptApp::drawOverlay() {
+void WindowPanels::drawOverlay(PanelContext& c) {
   // Pinned by its top-right corner to the screen's: as its figures widen it grows leftwards,
   // never off the edge.
   ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 10, 30), ImGuiCond_Always,
@@ -195,39 +195,30 @@ void SculptApp::drawOverlay() {
   // draw cannot be read, and would make the window redraw the panel every time (on a software
   // rasterizer a panel that did not change is not drawn again). The frame's own figures below
   // are the drawn frame's.
-  const Clock::time_point now = Clock::now();
-  if (now - overlayRates_.at > std::chrono::milliseconds(250)) {
-    overlayRates_ = {now,
-                     windowRate_.rate(now),
-                     windowCpuMs_.median(),
-                     simulationRate_.rate(now),
-                     latencyMs_.empty() ? -1.0 : latencyMs_.median(),
-                     latencyMs_.empty() ? -1.0 : latencyMs_.last()};
-  }
-  const OverlayRates& r = overlayRates_;
+  const WindowMeters::Overlay& r = c.meters.overlay();
   ImGui::Text("window %.0f fps (%.1f ms a frame on its thread)   simulation %.1f fps", r.windowFps,
               r.windowCpuMs, r.simulationFps);
   if (r.latencyMedianMs >= 0.0)
     ImGui::Text("input to screen %.0f ms (median; last %.0f ms)", r.latencyMedianMs,
                 r.latencyLastMs);
-  if (session_) {
+  if (c.session) {
     // While a frame is in flight only what stays fixed is read from the session; the rest is
-    // the drawn frame's (shown_).
-    const Simulation& sim = session_->simulation();
-    const SceneDescription& scene = session_->scene();
-    const FrameMetrics& m = shown_.metrics;
+    // the drawn frame's (c.shown).
+    const Simulation& sim = c.session->simulation();
+    const SceneDescription& scene = c.session->scene();
+    const FrameMetrics& m = c.shown.metrics;
     ImGui::Text("%s: %d vertices, %d tets", scene.name.c_str(), sim.model().numVertices(),
                 sim.model().numTets());
     ImGui::Text("material: %s (%s)", scene.material.preset.c_str(),
                 materialModelName(scene.material.model));
     ImGui::Text("solver: %s (%s) %s on the %s backend, %d threads", enumName(scene.solver.type),
                 enumName(scene.solver.preset), scene.solver.grid.c_str(),
-                shown_.backendName.c_str(), threadCount());
+                c.shown.backendName.c_str(), threadCount());
     ImGui::Separator();
-    ImGui::Text("frame %d  (%s)", m.frame, playing_ ? "playing" : "paused");
+    ImGui::Text("frame %d  (%s)", m.frame, c.playing ? "playing" : "paused");
     ImGui::Text("ms: total %.1f  elements %.1f  solve %.1f", m.msTotal, m.msElements, m.msSolve);
     ImGui::Text("    fracture %.1f  plastic %.1f  surface %.1f", m.msFracture, m.msPlastic,
-                shown_.msSurface);
+                c.shown.msSurface);
     // (local: of the Newton iterations, those that solved only where the residual was)
     ImGui::Text("residual %.2e   Newton %d (local %d)   CG %d", m.residual, m.newtonIterations,
                 m.localIterations, m.cgIterations);
@@ -244,20 +235,20 @@ void SculptApp::drawOverlay() {
       ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "%d elements inside out", m.invertedElements);
     ImGui::Text("volume change %+.3f %%", m.volumeChangePct);
     ImGui::Text("pieces %d   damaged edges %d   anchored %zu", m.pieces, m.damagedEdges,
-                shown_.anchors.size());
+                c.shown.anchors.size());
     if (m.warnings > 0)
       ImGui::TextColored(ImVec4(1, 0.6f, 0.2f, 1), "warnings this frame: %d", m.warnings);
-    ImGui::Text("history %.1f MB, %zu recorded events", shown_.historyBytes / 1048576.0,
-                shown_.recordedEvents);
-    for (const std::string& note : shown_.notes) ImGui::TextDisabled("%s", note.c_str());
+    ImGui::Text("history %.1f MB, %zu recorded events", c.shown.historyBytes / 1048576.0,
+                c.shown.recordedEvents);
+    for (const std::string& note : c.shown.notes) ImGui::TextDisabled("%s", note.c_str());
   }
   if (!status_.empty()) ImGui::TextDisabled("%s", status_.c_str());
   ImGui::PopTextWrapPos();
   ImGui::End();
 }
 
-void SculptApp::drawScenePanel() {
-  if (!session_) return;
+void WindowPanels::drawScenePanel(PanelContext& c) {
+  if (!c.session) return;
   ImGui::SetNextWindowPos(ImVec2(10, 470), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
   ImGui::Begin("Scene settings", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
@@ -291,23 +282,23 @@ void SculptApp::drawScenePanel() {
                        "%.4g");
   ImGui::Separator();
   editSolverOptions(editing_.solver);
-  if (ImGui::Button("Apply (restarts the simulation)")) applySettings_ = true;  // between frames
+  if (ImGui::Button("Apply (restarts the simulation)")) apply_ = true;  // between frames
   ImGui::SameLine();
   if (ImGui::Button("Revert")) {
-    editing_ = sceneSettings(session_->scene());
+    editing_ = sceneSettings(c.session->scene());
   }
   ImGui::End();
 }
 
 // The tool's preview, at the newest cursor sample and against the drawn surface, so that it
 // follows the cursor at the window's rate however long a frame takes.
-void SculptApp::drawCursor() {
-  if (!controller_ || (ImGui::GetIO().WantCaptureMouse && !scripted_)) return;
+void WindowPanels::drawCursor(PanelContext& c) {
+  if (!c.controller || (ImGui::GetIO().WantCaptureMouse && !c.scripted)) return;
   int width = 1, height = 1;
-  glfwGetWindowSize(window_, &width, &height);
+  glfwGetWindowSize(c.window, &width, &height);
   ImDrawList* draw = ImGui::GetForegroundDrawList();
   const float x = static_cast<float>(cursorX_), y = static_cast<float>(cursorY_);
-  if (toolSettings_.tool == Tool::Knife) {
+  if (c.tools.tool == Tool::Knife) {
     // The stroke so far (the blade's path on the screen), then the knife at the cursor.
     for (size_t k = 1; k < trail_.size(); ++k)
       draw->AddLine(ImVec2(trail_[k - 1].first, trail_[k - 1].second),
@@ -315,53 +306,43 @@ void SculptApp::drawCursor() {
     draw->AddLine(ImVec2(x - 8, y + 8), ImVec2(x + 8, y - 8), IM_COL32(255, 80, 60, 255), 2.0f);
     return;
   }
-  const std::optional<RayHit> hit = hoverShown();
+  const std::optional<RayHit> hit = hoverShown(c, width, height);
   if (!hit) return;
   // The brush radius on screen: project a point one radius away on the plane facing the camera.
-  const Vec3 side = camera_.forward().cross(Vec3::UnitY()).normalized();
-  const Vec3 c = camera_.project(hit->point, width, height);
-  const Vec3 r = camera_.project(hit->point + toolSettings_.radius * side, width, height);
-  const float pixels = static_cast<float>((r - c).head<2>().norm());
-  const ImU32 color = toolRow(toolSettings_.tool).kind == ToolKind::Paint
-                          ? IM_COL32(60, 110, 255, 255)
-                          : IM_COL32(255, 255, 255, 220);
-  draw->AddCircle(ImVec2(float(c.x()), float(c.y())), pixels, color, 48, 1.5f);
-  if (toolSettings_.symmetry) {
-    const Symmetry plane{toolSettings_.symmetryAxis, toolSettings_.symmetryOffset};
-    const Vec3 m = camera_.project(plane.point(hit->point), width, height);
+  const Vec3 side = c.camera.forward().cross(Vec3::UnitY()).normalized();
+  const Vec3 centre = c.camera.project(hit->point, width, height);
+  const Vec3 r = c.camera.project(hit->point + c.tools.radius * side, width, height);
+  const float pixels = static_cast<float>((r - centre).head<2>().norm());
+  const ImU32 color = toolRow(c.tools.tool).kind == ToolKind::Paint ? IM_COL32(60, 110, 255, 255)
+                                                                    : IM_COL32(255, 255, 255, 220);
+  draw->AddCircle(ImVec2(float(centre.x()), float(centre.y())), pixels, color, 48, 1.5f);
+  if (c.tools.symmetry) {
+    const Symmetry plane{c.tools.symmetryAxis, c.tools.symmetryOffset};
+    const Vec3 m = c.camera.project(plane.point(hit->point), width, height);
     draw->AddCircle(ImVec2(float(m.x()), float(m.y())), pixels, IM_COL32(255, 255, 255, 110), 48,
                     1.0f);
   }
 }
 
 // The drawn surface's point under the cursor (none for the knife and navigation).
-std::optional<RayHit> SculptApp::hoverShown() {
-  const ToolKind kind = toolRow(toolSettings_.tool).kind;
-  if (!shown_.valid || kind == ToolKind::Navigate || kind == ToolKind::Knife) return std::nullopt;
-  if (shown_.damageRevision != bvhDamage_ || shown_.surface.numFaces() != bvhFaces_) {
-    shownBvh_.build(shown_.surface);
-  } else if (shown_.generation != bvhGeneration_) {
-    shownBvh_.refit(shown_.surface);
-  }
-  bvhDamage_ = shown_.damageRevision;
-  bvhFaces_ = shown_.surface.numFaces();
-  bvhGeneration_ = shown_.generation;
-  int width = 1, height = 1;
-  glfwGetWindowSize(window_, &width, &height);
+std::optional<RayHit> WindowPanels::hoverShown(const PanelContext& c, int width, int height) {
+  const ToolKind kind = toolRow(c.tools.tool).kind;
+  if (!c.shown.valid || kind == ToolKind::Navigate || kind == ToolKind::Knife) return std::nullopt;
   Vec3 origin, direction;
-  camera_.ray(cursorX_, cursorY_, width, height, origin, direction);
-  return shownBvh_.intersect(shown_.surface, origin, direction);
+  c.camera.ray(cursorX_, cursorY_, width, height, origin, direction);
+  return shownPicker_.intersect(c.shown.surface, c.shown.damageRevision, c.shown.generation, origin,
+                                direction);
 }
 
-void SculptApp::drawDialogs() {
-  if (busy()) {
+void WindowPanels::drawDialogs(PanelContext& c) {
+  if (c.opener.busy()) {
     ImGui::OpenPopup("Loading");
   }
   if (ImGui::BeginPopupModal("Loading", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     const char spinner[] = "|/-\\";
     ImGui::Text("%c %s", spinner[static_cast<int>(ImGui::GetTime() * 8) % 4],
-                opener_.progress().c_str());
-    if (!busy()) ImGui::CloseCurrentPopup();
+                c.opener.progress().c_str());
+    if (!c.opener.busy()) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
   if (showError_) {
@@ -370,15 +351,15 @@ void SculptApp::drawDialogs() {
   }
   if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::TextUnformatted(error_.c_str());
-    if (ImGui::Button("OK") || scripted_) ImGui::CloseCurrentPopup();
+    if (ImGui::Button("OK") || c.scripted) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
-  drawRecoveryDialog();
-  drawPathDialog();
+  drawRecoveryDialog(c);
+  drawPathDialog(c);
 }
 
-void SculptApp::drawRecoveryDialog() {
-  if (askRecovery_ && !busy()) {
+void WindowPanels::drawRecoveryDialog(PanelContext& c) {
+  if (askRecovery_ && !c.opener.busy()) {
     ImGui::OpenPopup("Recover");
     askRecovery_ = false;
   }
@@ -386,13 +367,13 @@ void SculptApp::drawRecoveryDialog() {
     ImGui::Text("Galsculpt did not close normally. Recover the autosaved work?");
     ImGui::TextDisabled("%s", recoverable_.front().string().c_str());
     if (ImGui::Button("Recover")) {
-      execute({AppCommand::Open, recoverable_.front().string()});
+      c.execute({AppCommand::Open, recoverable_.front().string()});
       // Keep the file until the recovered work is saved elsewhere or autosaved anew.
       ImGui::CloseCurrentPopup();
     }
     ImGui::SameLine();
     if (ImGui::Button("Discard")) {
-      for (const fs::path& f : recoverable_) recovery_->remove(f);
+      for (const fs::path& f : recoverable_) c.recovery.remove(f);
       ImGui::CloseCurrentPopup();
     }
     ImGui::SameLine();
@@ -402,7 +383,7 @@ void SculptApp::drawRecoveryDialog() {
 }
 
 // The path dialog of a file command (Open, Save project, ...) that came without a path.
-void SculptApp::drawPathDialog() {
+void WindowPanels::drawPathDialog(PanelContext& c) {
   // Titles, hints and default names, by AppCommand::Open .. ExportTets.
   struct Kind {
     AppCommand command;
@@ -423,9 +404,9 @@ void SculptApp::drawPathDialog() {
   if (!kind) return;
   ImGui::OpenPopup("Path");
   if (path_[0] == '\0') {
-    const std::string stem = session_ ? session_->scene().name : "galsculpt";
+    const std::string stem = c.session ? c.session->scene().name : "galsculpt";
     const std::string guess =
-        kind->command == AppCommand::Open ? currentFile_.string() : stem + kind->suffix;
+        kind->command == AppCommand::Open ? c.currentFile.string() : stem + kind->suffix;
     std::snprintf(path_, sizeof path_, "%s", guess.c_str());
   }
   if (ImGui::BeginPopupModal("Path", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
@@ -441,10 +422,22 @@ void SculptApp::drawPathDialog() {
       askingPath_.reset();
       path_[0] = '\0';
       ImGui::CloseCurrentPopup();
-      if (ok && !chosen.argument.empty()) execute(chosen);
+      if (ok && !chosen.argument.empty()) c.execute(chosen);
     }
     ImGui::EndPopup();
   }
+}
+
+void WindowPanels::cursorAt(double x, double y) {
+  cursorX_ = x;
+  cursorY_ = y;
+  if (trailing_) trail_.emplace_back(static_cast<float>(x), static_cast<float>(y));
+}
+
+void WindowPanels::knifeStroke(bool drawing) {
+  trailing_ = drawing;
+  trail_.clear();
+  if (trailing_) trail_.emplace_back(static_cast<float>(cursorX_), static_cast<float>(cursorY_));
 }
 
 }  // namespace galsculpt
