@@ -55,6 +55,19 @@ void AnchorRegistry::setSprings(int id, const std::vector<double>& weights) {
   a.springWeights = weights;
 }
 
+void AnchorRegistry::reshape(int id, std::vector<int> vertices, std::vector<Vec3> targets,
+                             std::vector<double> weights) {
+  AnchorConstraint& a = withId(id);
+  if (targets.size() != vertices.size())
+    throw std::invalid_argument("anchor targets: one per anchored vertex");
+  if (!weights.empty() && weights.size() != vertices.size())
+    throw std::invalid_argument("anchor springs: one weight per anchored vertex");
+  a.vertices = std::move(vertices);
+  a.origin = std::move(targets);
+  a.springWeights = std::move(weights);
+  a.path.clear();
+}
+
 int AnchorRegistry::unanchor(const std::vector<int>& vertices) {
   std::vector<char> drop(model_.numVertices(), 0);
   for (int v : vertices) drop[v] = 1;

@@ -46,6 +46,11 @@ class AnchorRegistry {
   // in [0, 1] (AnchorConstraint::springWeights) instead of held there. Throws std::out_of_range
   // for an unknown id, std::invalid_argument unless one weight per vertex.
   void setSprings(int id, const std::vector<double>& weights);
+  // A brush's hold from the next frame on: the anchor keeps its id and its place among the
+  // anchors, and holds `vertices` pulled toward `targets` by springs of `weights` (one each;
+  // empty weights: held exactly), without a path. Throws as setTargets and setSprings do.
+  void reshape(int id, std::vector<int> vertices, std::vector<Vec3> targets,
+               std::vector<double> weights);
   // Frees the given vertices from every anchor (scene, script and painted ones alike);
   // returns how many anchor entries were dropped.
   int unanchor(const std::vector<int>& vertices);

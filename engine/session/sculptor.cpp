@@ -135,13 +135,15 @@ void Sculptor::beforeFrame() {
   if (stroke_.kind == Tool::Grab) return;
   const double step = stroke_.strength * sim_.settings().dt;
   for (Side& side : sides_) {
-    if (side.anchor >= 0) sim_.anchors().remove(side.anchor);
-    side.anchor = -1;
     const Vec3 from = side.previousCenter;
     side.previousCenter = side.center;
     selectUnderBrush(from, side.center, stroke_.radius, side.seed, side.vertices, side.weights);
     strokeReach_ += static_cast<int>(side.vertices.size());
-    if (side.vertices.empty()) continue;
+    if (side.vertices.empty()) {  // nothing under the brush this frame: it holds nothing
+      if (side.anchor >= 0) sim_.anchors().remove(side.anchor);
+      side.anchor = -1;
+      continue;
+    }
     const std::vector<Vec3>& x = sim_.state().x;
     std::vector<Vec3> targets(side.vertices.size());
     std::map<int, Vec3> kept;
@@ -155,9 +157,9 @@ void Sculptor::beforeFrame() {
       kept.emplace(v, targets[i]);
     }
     side.targets = std::move(kept);
-    side.anchor = sim_.anchors().add(side.vertices);
-    sim_.anchors().setTargets(side.anchor, targets);
-    sim_.anchors().setSprings(side.anchor, side.weights);
+    // The stroke's one anchor, reshaped each frame (its id and place among the anchors kept).
+    if (side.anchor < 0) side.anchor = sim_.anchors().add(side.vertices);
+    sim_.anchors().reshape(side.anchor, side.vertices, std::move(targets), side.weights);
   }
 }
 

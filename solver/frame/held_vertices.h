@@ -1,9 +1,12 @@
 // The vertices a sub-step does not solve for: anchored ones, moved along their paths to the
 // sub-step's end, and removed debris (solver/fracture/debris.h), held where the state has them.
-// Computed on the host per sub-step and uploaded only when they change: the held flags (fixed),
-// the removed flags, and the anchored and removed vertices' targets in the frame's data.
+// Computed on the host when the anchors or the removed debris changed, or when an anchor's path
+// moves it (not at every sub-step: a brush changes its anchor once a frame), and uploaded only
+// where they changed: the held flags (fixed), the removed flags, and the anchored and removed
+// vertices' targets in the frame's data.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -31,6 +34,7 @@ class HeldVertexSet {
     if (removed.empty()) removed.assign(d_.n, 0);
     if (removed == hostRemoved_) return;
     hostRemoved_ = std::move(removed);
+    removedChanged_ = true;
     d_.removed.upload(hostRemoved_);
     removedVertices_.clear();
     for (int v = 0; v < d_.n; ++v)
@@ -39,15 +43,30 @@ class HeldVertexSet {
 
   // Removed debris stays where `state` has it (a backend may step several states).
   void holdRemovedAt(const SimState& state) {
-    removedTargets_.clear();
+    std::vector<double> targets;
+    targets.reserve(3 * removedVertices_.size());
     for (int v : removedVertices_)
-      removedTargets_.insert(removedTargets_.end(),
-                             {state.x[v].x(), state.x[v].y(), state.x[v].z()});
+      targets.insert(targets.end(), {state.x[v].x(), state.x[v].y(), state.x[v].z()});
+    if (targets == removedTargets_) return;
+    removedTargets_ = std::move(targets);
+    removedChanged_ = true;
   }
 
   // The held vertices and their targets at `time` (the sub-step's end), and the soft anchors'
   // springs: a vertex two springs pull goes to their stiffness-weighted target.
   void prepare(const std::vector<AnchorConstraint>& anchors, double time) {
+    // Nothing moved since the last prepare (the same anchors, none on a path, the same removed
+    // debris): what the executor holds stands, and nothing let go. The anchors are compared by
+    // content (a backend may step several states): what they hold, not the body.
+    const bool onPaths = std::any_of(anchors.begin(), anchors.end(),
+                                     [](const AnchorConstraint& a) { return !a.path.empty(); });
+    if (prepared_ && !onPaths && !removedChanged_ && sameAnchors(anchors, preparedAnchors_)) {
+      letGo_ = false;
+      return;
+    }
+    prepared_ = true;
+    removedChanged_ = false;
+    preparedAnchors_ = anchors;
     std::vector<std::uint8_t> fixed(d_.n, 0);
     std::vector<int> vertices;
     std::vector<double> targets;
@@ -118,6 +137,16 @@ class HeldVertexSet {
   }
 
  private:
+  static bool sameAnchors(const std::vector<AnchorConstraint>& a,
+                          const std::vector<AnchorConstraint>& b) {
+    if (a.size() != b.size()) return false;
+    for (size_t i = 0; i < a.size(); ++i)
+      if (a[i].vertices != b[i].vertices || a[i].origin != b[i].origin ||
+          a[i].springWeights != b[i].springWeights || !a[i].path.empty() || !b[i].path.empty())
+        return false;
+    return true;
+  }
+
   // Uploads `values` to the executor's `buffer` when they differ from its host shadow.
   template <typename T, typename Buffer>
   static void uploadChanged(const std::vector<T>& values, std::vector<T>& shadow, Buffer& buffer) {
@@ -137,6 +166,9 @@ class HeldVertexSet {
   std::vector<int> removedVertices_;    // ascending
   std::vector<double> removedTargets_;  // (3 per removed vertex) where each is held
   bool letGo_ = false;                  // letGo()
+  bool prepared_ = false;
+  bool removedChanged_ = false;  // the removed debris or its targets, since the last prepare
+  std::vector<AnchorConstraint> preparedAnchors_;  // the anchors of the last prepare
 };
 
 }  // namespace galsculpt

@@ -86,5 +86,27 @@ TEST(AnchorRegistry, RestoreBringsBackTagsAndTheNextId) {
   EXPECT_EQ(b.anchors.add({2}), 1);
 }
 
+// A brush's anchor is reshaped in place each frame: its id and place among the anchors stay.
+TEST(AnchorRegistry, ReshapeKeepsTheIdAndThePlace) {
+  Bar b;
+  const int brush = b.anchors.add({0, 1}, {{0.0, Vec3::Zero()}, {1.0, Vec3::UnitX()}});
+  const int grip = b.anchors.add({5});
+  b.anchors.reshape(brush, {2, 3, 4}, {Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(3, 0, 0)},
+                    {1.0, 0.5, 0.1});
+  ASSERT_EQ(b.state.anchors.size(), 2u);
+  const AnchorConstraint& a = b.state.anchors[0];
+  EXPECT_EQ(a.vertices, (std::vector<int>{2, 3, 4}));
+  EXPECT_EQ(a.origin[2], Vec3(3, 0, 0));
+  EXPECT_EQ(a.springWeights, (std::vector<double>{1.0, 0.5, 0.1}));
+  EXPECT_TRUE(a.path.empty());
+  EXPECT_EQ(b.anchors.find(grip)->vertices, (std::vector<int>{5}));
+  EXPECT_EQ(b.anchors.nextId(), 2);
+  EXPECT_THROW(b.anchors.reshape(brush, {1}, {}, {}), std::invalid_argument);
+  EXPECT_THROW(b.anchors.reshape(brush, {1}, {Vec3::Zero()}, {0.5, 0.5}), std::invalid_argument);
+  EXPECT_THROW(b.anchors.reshape(9, {1}, {Vec3::Zero()}, {}), std::out_of_range);
+  b.anchors.reshape(brush, {1}, {Vec3::Zero()}, {});
+  EXPECT_TRUE(b.state.anchors[0].springWeights.empty()) << "held exactly";
+}
+
 }  // namespace
 }  // namespace galsculpt

@@ -41,6 +41,29 @@ TEST(Sculptor, GrabMovesTheHeldVerticesTogetherAndTheBodyFollows) {
   EXPECT_EQ(sim.state().anchors.size(), anchorsBefore) << "the grab lets go";
 }
 
+// A shaping brush holds through one anchor for its whole stroke, reshaped each frame (no anchor
+// removed and added again), and lets go of it when the stroke ends.
+TEST(Sculptor, AStrokeHoldsThroughOneAnchorReshapedEachFrame) {
+  SculptSession s(clayBall().scene, clayBall().mesh);
+  const Simulation& sim = s.simulation();
+  const size_t anchorsBefore = sim.state().anchors.size();
+  const int idsBefore = sim.anchors().nextId();
+  const Vec3 top(0.0, 0.1, 0.0);
+  s.beginStroke(brushAt(Tool::Push, top, Vec3::UnitY(), 0.03, 0.12));
+  std::vector<int> held;
+  for (int f = 0; f < 4; ++f) {
+    s.moveStroke(top + Vec3(0.005 * f, 0.0, 0.0), Vec3::UnitY());
+    s.step();
+    ASSERT_EQ(sim.state().anchors.size(), anchorsBefore + 1) << "frame " << f;
+    EXPECT_EQ(sim.anchors().nextId(), idsBefore + 1) << "one anchor for the stroke";
+    held = sim.state().anchors.back().vertices;
+    EXPECT_FALSE(held.empty());
+    EXPECT_EQ(sim.state().anchors.back().springWeights.size(), held.size());
+  }
+  s.endStroke();
+  EXPECT_EQ(sim.state().anchors.size(), anchorsBefore) << "the brush lets go";
+}
+
 // Push dents the top; clay keeps the dent after the brush lets go, rubber springs back.
 TEST(Sculptor, PushDentsClayForGoodWhileRubberSpringsBack) {
   auto dentAfterRelease = [](const SceneDescription& scene) {

@@ -127,5 +127,56 @@ TEST(HeldVertexSet, LetsGoWhenMostOfWhatHeldTheBodyIsReleased) {
   EXPECT_TRUE(held.letGo()) << "the anchor released";
 }
 
+// Prepared again only when something moved: the same anchors (none on a path) and the same
+// debris leave what the executor holds; another target, an anchor's path at a later time, new
+// debris or debris held elsewhere are each taken.
+TEST(HeldVertexSet, PreparesAgainOnlyWhenAnchorsPathsOrDebrisMoved) {
+  SimModel m = buildSimModel(test::gridBar(8, 2, 2, 0.01), rubber());
+  m.debrisRemoval = 0.2;
+  SimState s = initialState(m);
+  CpuExecutor ex;
+  FrameData<CpuExecutor> d(m);
+  HeldVertexSet<CpuExecutor> held(ex, m, d);
+  const int n = m.numVertices(), last = n - 1;
+  auto targetOf = [&](int v) {
+    std::vector<double> x(3 * n, 0.0);
+    d.x.upload(x);
+    held.place();
+    d.x.download(x.data(), x.size());
+    return Vec3(x[3 * v], x[3 * v + 1], x[3 * v + 2]);
+  };
+  AnchorConstraint grip;
+  grip.vertices = {last};
+  grip.origin = {Vec3(1, 2, 3)};
+  held.prepare({grip}, 0.0);
+  EXPECT_EQ(targetOf(last), Vec3(1, 2, 3));
+  held.prepare({grip}, 0.5);
+  EXPECT_EQ(targetOf(last), Vec3(1, 2, 3)) << "nothing moved";
+  EXPECT_FALSE(held.letGo());
+  grip.origin = {Vec3(4, 5, 6)};
+  held.prepare({grip}, 0.5);
+  EXPECT_EQ(targetOf(last), Vec3(4, 5, 6)) << "another target";
+  AnchorConstraint moving;
+  moving.vertices = {last};
+  moving.path = {{0.0, Vec3::Zero()}, {1.0, Vec3(0, 0, 0.01)}};
+  held.prepare({moving}, 0.5);
+  EXPECT_NEAR(targetOf(last).z(), m.mesh.vertices[last].z() + 0.005, 1e-15);
+  held.prepare({moving}, 1.0);
+  EXPECT_NEAR(targetOf(last).z(), m.mesh.vertices[last].z() + 0.01, 1e-15) << "on its path";
+  // Debris cut off, then held where the state has it, then moved there.
+  cutAt(m, s, 0.005);
+  held.updateRemovedDebris(censusPieces(m, s.damaged));
+  held.holdRemovedAt(s);
+  held.prepare({grip}, 1.0);
+  EXPECT_EQ(targetOf(0), m.mesh.vertices[0]) << "the debris held where it is";
+  held.prepare({grip}, 1.0);
+  for (int v = 0; v < n; ++v)
+    if (m.mesh.vertices[v].x() < 0.005) s.x[v] += Vec3(0, -0.003, 0);
+  held.holdRemovedAt(s);
+  held.prepare({grip}, 1.0);
+  EXPECT_EQ(targetOf(0), s.x[0]) << "held where the state now has it";
+  EXPECT_EQ(targetOf(last), Vec3(4, 5, 6));
+}
+
 }  // namespace
 }  // namespace galsculpt
