@@ -64,11 +64,14 @@ TEST(DevicePaths, TightSolutionsMoveByRoundOffWithTheStart) {
 
 // What a frame costs a device, counted on the CPU by the device-like backend
 // (device_counters.h): kernels, host waits and bytes a frame, as means over frames 2-11 (the
-// first uploads the model). Printed, and bounded a tenth above the counts at 2026-12-07 (the
-// sphere 313 kernels and 32.5 waits, the cut sphere 476 and 48.4, Charpy's bar after the break
-// 1,956 and 251.6: the counts are deterministic),
-// so that a change that adds a pass of launches or a host wait per Newton iteration fails; lower
-// the bounds as the device path improves (the target: 60 kernels and 4 waits on the sphere).
+// first uploads the model). Printed, and bounded a tenth above the counts (the counts are
+// deterministic), so that a change that adds a pass of launches or a host wait per Newton
+// iteration fails; lower the bounds as the device path improves (the target: 60 kernels and 4
+// waits on the sphere). The counts of 2026-12-07, after PCG's decisions moved to the device
+// (multigrid_pcg.h: a wait per batch of iterations, not three per iteration): the sphere 371
+// kernels and 14.4 waits (before: 313 and 32.5), the cut sphere 605 and 20.9 (476 and 48.4),
+// Charpy's bar after the break 2,156 and 63.9 (1,956 and 251.6); the kernels a batch runs past
+// the stop are the price of the waits.
 struct DeviceFrameCost {
   double kernels = 0.0, syncs = 0.0, graphs = 0.0, hostToDevice = 0.0, deviceToHost = 0.0;
 };
@@ -97,15 +100,15 @@ DeviceFrameCost deviceFrameCost(const Simulation& sim, const char* name, int set
 TEST(DeviceCounts, TheHangingSpheresFrameStaysWithinItsLaunchesAndWaits) {
   const DeviceFrameCost c = deviceFrameCost(*hangingSphere(), "hanging sphere (6k, converged)");
   EXPECT_GT(c.kernels, 0.0);
-  EXPECT_LE(c.kernels, 345.0);
-  EXPECT_LE(c.syncs, 36.0);
+  EXPECT_LE(c.kernels, 408.0);
+  EXPECT_LE(c.syncs, 15.9);
   EXPECT_LE(c.hostToDevice, 1024.0) << "a frame uploads only what changed (anchor targets)";
 }
 
 TEST(DeviceCounts, TheCutSpheresFrameStaysWithinItsLaunchesAndWaits) {
   const DeviceFrameCost c = deviceFrameCost(*cutSphere(), "cut sphere (6k, two pieces falling)");
-  EXPECT_LE(c.kernels, 525.0);
-  EXPECT_LE(c.syncs, 53.0);
+  EXPECT_LE(c.kernels, 666.0);
+  EXPECT_LE(c.syncs, 23.0);
 }
 
 // Charpy's bar (8k tets, its converged scene) after the break: frames 41-50, the halves in
@@ -114,8 +117,8 @@ TEST(DeviceCounts, CharpysFramesAfterTheBreakStayWithinTheirLaunchesAndWaits) {
   const SceneDescription scene = sceneNamed("charpy", 8000);
   const Simulation sim(scene, loadSceneMesh(scene));
   const DeviceFrameCost c = deviceFrameCost(sim, "Charpy after the break (8k, converged)", 40);
-  EXPECT_LE(c.kernels, 2150.0);
-  EXPECT_LE(c.syncs, 277.0);
+  EXPECT_LE(c.kernels, 2372.0);
+  EXPECT_LE(c.syncs, 70.3);
 }
 
 // The CPU backend has no device: its rows are zero.
