@@ -9,7 +9,8 @@
 // Nothing in a V-cycle waits for the executor: scalars of the coarse CG (alpha, its stopping
 // test) live in executor memory and steer the launches that follow, so a whole solve can be
 // captured as one CUDA graph. The only host decisions are structural (levels, colours,
-// settings); PCG reads its scalars and is not captured.
+// settings). PCG (multigrid_pcg.h) keeps its scalars there too and reads only its state, once a
+// batch of iterations on a device.
 #pragma once
 
 #include <Eigen/Dense>

@@ -127,12 +127,25 @@ class MultigridPcg {
     cycle.multiplyFine(a, p, ap);
     ex_.sum(
         n, [=] GALSCULPT_LAMBDA(int i) { return p[i] * ap[i]; }, &sc->pap);
-    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
-      if (sc->running == 0.0 || !(sc->pap > 0.0)) return;
-      const double alpha = sc->rz[was] / sc->pap;
-      x[i] += alpha * p[i];
-      r[i] -= alpha * ap[i];
-    });
+    if constexpr (Exec::kHostMemory) {
+      // Host memory reads its scalars for nothing: alpha is formed once, not for every entry.
+      Scalars now;
+      ex_.read(sc, &now, 1);
+      if (now.running != 0.0 && now.pap > 0.0) {
+        const double alpha = now.rz[was] / now.pap;
+        ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
+          x[i] += alpha * p[i];
+          r[i] -= alpha * ap[i];
+        });
+      }
+    } else {
+      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
+        if (sc->running == 0.0 || !(sc->pap > 0.0)) return;
+        const double alpha = sc->rz[was] / sc->pap;
+        x[i] += alpha * p[i];
+        r[i] -= alpha * ap[i];
+      });
+    }
     ex_.sum(
         n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * r[i]; }, &sc->rrNext);
     ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
@@ -160,9 +173,16 @@ class MultigridPcg {
     cycle.vcycle(a, 0, r, z, s);
     ex_.sum(
         n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, &sc->rz[now]);
-    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
-      if (sc->running != 0.0) p[i] = z[i] + sc->rz[now] / sc->rz[was] * p[i];
-    });
+    if constexpr (Exec::kHostMemory) {  // (only while running: the host stopped before)
+      Scalars read;
+      ex_.read(sc, &read, 1);
+      const double beta = read.rz[now] / read.rz[was];
+      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) { p[i] = z[i] + beta * p[i]; });
+    } else {
+      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
+        if (sc->running != 0.0) p[i] = z[i] + sc->rz[now] / sc->rz[was] * p[i];
+      });
+    }
   }
 
   // Every batch `iterations` long instead of by the rate (0: by the rate; tests).
