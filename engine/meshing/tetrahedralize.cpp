@@ -443,6 +443,9 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
     say(line.str());
   }
   TetrahedralizeResult merged;
+  // A group whose share is below what its surface allows (a crumb in contact with a body) is
+  // meshed as coarse as its surface lets it; the whole must still land within the tolerance.
+  long long extra = 0;
   for (int c = 0; c < colours; ++c) {
     TetrahedralizeOptions part = options;
     const double share = enclosedVolume(groups[c]) / total;
@@ -451,7 +454,23 @@ TetrahedralizeResult tetrahedralize(const TriMesh& input, const TetrahedralizeOp
                        std::to_string(colours) + ")";
     TetrahedralizeResult result;
     try {
-      result = tetrahedralizeClean(groups[c], part);
+      try {
+        result = tetrahedralizeClean(groups[c], part);
+      } catch (const TetCountUnreachable& e) {
+        if (e.closest <= part.targetTets) throw;
+        TetrahedralizeOptions coarsest = part;
+        coarsest.targetTets = e.closest;
+        result = tetrahedralizeClean(groups[c], coarsest);
+        extra += result.mesh.numTets() - part.targetTets;
+        say(part.surfaceName + ": its share of " + std::to_string(part.targetTets) +
+            " tets is finer than its surface allows: meshed with " +
+            std::to_string(result.mesh.numTets()));
+        if (std::abs(static_cast<double>(extra)) > options.tolerance * options.targetTets)
+          throw TetCountUnreachable(part.surfaceName + " needs " +
+                                        std::to_string(result.mesh.numTets()) + " tets, not its " +
+                                        std::to_string(part.targetTets),
+                                    result.mesh.numTets());
+      }
     } catch (const TetCountUnreachable& e) {
       // The group's count scaled to the whole: each group gets its share of what is asked.
       const long long whole = static_cast<long long>(

@@ -160,6 +160,41 @@ TEST(Tetrahedralize, ShellsThroughEachOtherAreMeshedInGroupsThatDoNotCross) {
       << said[0];
 }
 
+// A crumb pressed into a body (an export whose pieces touch under a compliant crack law): its
+// share of the tets by volume is below what its surface allows, so it is meshed as coarse as
+// its surface lets it, the body takes its share, and the whole lands within the tolerance.
+// A crumb whose least count would throw the whole out of it is refused, saying what it needs.
+TEST(Tetrahedralize, ACrumbThroughABodyTakesTheFewestTetsItsSurfaceAllows) {
+  const TriMesh body = makeIcosphere(1.0, 3), crumb = makeIcosphere(0.06, 2);
+  TriMesh both = body;
+  for (const Vec3& v : crumb.vertices) both.vertices.push_back(v + Vec3(0.99, 0.0, 0.0));
+  for (Tri f : crumb.faces) {
+    for (int& v : f) v += body.numVertices();
+    both.faces.push_back(f);
+  }
+  TetrahedralizeOptions o;
+  o.targetTets = 3000;
+  o.surfaceName = "crumb.obj";
+  std::vector<std::string> said;
+  o.progress = [&](const std::string& line) { said.push_back(line); };
+  const TetrahedralizeResult result = tetrahedralize(both, o);
+  EXPECT_NEAR(result.mesh.numTets(), 3000, 0.15 * 3000);
+  EXPECT_EQ(computeStats(result.mesh).pieces, 2);
+  bool coarsest = false;
+  for (const std::string& line : said)
+    coarsest |= line.find(
+                    "crumb.obj (group 2 of 2): its share of 1 tets is finer than its "
+                    "surface allows: meshed with") != std::string::npos;
+  EXPECT_TRUE(coarsest);
+  o.targetTets = 40;  // the crumb alone needs more than 15 % of that
+  try {
+    tetrahedralize(both, o);
+    ADD_FAILURE() << "a crumb that needs more than the tolerance leaves is refused";
+  } catch (const TetCountUnreachable& e) {
+    EXPECT_NE(std::string(e.what()).find("--tets"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Tetrahedralize, AShellThatCrossesItselfIsMeshedAsTheRegionItEncloses) {
   // A ball with one vertex pulled through to the far side: a spike through the body, the faces
   // around it crossing the others. The region it winds around is meshed, and said.
