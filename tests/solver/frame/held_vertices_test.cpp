@@ -17,13 +17,25 @@ MaterialParams rubber() {
   return {MaterialModel::StableNeoHookean, lameFromYoungPoisson(1e5, 0.45), 1000.0, {}};
 }
 
-TEST(HeldVertexSet, AnchorsFollowTheirPathsAndDebrisStaysWhereTheStateHasIt) {
-  SimModel m = buildSimModel(test::gridBar(8, 2, 2, 0.01), rubber());
-  m.debrisRemoval = 0.2;
+// A bar whose debris (pieces under a fifth of it) is removed, and its held vertices.
+struct DebrisBar {
+  SimModel m = withDebrisRemoval(buildSimModel(test::gridBar(8, 2, 2, 0.01), rubber()));
   SimState s = initialState(m);
   CpuExecutor ex;
-  FrameData<CpuExecutor> d(m);
-  HeldVertexSet<CpuExecutor> held(ex, m, d);
+  FrameData<CpuExecutor> d{m};
+  HeldVertexSet<CpuExecutor> held{ex, m, d};
+  static SimModel withDebrisRemoval(SimModel model) {
+    model.debrisRemoval = 0.2;
+    return model;
+  }
+};
+
+TEST(HeldVertexSet, AnchorsFollowTheirPathsAndDebrisStaysWhereTheStateHasIt) {
+  DebrisBar bar;
+  SimModel& m = bar.m;
+  SimState& s = bar.s;
+  FrameData<CpuExecutor>& d = bar.d;
+  HeldVertexSet<CpuExecutor>& held = bar.held;
   // A slab of 9 vertices cut off at x = 0.005: debris (under a fifth of the body).
   cutAt(m, s, 0.005);
   held.updateRemovedDebris(censusPieces(m, s.damaged));
@@ -131,12 +143,11 @@ TEST(HeldVertexSet, LetsGoWhenMostOfWhatHeldTheBodyIsReleased) {
 // debris leave what the executor holds; another target, an anchor's path at a later time, new
 // debris or debris held elsewhere are each taken.
 TEST(HeldVertexSet, PreparesAgainOnlyWhenAnchorsPathsOrDebrisMoved) {
-  SimModel m = buildSimModel(test::gridBar(8, 2, 2, 0.01), rubber());
-  m.debrisRemoval = 0.2;
-  SimState s = initialState(m);
-  CpuExecutor ex;
-  FrameData<CpuExecutor> d(m);
-  HeldVertexSet<CpuExecutor> held(ex, m, d);
+  DebrisBar bar;
+  SimModel& m = bar.m;
+  SimState& s = bar.s;
+  FrameData<CpuExecutor>& d = bar.d;
+  HeldVertexSet<CpuExecutor>& held = bar.held;
   const int n = m.numVertices(), last = n - 1;
   auto targetOf = [&](int v) {
     std::vector<double> x(3 * n, 0.0);
