@@ -196,6 +196,11 @@ int Simulation::cut(const std::vector<BladeTriangle>& surface) {
   return n;
 }
 
+int Simulation::invertedPieces() const {
+  // One piece has no surface to build for this (a closed body is never inside out as a whole).
+  return pieces_.count() > 1 ? pieces_.invertedPieces(surface()) : 0;
+}
+
 double Simulation::currentVolume() const {
   return pieces_.currentVolume(model_, state_.x);
 }
@@ -207,7 +212,7 @@ Simulation::PieceStats Simulation::pieceStats() {
   p.debrisPieces = pieces_.debrisPieces();
   p.debrisVolumePct = pieces_.debrisVolumePercent();
   p.debrisMassKg = pieces_.debrisMassKg();
-  p.invertedPieces = pieces_.invertedPieces(surface());
+  p.invertedPieces = invertedPieces();
   return p;
 }
 
@@ -452,7 +457,7 @@ FrameMetrics Simulation::advance() {
   m.msOther = std::max(0.0, m.msTotal - m.msElements - m.msSolve - m.msPlastic - m.msFracture);
   // Outside the frame's time, as exports are: it brings the visualization surface up to date
   // (the window does so to draw the frame anyway; on the fractured Charpy bar about 5 ms).
-  m.invertedPieces = pieces_.invertedPieces(surface());
+  m.invertedPieces = invertedPieces();
   return m;
 }
 

@@ -232,6 +232,7 @@ class Simulation {
   int toolDamage_ = 0;  // edges cut by tools since the last frame
   void applyInitialVelocity(const InitialVelocityDesc& initial);
   void updatePieces() { pieces_.update(model_, state_); }
+  int invertedPieces() const;  // BodyPieces::invertedPieces, the surface built only for two or more
   int frame_ = 0;
   std::uint64_t generation_ = 0;
 };

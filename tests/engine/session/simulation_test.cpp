@@ -92,6 +92,29 @@ TEST(Simulation, AScenesInitialVelocityThrowsAndSpinsAFreeBody) {
   EXPECT_NEAR(moved.x() / mass, 0.25, 0.0025);
 }
 
+// A frame of a body in one piece builds no surface (a closed body is never inside out as a
+// whole: nothing to count); in two pieces the frame brings the surface up to date to count the
+// pieces turned inside out.
+TEST(Simulation, AFrameBuildsTheSurfaceOnlyForABodyInPieces) {
+  test::TempDir dir;
+  const SceneDescription scene = sceneFrom(dir, std::string("{") + kSmallSphere + R"(,
+    "material": {"preset": "rubber"}, "gravity": [0, 0, 0]})");
+  Simulation sim(scene, loadSceneMesh(scene));
+  sim.advance();
+  EXPECT_EQ(sim.lastSurfaceUpdate().rebuiltOwners, 0);
+  EXPECT_EQ(sim.lastSurfaceUpdate().msPositions, 0.0) << "nothing built";
+  SimulationSnapshot cut = sim.snapshot();
+  for (int e = 0; e < sim.model().numEdges(); ++e) {
+    const auto [a, b] = sim.model().edges[e];
+    if ((sim.model().mesh.vertices[a].x() < 0.0) != (sim.model().mesh.vertices[b].x() < 0.0))
+      cut.damaged[e] = 1;
+  }
+  sim.restore(cut);
+  const FrameMetrics m = sim.advance();
+  EXPECT_EQ(m.pieces, 2);
+  EXPECT_GT(sim.lastSurfaceUpdate().rebuiltOwners, 0) << "built to count the inverted pieces";
+}
+
 TEST(Simulation, VerticesAnAnchorHoldsStartAtRest) {
   test::TempDir dir;
   const SceneDescription scene = sceneFrom(
