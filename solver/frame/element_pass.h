@@ -1,4 +1,4 @@
-// One element pass's per-element work (FrameSolver::elementPass): what a thread needs to set an
+// One element pass's per-element work (ElasticTerm::evaluate): what a thread needs to set an
 // element up (ElementInputs), the pass's inputs and outputs (ElementPass, the same on the CPU and
 // the GPU), and the launches that evaluate the material model. Those are only declared here:
 // element_launches.h defines them, and each executor's own translation unit instantiates them
@@ -74,7 +74,7 @@ struct ElementModel {
   bool resists;
 };
 
-// One element pass's inputs and outputs (IncrementalPotential::elementPass), copied into its
+// One element pass's inputs and outputs (ElasticTerm::evaluate), copied into its
 // kernels.
 struct ElementPass {
   ElementInputs in;

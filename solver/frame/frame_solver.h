@@ -384,7 +384,7 @@ class FrameSolver {
       const auto tElements = Clock::now();
       // A local pass gathers the region's corners only: the rest of the gradient is x's.
       if (d_.local) ex_.copy(d_.grad.data(), d_.acceptedGrad.data(), 3 * d_.n);
-      potential_.elementPass(x, true, d_.grad.data(), &d_.sc()->elastic, &d_.sc()->inverted);
+      potential_.elastic().evaluate(x, true, d_.grad.data(), &d_.sc()->elastic, &d_.sc()->inverted);
       // Phases are timed where launches run as they are issued (the CPU); on the GPU they run
       // as one graph and all of it counts as solve.
       if constexpr (Exec::kHostMemory) result.msElements += msSince(tElements);
@@ -516,7 +516,7 @@ class FrameSolver {
   // Needs the model's fracture field.
   std::vector<double> edgeStress(const SimState& state, const StepSettings& settings) {
     syncIn(state, settings);
-    fracture_->evaluate(potential_.elementInputs(), d_.x.data(), d_.damaged.data(), true);
+    fracture_->evaluate(potential_.elastic().inputs(), d_.x.data(), d_.damaged.data(), true);
     std::vector<double> ratio(d_.edges), out(d_.edges, 0.0);
     if (d_.edges > 0) ex_.download(fracture_->stressRatio(), ratio.data(), ratio.size());
     for (int e = 0; e < d_.edges; ++e)
@@ -526,7 +526,7 @@ class FrameSolver {
 
   FractureReport fracturePass() {
     FractureReport report =
-        fracture_->findBreaks(potential_.elementInputs(), d_.x.data(), d_.damaged.data());
+        fracture_->findBreaks(potential_.elastic().inputs(), d_.x.data(), d_.damaged.data());
     if (report.newlyDamaged > 0) {
       fracture_->markBroken(d_.damaged.data());
       report.newlyDamaged += damage_.takeBreaks();

@@ -1,7 +1,7 @@
 // The stiffness gather in host memory: the elements' packed upper 3x3 blocks (ElementPass) summed
 // into the stiffness blocks on and above the diagonal, element by element over row ranges.
 //
-// Why not a thread per block, as a device does (IncrementalPotential::elementPass): a block's
+// Why not a thread per block, as a device does (ElasticTerm::evaluate): a block's
 // terms lie in elements scattered over the element array, and an element's ten blocks are read
 // at ten different rows' times, so on a CPU each read waits on memory (asking for them ahead did
 // not help). Here each range of rows walks its elements in ascending order, reading each

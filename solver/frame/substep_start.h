@@ -47,7 +47,7 @@ void FrameSolver<Exec>::beginSubstep(double h) {
 
 template <typename Exec>
 void FrameSolver<Exec>::startPiecesAccelerated(double h, bool gradientAtXn) {
-  const ElementModel element{potential_.elementInputs(), model_.material.model,
+  const ElementModel element{potential_.elastic().inputs(), model_.material.model,
                              model_.material.elementLame(), model_.material.compressionResists};
   const typename AcceleratedStart<Exec>::SubstepInputs inputs{
       d_.anchorCount > 0,

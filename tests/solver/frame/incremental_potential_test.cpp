@@ -80,7 +80,8 @@ struct Potential {
   double at(const std::vector<double>& y) {
     std::vector<double> gradient(3 * n), dampedK(3 * n);
     FrameScalars* sc = d.sc();
-    potential.elementPass(y.data(), false, gradient.data(), &sc->trialElastic, &sc->trialInverted);
+    potential.elastic().evaluate(y.data(), false, gradient.data(), &sc->trialElastic,
+                                 &sc->trialInverted);
     potential.dampedProduct(y.data(), dampedK.data());
     potential.contact(y.data(), nullptr, &sc->trialContact);
     potential.objective(y.data(), &sc->trialElastic, &sc->trialContact, dampedK.data(), &sc->e1);
@@ -90,7 +91,7 @@ struct Potential {
   std::vector<double> g(const std::vector<double>& y) {
     std::vector<double> gradient(3 * n), dampedK(3 * n), out(3 * n);
     FrameScalars* sc = d.sc();
-    potential.elementPass(y.data(), true, gradient.data(), &sc->elastic, &sc->inverted);
+    potential.elastic().evaluate(y.data(), true, gradient.data(), &sc->elastic, &sc->inverted);
     potential.contact(y.data(), gradient.data(), &sc->contact);
     potential.dampedProduct(y.data(), dampedK.data());
     potential.backwardEulerGradient(y.data(), gradient.data(), dampedK.data(), out.data());

@@ -49,7 +49,7 @@ struct System {
     d.fixed.upload(fixed);
     std::vector<double> gradient(3 * n);
     FrameScalars* sc = d.sc();
-    potential.elementPass(x.data(), true, gradient.data(), &sc->elastic, &sc->inverted);
+    potential.elastic().evaluate(x.data(), true, gradient.data(), &sc->elastic, &sc->inverted);
     potential.buildSystem(x.data());
     std::vector<double> g(3 * n, 0.0);
     std::mt19937 gen(9);

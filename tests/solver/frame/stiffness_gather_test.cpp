@@ -1,5 +1,5 @@
 // The host's stiffness gather by row ranges (solver/frame/stiffness_gather.h) against the sum a
-// thread per block makes (IncrementalPotential::gatherUpperByBlocks, a device's): the same bits
+// thread per block makes (ElasticTerm::gatherUpperByBlocks, a device's): the same bits
 // in every block, with zero stiffnesses skipped, with only fresh elements' blocks or only touched
 // rows' blocks summed again, at any thread count.
 #include "solver/frame/stiffness_gather.h"
