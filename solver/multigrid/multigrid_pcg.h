@@ -81,9 +81,11 @@ class MultigridPcg {
         if (read.running != 0.0) direction(cycle, n, a, s, launched);
       }
     } else {
-      // A short first batch (a Newton iteration after the first often needs one or two), then
-      // each batch as long as the rate seen so far says is left.
-      int batch = fixedBatch_ > 0 ? fixedBatch_ : std::clamp(lastIterations_ - 1, 1, kBatch);
+      // A short first batch (at most 2, and one less than the shorter of the last two solves: a
+      // sub-step's Newton iterations alternate long solves and solves of one or two), then each
+      // batch as long as the rate seen so far says is left.
+      const int shorter = std::min(lastIterations_[0], lastIterations_[1]);
+      int batch = fixedBatch_ > 0 ? fixedBatch_ : std::clamp(shorter - 1, 1, kBatch);
       for (;;) {
         const int until = std::min(maxIterations, launched + batch);
         for (; launched < until; ++launched) {
@@ -96,7 +98,8 @@ class MultigridPcg {
       }
     }
     const int iterations = static_cast<int>(read.iterations);
-    lastIterations_ = iterations;
+    lastIterations_[1] = lastIterations_[0];
+    lastIterations_[0] = iterations;
     const double bnorm = std::sqrt(read.bb);
     return {bnorm > 0.0 ? std::sqrt(read.rr) / bnorm : 0.0, iterations};
   }
@@ -195,7 +198,7 @@ class MultigridPcg {
   Exec& ex_;
   Buffer<double> r_, z_, p_, ap_;  // allocated on the first solve
   Buffer<Scalars> scalars_;
-  int lastIterations_ = 1;  // the last solve's iterations (a device's first batch)
+  int lastIterations_[2] = {1, 1};  // the last two solves' iterations (a device's first batch)
   int fixedBatch_ = 0;
 };
 

@@ -68,9 +68,9 @@ TEST(DevicePaths, TightSolutionsMoveByRoundOffWithTheStart) {
 // deterministic), so that a change that adds a pass of launches or a host wait per Newton
 // iteration fails; lower the bounds as the device path improves (the target: 60 kernels and 4
 // waits on the sphere). The counts of 2026-12-07, after PCG's decisions moved to the device
-// (multigrid_pcg.h: a wait per batch of iterations, not three per iteration): the sphere 371
-// kernels and 14.4 waits (before: 313 and 32.5), the cut sphere 605 and 20.9 (476 and 48.4),
-// Charpy's bar after the break 2,156 and 63.9 (1,956 and 251.6); the kernels a batch runs past
+// (multigrid_pcg.h: a wait per batch of iterations, not three per iteration): the sphere 355
+// kernels and 14.3 waits (before: 313 and 32.5), the cut sphere 605 and 21.2 (476 and 48.4),
+// Charpy's bar after the break 2,156 and 64.3 (1,956 and 251.6); the kernels a batch runs past
 // the stop are the price of the waits.
 struct DeviceFrameCost {
   double kernels = 0.0, syncs = 0.0, graphs = 0.0, hostToDevice = 0.0, deviceToHost = 0.0;
@@ -100,15 +100,15 @@ DeviceFrameCost deviceFrameCost(const Simulation& sim, const char* name, int set
 TEST(DeviceCounts, TheHangingSpheresFrameStaysWithinItsLaunchesAndWaits) {
   const DeviceFrameCost c = deviceFrameCost(*hangingSphere(), "hanging sphere (6k, converged)");
   EXPECT_GT(c.kernels, 0.0);
-  EXPECT_LE(c.kernels, 408.0);
-  EXPECT_LE(c.syncs, 15.9);
+  EXPECT_LE(c.kernels, 391.0);
+  EXPECT_LE(c.syncs, 15.8);
   EXPECT_LE(c.hostToDevice, 1024.0) << "a frame uploads only what changed (anchor targets)";
 }
 
 TEST(DeviceCounts, TheCutSpheresFrameStaysWithinItsLaunchesAndWaits) {
   const DeviceFrameCost c = deviceFrameCost(*cutSphere(), "cut sphere (6k, two pieces falling)");
   EXPECT_LE(c.kernels, 666.0);
-  EXPECT_LE(c.syncs, 23.0);
+  EXPECT_LE(c.syncs, 23.4);
 }
 
 // Charpy's bar (8k tets, its converged scene) after the break: frames 41-50, the halves in
@@ -118,7 +118,7 @@ TEST(DeviceCounts, CharpysFramesAfterTheBreakStayWithinTheirLaunchesAndWaits) {
   const Simulation sim(scene, loadSceneMesh(scene));
   const DeviceFrameCost c = deviceFrameCost(sim, "Charpy after the break (8k, converged)", 40);
   EXPECT_LE(c.kernels, 2372.0);
-  EXPECT_LE(c.syncs, 70.3);
+  EXPECT_LE(c.syncs, 70.8);
 }
 
 // The CPU backend has no device: its rows are zero.
