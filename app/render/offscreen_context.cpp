@@ -118,13 +118,16 @@ std::vector<std::uint8_t> OffscreenContext::readPixels() {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
   glBindFramebuffer(GL_FRAMEBUFFER, msFbo_);
-  // OpenGL's first row is the bottom one; images start at the top.
-  const size_t row = static_cast<size_t>(width_) * 4;
-  std::vector<std::uint8_t> flipped(pixels.size());
-  for (int y = 0; y < height_; ++y) {
+  return topRowFirst(pixels, width_, height_);
+}
+
+std::vector<std::uint8_t> topRowFirst(const std::vector<std::uint8_t>& rgba, int width,
+                                      int height) {
+  const size_t row = static_cast<size_t>(width) * 4;
+  std::vector<std::uint8_t> flipped(rgba.size());
+  for (int y = 0; y < height; ++y)
     std::memcpy(&flipped[static_cast<size_t>(y) * row],
-                &pixels[static_cast<size_t>(height_ - 1 - y) * row], row);
-  }
+                &rgba[static_cast<size_t>(height - 1 - y) * row], row);
   return flipped;
 }
 

@@ -31,6 +31,9 @@ class OffscreenContext {
   unsigned msFbo_ = 0, msColor_ = 0, msDepth_ = 0, fbo_ = 0, color_ = 0;
 };
 
+// RGBA rows as OpenGL reads them (the bottom one first) in image order (the top one first).
+std::vector<std::uint8_t> topRowFirst(const std::vector<std::uint8_t>& rgba, int width, int height);
+
 // Writes RGBA pixels as PNG, atomically. Throws OutputError.
 void writePng(const std::string& path, int width, int height,
               const std::vector<std::uint8_t>& rgba);

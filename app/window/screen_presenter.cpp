@@ -3,7 +3,6 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
-#include <cstring>
 #include <utility>
 
 #include "app/render/gl.h"
@@ -69,12 +68,7 @@ std::vector<std::uint8_t> ScreenPresenter::readBackBuffer(int width, int height)
 std::optional<std::string> ScreenPresenter::writeScreenshot(int width, int height) {
   if (screenshot_.empty()) return std::nullopt;
   const std::string path = std::exchange(screenshot_, {});
-  const std::vector<std::uint8_t> pixels = readBackBuffer(width, height);
-  std::vector<std::uint8_t> flipped(pixels.size());
-  const size_t row = static_cast<size_t>(width) * 4;
-  for (int y = 0; y < height; ++y)
-    std::memcpy(&flipped[y * row], &pixels[(height - 1 - y) * row], row);
-  writePng(path, width, height, flipped);
+  writePng(path, width, height, topRowFirst(readBackBuffer(width, height), width, height));
   return path;
 }
 

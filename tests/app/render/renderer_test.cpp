@@ -93,6 +93,16 @@ TEST_F(RenderTest, MovingTheObjectChangesTheImage) {
   EXPECT_GT(changed, 500);
 }
 
+// OpenGL's rows come bottom first; an image's top first: the rows swap, each row kept whole.
+TEST(TopRowFirst, SwapsTheRowsAndKeepsEachRow) {
+  const std::vector<std::uint8_t> gl = {1,  2,  3,  4,  5,  6,  7,  8,    // bottom row
+                                        9,  10, 11, 12, 13, 14, 15, 16,   // middle row
+                                        17, 18, 19, 20, 21, 22, 23, 24};  // top row
+  EXPECT_EQ(topRowFirst(gl, 2, 3),
+            (std::vector<std::uint8_t>{17, 18, 19, 20, 21, 22, 23, 24, 9, 10, 11, 12,
+                                       13, 14, 15, 16, 1,  2,  3,  4,  5, 6,  7,  8}));
+}
+
 TEST(RenderViews, WritesPngFiles) {
   test::TempDir dir;
   ViewContent content;
