@@ -13,6 +13,8 @@
 #include "solver/fem/collider_kernels.h"
 #include "solver/fem/colliders.h"
 #include "solver/fem/dense_kernels.h"
+#include "solver/frame/frame_data.h"
+#include "solver/frame/pass_terms.h"
 #include "solver/model/sim_model.h"
 
 namespace galsculpt {
@@ -28,6 +30,30 @@ class ContactTerm {
     read_.resize(4 * model.colliders.size());
     perVertex_.resize(model.numVertices());
   }
+  explicit ContactTerm(const PassTermContext<Exec>& c) : ContactTerm(c.ex, c.model) {}
+
+  // ---- as a pass term (pass_terms.h) ------------------------------------------------------
+
+  static double* energySlot(FrameScalars* sc, bool trial) {
+    return trial ? &sc->trialContact : &sc->contact;
+  }
+  void atIterate(FrameData<Exec>& d, const double* y, bool, double* gradient) {
+    energy(y, d.fixed.data(), d.mass.data(), d.h, gradient, &d.sc()->contact);
+  }
+  void atTrial(FrameData<Exec>& d, const double* y, const std::uint8_t*) {
+    energy(y, d.fixed.data(), d.mass.data(), d.h, nullptr, &d.sc()->trialContact);
+  }
+  void atAccepted(FrameData<Exec>& d, const double* y, double* gradient) {
+    atIterate(d, y, false, gradient);
+  }
+  // Each vertex's energy at the last evaluation's y (x's or the trial's: whichever came last).
+  struct VertexShare {
+    const double* perVertex;  // null without colliders
+    GALSCULPT_HD void add(int v, double& sum) const {
+      if (perVertex) sum += perVertex[v];
+    }
+  };
+  VertexShare vertexShare(FrameData<Exec>&, bool) const { return {perVertex()}; }
 
   // The poses of a sub-step of length h starting at `time`: each rigid pendulum advanced from
   // its state by h at its angular velocity (the step solves against where it will be).
@@ -100,6 +126,8 @@ class ContactTerm {
   Stiffness stiffness(const double* mass, double h) const {
     return {poseBuffer_.data(), colliders(), mass, h};
   }
+  using Blocks = Stiffness;
+  Blocks diagonalBlocks(FrameData<Exec>& d) const { return stiffness(d.mass.data(), d.h); }
 
   // Launches the sums of each collider's force on the body at y (and for a rigid pendulum the
   // moment of the body's reaction about its axis); no host read (inside captured sections).

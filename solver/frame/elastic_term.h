@@ -14,6 +14,7 @@
 #include "solver/fem/element_lanes.h"
 #include "solver/frame/element_pass.h"
 #include "solver/frame/frame_data.h"
+#include "solver/frame/pass_terms.h"
 #include "solver/frame/plastic_state.h"
 #include "solver/frame/stiffness_gather.h"
 #include "solver/model/sim_model.h"
@@ -26,6 +27,58 @@ class ElasticTerm {
   ElasticTerm(Exec& ex, const SimModel& model, FrameData<Exec>& data,
               const PlasticState<Exec>& plastic)
       : ex_(ex), model_(model), d_(data), plastic_(plastic) {}
+  explicit ElasticTerm(const PassTermContext<Exec>& c)
+      : ElasticTerm(c.ex, c.model, c.data, c.plastic) {}
+
+  // ---- as a pass term (pass_terms.h) ------------------------------------------------------
+
+  static double* energySlot(FrameScalars* sc, bool trial) {
+    return trial ? &sc->trialElastic : &sc->elastic;
+  }
+  // At Newton's iterate: the element pass with the stiffness, written into `gradient`. With
+  // `reuse`, the accepted trial's gradient and scalars (the line search evaluated them there).
+  void atIterate(FrameData<Exec>&, const double* y, bool reuse, double* gradient) {
+    FrameScalars* sc = d_.sc();
+    if (reuse) {
+      ex_.copy(gradient, d_.acceptedGrad.data(), 3 * d_.n);
+      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
+        sc->elastic = sc->trialElastic;
+        sc->inverted = sc->trialInverted;
+      });
+      return;
+    }
+    // A local pass gathers the region's corners only: the rest of the gradient is x's.
+    if (d_.local) ex_.copy(gradient, d_.acceptedGrad.data(), 3 * d_.n);
+    evaluate(y, true, gradient, &sc->elastic, &sc->inverted);
+  }
+  // At a trial: energies and inversions, the gradient kept in trialGrad (an accepted trial's is
+  // the next iterate's, acceptedGrad).
+  void atTrial(FrameData<Exec>&, const double* y, const std::uint8_t* only) {
+    FrameScalars* sc = d_.sc();
+    evaluate(y, false, d_.trialGrad.data(), &sc->trialElastic, &sc->trialInverted, only);
+  }
+  void atAccepted(FrameData<Exec>&, const double*, double* gradient) {
+    ex_.copy(gradient, d_.acceptedGrad.data(), 3 * d_.n);
+  }
+  // A quarter of each element's energy to each of its corners.
+  struct VertexShare {
+    const int *start, *slots;
+    const double* energy;
+    GALSCULPT_HD void add(int v, double& sum) const {
+      for (int i = start[v]; i < start[v + 1]; ++i) sum += 0.25 * energy[slots[i] / 4];
+    }
+  };
+  VertexShare vertexShare(FrameData<Exec>&, bool trial) const {
+    return {d_.vertexSlotStart.data(), d_.vertexSlots.data(),
+            trial ? d_.trialEnergy.data() : d_.elemEnergy.data()};
+  }
+  // Its blocks are gathered into the stiffness (evaluate): none added on the diagonal.
+  struct Blocks {
+    GALSCULPT_HD void add(int, const double*, double*) const {}
+  };
+  Blocks diagonalBlocks(FrameData<Exec>&) const { return {}; }
+
+  // ---- the element pass ---------------------------------------------------------------------
 
   // Energies, forces and (withHessian) stiffnesses of every element at positions y, gathered
   // into `gradient` (3n) and, with the Hessian, into the stiffness blocks. The total energy goes

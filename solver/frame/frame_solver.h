@@ -59,9 +59,9 @@ class FrameSolver {
       : ex_(ex),
         model_(model),
         d_(model),
-        contact_(ex, model),
         plastic_(ex, model),
-        potential_(ex, model, d_, contact_, plastic_),
+        potential_(ex, model, d_, plastic_),
+        contact_(potential_.contact()),
         lineSearch_(ex, d_, potential_),
         linear_(ex, model, d_),
         held_(ex, model, d_),
@@ -372,29 +372,20 @@ class FrameSolver {
   void newtonStep(int it, bool reuse, SubstepOutcome& result) {
     const StepSettings& s = *d_.settings;
     const double* x = d_.x.data();
-    if (reuse) {
-      ex_.copy(d_.grad.data(), d_.acceptedGrad.data(), 3 * d_.n);
-      FrameScalars* sc = d_.sc();
-      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
-        sc->elastic = sc->trialElastic;
-        sc->inverted = sc->trialInverted;
-      });
-    } else {
-      const bool frozenCopy = it == 0 && s.newtonIterations > 1;
-      const auto tElements = Clock::now();
-      // A local pass gathers the region's corners only: the rest of the gradient is x's.
-      if (d_.local) ex_.copy(d_.grad.data(), d_.acceptedGrad.data(), 3 * d_.n);
-      potential_.elastic().evaluate(x, true, d_.grad.data(), &d_.sc()->elastic, &d_.sc()->inverted);
+    const auto tElements = Clock::now();
+    // The pass terms at x: the element pass (with `reuse` the accepted trial's) and contact.
+    potential_.passTerms().atIterate(x, reuse, d_.grad.data());
+    if (!reuse) {
       // Phases are timed where launches run as they are issued (the CPU); on the GPU they run
       // as one graph and all of it counts as solve.
       if constexpr (Exec::kHostMemory) result.msElements += msSince(tElements);
+      const bool frozenCopy = it == 0 && s.newtonIterations > 1;
       if (frozenCopy) ex_.copy(d_.frozen.data(), d_.stiffness.data(), d_.stiffness.size());
       d_.frozenIsK = !(frozenCopy || (it > 0 && s.newtonIterations > 1));
     }
     // Under PCG a fresh iteration may find the gradient already within the solve's target: the
     // step is null, and nothing past the gradient is needed (takeNullStep).
     const bool mayBeNull = !reuse && !d_.local && s.multigrid() && s.pcg() && s.skipNullSolves;
-    potential_.contact(x, d_.grad.data(), &d_.sc()->contact);
     potential_.dampedProduct(x, d_.dampedK.data());
     potential_.backwardEulerGradient(x, d_.grad.data(), d_.dampedK.data(), d_.g.data());
     double bodyResidual = 0.0;
@@ -539,9 +530,9 @@ class FrameSolver {
   Exec& ex_;
   const SimModel& model_;
   FrameData<Exec> d_;
-  ContactTerm<Exec> contact_;
   PlasticState<Exec> plastic_;
   IncrementalPotential<Exec> potential_;
+  ContactTerm<Exec>& contact_;  // the potential's: the colliders' poses and forces
   LineSearch<Exec> lineSearch_;
   LinearSolve<Exec> linear_;
   HeldVertexSet<Exec> held_;

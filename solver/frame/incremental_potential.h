@@ -1,11 +1,10 @@
-// The incremental potential of backward Euler and its derivatives, on the executor: the
-// coordinate terms (coordinate_terms.h: inertia, gravity, Rayleigh damping, the soft anchors'
-// springs, summed per coordinate in one launch), the elastic term (elastic_term.h: the element
-// pass and its gathers into the gradient and the stiffness blocks) and the contact term
-// (contact_term.h);
-// the backward-Euler gradient g and the Newton system H; the potential at a trial step, whole
-// or vertex by vertex (the vertex guard). Its functions launch and reduce into the frame's
-// scalars (frame_scalars.h), never read: the frame decides when to synchronize.
+// The incremental potential of backward Euler and its derivatives, on the executor: two lists of
+// terms, the coordinate terms (coordinate_terms.h: inertia, gravity, Rayleigh damping, the soft
+// anchors' springs, summed per coordinate in one launch) and the pass terms (pass_terms.h: the
+// elements, elastic_term.h, and the colliders, contact_term.h); the backward-Euler gradient g and
+// the Newton system H; the potential at a trial step, whole or vertex by vertex (the vertex
+// guard). Its functions launch and reduce into the frame's scalars (frame_scalars.h), never
+// read: the frame decides when to synchronize.
 //
 //   E(y) = sum_i m_i/(2h^2) |y_i - xhat_i|^2 - m_i g.y_i + 1/(2h) (alpha m_i |y_i - x_n,i|^2
 //          + (y - x_n).beta K0 (y - x_n)) + k_i/2 |y_i - t_i|^2 + elastic(y) + contact(y)
@@ -20,21 +19,30 @@
 #include "solver/frame/coordinate_terms.h"
 #include "solver/frame/elastic_term.h"
 #include "solver/frame/frame_data.h"
+#include "solver/frame/pass_terms.h"
 #include "solver/frame/plastic_state.h"
 #include "solver/model/sim_model.h"
 
 namespace galsculpt {
 
+// The pass terms, in the order of their sums (pass_terms.h): a new term is its file and a place
+// here.
+template <typename Exec>
+using PassTerms = PassTermList<Exec, ElasticTerm, ContactTerm>;
+
 template <typename Exec>
 class IncrementalPotential {
  public:
   IncrementalPotential(Exec& ex, const SimModel& model, FrameData<Exec>& data,
-                       ContactTerm<Exec>& contact, const PlasticState<Exec>& plastic)
-      : ex_(ex), model_(model), d_(data), elastic_(ex, model, data, plastic), contact_(contact) {}
+                       const PlasticState<Exec>& plastic)
+      : ex_(ex), model_(model), d_(data), terms_(PassTermContext<Exec>{ex, model, data, plastic}) {}
 
+  PassTerms<Exec>& passTerms() { return terms_; }
   // The elastic term: the element pass and its gathers (elastic_term.h).
-  ElasticTerm<Exec>& elastic() { return elastic_; }
-  const ElasticTerm<Exec>& elastic() const { return elastic_; }
+  ElasticTerm<Exec>& elastic() { return terms_.template term<ElasticTerm<Exec>>(); }
+  const ElasticTerm<Exec>& elastic() const { return terms_.template term<ElasticTerm<Exec>>(); }
+  // The colliders' term: their poses and the forces they take (contact_term.h).
+  ContactTerm<Exec>& contact() { return terms_.template term<ContactTerm<Exec>>(); }
 
   // out = beta K0 (y - x_n).
   void dampedProduct(const double* y, double* out) {
@@ -57,11 +65,6 @@ class IncrementalPotential {
     });
   }
 
-  // Penalty contact at y: energy into *energyOut; gradient added (when given).
-  void contact(const double* y, double* gradient, double* energyOut) {
-    contact_.energy(y, d_.fixed.data(), d_.mass.data(), d_.h, gradient, energyOut);
-  }
-
   // What the coordinate terms (coordinate_terms.h) read, with βK₀(y - x_n) for the y at hand.
   CoordinateInputs coordinateInputs(const double* dampedK) const {
     return {d_.xhat.data(),
@@ -75,33 +78,32 @@ class IncrementalPotential {
             {model_.gravity.x(), model_.gravity.y(), model_.gravity.z()}};
   }
 
-  // The incremental potential at y into *out (the elastic and contact energies at y already
-  // summed, in *elastic and *contactEnergy).
-  void objective(const double* y, const double* elastic, const double* contactEnergy,
-                 const double* dampedK, double* out) {
+  // The incremental potential at y into *out: the coordinate terms at y and the pass terms'
+  // energies already evaluated there (at the trial's y with `trial`, otherwise at x).
+  void objective(const double* y, bool trial, const double* dampedK, double* out) {
     const CoordinateInputs c = coordinateInputs(dampedK);
     ex_.sum(
         3 * d_.n, [=] GALSCULPT_LAMBDA(int i) { return CoordinateTerms::energy(c, i, y); }, out);
-    ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { *out += *elastic + *contactEnergy; });
+    const auto passEnergies = terms_.energies(trial);
+    ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { *out += passEnergies.sum(); });
   }
 
-  // Each vertex's share of the incremental potential at y: a quarter of each element energy
-  // around it, its own inertia, gravity, damping and contact terms (they sum to the potential).
-  // `energy`: the elements' energies at y; the contact term's must be y's.
-  void vertexPotential(const double* y, const double* energy, const double* dampedK, double* out) {
+  // Each vertex's share of the incremental potential at y: its share of each pass term (a
+  // quarter of each element's energy around it, its contact energy) and its own coordinate
+  // terms; they sum to the potential. The pass terms must have been evaluated at y (at the
+  // trial's y with `trial`, otherwise at x).
+  void vertexPotential(const double* y, bool trial, const double* dampedK, double* out) {
     const CoordinateInputs c = coordinateInputs(dampedK);
-    const int* vStart = d_.vertexSlotStart.data();
-    const int* vSlots = d_.vertexSlots.data();
-    const double* contactEnergy = contact_.perVertex();
+    const auto shares = terms_.vertexShares(trial);
     ex_.forEach(d_.n, [=] GALSCULPT_LAMBDA(int v) {
-      double sum = contactEnergy ? contactEnergy[v] : 0.0;
-      for (int i = vStart[v]; i < vStart[v + 1]; ++i) sum += 0.25 * energy[vSlots[i] / 4];
+      double sum = 0.0;
+      shares.add(v, sum);
       for (int k = 0; k < 3; ++k) sum += CoordinateTerms::energy(c, 3 * v + k, y);
       out[v] = sum;
     });
   }
 
-  // g: the coordinate terms' gradients with the pass terms' (elastic and contact, in `grad`),
+  // g: the coordinate terms' gradients with the pass terms' (in `grad`),
   // zero on anchored vertices.
   void backwardEulerGradient(const double* y, const double* grad, const double* dampedK,
                              double* g) {
@@ -112,8 +114,9 @@ class IncrementalPotential {
     });
   }
 
-  // H = K + beta/h K0 + contact + M (1/h^2 + alpha/h) + the springs' k I, anchored rows and
-  // columns identity-scaled (and in a local iteration those outside the region).
+  // H = K + beta/h K0 + the pass terms' diagonal blocks (contact) + M (1/h^2 + alpha/h) + the
+  // springs' k I, anchored rows and columns identity-scaled (and in a local iteration those
+  // outside the region).
   void buildSystem(const double* y) {
     const double* kb = d_.stiffness.data();
     const double* frozen = d_.frozenBlocks();
@@ -125,7 +128,7 @@ class IncrementalPotential {
     const std::uint8_t* rows = d_.local ? d_.regionVertex.data() : nullptr;
     const double* mass = d_.mass.data();
     const double h = d_.h;
-    const auto contactStiffness = contact_.stiffness(mass, h);
+    const auto passBlocks = terms_.diagonalBlocks();
     const double betaOverH = model_.material.dampingStiffness / h;
     const CoordinateInputs coords = coordinateInputs(nullptr);
     ex_.forEach(d_.blocks, [=] GALSCULPT_LAMBDA(int b) {
@@ -134,7 +137,7 @@ class IncrementalPotential {
       double out[9];
       for (int i = 0; i < 9; ++i) out[i] = kb[9 * b + i] + betaOverH * frozen[9 * b + i];
       if (r == c) {
-        if (!fixed[r]) contactStiffness.add(r, y, out);
+        if (!fixed[r]) passBlocks.add(r, y, out);
         const double m = mass[r] * CoordinateTerms::massCoefficient(coords);
         for (int i = 0; i < 3; ++i) out[4 * i] += m;
         const double own = CoordinateTerms::diagonal(coords, r);
@@ -148,13 +151,12 @@ class IncrementalPotential {
     });
   }
 
-  // The backward-Euler gradient at the accepted positions (g; the elastic and contact forces in
-  // tmp) and its sums (residualSums).
+  // The backward-Euler gradient at the accepted positions (g; the pass terms' forces in tmp)
+  // and its sums (residualSums).
   void acceptedResidual() {
     const double* x = d_.x.data();
     dampedProduct(x, d_.dampedK.data());
-    ex_.copy(d_.tmp.data(), d_.acceptedGrad.data(), 3 * d_.n);
-    contact(x, d_.tmp.data(), &d_.sc()->contact);
+    terms_.atAccepted(x, d_.tmp.data());
     backwardEulerGradient(x, d_.tmp.data(), d_.dampedK.data(), d_.g.data());
     residualSums();
   }
@@ -178,7 +180,7 @@ class IncrementalPotential {
   void stepMeasures() {
     FrameScalars* sc = d_.sc();
     const double* x = d_.x.data();
-    objective(x, &sc->elastic, &sc->contact, d_.dampedK.data(), &sc->e0);
+    objective(x, false, d_.dampedK.data(), &sc->e0);
     const double* g = d_.g.data();
     const double* delta = d_.delta.data();
     ex_.sum(
@@ -194,13 +196,13 @@ class IncrementalPotential {
         &sc->bad);
     ex_.maximum(
         3 * d_.n, [=] GALSCULPT_LAMBDA(int i) { return fabs(delta[i]); }, &sc->deltaMax);
-    // What the vertex guard compares its trials with (the contact term holds x's energies here).
+    // What the vertex guard compares its trials with (the pass terms hold x's energies here).
     if (d_.settings->vertexGuard())
-      vertexPotential(x, d_.elemEnergy.data(), d_.dampedK.data(), d_.potentialAtX.data());
+      vertexPotential(x, false, d_.dampedK.data(), d_.potentialAtX.data());
   }
 
-  // Elastic and contact energies and the potential at x + length delta (trialElastic,
-  // trialContact, e1), with the trial's gradient.
+  // The pass terms' energies and the potential at x + length delta (e1), with the elements'
+  // gradient there (trialGrad).
   void evaluateTrial(double length) {
     double* trial = d_.trial.data();
     const double* x = d_.x.data();
@@ -213,20 +215,16 @@ class IncrementalPotential {
   // (the others unchanged since the last trial: the vertex guard's rounds).
   void evaluateTrialPositions(const std::uint8_t* only) {
     const double* trial = d_.trial.data();
-    FrameScalars* sc = d_.sc();
-    elastic_.evaluate(trial, false, d_.trialGrad.data(), &sc->trialElastic, &sc->trialInverted,
-                      only);
+    terms_.atTrial(trial, only);
     dampedProduct(trial, d_.tmp.data());
-    contact(trial, nullptr, &sc->trialContact);
-    objective(trial, &sc->trialElastic, &sc->trialContact, d_.tmp.data(), &sc->e1);
+    objective(trial, true, d_.tmp.data(), &d_.sc()->e1);
   }
 
  private:
   Exec& ex_;
   const SimModel& model_;
   FrameData<Exec>& d_;
-  ElasticTerm<Exec> elastic_;
-  ContactTerm<Exec>& contact_;
+  PassTerms<Exec> terms_;
 };
 
 }  // namespace galsculpt

@@ -161,7 +161,7 @@ class LineSearch {
     read.guardSlope = read.slope;  // the full step's
     for (int round = 0; round < kGuardRounds; ++round) {
       // The rises (0 where the vertex cannot move) and, in `changed`, who the trial turned over.
-      potential_.vertexPotential(trial, d_.trialEnergy.data(), d_.tmp.data(), rise);
+      potential_.vertexPotential(trial, true, d_.tmp.data(), rise);
       ex_.forEach(d_.n, [=] GALSCULPT_LAMBDA(int v) {
         bool turned = false;
         for (int i = vStart[v]; i < vStart[v + 1] && !turned; ++i)

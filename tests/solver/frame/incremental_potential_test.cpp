@@ -24,7 +24,6 @@ struct Potential {
   SimModel model;
   CpuExecutor ex;
   FrameData<CpuExecutor> d;
-  ContactTerm<CpuExecutor> contact;
   PlasticState<CpuExecutor> plastic;
   IncrementalPotential<CpuExecutor> potential;
   StepSettings settings;
@@ -45,13 +44,12 @@ struct Potential {
   Potential()
       : model(bar()),
         d(model),
-        contact(ex, model),
         plastic(ex, model),
-        potential(ex, model, d, contact, plastic),
+        potential(ex, model, d, plastic),
         n(model.numVertices()) {
     d.settings = &settings;
     d.h = 0.01;
-    contact.place({ColliderState{}}, 0.0, d.h);
+    potential.contact().place({ColliderState{}}, 0.0, d.h);
     std::vector<double> x(3 * n), v(3 * n);
     std::mt19937 gen(5);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -76,23 +74,18 @@ struct Potential {
     d.springTarget.upload(springTarget);
   }
 
-  // The potential at y (the elements, damping and contact evaluated there).
+  // The potential at y (the pass terms, as at a trial, and damping evaluated there).
   double at(const std::vector<double>& y) {
-    std::vector<double> gradient(3 * n), dampedK(3 * n);
-    FrameScalars* sc = d.sc();
-    potential.elastic().evaluate(y.data(), false, gradient.data(), &sc->trialElastic,
-                                 &sc->trialInverted);
+    std::vector<double> dampedK(3 * n);
+    potential.passTerms().atTrial(y.data(), nullptr);
     potential.dampedProduct(y.data(), dampedK.data());
-    potential.contact(y.data(), nullptr, &sc->trialContact);
-    potential.objective(y.data(), &sc->trialElastic, &sc->trialContact, dampedK.data(), &sc->e1);
-    return sc->e1;
+    potential.objective(y.data(), true, dampedK.data(), &d.sc()->e1);
+    return d.sc()->e1;
   }
-  // g at y, zero on the held vertex.
+  // g at y, zero on the held vertex (the pass terms as at Newton's iterate).
   std::vector<double> g(const std::vector<double>& y) {
     std::vector<double> gradient(3 * n), dampedK(3 * n), out(3 * n);
-    FrameScalars* sc = d.sc();
-    potential.elastic().evaluate(y.data(), true, gradient.data(), &sc->elastic, &sc->inverted);
-    potential.contact(y.data(), gradient.data(), &sc->contact);
+    potential.passTerms().atIterate(y.data(), false, gradient.data());
     potential.dampedProduct(y.data(), dampedK.data());
     potential.backwardEulerGradient(y.data(), gradient.data(), dampedK.data(), out.data());
     return out;
@@ -166,7 +159,7 @@ TEST(IncrementalPotential, VertexSharesSumToThePotential) {
   const double whole = p.at(y);
   std::vector<double> dampedK(3 * p.n), shares(p.n);
   p.potential.dampedProduct(y.data(), dampedK.data());
-  p.potential.vertexPotential(y.data(), p.d.trialEnergy.data(), dampedK.data(), shares.data());
+  p.potential.vertexPotential(y.data(), true, dampedK.data(), shares.data());
   double sum = 0.0;
   for (double s : shares) sum += s;
   EXPECT_NEAR(sum, whole, 1e-12 * std::abs(whole) + 1e-15);

@@ -10,7 +10,6 @@
 #include <random>
 #include <vector>
 
-#include "solver/frame/contact_term.h"
 #include "solver/frame/cpu_executor.h"
 #include "solver/frame/incremental_potential.h"
 #include "solver/frame/plastic_state.h"
@@ -25,9 +24,8 @@ struct System {
                     {MaterialModel::StableNeoHookean, lameFromYoungPoisson(1e5, 0.4), 1000.0, {}});
   CpuExecutor ex;
   FrameData<CpuExecutor> d{model};
-  ContactTerm<CpuExecutor> contact{ex, model};
   PlasticState<CpuExecutor> plastic{ex, model};
-  IncrementalPotential<CpuExecutor> potential{ex, model, d, contact, plastic};
+  IncrementalPotential<CpuExecutor> potential{ex, model, d, plastic};
   LinearSolve<CpuExecutor> linear{ex, model, d};
   StepSettings settings;
   std::vector<std::uint8_t> damaged = std::vector<std::uint8_t>(model.numEdges(), 0);
