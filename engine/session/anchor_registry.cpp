@@ -22,6 +22,7 @@ void AnchorRegistry::releaseDue(int frame) {
     if (release >= 0 && release <= frame) {
       tags_.erase(tags_.begin() + static_cast<long>(i));
       state_.anchors.erase(state_.anchors.begin() + static_cast<long>(i));
+      state_.letGo = true;
     } else {
       ++i;
     }
@@ -87,6 +88,7 @@ int AnchorRegistry::unanchor(const std::vector<int>& vertices) {
     if (!a.origin.empty()) a.origin.resize(kept);
     if (!a.springWeights.empty()) a.springWeights.resize(kept);
   }
+  if (dropped > 0) state_.letGo = true;
   return dropped;
 }
 
@@ -105,6 +107,7 @@ void AnchorRegistry::remove(int id) {
     if (tags_[i].id != id) continue;
     tags_.erase(tags_.begin() + static_cast<long>(i));
     state_.anchors.erase(state_.anchors.begin() + static_cast<long>(i));
+    state_.letGo = true;
     return;
   }
   throw std::out_of_range("no anchor with id " + std::to_string(id));

@@ -2,7 +2,8 @@
 // targets and springs from SimState::anchors; the registry keeps beside them what only the
 // session needs (an id for each, the frame a script brush lets go, a script's name) and is the
 // one place that adds, moves, releases and removes them (the scene, scripts, brushes, anchor
-// paint).
+// paint). Whatever lets go of vertices (remove, releaseDue, unanchor) says so to the solver in
+// SimState::letGo; adding, moving and reshaping an anchor (a stroke's rim) do not.
 #pragma once
 
 #include <optional>

@@ -94,6 +94,7 @@ void writeProject(const fs::path& file, const SceneDescription& scene, const Sim
   h["tool_damage"] = state.toolDamage;
   h["solver_carry"] = state.solverCarry.size();
   h["next_anchor_id"] = state.nextAnchorId;
+  if (state.letGo) h["let_go"] = true;  // (SimState::letGo; files without it: false)
   nlohmann::json anchors = nlohmann::json::array();
   for (size_t i = 0; i < state.anchors.size(); ++i) {
     const AnchorConstraint& a = state.anchors[i];
@@ -363,6 +364,7 @@ Project readProject(const fs::path& file) {
   s.toolDamage = o.integer("tool_damage", 0, 0, 2000000000);
   const int solverCarry = o.integer("solver_carry", 0, 0, 200000000);
   s.nextAnchorId = o.integer("next_anchor_id", 0, 0, 2000000000);
+  s.letGo = o.boolean("let_go", false);
   const auto anchors = o.array("anchors");
   for (size_t i = 0; i < anchors.size(); ++i) {
     AnchorTag tag;

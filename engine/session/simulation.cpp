@@ -313,6 +313,7 @@ SimulationSnapshot Simulation::snapshot() const {
   s.anchors = state_.anchors;
   s.anchorTags = anchors_.tags();
   s.nextAnchorId = anchors_.nextId();
+  s.letGo = state_.letGo;
   s.toolDamage = toolDamage_;
   return s;
 }
@@ -344,6 +345,7 @@ void Simulation::restore(const SimulationSnapshot& s) {
   frame_ = s.frame;
   state_.anchors = s.anchors;
   anchors_.restore(s.anchorTags, s.nextAnchorId);
+  state_.letGo = s.letGo;
   toolDamage_ = s.toolDamage;
   surface_.invalidate();  // positions changed without a frame
   ++generation_;

@@ -38,6 +38,7 @@ struct SimulationSnapshot {
   std::vector<AnchorConstraint> anchors;
   std::vector<AnchorTag> anchorTags;  // (one per anchor)
   int nextAnchorId = 0;
+  bool letGo = false;  // SimState::letGo
   int toolDamage = 0;
   // What the solver carries between frames beyond the state (StepBackend::carriedState).
   std::vector<double> solverCarry;

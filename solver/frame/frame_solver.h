@@ -97,6 +97,7 @@ class FrameSolver {
     colliderStates_.resize(model_.colliders.size());
     d_.settings = &settings;
     anchors_ = &state.anchors;
+    letGo_ = state.letGo;
     if (settings.multigrid()) linear_.ensureHierarchy(settings, damage_.host(), damage_.revision());
     // The stiffness frozen at x_n for damping, kept apart only with several Newton iterations
     // (allocated here: never inside a captured section).
@@ -113,6 +114,7 @@ class FrameSolver {
     plastic_.syncOut(state);
     state.time = time_;
     state.colliders = colliderStates_;
+    state.letGo = letGo_;  // taken by the first sub-step
   }
 
   // What the frame carries to the next beyond the state (StepBackend::carriedState).
@@ -136,6 +138,7 @@ class FrameSolver {
   struct Saved {
     double time;
     std::vector<ColliderState> colliders;
+    bool letGo;  // a retried sub-step starts as the first try did
   };
   struct Ops {
     FrameSolver& s;
@@ -154,7 +157,7 @@ class FrameSolver {
     ex_.copy(d_.savedX.data(), d_.x.data(), 3 * d_.n);
     ex_.copy(d_.savedV.data(), d_.v.data(), 3 * d_.n);
     plastic_.save();
-    return Saved{time_, colliderStates_};
+    return Saved{time_, colliderStates_, letGo_};
   }
   // Damage never needs restoring: a failed sub-step is rolled back before its fracture pass,
   // and a fracture re-solve keeps the new damage.
@@ -165,6 +168,7 @@ class FrameSolver {
     plastic_.restore(d_.rest.data());
     time_ = saved.time;
     colliderStates_ = saved.colliders;
+    letGo_ = saved.letGo;
   }
 
   // ---- one backward-Euler sub-step: the Newton solver ----------------------------------------
@@ -549,6 +553,7 @@ class FrameSolver {
   double pieceTargetCap_ = std::numeric_limits<double>::infinity();
   Clock::time_point frameStart_ = Clock::now();
   bool predicted_ = false;      // this sub-step's Newton started from x_n + h v_n, not yet checked
+  bool letGo_ = false;          // SimState::letGo, until a sub-step starts
   bool systemSkipped_ = false;  // the last iteration's null step built no system (takeNullStep)
   // Whether elemGrad holds every element's gradient at x under the current damage, rest shapes
   // and removed debris: true from a Newton iteration's accept until x or any of those changes

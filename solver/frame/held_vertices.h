@@ -56,14 +56,12 @@ class HeldVertexSet {
   // springs: a vertex two springs pull goes to their stiffness-weighted target.
   void prepare(const std::vector<AnchorConstraint>& anchors, double time) {
     // Nothing moved since the last prepare (the same anchors, none on a path, the same removed
-    // debris): what the executor holds stands, and nothing let go. The anchors are compared by
-    // content (a backend may step several states): what they hold, not the body.
+    // debris): what the executor holds stands. The anchors are compared by content (a backend
+    // may step several states): what they hold, not the body.
     const bool onPaths = std::any_of(anchors.begin(), anchors.end(),
                                      [](const AnchorConstraint& a) { return !a.path.empty(); });
-    if (prepared_ && !onPaths && !removedChanged_ && sameAnchors(anchors, preparedAnchors_)) {
-      letGo_ = false;
+    if (prepared_ && !onPaths && !removedChanged_ && sameAnchors(anchors, preparedAnchors_))
       return;
-    }
     prepared_ = true;
     removedChanged_ = false;
     preparedAnchors_ = anchors;
@@ -91,14 +89,6 @@ class HeldVertexSet {
     for (int v = 0; v < d_.n; ++v)
       if (springK[v] > 0.0)
         for (int c = 0; c < 3; ++c) springTarget[3 * v + c] /= springK[v];
-    // A brush lets go when most of what held the body is gone (a moving stroke lets its rim go
-    // every frame: not that).
-    double wasHeld = 0.0, released = 0.0;
-    if (hostSpringK_.size() == springK.size())
-      for (int v = 0; v < d_.n; ++v) {
-        wasHeld += hostSpringK_[v];
-        if (springK[v] == 0.0) released += hostSpringK_[v];
-      }
     uploadChanged(springK, hostSpringK_, d_.springK);
     uploadChanged(springTarget, hostSpringTarget_, d_.springTarget);
     for (size_t i = 0; i < removedVertices_.size(); ++i) {
@@ -109,22 +99,11 @@ class HeldVertexSet {
       targets.insert(targets.end(), removedTargets_.begin() + 3 * i,
                      removedTargets_.begin() + 3 * i + 3);
     }
-    int wasFixed = 0, freed = 0;
-    if (hostFixed_.size() == fixed.size())
-      for (int v = 0; v < d_.n; ++v) {
-        wasFixed += hostFixed_[v];
-        freed += hostFixed_[v] && !fixed[v];
-      }
-    letGo_ = released > 0.5 * wasHeld || 2 * freed > wasFixed;
     uploadChanged(fixed, hostFixed_, d_.fixed);
     d_.anchorCount = vertices.size();
     uploadChanged(vertices, hostAnchorVertices_, d_.anchorVertices);
     uploadChanged(targets, hostAnchorTargets_, d_.anchorTargets);
   }
-
-  // Whether the last prepare let go of most of what the one before held, the springs by their
-  // stiffness or the fixed vertices by their count (a brush or an anchor released).
-  bool letGo() const { return letGo_; }
 
   // The anchored vertices on their paths at the sub-step's end (in x).
   void place() {
@@ -165,7 +144,6 @@ class HeldVertexSet {
   std::vector<double> hostSpringK_, hostSpringTarget_;
   std::vector<int> removedVertices_;    // ascending
   std::vector<double> removedTargets_;  // (3 per removed vertex) where each is held
-  bool letGo_ = false;                  // letGo()
   bool prepared_ = false;
   bool removedChanged_ = false;  // the removed debris or its targets, since the last prepare
   std::vector<AnchorConstraint> preparedAnchors_;  // the anchors of the last prepare

@@ -29,7 +29,8 @@ void FrameSolver<Exec>::beginSubstep(double h) {
   // Not where a brush or an anchor has just let go: the prediction would carry the vertices it
   // moved on past where it let them go, and plastic clay stops there (its flow is in the
   // energy: a start deep in the flow region makes Newton unload it across the yield kink).
-  predicted_ = d_.settings->predictedStart && !held_.letGo();
+  predicted_ = d_.settings->predictedStart && !letGo_;
+  letGo_ = false;
   if (predicted_) {
     ex_.copy(x, xhat, 3 * d_.n);
     if (d_.settings->acceleratedStart) startPiecesAccelerated(h, gradientAtXn);

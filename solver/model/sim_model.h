@@ -106,6 +106,11 @@ struct SimState {
   std::vector<Eigen::Matrix3d> plasticInverse;  // (nTets) Fp^-1; empty for elastic materials
   std::vector<double> plasticStrain;            // (nTets) accumulated, for hardening
   std::vector<AnchorConstraint> anchors;        // held vertices and their paths
+  // An anchor let go of vertices since the last step (a brush's stroke ended, an anchor was
+  // removed or released, vertices unanchored: engine/session/anchor_registry.h says so here).
+  // The step's first sub-step then starts from x_n, not from the prediction x_n + h v_n, and
+  // the step clears it. Part of the state: snapshots and projects keep it.
+  bool letGo = false;
   // (nColliders) the rigid pendulums' angles and angular velocities; missing entries are the
   // colliders' initial states (initialColliderState).
   std::vector<ColliderState> colliders;

@@ -73,6 +73,28 @@ TEST(AnchorRegistry, TargetsAndSpringsAreCheckedAndPaintCanBeErased) {
   EXPECT_EQ(b.state.anchors[0].springWeights, (std::vector<double>{0.1, 0.3}));
 }
 
+// What lets go of vertices (a removal, a due release, an unanchor that dropped some) says so to
+// the solver (SimState::letGo); adding, moving, reshaping (a stroke's rim) and softening do not.
+TEST(AnchorRegistry, WhatLetsGoOfVerticesSaysSoToTheSolver) {
+  Bar b;
+  const int grip = b.anchors.add({0, 1});
+  const int brush = b.anchors.add({2, 3}, {}, 4);
+  b.anchors.setTargets(grip, {Vec3(0, 0, 0), Vec3(1, 0, 0)});
+  b.anchors.setSprings(grip, {0.5, 0.5});
+  b.anchors.reshape(brush, {2}, {Vec3(2, 0, 0)}, {1.0});
+  EXPECT_EQ(b.anchors.unanchor({5}), 0);
+  b.anchors.releaseDue(3);
+  EXPECT_FALSE(b.state.letGo) << "nothing let go";
+  b.anchors.releaseDue(4);
+  EXPECT_TRUE(b.state.letGo) << "a due release";
+  b.state.letGo = false;
+  EXPECT_EQ(b.anchors.unanchor({1}), 1);
+  EXPECT_TRUE(b.state.letGo) << "an unanchor";
+  b.state.letGo = false;
+  b.anchors.remove(grip);
+  EXPECT_TRUE(b.state.letGo) << "a removal (a stroke's end)";
+}
+
 TEST(AnchorRegistry, RestoreBringsBackTagsAndTheNextId) {
   Bar b;
   b.anchors.add({0}, {}, 3, "a");

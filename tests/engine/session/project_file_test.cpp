@@ -92,6 +92,37 @@ TEST(ProjectFile, RoundTripRestoresTheSessionExactlyAndItRunsOnIdentically) {
   EXPECT_EQ(script.frames, reopened->simulation().frame());
 }
 
+// Saved between a stroke's end and the next frame, a project keeps that the brush let go
+// (SimState::letGo): the reopened session's next frame starts where the original's does, and
+// both run on identically.
+TEST(ProjectFile, ABrushLetGoBeforeTheNextFrameIsSaved) {
+  test::TempDir dir;
+  SculptedBall ball;
+  BrushStroke push;
+  push.kind = Tool::Push;
+  push.center = Vec3(0.02, 0.098, 0.0);
+  push.radius = 0.03;
+  push.strength = 0.2;
+  ball.session.beginStroke(push);
+  for (int f = 0; f < 2; ++f) ball.session.step();
+  ball.session.endStroke();
+  ASSERT_TRUE(ball.session.simulation().state().letGo);
+  writeProject(dir / "ball.gsproj", ball.session, std::nullopt);
+  const Project p = readProject(dir / "ball.gsproj");
+  EXPECT_TRUE(p.state.letGo);
+  std::unique_ptr<SculptSession> reopened = sessionFromProject(p, dir / "ball.gsproj");
+  EXPECT_TRUE(reopened->simulation().snapshot().letGo);
+  for (int f = 0; f < 2; ++f) {
+    ball.session.step();
+    reopened->step();
+  }
+  EXPECT_FALSE(reopened->simulation().state().letGo) << "taken by the next frame";
+  EXPECT_TRUE(ball.session.simulation().state().x == reopened->simulation().state().x);
+  // A project without the key (written before it, or with nothing let go) reads false.
+  writeProject(dir / "after.gsproj", ball.session, std::nullopt);
+  EXPECT_FALSE(readProject(dir / "after.gsproj").state.letGo);
+}
+
 // The rigid pendulum's angle and speed are state: saved mid-strike, the reopened Charpy runs on
 // as the original does; a state that does not fit the scene's colliders is refused.
 TEST(ProjectFile, ARigidPendulumsStateIsSavedAndReopened) {

@@ -206,6 +206,33 @@ TEST(ConvergedFrame, APredictedStartSavesIterationsForTheSameAnswer) {
   EXPECT_LE(predicted.cgIterations, previous.cgIterations);
 }
 
+// A frame after an anchor let go (SimState::letGo, said by the anchor registry) starts its first
+// sub-step from where the body is, x_n: the same bits as a frame without the prediction, and the
+// flag is taken (the next frame predicts again). Without the flag the prediction changes the path.
+TEST(ConvergedFrame, AFrameAfterALetGoStartsFromWhereTheBodyIs) {
+  const SimModel m = buildSimModel(gridBar(4, 2, 2, 0.025), rubber(2e5));
+  SimState start = initialState(m);
+  for (int v = 0; v < m.numVertices(); ++v)
+    start.v[v] = Vec3(1.0, 2.0, 0.0) + Vec3(0, 0, 5.0).cross(m.mesh.vertices[v]);
+  StepSettings settings = converged();
+  settings.substeps = 1;
+  StepSettings fromRest = settings;
+  fromRest.predictedStart = false;
+  SimState letGo = start;
+  letGo.letGo = true;
+  const Trajectory released = simulate(m, letGo, settings, 1);
+  const Trajectory fromX = simulate(m, start, fromRest, 1);
+  const Trajectory predicted = simulate(m, start, settings, 1);
+  EXPECT_FALSE(released.state.letGo) << "taken by the step";
+  EXPECT_EQ(released.state.x, fromX.state.x);
+  EXPECT_EQ(released.state.v, fromX.state.v);
+  EXPECT_NE(released.state.x, predicted.state.x) << "the prediction must change the bits here";
+  // Two sub-steps: only the first starts from x_n.
+  settings.substeps = 2;
+  fromRest.substeps = 2;
+  EXPECT_NE(simulate(m, letGo, settings, 1).state.x, simulate(m, start, fromRest, 1).state.x);
+}
+
 // A prediction that would turn elements inside out (here every one: the velocities reflect the
 // body through its centre within a step) is dropped: the sub-step starts from x_n and gives
 // exactly what it gives without the prediction, right side out.
