@@ -60,8 +60,7 @@ class HeldVertexSet {
     // may step several states): what they hold, not the body.
     const bool onPaths = std::any_of(anchors.begin(), anchors.end(),
                                      [](const AnchorConstraint& a) { return !a.path.empty(); });
-    if (prepared_ && !onPaths && !removedChanged_ && sameAnchors(anchors, preparedAnchors_))
-      return;
+    if (prepared_ && !onPaths && !removedChanged_ && sameAnchors(anchors, preparedAnchors_)) return;
     prepared_ = true;
     removedChanged_ = false;
     preparedAnchors_ = anchors;
