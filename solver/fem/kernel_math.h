@@ -9,17 +9,8 @@
 
 #include <cmath>
 
-#if defined(__CUDACC__)
-#define GALSCULPT_HD __host__ __device__ inline
-#else
-#define GALSCULPT_HD inline
-#endif
-// Unrolls the loop that follows where the compiler takes GCC's pragma (not under nvcc).
-#if defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__)
-#define GALSCULPT_UNROLL _Pragma("GCC unroll 8")
-#else
-#define GALSCULPT_UNROLL
-#endif
+#include "solver/fem/eigen_svd.h"
+#include "solver/fem/host_device.h"
 
 namespace galsculpt::kernels {
 
@@ -130,156 +121,33 @@ GALSCULPT_HD M3 scaledProduct(const M3& u, const double d[3], const M3& v) {
   return m;
 }
 
+// The eigen-solves and the SVD below are eigen_svd.h's, instantiated for double (the SIMD lanes
+// instantiate the same source on their lane type).
+
 // Symmetric eigen-solve of a 3x3 matrix by cyclic Jacobi: a = q diag(w) q^T, q a rotation.
 // Accurate for repeated eigenvalues (where closed forms lose orthogonality).
 GALSCULPT_HD void symmetricEigen(const M3& input, double w[3], M3& q) {
-  double a[3][3];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) a[r][c] = 0.5 * (input(r, c) + input(c, r));
-  q = identity3();
-  for (int sweep = 0; sweep < 32; ++sweep) {
-    const double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
-    const double diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
-    if (!(off > 1e-34 * diag) || !(off > 1e-300)) break;
-    for (int pair = 0; pair < 3; ++pair) {
-      const int p = pair == 2 ? 1 : 0, k = pair == 0 ? 1 : 2;
-      const double apk = a[p][k];
-      if (apk == 0.0) continue;
-      const double theta = (a[k][k] - a[p][p]) / (2.0 * apk);
-      const double t = fabs(theta) > 1e150 ? 0.5 / theta
-                                           : (theta >= 0.0 ? 1.0 : -1.0) /
-                                                 (fabs(theta) + sqrt(theta * theta + 1.0));
-      const double c = 1.0 / sqrt(t * t + 1.0), s = t * c;
-      for (int i = 0; i < 3; ++i) {  // A <- A J
-        const double aip = a[i][p], aik = a[i][k];
-        a[i][p] = c * aip - s * aik;
-        a[i][k] = s * aip + c * aik;
-      }
-      for (int i = 0; i < 3; ++i) {  // A <- J^T A
-        const double api = a[p][i], aki = a[k][i];
-        a[p][i] = c * api - s * aki;
-        a[k][i] = s * api + c * aki;
-      }
-      for (int i = 0; i < 3; ++i) {  // Q <- Q J
-        const double qip = q(i, p), qik = q(i, k);
-        q(i, p) = c * qip - s * qik;
-        q(i, k) = s * qip + c * qik;
-      }
-    }
-  }
-  for (int i = 0; i < 3; ++i) w[i] = a[i][i];
+  jacobiEigenOf<ScalarMath>(input, w, q, true);
 }
 
 // The eigenvalues of a symmetric matrix a in closed form (Cardano's trigonometric roots):
 // shift + scale t_i, t the roots of b = (a - shift I) / scale (trace 0, largest entry 1), t[0]
 // the smallest and t[2] the largest. scale 0: a = shift I (t zero). False for a NaN entry.
-struct CardanoRoots {
-  M3 b;
-  double shift, scale, t[3];
-};
+using CardanoRoots = CardanoRootsOf<double, M3>;
 
 GALSCULPT_HD bool cardanoRoots(const M3& a, CardanoRoots& r) {
-  r.shift = (a(0, 0) + a(1, 1) + a(2, 2)) / 3.0;
-  r.b = a;
-  M3& b = r.b;
-  for (int i = 0; i < 3; ++i) b(i, i) -= r.shift;
-  r.scale = maxAbs(b);
-  if (!(r.scale > 0.0)) {
-    r.t[0] = r.t[1] = r.t[2] = 0.0;
-    return r.scale == 0.0;  // false: NaN
-  }
-  for (double& x : b.a) x /= r.scale;
-  // Roots of det(b - t I) = 0 with tr b = 0: t = 2 sqrt(p/3) cos(phi - 2 pi k / 3).
-  const double off = b(0, 1) * b(0, 1) + b(0, 2) * b(0, 2) + b(1, 2) * b(1, 2);
-  const double p = (b(0, 0) * b(0, 0) + b(1, 1) * b(1, 1) + b(2, 2) * b(2, 2) + 2.0 * off) / 6.0;
-  const double sq = sqrt(p);
-  const double half = determinant(b) / (2.0 * p * sq);
-  const double phi = acos(fmin(1.0, fmax(-1.0, half))) / 3.0;
-  r.t[2] = 2.0 * sq * cos(phi);                          // largest
-  r.t[0] = 2.0 * sq * cos(phi + 2.0943951023931954923);  // smallest (2 pi / 3)
-  r.t[1] = -r.t[0] - r.t[2];
-  return true;
+  return cardanoRootsOf<ScalarMath>(a, r);
 }
 
-// The same eigen-solve in closed form (Cardano's roots, eigenvectors from cross products of the
-// rows of A - w I), several times cheaper than Jacobi; false where it is not accurate (nearly
-// repeated eigenvalues), checked by the reconstruction |q diag(w) q^T - a| as the caller asks.
+// The same eigen-solve in closed form, several times cheaper than Jacobi; false where it is not
+// accurate (nearly repeated eigenvalues), checked by the reconstruction |q diag(w) q^T - a|.
 GALSCULPT_HD bool closedFormSymmetricEigen(const M3& a, double w[3], M3& q) {
-  CardanoRoots roots;
-  if (!cardanoRoots(a, roots)) return false;
-  const double shift = roots.shift, scale = roots.scale;
-  if (scale == 0.0) {
-    w[0] = w[1] = w[2] = shift;
-    q = identity3();
-    return true;
-  }
-  const M3& b = roots.b;
-  const double* t = roots.t;
-  // The most isolated eigenvalue first: its kernel is well conditioned.
-  const int k = (t[2] - t[1]) > (t[1] - t[0]) ? 2 : 0;
-  auto kernelOf = [&](double value, double out[3]) {
-    const double r[3][3] = {{b(0, 0) - value, b(0, 1), b(0, 2)},
-                            {b(1, 0), b(1, 1) - value, b(1, 2)},
-                            {b(2, 0), b(2, 1), b(2, 2) - value}};
-    double best = 0.0;
-    for (int i = 0; i < 3; ++i) {
-      const double* x = r[i];
-      const double* y = r[(i + 1) % 3];
-      const double c[3] = {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2],
-                           x[0] * y[1] - x[1] * y[0]};
-      const double n = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-      if (n > best) {
-        best = n;
-        for (int j = 0; j < 3; ++j) out[j] = c[j];
-      }
-    }
-    if (!(best > 0.0)) return false;
-    const double inv = 1.0 / sqrt(best);
-    for (int j = 0; j < 3; ++j) out[j] *= inv;
-    return true;
-  };
-  double vk[3], v1[3];
-  if (!kernelOf(t[k], vk)) return false;
-  // The middle eigenvector is orthogonal to vk and to every row of b - t1 I.
-  double best = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    const double r[3] = {b(i, 0) - (i == 0 ? t[1] : 0.0), b(i, 1) - (i == 1 ? t[1] : 0.0),
-                         b(i, 2) - (i == 2 ? t[1] : 0.0)};
-    const double c[3] = {vk[1] * r[2] - vk[2] * r[1], vk[2] * r[0] - vk[0] * r[2],
-                         vk[0] * r[1] - vk[1] * r[0]};
-    const double n = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-    if (n > best) {
-      best = n;
-      for (int j = 0; j < 3; ++j) v1[j] = c[j];
-    }
-  }
-  if (!(best > 1e-20)) return false;
-  for (double& x : v1) x /= sqrt(best);
-  const double other[3] = {vk[1] * v1[2] - vk[2] * v1[1], vk[2] * v1[0] - vk[0] * v1[2],
-                           vk[0] * v1[1] - vk[1] * v1[0]};
-  const int o = 2 - k;  // the remaining extreme eigenvalue
-  for (int r = 0; r < 3; ++r) {
-    q(r, k) = vk[r];
-    q(r, 1) = v1[r];
-    q(r, o) = other[r];
-  }
-  if (determinant(q) < 0.0)
-    for (int r = 0; r < 3; ++r) q(r, o) = -q(r, o);
-  for (int i = 0; i < 3; ++i) w[i] = t[i] * scale + shift;
-  // Accept only an accurate reconstruction.
-  const double tolerance = 1e-11 * fmax(maxAbs(a), 1e-300);
-  for (int c = 0; c < 3; ++c)
-    for (int r = 0; r < 3; ++r) {
-      const double value =
-          q(r, 0) * w[0] * q(c, 0) + q(r, 1) * w[1] * q(c, 1) + q(r, 2) * w[2] * q(c, 2);
-      if (!(fabs(value - a(r, c)) <= tolerance)) return false;
-    }
-  return true;
+  return closedFormEigenOf<ScalarMath>(a, w, q);
 }
 
 // Closed form where accurate, Jacobi otherwise.
 GALSCULPT_HD void fastSymmetricEigen(const M3& a, double w[3], M3& q) {
-  if (!closedFormSymmetricEigen(a, w, q)) symmetricEigen(a, w, q);
+  fastEigenOf<ScalarMath>(a, w, q, true);
 }
 
 // F = U diag(s) V^T with U, V rotations, s sorted by magnitude of the first two, s[2] < 0 when
@@ -321,58 +189,10 @@ GALSCULPT_HD double svdFromNormalMatrix(const M3& f, bool accurate, M3& u, doubl
     }
     for (int i = 0; i < 3; ++i) w[i] = b(0, i) * b(0, i) + b(1, i) * b(1, i) + b(2, i) * b(2, i);
   } else {
-    fastSymmetricEigen(multiply(transpose(f), f), w, q);
+    fastSymmetricEigen(normalMatrixOf(f), w, q);
   }
-  // Descending eigenvalues of F^T F.
-  int order[3] = {0, 1, 2};
-  for (int i = 0; i < 3; ++i)
-    for (int j = i + 1; j < 3; ++j)
-      if (w[order[j]] > w[order[i]]) {
-        const int t = order[i];
-        order[i] = order[j];
-        order[j] = t;
-      }
-  for (int c = 0; c < 3; ++c)
-    for (int r = 0; r < 3; ++r) v(r, c) = q(r, order[c]);
-  if (determinant(v) < 0.0)
-    for (int r = 0; r < 3; ++r) v(r, 2) = -v(r, 2);
-  const M3 b = multiply(f, v);  // columns s_i u_i
-  const double scale = fmax(maxAbs(f), 1e-300);
-  double n0 = sqrt(b(0, 0) * b(0, 0) + b(1, 0) * b(1, 0) + b(2, 0) * b(2, 0));
-  double u0[3] = {1.0, 0.0, 0.0};
-  if (n0 > 1e-14 * scale)
-    for (int r = 0; r < 3; ++r) u0[r] = b(r, 0) / n0;
-  const double proj = u0[0] * b(0, 1) + u0[1] * b(1, 1) + u0[2] * b(2, 1);
-  double u1[3] = {b(0, 1) - proj * u0[0], b(1, 1) - proj * u0[1], b(2, 1) - proj * u0[2]};
-  const double n1 = sqrt(u1[0] * u1[0] + u1[1] * u1[1] + u1[2] * u1[2]);
-  if (n1 > 1e-14 * scale) {
-    for (double& x : u1) x /= n1;
-  } else {
-    // Rank one or zero: any unit vector orthogonal to u0 (its singular value is zero).
-    const int axis = fabs(u0[0]) <= fabs(u0[1]) && fabs(u0[0]) <= fabs(u0[2])
-                         ? 0
-                         : (fabs(u0[1]) <= fabs(u0[2]) ? 1 : 2);
-    double e[3] = {0.0, 0.0, 0.0};
-    e[axis] = 1.0;
-    const double d = u0[axis];
-    for (int r = 0; r < 3; ++r) u1[r] = e[r] - d * u0[r];
-    const double n = sqrt(u1[0] * u1[0] + u1[1] * u1[1] + u1[2] * u1[2]);
-    for (double& x : u1) x /= n;
-  }
-  const double u2[3] = {u0[1] * u1[2] - u0[2] * u1[1], u0[2] * u1[0] - u0[0] * u1[2],
-                        u0[0] * u1[1] - u0[1] * u1[0]};
-  for (int r = 0; r < 3; ++r) {
-    u(r, 0) = u0[r];
-    u(r, 1) = u1[r];
-    u(r, 2) = u2[r];
-  }
-  for (int i = 0; i < 3; ++i) s[i] = u(0, i) * b(0, i) + u(1, i) * b(1, i) + u(2, i) * b(2, i);
-  double dropped = 0.0;  // U^T F V off its diagonal
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (i != j)
-        dropped = fmax(dropped, fabs(u(0, i) * b(0, j) + u(1, i) * b(1, j) + u(2, i) * b(2, j)));
-  return dropped / scale;
+  bool regular;
+  return svdFromEigenOf<ScalarMath>(f, w, q, u, s, v, regular);
 }
 
 // F = U diag(s) V^T: the closed-form eigen-solve when its factors reproduce F to 1e-11, the

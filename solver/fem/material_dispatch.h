@@ -1,6 +1,7 @@
-// withMaterial: the one place in the solver that names the material models case by case, and
-// the number type double's operations the models ask for. Included only where a model is
-// evaluated (material_kernels.h, element_lanes_body.h); the names are material_table.h's.
+// withMaterial: the one place in the solver that names the material models case by case (the
+// number type double's operations the models ask for are eigen_svd.h's ScalarMath). Included only
+// where a model is evaluated (material_kernels.h, element_lanes_body.h); the names are
+// material_table.h's.
 #pragma once
 
 #include <cmath>
@@ -14,12 +15,6 @@
 #include "solver/fem/materials/stvk.h"
 
 namespace galsculpt::kernels {
-
-// The number type double's operations the models ask for (a lane type has its own).
-struct ScalarMath {
-  GALSCULPT_HD static double all(double x) { return x; }
-  GALSCULPT_HD static double log(double x) { return ::log(x); }
-};
 
 // f(Model{}) for the model's type.
 template <typename F>
