@@ -61,6 +61,16 @@ GALSCULPT_HD void setIdentity(Mat& q) {
     for (int r = 0; r < 3; ++r) q(r, c) = Math::all(r == c ? 1.0 : 0.0);
 }
 
+// u diag(d) v^T.
+template <typename Mat, typename T>
+GALSCULPT_HD Mat scaledProductOf(const Mat& u, const T d[3], const Mat& v) {
+  Mat m;
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r)
+      m(r, c) = u(r, 0) * d[0] * v(c, 0) + u(r, 1) * d[1] * v(c, 1) + u(r, 2) * d[2] * v(c, 2);
+  return m;
+}
+
 // F^T F.
 template <typename Mat>
 GALSCULPT_HD Mat normalMatrixOf(const Mat& f) {

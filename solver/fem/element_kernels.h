@@ -21,6 +21,7 @@
 
 #include "solver/fem/crack_law.h"
 #include "solver/fem/hencky_strain.h"
+#include "solver/fem/intact_element.h"
 #include "solver/fem/kernel_math.h"
 #include "solver/fem/material_types.h"
 
@@ -63,69 +64,31 @@ struct RestData {
 
 // --- materials in singular values (material_kernels.h evaluates them) ----------------------
 
-struct SingularValueEnergy {
-  double energy = 0.0;  // per unit rest volume (J/m^3)
-  double gradient[3] = {0.0, 0.0, 0.0};
-  M3 hessian{};  // d2 Psi / ds_i ds_j
-};
+using SingularValueEnergy = SingularValueEnergyOf<double, M3>;
 
-// --- intact elements ------------------------------------------------------------------------
+// --- intact elements (intact_element.h's, for double) ----------------------------------------
 
-GALSCULPT_HD M3 deformationGradient(const RestData& rest, const double x[12]) {
-  M3 ds{};
-  for (int c = 0; c < 3; ++c)
-    for (int r = 0; r < 3; ++r) ds(r, c) = x[3 * (c + 1) + r] - x[r];
+GALSCULPT_HD M3 dmInverseOf(const RestData& rest) {
   M3 dmInv;
   for (int i = 0; i < 9; ++i) dmInv.a[i] = rest.dmInverse[i];
-  return multiply(ds, dmInv);
+  return dmInv;
+}
+
+GALSCULPT_HD M3 deformationGradient(const RestData& rest, const double x[12]) {
+  return deformationGradientOf(dmInverseOf(rest), x);
 }
 
 // Shape-function gradients: F = sum_a x_a c_a^T, c_0 = -(c_1 + c_2 + c_3); c[a][j].
 GALSCULPT_HD void shapeGradients(const RestData& rest, double c[4][3]) {
-  for (int j = 0; j < 3; ++j) {
-    c[0][j] = 0.0;
-    for (int a = 1; a < 4; ++a) {
-      c[a][j] = rest.dmInverse[(a - 1) + 3 * j];
-      c[0][j] -= c[a][j];
-    }
-  }
+  shapeGradientsOf<ScalarMath>(dmInverseOf(rest), c);
 }
 
-// Quotient with the denominator kept from zero; `limit` where both vanish (equal values).
-GALSCULPT_HD double safeQuotient(double numerator, double denominator, double limit) {
-  return fabs(denominator) < 1e-8 ? limit : numerator / denominator;
-}
-
-// The analytic eigensystem of dP/dF: calls visit(lambda, Q) for its 3 scaling modes (the
-// eigenvectors of the singular-value Hessian), 3 twist and 3 flip modes; dP/dF is
-// sum lambda vec(Q) vec(Q)^T, and projecting it to SPD is clamping each lambda at zero.
+// The analytic eigensystem of dP/dF (intact_element.h): visit(lambda, Q) for its 3 scaling, 3
+// twist and 3 flip modes.
 template <typename Visit>
 GALSCULPT_HD void forEachStressMode(const M3& u, const double s[3], const M3& v,
                                     const SingularValueEnergy& e, Visit visit) {
-  double w[3];
-  M3 q;
-  fastSymmetricEigen(e.hessian, w, q);
-  for (int m = 0; m < 3; ++m) {
-    const double d[3] = {q(0, m), q(1, m), q(2, m)};
-    visit(w[m], scaledProduct(u, d, v));
-  }
-  const double invSqrt2 = 0.70710678118654752440;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = i + 1; j < 3; ++j) {
-      // U T V^T with T the twist (flip) of the pair: (u_i v_j^T -+ u_j v_i^T) / sqrt 2.
-      M3 twist, flip;
-      for (int c = 0; c < 3; ++c) {
-        for (int r = 0; r < 3; ++r) {
-          const double a = u(r, i) * v(c, j) * invSqrt2, b = u(r, j) * v(c, i) * invSqrt2;
-          twist(r, c) = a - b;
-          flip(r, c) = a + b;
-        }
-      }
-      const double gi = e.gradient[i], gj = e.gradient[j];
-      visit(safeQuotient(gi + gj, s[i] + s[j], e.hessian(i, i) + e.hessian(i, j)), twist);
-      visit(safeQuotient(gi - gj, s[i] - s[j], e.hessian(i, i) - e.hessian(i, j)), flip);
-    }
-  }
+  forEachStressModeOf<ScalarMath>(u, s, v, e, true, visit);
 }
 
 // dP/dF (9x9, column-major vec(F)), exact or projected to SPD.

@@ -136,11 +136,7 @@ void writeTransposed(const D* from, int count, double* const to[kLanes], int lan
   }
 }
 
-struct Energy {
-  D energy;
-  D gradient[3];
-  Mat hessian;
-};
+using Energy = SingularValueEnergyOf<D, Mat>;
 
 // singularValueEnergy: the same model source as the scalar kernel, in lanes. A model whose
 // energy depends on the element's own state (kLaneByLane: its yield stress, `yield`, one per
@@ -172,15 +168,6 @@ Energy singularValueEnergy(MaterialModel model, const Lame& lame, const D s[3],
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) out.hessian(i, j) = hessian[i][j];
   return out;
-}
-
-// u diag(d) v^T.
-Mat scaledProduct(const Mat& u, const D d[3], const Mat& v) {
-  Mat m;
-  for (int c = 0; c < 3; ++c)
-    for (int r = 0; r < 3; ++r)
-      m(r, c) = u(r, 0) * d[0] * v(c, 0) + u(r, 1) * d[1] * v(c, 1) + u(r, 2) * d[2] * v(c, 2);
-  return m;
 }
 
 // The upper triangle (row <= col) of the 12x12 stiffness, column by column.
@@ -239,38 +226,22 @@ unsigned evaluateIntactLanes(MaterialModel model, const Lame& lame, const LaneIn
     volume[l] = r.volume;
     for (int i = 0; i < 12; ++i) x[i][l] = in.x[from][i];
   }
-  // deformationGradient.
-  Mat ds, f;
-  for (int c = 0; c < 3; ++c)
-    for (int r = 0; r < 3; ++r) ds(r, c) = x[3 * (c + 1) + r] - x[r];
-  for (int c = 0; c < 3; ++c)
-    for (int r = 0; r < 3; ++r)
-      f(r, c) =
-          ds(r, 0) * dmInverse(0, c) + ds(r, 1) * dmInverse(1, c) + ds(r, 2) * dmInverse(2, c);
+  const Mat f = deformationGradientOf(dmInverse, x);
   // Lanes with a NaN, an infinity or a huge entry go to the scalar kernel (the selections
   // below assume ordered, finite numbers).
   for (const D& v : f.a) ok &= absolute(v) < 1e100;
-  // shapeGradients.
   D c[4][3];
-  for (int j = 0; j < 3; ++j) {
-    c[0][j] = all(0.0);
-    for (int a = 1; a < 4; ++a) {
-      c[a][j] = dmInverse.a[(a - 1) + 3 * j];
-      c[0][j] -= c[a][j];
-    }
-  }
+  shapeGradientsOf<LaneMath>(dmInverse, c);
   Mat u, v;
   D s[3];
   svd(f, u, s, v, ok);
   double yield[kLanes];
   for (int l = 0; l < kLanes; ++l) yield[l] = in.yield[l < in.count ? l : 0];
   const Energy e = singularValueEnergy(model, lame, s, yield);
-  const Mat p = scaledProduct(u, e.gradient, v);
+  const Mat p = scaledProductOf(u, e.gradient, v);
   const D energy = volume * e.energy;
   D gradient[12];
-  for (int a = 0; a < 4; ++a)
-    for (int r = 0; r < 3; ++r)
-      gradient[3 * a + r] = volume * (p(r, 0) * c[a][0] + p(r, 1) * c[a][1] + p(r, 2) * c[a][2]);
+  elementForceOf(volume, p, c, gradient);
   if (!in.stiffness) return writeEnergyAndForce(in.count, ok, energy, gradient, out);
   // forEachStressMode with the projection, its nine modes first collected: mode m's 12-vector
   // w and its scaled copy (volume lambda) w. A clamped mode (lambda 0) adds zeros, which leave
@@ -278,46 +249,14 @@ unsigned evaluateIntactLanes(MaterialModel model, const Lame& lame, const LaneIn
   constexpr int kModes = 9;
   D modeW[kModes][12], modeScaledW[kModes][12];
   int modes = 0;
-  auto visit = [&](D lambda, const Mat& q) {
+  forEachStressModeOf<LaneMath>(u, s, v, e, ok, [&](D lambda, const Mat& q) {
     lambda = larger(lambda, all(0.0));
     D* w = modeW[modes];
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i)
-        w[3 * a + i] = q(i, 0) * c[a][0] + q(i, 1) * c[a][1] + q(i, 2) * c[a][2];
+    modeVectorOf(q, c, w);
     const D scale = volume * lambda;
     for (int col = 0; col < 12; ++col) modeScaledW[modes][col] = scale * w[col];
     ++modes;
-  };
-  {
-    D w[3];
-    Mat q;
-    fastEigenOf<LaneMath>(e.hessian, w, q, ok);
-    for (int m = 0; m < 3; ++m) {
-      const D d[3] = {q(0, m), q(1, m), q(2, m)};
-      visit(w[m], scaledProduct(u, d, v));
-    }
-  }
-  const double invSqrt2 = 0.70710678118654752440;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = i + 1; j < 3; ++j) {
-      Mat twist, flip;
-      for (int col = 0; col < 3; ++col) {
-        for (int r = 0; r < 3; ++r) {
-          const D a = u(r, i) * v(col, j) * invSqrt2, b = u(r, j) * v(col, i) * invSqrt2;
-          twist(r, col) = a - b;
-          flip(r, col) = a + b;
-        }
-      }
-      const D gi = e.gradient[i], gj = e.gradient[j];
-      // safeQuotient.
-      const D sumDen = s[i] + s[j], diffDen = s[i] - s[j];
-      visit(select(absolute(sumDen) < 1e-8, e.hessian(i, i) + e.hessian(i, j), (gi + gj) / sumDen),
-            twist);
-      visit(
-          select(absolute(diffDen) < 1e-8, e.hessian(i, i) - e.hessian(i, j), (gi - gj) / diffDen),
-          flip);
-    }
-  }
+  });
   // The scalar kernel's sums, entry by entry over the modes in its order (each sum kept in a
   // register instead of passing the 78 of them through memory once per mode).
   D hessian[78];

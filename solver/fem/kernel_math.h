@@ -114,11 +114,7 @@ GALSCULPT_HD bool invert6(const double in[36], double out[36]) {
 
 // U diag(d) V^T.
 GALSCULPT_HD M3 scaledProduct(const M3& u, const double d[3], const M3& v) {
-  M3 m{};
-  for (int c = 0; c < 3; ++c)
-    for (int r = 0; r < 3; ++r)
-      m(r, c) = u(r, 0) * d[0] * v(c, 0) + u(r, 1) * d[1] * v(c, 1) + u(r, 2) * d[2] * v(c, 2);
-  return m;
+  return scaledProductOf(u, d, v);
 }
 
 // The eigen-solves and the SVD below are eigen_svd.h's, instantiated for double (the SIMD lanes

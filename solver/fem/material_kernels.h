@@ -95,10 +95,7 @@ GALSCULPT_HD void evaluateElement(MaterialModel model, const Lame& lame, const R
     p = scaledProduct(u, e.gradient, v);
     energy = rest.volume * e.energy;
   }
-  for (int a = 0; a < 4; ++a)
-    for (int r = 0; r < 3; ++r)
-      gradient[3 * a + r] =
-          rest.volume * (p(r, 0) * c[a][0] + p(r, 1) * c[a][1] + p(r, 2) * c[a][2]);
+  elementForceOf(rest.volume, p, c, gradient);
   if (mode == Hessian::None) return;
   // K = V sum lambda (dF/dx^T vec Q)(dF/dx^T vec Q)^T over the modes Q of dP/dF, with
   // dF/dx^T vec Q = [Q c_0; Q c_1; Q c_2; Q c_3]: 12-vectors instead of the 9x9 dP/dF.
@@ -108,9 +105,7 @@ GALSCULPT_HD void evaluateElement(MaterialModel model, const Lame& lame, const R
     if (project) lambda = fmax(lambda, 0.0);
     if (lambda == 0.0) return;
     double w[12];
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i)
-        w[3 * a + i] = q(i, 0) * c[a][0] + q(i, 1) * c[a][1] + q(i, 2) * c[a][2];
+    modeVectorOf(q, c, w);
     const double scale = rest.volume * lambda;
     for (int col = 0; col < 12; ++col) {
       const double wc = scale * w[col];
