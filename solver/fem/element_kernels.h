@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "solver/fem/crack_law.h"
+#include "solver/fem/edge_strain_element.h"
 #include "solver/fem/hencky_strain.h"
 #include "solver/fem/intact_element.h"
 #include "solver/fem/kernel_math.h"
@@ -105,26 +106,10 @@ GALSCULPT_HD void eigenSystemHessian(const M3& u, const double s[3], const M3& v
 
 // --- damaged elements: St. Venant-Kirchhoff in the edge strains, cracks open one way ---------
 
-// The strain-space stiffness K = B^-T C B^-1 on the six edge Green strains: the element's
-// St. Venant-Kirchhoff energy is 1/2 eps^T K eps. Isotropic C on (E11,E22,E33,E12,E13,E23) is
-// lambda t t^T + diag(2mu, 2mu, 2mu, 4mu, 4mu, 4mu) with t = (1,1,1,0,0,0) (shear entries count
-// twice in E:E), so K = lambda a a^T + S^T W S with S = B^-1 and a = S^T t: a quarter of the
-// arithmetic of forming C B^-1 first, and exactly symmetric by construction.
+// The strain-space stiffness K on the six edge Green strains (edge_strain_element.h): the
+// element's St. Venant-Kirchhoff energy is 1/2 eps^T K eps.
 GALSCULPT_HD void edgeStrainStiffness(const Lame& lame, const RestData& rest, double k[6][6]) {
-  const double* s = rest.strainFromEdges;  // s[m + 6 c]
-  double a[6];
-  for (int c = 0; c < 6; ++c) a[c] = s[6 * c] + s[1 + 6 * c] + s[2 + 6 * c];
-  const double normal = 2.0 * lame.mu, shear = 4.0 * lame.mu;
-  for (int r = 0; r < 6; ++r) {
-    const double* sr = s + 6 * r;
-    for (int c = r; c < 6; ++c) {
-      const double* sc = s + 6 * c;
-      const double sum = normal * (sr[0] * sc[0] + sr[1] * sc[1] + sr[2] * sc[2]) +
-                         shear * (sr[3] * sc[3] + sr[4] * sc[4] + sr[5] * sc[5]) +
-                         lame.lambda * a[r] * a[c];
-      k[r][c] = k[c][r] = sum;
-    }
-  }
+  edgeStrainStiffnessOf(lame, rest.strainFromEdges, k);
 }
 
 // Eliminates the edges in `set` from [K | rhs] (the LDL^T of K on the set: symmetric pivots,
@@ -340,67 +325,29 @@ GALSCULPT_HD void crackedStrainState(const Lame& lame, const RestData& rest, con
 // The six edge vectors d_k and raw Green strains (|d|^2 - |D|^2) / (2 |D|^2).
 GALSCULPT_HD void edgeGreenStrains(const RestData& rest, const double x[12], double d[6][3],
                                    double strain[6]) {
-  for (int e = 0; e < 6; ++e) {
-    const int a = edgeVertex(e, 0), b = edgeVertex(e, 1);
-    double len2 = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      d[e][k] = x[3 * b + k] - x[3 * a + k];
-      len2 += d[e][k] * d[e][k];
-    }
-    strain[e] = (len2 - rest.restLengthSq[e]) / (2.0 * rest.restLengthSq[e]);
-  }
+  edgeGreenStrainsOf<ScalarMath>(rest.restLengthSq, x, d, strain);
 }
 
 // Writes the 12x12 Hessian of the edge-strain energy: G^T H G plus the edges' own curvature
-// (g: the strains' gradients d_e / |D_e|^2, which the caller has for the force).
-// G's row for edge e is -g_e at its first vertex and +g_e at its second (g_e = d_e / |D_e|^2),
-// so the block of vertices (a, c) is sum over f at c of +-u_af g_f^T, with
-// u_af = V sum over e at a of +-H_ef g_e: 486 multiply-adds where the entry-by-entry sum over
-// edge pairs took 1,296, and the lower blocks are the upper ones' transposes.
+// (edge_strain_element.h; g: the strains' gradients d_e / |D_e|^2, which the caller has for the
+// force), the lower blocks the upper ones' transposes.
 GALSCULPT_HD void edgeStrainHessian(const RestData& rest, const double g[6][3],
                                     const CrackedStrainState& state, Hessian mode,
                                     double* hessian) {
-  // The three edges at each vertex, with the sign of d eps_e / d x_vertex.
-  constexpr int kEdgesAt[4][3] = {{0, 1, 2}, {0, 3, 4}, {1, 3, 5}, {2, 4, 5}};
-  constexpr double kSignAt[4][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {1, 1, 1}};
-  double u[4][6][3];
-  for (int a = 0; a < 4; ++a)
-    for (int f = 0; f < 6; ++f)
-      for (int r = 0; r < 3; ++r) {
-        double sum = 0.0;
-        for (int i = 0; i < 3; ++i) {
-          const int e = kEdgesAt[a][i];
-          sum += kSignAt[a][i] * state.stiffness[e][f] * g[e][r];
-        }
-        u[a][f][r] = rest.volume * sum;
-      }
-  for (int a = 0; a < 4; ++a)
-    for (int c = a; c < 4; ++c)
-      for (int col = 0; col < 3; ++col)
-        for (int r = 0; r < 3; ++r) {
-          double sum = 0.0;
-          for (int i = 0; i < 3; ++i) {
-            const int f = kEdgesAt[c][i];
-            sum += kSignAt[c][i] * u[a][f][r] * g[f][col];
-          }
-          hessian[(3 * a + r) + 12 * (3 * c + col)] = sum;
-          hessian[(3 * c + col) + 12 * (3 * a + r)] = sum;
-        }
-  // The second derivative of eps_k is [I -I; -I I] / |D_k|^2: indefinite only for a compressive
-  // edge force, which projection drops.
-  for (int e = 0; e < 6; ++e) {
-    double t = state.tau[e] / rest.restLengthSq[e];
-    if (mode == Hessian::ProjectedSpd && !(t > 0.0)) t = 0.0;
-    if (t == 0.0) continue;
-    const double block = rest.volume * t;
-    const int a = 3 * edgeVertex(e, 0), b = 3 * edgeVertex(e, 1);
-    for (int c = 0; c < 3; ++c) {
-      hessian[(a + c) + 12 * (a + c)] += block;
-      hessian[(b + c) + 12 * (b + c)] += block;
-      hessian[(a + c) + 12 * (b + c)] -= block;
-      hessian[(b + c) + 12 * (a + c)] -= block;
-    }
-  }
+  edgeStrainBlocksOf<ScalarMath>(rest.volume, g, state.stiffness,
+                                 [&](int a, int c, int r, int col, double sum) {
+                                   hessian[(3 * a + r) + 12 * (3 * c + col)] = sum;
+                                   hessian[(3 * c + col) + 12 * (3 * a + r)] = sum;
+                                 });
+  edgeCurvatureOf<ScalarMath>(rest.volume, state.tau, rest.restLengthSq,
+                              mode == Hessian::ProjectedSpd, [&](int a, int b, double block, bool) {
+                                for (int c = 0; c < 3; ++c) {
+                                  hessian[(3 * a + c) + 12 * (3 * a + c)] += block;
+                                  hessian[(3 * b + c) + 12 * (3 * b + c)] += block;
+                                  hessian[(3 * a + c) + 12 * (3 * b + c)] -= block;
+                                  hessian[(3 * b + c) + 12 * (3 * a + c)] -= block;
+                                }
+                              });
 }
 
 // `hessian` (12x12 column-major) may be null when mode is None; `opened`, when not null, gets
@@ -423,19 +370,9 @@ GALSCULPT_HD void evaluateEdgeStrainElement(const Lame& lame, const RestData& re
     return;
   }
   energy = rest.volume * state.energy;
-  // d eps_k / d x_b = d_k / |D_k|^2 = -d eps_k / d x_a for edge (a, b).
   double g[6][3];
-  for (int e = 0; e < 6; ++e)
-    for (int c = 0; c < 3; ++c) g[e][c] = d[e][c] / rest.restLengthSq[e];
-  for (int i = 0; i < 12; ++i) gradient[i] = 0.0;
-  for (int e = 0; e < 6; ++e) {
-    if (state.tau[e] == 0.0) continue;
-    const int a = edgeVertex(e, 0), b = edgeVertex(e, 1);
-    for (int c = 0; c < 3; ++c) {
-      gradient[3 * b + c] += rest.volume * state.tau[e] * g[e][c];
-      gradient[3 * a + c] -= rest.volume * state.tau[e] * g[e][c];
-    }
-  }
+  edgeStrainGradientsOf(d, rest.restLengthSq, g);
+  edgeForceOf<ScalarMath>(rest.volume, state.tau, g, gradient);
   if (mode != Hessian::None) edgeStrainHessian(rest, g, state, mode, hessian);
 }
 
