@@ -86,10 +86,12 @@ unsigned evaluateCrackedLanes(const Lame& lame, const CrackedLaneInputs& in,
   // edgeStrainHessian, the blocks on and above the diagonal only (what is packed).
   D packed[92];
   auto block = [&](int a, int c) { return packed + 9 * (4 * a - a * (a - 1) / 2 + (c - a)); };
-  edgeStrainBlocksOf<LaneMath>(volume, g, stiff, [&](int a, int c, int r, int col, const D& sum) {
+  // A diagonal block's entry below its diagonal is the sum at its upper-triangle position, as
+  // the scalar kernel writes it.
+  edgeStrainBlocksOf<LaneMath>(volume, g, stiff, [&](int a, int c, const D sum[3][3]) {
     D* blk = block(a, c);
-    blk[r + 3 * col] = sum;
-    if (a == c) blk[col + 3 * r] = sum;  // the scalar kernel writes each entry's mirror too
+    for (int col = 0; col < 3; ++col)
+      for (int r = 0; r < 3; ++r) blk[r + 3 * col] = c == a && r > col ? sum[col][r] : sum[r][col];
   });
   edgeCurvatureOf<LaneMath>(volume, tau, restLengthSq, true,
                             [&](int a, int b, const D& add, Mask pulls) {

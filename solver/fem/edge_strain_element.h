@@ -87,11 +87,11 @@ GALSCULPT_HD void edgeForceOf(const T& volume, const T tau[6], const T g[6][3], 
 }
 
 // G^T H G (H: the edge forces' stiffness in the edge strains), the blocks on and above the
-// diagonal: emit(a, c, r, col, value) for entry (r, col) of block (a, c), c >= a, in the order
-// the scalar kernel writes them (a diagonal block's entries below its diagonal are written
-// again by their mirrors' emits). G's row for edge e is -g_e at its first vertex and +g_e at its
-// second, so block (a, c) is sum over f at c of +-u_af g_f^T, with u_af = V sum over e at a of
-// +-H_ef g_e: 486 multiply-adds where the entry-by-entry sum over edge pairs took 1,296.
+// diagonal: emit(a, c, sum) with sum[r][col] the entry (r, col) of block (a, c), c >= a. G's
+// row for edge e is -g_e at its first vertex and +g_e at its second, so block (a, c) is
+// sum over f at c of +-u_af g_f^T, with u_af = V sum over e at a of +-H_ef g_e: 486
+// multiply-adds where the entry-by-entry sum over edge pairs took 1,296. (A sign of -1 adds
+// -(u g), the same bits as subtracting u g.)
 template <typename Math, typename T, typename Emit>
 GALSCULPT_HD void edgeStrainBlocksOf(const T& volume, const T g[6][3], const T stiffness[6][6],
                                      Emit emit) {
@@ -108,16 +108,20 @@ GALSCULPT_HD void edgeStrainBlocksOf(const T& volume, const T g[6][3], const T s
         u[a][f][r] = volume * sum;
       }
   for (int a = 0; a < 4; ++a)
-    for (int c = a; c < 4; ++c)
-      for (int col = 0; col < 3; ++col)
-        for (int r = 0; r < 3; ++r) {
-          T sum = Math::all(0.0);
-          for (int i = 0; i < 3; ++i) {
-            const int f = kEdgesAt[c][i];
-            sum += kSignAt[c][i] * u[a][f][r] * g[f][col];
+    for (int c = a; c < 4; ++c) {
+      T sum[3][3];
+      for (int r = 0; r < 3; ++r)
+        for (int col = 0; col < 3; ++col) sum[r][col] = Math::all(0.0);
+      for (int i = 0; i < 3; ++i) {
+        const int f = kEdgesAt[c][i];
+        for (int r = 0; r < 3; ++r)
+          for (int col = 0; col < 3; ++col) {
+            const T term = u[a][f][r] * g[f][col];
+            sum[r][col] = kSignAt[c][i] > 0.0 ? sum[r][col] + term : sum[r][col] - term;
           }
-          emit(a, c, r, col, sum);
-        }
+      }
+      emit(a, c, sum);
+    }
 }
 
 // The second derivative of eps_k is [I -I; -I I] / |D_k|^2: each edge's own curvature block

@@ -25,9 +25,8 @@ struct ScalarMath {
   GALSCULPT_HD static double sqrt(double x) { return ::sqrt(x); }
   GALSCULPT_HD static double abs(double x) { return fabs(x); }
   GALSCULPT_HD static double max(double x, double y) { return fmax(x, y); }
-  GALSCULPT_HD static double fmin(double x, double y) { return ::fmin(x, y); }
-  GALSCULPT_HD static double fmax(double x, double y) { return ::fmax(x, y); }
-  GALSCULPT_HD static double acos(double x) { return ::acos(x); }
+  // acos of x clamped to [-1, 1] (a NaN clamps to -1, as fmax takes the number).
+  GALSCULPT_HD static double clampedAcos(double x) { return ::acos(::fmin(1.0, ::fmax(-1.0, x))); }
   GALSCULPT_HD static double cos(double x) { return ::cos(x); }
   GALSCULPT_HD static double select(bool m, double x, double y) { return m ? x : y; }
   GALSCULPT_HD static bool any(bool m) { return m; }
@@ -149,7 +148,7 @@ GALSCULPT_HD typename Math::Mask cardanoRootsOf(const Mat& a, CardanoRootsOf<T, 
   const T p = (b(0, 0) * b(0, 0) + b(1, 1) * b(1, 1) + b(2, 2) * b(2, 2) + 2.0 * off) / 6.0;
   const T sq = Math::sqrt(p);
   const T half = determinantOf(b) / (2.0 * p * sq);
-  const T phi = Math::acos(Math::fmin(Math::all(1.0), Math::fmax(Math::all(-1.0), half))) / 3.0;
+  const T phi = Math::clampedAcos(half) / 3.0;
   const T zero = Math::all(0.0);
   r.t[2] = Math::select(positive, 2.0 * sq * Math::cos(phi), zero);  // largest
   r.t[0] = Math::select(positive, 2.0 * sq * Math::cos(phi + 2.0943951023931954923), zero);

@@ -334,10 +334,15 @@ GALSCULPT_HD void edgeGreenStrains(const RestData& rest, const double x[12], dou
 GALSCULPT_HD void edgeStrainHessian(const RestData& rest, const double g[6][3],
                                     const CrackedStrainState& state, Hessian mode,
                                     double* hessian) {
+  // Each block and its mirror, entry by entry (a diagonal block's entry below its diagonal
+  // ends as the sum at its upper-triangle position).
   edgeStrainBlocksOf<ScalarMath>(rest.volume, g, state.stiffness,
-                                 [&](int a, int c, int r, int col, double sum) {
-                                   hessian[(3 * a + r) + 12 * (3 * c + col)] = sum;
-                                   hessian[(3 * c + col) + 12 * (3 * a + r)] = sum;
+                                 [&](int a, int c, const double sum[3][3]) {
+                                   for (int col = 0; col < 3; ++col)
+                                     for (int r = 0; r < 3; ++r) {
+                                       hessian[(3 * a + r) + 12 * (3 * c + col)] = sum[r][col];
+                                       hessian[(3 * c + col) + 12 * (3 * a + r)] = sum[r][col];
+                                     }
                                  });
   edgeCurvatureOf<ScalarMath>(rest.volume, state.tau, rest.restLengthSq,
                               mode == Hessian::ProjectedSpd, [&](int a, int b, double block, bool) {

@@ -68,18 +68,8 @@ struct LaneMath {
   static D sqrt(D x) { return root(x); }
   static D abs(D x) { return absolute(x); }
   static D max(D x, D y) { return larger(x, y); }
-  static D fmin(D x, D y) {
-    D out;
-    for (int l = 0; l < kLanes; ++l) out[l] = ::fmin(x[l], y[l]);
-    return out;
-  }
-  static D fmax(D x, D y) {
-    D out;
-    for (int l = 0; l < kLanes; ++l) out[l] = ::fmax(x[l], y[l]);
-    return out;
-  }
-  static D acos(D x) {
-    return eachLane(x, [](double v) { return ::acos(v); });
+  static D clampedAcos(D x) {
+    return eachLane(x, [](double v) { return ::acos(::fmin(1.0, ::fmax(-1.0, v))); });
   }
   static D cos(D x) {
     return eachLane(x, [](double v) { return ::cos(v); });
