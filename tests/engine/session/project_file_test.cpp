@@ -17,6 +17,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A push brush of radius 3 cm at `center`.
+BrushStroke pushAt(const Vec3& center, double strength = BrushStroke{}.strength) {
+  BrushStroke push;
+  push.kind = Tool::Push;
+  push.center = center;
+  push.radius = 0.03;
+  push.strength = strength;
+  return push;
+}
+
 struct SculptedBall {
   SceneDescription scene =
       loadScene(fs::path(GALSCULPT_SOURCE_DIR) / "assets" / "scenes" / "default.json");
@@ -25,12 +35,7 @@ struct SculptedBall {
     session.step();
     session.knife(Vec3(0.05, 0.2, -0.2), Vec3(0.05, 0.2, 0.2), Vec3(0.05, 0.0, -0.2),
                   Vec3(0.05, 0.0, 0.2), {});
-    BrushStroke push;
-    push.kind = Tool::Push;
-    push.center = Vec3(-0.02, 0.098, 0.0);
-    push.radius = 0.03;
-    push.strength = 0.2;
-    session.beginStroke(push);
+    session.beginStroke(pushAt(Vec3(-0.02, 0.098, 0.0), 0.2));
     for (int f = 0; f < 3; ++f) session.step();
     session.endStroke();
     session.paint(Vec3(0.1, 0.0, 0.0), 0.02, -1, false, {});
@@ -98,12 +103,7 @@ TEST(ProjectFile, RoundTripRestoresTheSessionExactlyAndItRunsOnIdentically) {
 TEST(ProjectFile, ABrushLetGoBeforeTheNextFrameIsSaved) {
   test::TempDir dir;
   SculptedBall ball;
-  BrushStroke push;
-  push.kind = Tool::Push;
-  push.center = Vec3(0.02, 0.098, 0.0);
-  push.radius = 0.03;
-  push.strength = 0.2;
-  ball.session.beginStroke(push);
+  ball.session.beginStroke(pushAt(Vec3(0.02, 0.098, 0.0), 0.2));
   for (int f = 0; f < 2; ++f) ball.session.step();
   ball.session.endStroke();
   ASSERT_TRUE(ball.session.simulation().state().letGo);
@@ -379,11 +379,7 @@ TEST(ProjectFile, SavingDuringAStrokeWritesAReadableProject) {
 TEST(ProjectFile, APushUnderWayKeepsItsSpringsAndBadWeightsAreRefused) {
   test::TempDir dir;
   SculptedBall ball;
-  BrushStroke push;
-  push.kind = Tool::Push;
-  push.center = Vec3(0.0, 0.1, 0.0);
-  push.radius = 0.03;
-  ball.session.beginStroke(push);
+  ball.session.beginStroke(pushAt(Vec3(0.0, 0.1, 0.0)));
   ball.session.step();
   const SimulationSnapshot held = ball.session.simulation().snapshot();
   bool soft = false;
