@@ -32,7 +32,7 @@ enum class FrameStatisticRule { Sum, Time, Last, All, Frame };
     "tenth of the elements counts 0.1)")                                                           \
   X(double, keptStiffnesses, 0.0, Sum,                                                             \
     "element stiffnesses kept rather than evaluated (StepSettings::stiffnessTolerance)")           \
-  X(double, msElements, 0.0, Time, "ms in the element passes")                                     \
+  X(double, msElements, 0.0, Time, "ms in the element passes (with the colliders' pass)")          \
   X(double, msSolve, 0.0, Time, "ms in the linear solves")                                         \
   X(double, msPlastic, 0.0, Frame, "ms in the plastic return")                                     \
   X(double, msTotal, 0.0, Frame, "ms of the whole frame")                                          \
