@@ -94,7 +94,7 @@ struct FractureDesc {
   double thresholdJitter = 0.0;  // relative spread of random thresholds (0 = uniform)
   unsigned seed = 1;
   bool compressionResists = true;     // damaged edges still resist compression
-  double crackWidth = 0.0;            // strain the crack faces may press in (0: the hard law)
+  double crackWidth = 0.01;           // strain the crack faces may press in (0: the hard law)
   int iterations = 1;                 // solves per step while edges keep breaking
   double compressiveThreshold = 0.0;  // Pa, edges crushed beyond it break too (0: never)
   double criticalFraction = 0.0;      // (0, 1]: the most critical breaks first (0: all at once)

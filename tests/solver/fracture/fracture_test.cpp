@@ -315,38 +315,50 @@ double edgeStrain(const SimModel& m, const SimState& s, int e) {
 }
 
 // The strain criterion alone (no stress threshold): in the first frame that breaks anything,
-// exactly the edges whose engineering strain passes their (jittered) limit break, and the bar
-// still parts in the end.
+// exactly the edges whose engineering strain passes their (jittered) limit break, under either
+// closing law; the crack then takes most of the pull off the grip. Under the hard law this bar
+// parts by frame 75. Under the smooth law (w = 0.01) its crack takes one more edge at frame 31
+// and keeps a chain of intact edges across it, at 0.6-0.7 of their limits through frame 200,
+// which still bears a fifth of the peak pull at frame 75: the same criterion, another crack
+// path.
 TEST(Fracture, StrainCriterionBreaksExactlyTheEdgesStretchedPastTheirLimit) {
-  FractureSettings f{0.0, 0.0, 0.2, 7};
-  f.strainThreshold = 0.05;
-  TensionCase c = tensionCase(0.0, f);
-  const SimModel& m = c.model;
-  SimState& s = c.state;
-  ASSERT_EQ(m.fracture.strainLimit.size(), static_cast<size_t>(m.numEdges()));
-  for (double l : m.fracture.strainLimit) {
-    EXPECT_GE(l, 0.04);
-    EXPECT_LE(l, 0.06);
-  }
-  const StepSettings st = referenceSettings(StepSettings{});
-  int firstBreak = -1;
-  for (int frame = 1; frame <= 75; ++frame) {
-    const StepReport r = step(m, s, st);
-    if (firstBreak < 0 && r.newlyDamaged > 0) {
-      firstBreak = frame;
-      for (int e = 0; e < m.numEdges(); ++e)
-        EXPECT_EQ(s.damaged[e] != 0, edgeStrain(m, s, e) > m.fracture.strainLimit[e])
-            << "edge " << e << " strain " << edgeStrain(m, s, e);
-      EXPECT_GT(r.maxStressRatio, 1.0) << "the strain's criticality";
-    } else if (firstBreak < 0) {
-      double most = 0.0;
-      for (int e = 0; e < m.numEdges(); ++e)
-        most = std::max(most, edgeStrain(m, s, e) / m.fracture.strainLimit[e]);
-      EXPECT_NEAR(r.maxStressRatio, most, 1e-9) << "the criticality is the strain's";
+  for (const double width : {0.0, 0.01}) {
+    SCOPED_TRACE(width);
+    FractureSettings f{0.0, 0.0, 0.2, 7};
+    f.strainThreshold = 0.05;
+    TensionCase c = tensionCase(0.0, f);
+    c.model.material.crackWidth = width;
+    const SimModel& m = c.model;
+    SimState& s = c.state;
+    ASSERT_EQ(m.fracture.strainLimit.size(), static_cast<size_t>(m.numEdges()));
+    for (double l : m.fracture.strainLimit) {
+      EXPECT_GE(l, 0.04);
+      EXPECT_LE(l, 0.06);
     }
+    const StepSettings st = referenceSettings(StepSettings{});
+    int firstBreak = -1;
+    double peakPull = 0.0, pull = 0.0;
+    for (int frame = 1; frame <= 75; ++frame) {
+      const StepReport r = step(m, s, st);
+      pull = elasticGradientSum(m, s.x, s, s.anchors[0].vertices).norm();
+      peakPull = std::max(peakPull, pull);
+      if (firstBreak < 0 && r.newlyDamaged > 0) {
+        firstBreak = frame;
+        for (int e = 0; e < m.numEdges(); ++e)
+          EXPECT_EQ(s.damaged[e] != 0, edgeStrain(m, s, e) > m.fracture.strainLimit[e])
+              << "edge " << e << " strain " << edgeStrain(m, s, e);
+        EXPECT_GT(r.maxStressRatio, 1.0) << "the strain's criticality";
+      } else if (firstBreak < 0) {
+        double most = 0.0;
+        for (int e = 0; e < m.numEdges(); ++e)
+          most = std::max(most, edgeStrain(m, s, e) / m.fracture.strainLimit[e]);
+        EXPECT_NEAR(r.maxStressRatio, most, 1e-9) << "the criticality is the strain's";
+      }
+    }
+    EXPECT_GT(firstBreak, 1) << "the bar holds at first";
+    EXPECT_LT(pull, 0.3 * peakPull) << "the crack takes the pull off the grip";
+    if (width == 0.0) EXPECT_GE(countDamagePieces(m, s), 2);
   }
-  EXPECT_GT(firstBreak, 1) << "the bar holds at first";
-  EXPECT_GE(countDamagePieces(m, s), 2);
 }
 
 // Why a ductile body wants it: a nearly incompressible block held dilated by 1 % carries a
