@@ -24,6 +24,8 @@ std::uint64_t referenceKey(const SceneDescription& scene, const TetMesh& mesh, i
   const std::string text = scene.source.dump() + "|" + enumName(scene.solver.preset) + "|" +
                            debrisRuleName(scene.fracture.debris);
   mix(text.data(), text.size());
+  // What the scene leaves to a default the physics may change: the crack faces' closing law.
+  mix(&scene.fracture.crackWidth, sizeof scene.fracture.crackWidth);
   mix(mesh.vertices.data(), mesh.vertices.size() * sizeof(Vec3));
   mix(mesh.tets.data(), mesh.tets.size() * sizeof(mesh.tets[0]));
   mix(&frames, sizeof frames);

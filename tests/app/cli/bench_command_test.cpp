@@ -5,6 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "app/cli/bench_reference.h"
 #include "tests/app/cli/cli_run.h"
 #include "tests/test_util.h"
 
@@ -62,6 +63,21 @@ TEST(Cli, BenchKeepsItsReferencesInAFolder) {
   int kept = 0;
   for (const auto& entry : fs::directory_iterator(refs)) kept += entry.is_regular_file();
   EXPECT_EQ(kept, 6) << "rows and positions of two references";
+}
+
+// A kept reference is one of the same physics: a default that changed under a scene that did
+// not (the crack faces' closing width, 0 before it became 0.01) is another reference, not the
+// old one read back against the new law's runs.
+TEST(Cli, BenchReferenceKeysFollowTheDefaultsAScenesPhysicsTakes) {
+  SceneDescription scene;
+  scene.source = nlohmann::json::parse(R"({"name": "s"})");
+  const TetMesh mesh;
+  const std::uint64_t key = referenceKey(scene, mesh, 20, {}, 0);
+  EXPECT_EQ(referenceKey(scene, mesh, 20, {}, 0), key);
+  SceneDescription hardLaw = scene;
+  hardLaw.fracture.crackWidth = 0.0;
+  ASSERT_NE(scene.fracture.crackWidth, 0.0);
+  EXPECT_NE(referenceKey(hardLaw, mesh, 20, {}, 0), key);
 }
 
 TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
