@@ -40,8 +40,8 @@ class ContactTerm {
   void atIterate(FrameData<Exec>& d, const double* y, bool, double* gradient) {
     energy(y, d.fixed.data(), d.mass.data(), d.h, gradient, &d.sc()->contact);
   }
-  void atTrial(FrameData<Exec>& d, const double* y, const std::uint8_t*) {
-    energy(y, d.fixed.data(), d.mass.data(), d.h, nullptr, &d.sc()->trialContact);
+  void atTrial(FrameData<Exec>& d, const double* y, const std::uint8_t*, double* gradient) {
+    energy(y, d.fixed.data(), d.mass.data(), d.h, gradient, &d.sc()->trialContact);
   }
   void atAccepted(FrameData<Exec>& d, const double* y, double* gradient) {
     atIterate(d, y, false, gradient);

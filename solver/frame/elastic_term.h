@@ -53,9 +53,10 @@ class ElasticTerm {
   }
   // At a trial: energies and inversions, the gradient kept in trialGrad (an accepted trial's is
   // the next iterate's, acceptedGrad).
-  void atTrial(FrameData<Exec>&, const double* y, const std::uint8_t* only) {
+  void atTrial(FrameData<Exec>&, const double* y, const std::uint8_t* only, double* gradient) {
     FrameScalars* sc = d_.sc();
     evaluate(y, false, d_.trialGrad.data(), &sc->trialElastic, &sc->trialInverted, only);
+    if (gradient) ex_.copy(gradient, d_.trialGrad.data(), 3 * d_.n);  // acceptedGrad, accepted
   }
   void atAccepted(FrameData<Exec>&, const double*, double* gradient) {
     ex_.copy(gradient, d_.acceptedGrad.data(), 3 * d_.n);

@@ -53,8 +53,9 @@ struct FrameData {
     vertexSlots.mirror(model.vertexSlots);
     blockSlotStart.mirror(model.blockSlotStart);
     blockSlots.mirror(model.blockSlots);
-    for (Buffer<double>* b : {&x, &v, &xn, &vn, &xhat, &grad, &trialGrad, &acceptedGrad, &g, &delta,
-                              &trial, &dampedK, &tmp, &savedX, &savedV, &rhs, &product})
+    for (Buffer<double>* b :
+         {&x, &v, &xn, &vn, &xhat, &grad, &trialGrad, &acceptedGrad, &g, &delta, &trial, &dampedK,
+          &tmp, &savedX, &savedV, &rhs, &product, &trialG, &trialForces})
       b->resize(3 * n);
     fixed.resize(n);
     removed.resize(n);
@@ -111,6 +112,9 @@ struct FrameData {
   // accepted trial, the backward-Euler gradient g, the step, the trial positions, beta K0 (y-x_n),
   // scratch, and the linear system's right-hand side and A delta.
   Buffer<double> grad, trialGrad, acceptedGrad, g, delta, trial, dampedK, tmp, rhs, product;
+  // At the last trial, where the frame tests residuals between iterations: g and the pass
+  // terms' forces (IncrementalPotential::residualAtTrials).
+  Buffer<double> trialG, trialForces;
   // Per element: energy and inversion at x and at the trial, gradient (12) and packed stiffness.
   Buffer<double> elemEnergy, elemInverted, trialEnergy, trialInverted, elemGrad, elemHess;
   // 3x3 blocks of the pattern: the stiffness K, K frozen at x_n, and the system H.

@@ -16,7 +16,10 @@ struct FrameScalars {
   double deltaMax = 0.0;                          // |delta|_inf
   double bad = 0.0;                               // > 0: a NaN or infinity in the step or x
   double residual = 0.0;                          // |g|^2 at the accepted positions
-  double forceScale = 0.0;    // |f|^2 of the elastic and contact forces on free vertices
+  double forceScale = 0.0;  // |f|^2 of the elastic and contact forces on free vertices
+  // The same two at the last trial, where the frame tests residuals between Newton iterations
+  // (IncrementalPotential::residualAtTrials): an accepted trial's are the accepted positions'.
+  double trialResidual = 0.0, trialForceScale = 0.0;
   double r0 = 0.0, r1 = 0.0;  // |b|^2 and |b - A delta|^2 around the V-cycles' solve
   double inverted = 0.0, trialInverted = 0.0;  // intact elements inside out at x, at the trial
   double kept = 0.0;                           // elements whose stiffness the pass kept

@@ -215,7 +215,8 @@ class FrameSolver {
       if (s.frameBudgetMs > 0.0 && msSince(frameStart_) > s.frameBudgetMs) break;
       if (s.residualTolerance <= 0.0 && !s.reuseStiffness) continue;  // nothing reads it
       const double residual = residualAt();
-      if (residual <= s.residualTolerance && piecesWithinTolerance(residual, d_.tmp.data())) break;
+      if (residual <= s.residualTolerance && piecesWithinTolerance(residual, accepted_.forces))
+        break;
       // Keep the stiffness while it still cuts the residual at least in half. Once a chord step
       // has not, the stiffness moves with the iterate (cracks opening and closing, contacts
       // coming and going): every later iteration of the sub-step takes a fresh one.
@@ -258,14 +259,14 @@ class FrameSolver {
   }
 
   // With convergePieces, whether every measured piece (piece_residual.h) is within the
-  // tolerance of its own loads at the accepted positions (g and tmp, from residualAt();
-  // `residual` the body's there). The body's residual is one 2-norm and a small piece's share of
-  // it is small, so a solve to the body's target would leave such a piece where it is. A piece
-  // above its tolerance by a factor R therefore caps PCG's absolute target (and the null step's)
-  // for the rest of the sub-step at 0.5 / R of the body's residual or of the body's own target,
-  // whichever is smaller: an inexact Newton forcing term set by the worst piece, below the
-  // residual so that a solve always has something to do.
-  // `forces`: the elastic and contact forces beside g (tmp there; grad in newtonStep).
+  // tolerance of its own loads at the accepted positions (g and accepted_.forces, from
+  // residualAt(); `residual` the body's there). The body's residual is one 2-norm and a small
+  // piece's share of it is small, so a solve to the body's target would leave such a piece where it
+  // is. A piece above its tolerance by a factor R therefore caps PCG's absolute target (and the
+  // null step's) for the rest of the sub-step at 0.5 / R of the body's residual or of the body's
+  // own target, whichever is smaller: an inexact Newton forcing term set by the worst piece, below
+  // the residual so that a solve always has something to do. `forces`: the elastic and contact
+  // forces beside g (accepted_.forces there; grad in newtonStep).
   bool piecesWithinTolerance(double residual, const double* forces) {
     const StepSettings& s = *d_.settings;
     if (!s.convergePieces) return true;
@@ -280,9 +281,19 @@ class FrameSolver {
     return false;
   }
 
-  // The backward-Euler residual at the accepted positions over the force scale (one read).
+  // The backward-Euler residual at the accepted positions over the force scale, with g there
+  // and the pass terms' forces (accepted_.forces). The accepted trial formed them where the
+  // frame tests residuals (IncrementalPotential::residualAtTrials) and the line search's last
+  // read holds its sums: no read. Otherwise they are formed and read here.
   double residualAt() {
+    if (accepted_.fromTrial) {
+      accepted_.fromTrial = false;
+      ex_.copy(d_.g.data(), d_.trialG.data(), 3 * d_.n);
+      accepted_.forces = d_.trialForces.data();
+      return relativeResidual(accepted_.trialRead);
+    }
     potential_.acceptedResidual();
+    accepted_.forces = d_.tmp.data();
     FrameScalars read;
     ex_.read(d_.sc(), &read, 1);
     return relativeResidual(read);
@@ -328,6 +339,7 @@ class FrameSolver {
     const auto t0 = Clock::now();
     const double elementsBefore = result.msElements;
     gradientAtX_ = false;  // the element passes below overwrite elemGrad
+    accepted_.fromTrial = false;
     // Structural changes first (host): the hierarchy follows the damage.
     linear_.followDamage(s, damage_.host(), damage_.revision());
     // The Newton step and its full-length trial: launches only, captured as one graph and
@@ -362,7 +374,12 @@ class FrameSolver {
     ex_.copy(d_.acceptedGrad.data(), d_.trialGrad.data(), 3 * d_.n);
     ex_.copy(d_.elemEnergy.data(), d_.trialEnergy.data(), d_.tets);
     ex_.copy(d_.elemInverted.data(), d_.trialInverted.data(), d_.tets);
-    gradientAtX_ = true;  // the line search's last trial is the accepted one
+    gradientAtX_ = true;                  // the line search's last trial is the accepted one
+    if (potential_.residualAtTrials()) {  // and its residual the accepted positions'
+      accepted_.fromTrial = true;
+      accepted_.trialRead.residual = read.trialResidual;
+      accepted_.trialRead.forceScale = read.trialForceScale;
+    }
     result.elasticEnergy = read.trialElastic;
     // Newton's step test on the full step: a step shortened to nothing says nothing about
     // stationarity.
@@ -555,6 +572,14 @@ class FrameSolver {
   bool predicted_ = false;      // this sub-step's Newton started from x_n + h v_n, not yet checked
   bool letGo_ = false;          // SimState::letGo, until a sub-step starts
   bool systemSkipped_ = false;  // the last iteration's null step built no system (takeNullStep)
+  // The residual at the accepted positions (residualAt): whether the accepted trial formed it
+  // (IncrementalPotential::residualAtTrials) and its sums, until residualAt() takes them; and
+  // the forces beside g there (trialForces or tmp).
+  struct {
+    bool fromTrial = false;
+    FrameScalars trialRead;
+    const double* forces = nullptr;
+  } accepted_;
   // Whether elemGrad holds every element's gradient at x under the current damage, rest shapes
   // and removed debris: true from a Newton iteration's accept until x or any of those changes
   // (what the pieces' start reads at x_n instead of evaluating them again).

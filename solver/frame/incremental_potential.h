@@ -152,27 +152,34 @@ class IncrementalPotential {
   }
 
   // The backward-Euler gradient at the accepted positions (g; the pass terms' forces in tmp)
-  // and its sums (residualSums).
+  // and its sums (residualSums into residual and forceScale).
   void acceptedResidual() {
     const double* x = d_.x.data();
     dampedProduct(x, d_.dampedK.data());
     terms_.atAccepted(x, d_.tmp.data());
     backwardEulerGradient(x, d_.tmp.data(), d_.dampedK.data(), d_.g.data());
-    residualSums();
+    FrameScalars* sc = d_.sc();
+    residualSums(d_.g.data(), d_.tmp.data(), &sc->residual, &sc->forceScale);
   }
 
-  // |g|^2 (residual) and the squared elastic and contact forces on the free vertices
-  // (forceScale), from g and tmp.
-  void residualSums() {
-    const double* g = d_.g.data();
-    const double* f = d_.tmp.data();
+  // Whether each trial also forms the residual there (trialG, trialForces; trialResidual and
+  // trialForceScale in the scalars): where the frame tests the residual between Newton
+  // iterations, so that the accepted trial's read already holds it and the test needs no read
+  // of its own (one host wait less an iteration on a device). The sums are the accepted
+  // positions' (acceptedResidual) in the same order, so the test sees the same bits.
+  bool residualAtTrials() const {
+    const StepSettings& s = *d_.settings;
+    return s.newtonIterations > 1 && (s.residualTolerance > 0.0 || s.reuseStiffness);
+  }
+
+  // |g|^2 (into `residual`) and the squared forces f on the free vertices (into `forceScale`).
+  void residualSums(const double* g, const double* f, double* residual, double* forceScale) {
     const std::uint8_t* fixed = d_.fixed.data();
-    FrameScalars* sc = d_.sc();
     ex_.sum(
-        3 * d_.n, [=] GALSCULPT_LAMBDA(int i) { return g[i] * g[i]; }, &sc->residual);
+        3 * d_.n, [=] GALSCULPT_LAMBDA(int i) { return g[i] * g[i]; }, residual);
     ex_.sum(
         3 * d_.n, [=] GALSCULPT_LAMBDA(int i) { return fixed[i / 3] ? 0.0 : f[i] * f[i]; },
-        &sc->forceScale);
+        forceScale);
   }
 
   // The Newton step's measures: e0, the slope g.delta, |delta|_inf (deltaMax) and whether g or
@@ -212,12 +219,18 @@ class IncrementalPotential {
   }
 
   // The same at the positions in trial; with `only`, just the flagged elements evaluated again
-  // (the others unchanged since the last trial: the vertex guard's rounds).
+  // (the others unchanged since the last trial: the vertex guard's rounds). beta K0 (y - x_n)
+  // stays in tmp (the vertex guard's shares read it); with residualAtTrials, the residual too.
   void evaluateTrialPositions(const std::uint8_t* only) {
     const double* trial = d_.trial.data();
-    terms_.atTrial(trial, only);
+    const bool residual = residualAtTrials();
+    terms_.atTrial(trial, only, residual ? d_.trialForces.data() : nullptr);
     dampedProduct(trial, d_.tmp.data());
     objective(trial, true, d_.tmp.data(), &d_.sc()->e1);
+    if (!residual) return;
+    backwardEulerGradient(trial, d_.trialForces.data(), d_.tmp.data(), d_.trialG.data());
+    FrameScalars* sc = d_.sc();
+    residualSums(d_.trialG.data(), d_.trialForces.data(), &sc->trialResidual, &sc->trialForceScale);
   }
 
  private:

@@ -7,8 +7,9 @@
 //   double* energySlot(FrameScalars*, bool trial)  its energy at x (or at the trial), a scalar
 //   void atIterate(d, y, reuse, gradient)   energy at Newton's iterate y, its gradient into
 //       `gradient` and its Newton blocks (with `reuse`, the last accepted trial's, kept);
-//   void atTrial(d, y, only)                energy at a line-search trial (with `only`, the
-//       flagged elements again: the vertex guard's rounds);
+//   void atTrial(d, y, only, gradient)      energy at a line-search trial (with `only`, the
+//       flagged elements again: the vertex guard's rounds), and with `gradient` not null its
+//       gradient there, as atAccepted would give it were the trial accepted;
 //   void atAccepted(d, y, gradient)         its gradient at the accepted positions;
 //   VertexShare vertexShare(d, bool trial)  add(v, sum): vertex v's share of its energy;
 //   Blocks diagonalBlocks(d)                add(r, y, out): its part of free vertex r's 3x3
@@ -128,8 +129,8 @@ class PassTermList {
   void atIterate(const double* y, bool reuse, double* gradient) {
     std::apply([&](auto&... t) { (t.atIterate(d_, y, reuse, gradient), ...); }, terms_);
   }
-  void atTrial(const double* y, const std::uint8_t* only) {
-    std::apply([&](auto&... t) { (t.atTrial(d_, y, only), ...); }, terms_);
+  void atTrial(const double* y, const std::uint8_t* only, double* gradient = nullptr) {
+    std::apply([&](auto&... t) { (t.atTrial(d_, y, only, gradient), ...); }, terms_);
   }
   void atAccepted(const double* y, double* gradient) {
     std::apply([&](auto&... t) { (t.atAccepted(d_, y, gradient), ...); }, terms_);

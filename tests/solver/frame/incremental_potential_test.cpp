@@ -3,7 +3,8 @@
 // pulled by soft anchors' springs:
 // the backward-Euler gradient g against central differences of the potential, the Newton system
 // H against central differences of g (stretched, where the projected stiffness is the exact
-// one), the potential whole against the sum of the vertices' shares, and the trial's scalars.
+// one), the potential whole against the sum of the vertices' shares, and the trial's scalars
+// and residual.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -163,6 +164,46 @@ TEST(IncrementalPotential, VertexSharesSumToThePotential) {
   double sum = 0.0;
   for (double s : shares) sum += s;
   EXPECT_NEAR(sum, whole, 1e-12 * std::abs(whole) + 1e-15);
+}
+
+// Where the frame tests the residual between Newton iterations (residualAtTrials), a trial
+// forms the residual there too; accepted, it is the accepted positions' bit for bit (g, the pass
+// terms' forces, both sums), so the frame's residual test takes the line search's last read and
+// waits for nothing of its own. Without a residual test, trials form none.
+TEST(IncrementalPotential, ATrialsResidualIsTheAcceptedPositionsBitForBit) {
+  Potential p;
+  p.settings.newtonIterations = 8;
+  p.settings.residualTolerance = 0.01;
+  ASSERT_TRUE(p.potential.residualAtTrials());
+  const int size = 3 * p.n;
+  p.d.x.upload(p.near(1.0, 5e-4, 6));
+  p.d.delta.upload(p.near(0.0, 2e-4, 7));
+  p.potential.evaluateTrial(0.5);
+  const FrameScalars trial = *p.d.sc();
+  std::vector<double> trialG(size), trialForces(size);
+  p.ex.download(p.d.trialG.data(), trialG.data(), size);
+  p.ex.download(p.d.trialForces.data(), trialForces.data(), size);
+  // Accepted as the frame accepts a trial (frame_solver.h, newtonIteration).
+  p.ex.copy(p.d.x.data(), p.d.trial.data(), size);
+  p.ex.copy(p.d.acceptedGrad.data(), p.d.trialGrad.data(), size);
+  p.potential.acceptedResidual();
+  const FrameScalars accepted = *p.d.sc();
+  std::vector<double> g(size), forces(size);
+  p.ex.download(p.d.g.data(), g.data(), size);
+  p.ex.download(p.d.tmp.data(), forces.data(), size);
+  EXPECT_GT(trial.trialResidual, 0.0);
+  EXPECT_GT(trial.trialForceScale, 0.0);
+  EXPECT_EQ(trial.trialResidual, accepted.residual);
+  EXPECT_EQ(trial.trialForceScale, accepted.forceScale);
+  EXPECT_EQ(trialG, g);
+  EXPECT_EQ(trialForces, forces);
+
+  p.settings.residualTolerance = 0.0;
+  p.settings.reuseStiffness = false;
+  EXPECT_FALSE(p.potential.residualAtTrials()) << "the reference tests its step, not a residual";
+  p.settings.residualTolerance = 0.01;
+  p.settings.newtonIterations = 1;
+  EXPECT_FALSE(p.potential.residualAtTrials()) << "one iteration: no test between iterations";
 }
 
 }  // namespace

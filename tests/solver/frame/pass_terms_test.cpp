@@ -30,8 +30,10 @@ struct Toy {
     calls.push_back("iterate " + std::to_string(K));
     for (int i = 0; i < 3 * d.n; ++i) gradient[i] = K == 0 ? kValue[K] : gradient[i] + kValue[K];
   }
-  void atTrial(FrameData<Exec>&, const double*, const std::uint8_t*) {
+  void atTrial(FrameData<Exec>& d, const double*, const std::uint8_t*, double* gradient) {
     calls.push_back("trial " + std::to_string(K));
+    if (gradient)
+      for (int i = 0; i < 3 * d.n; ++i) gradient[i] = K == 0 ? kValue[K] : gradient[i] + kValue[K];
   }
   void atAccepted(FrameData<Exec>&, const double*, double*) {
     calls.push_back("accepted " + std::to_string(K));
@@ -80,6 +82,9 @@ TEST(PassTerms, TheFirstWritesTheGradientAndTheOthersAddInOrder) {
   std::vector<double> y(3 * f.d.n, 0.0), gradient(3 * f.d.n, 7.0);
   f.terms.atIterate(y.data(), false, gradient.data());
   for (double g : gradient) EXPECT_EQ(g, 1.0) << "((1e16 - 1e16) + 1), and the 7 overwritten";
+  std::vector<double> atTrial(3 * f.d.n, 7.0);
+  f.terms.atTrial(y.data(), nullptr, atTrial.data());
+  for (double g : atTrial) EXPECT_EQ(g, 1.0) << "a trial's gradient in the same order";
 }
 
 TEST(PassTerms, EnergiesFoldLeftSharesFromTheLastAndBlocksInOrder) {
