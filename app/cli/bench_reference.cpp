@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "solver/frame/step.h"
 #include "solver/io/atomic_file.h"
 #include "solver/model/solver_options.h"
 
@@ -24,8 +25,12 @@ std::uint64_t referenceKey(const SceneDescription& scene, const TetMesh& mesh, i
   const std::string text = scene.source.dump() + "|" + enumName(scene.solver.preset) + "|" +
                            debrisRuleName(scene.fracture.debris);
   mix(text.data(), text.size());
-  // What the scene leaves to a default the physics may change: the crack faces' closing law.
+  // What the scene leaves to a default the physics may change: the crack faces' closing law;
+  // and what the reference is (its iteration cap and step test).
   mix(&scene.fracture.crackWidth, sizeof scene.fracture.crackWidth);
+  const StepSettings reference = referenceSettings(StepSettings{});
+  mix(&reference.newtonIterations, sizeof reference.newtonIterations);
+  mix(&reference.tolerance, sizeof reference.tolerance);
   mix(mesh.vertices.data(), mesh.vertices.size() * sizeof(Vec3));
   mix(mesh.tets.data(), mesh.tets.size() * sizeof(mesh.tets[0]));
   mix(&frames, sizeof frames);

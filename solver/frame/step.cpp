@@ -25,7 +25,10 @@ StepSettings stepSettings(const SolverOptions& o, double dt, int substeps) {
 
 StepSettings referenceSettings(StepSettings base) {
   base.type = SolverType::Reference;  // a direct solve
-  base.newtonIterations = 50;
+  // A cap that only ends a sub-step that will not converge: where a crushed element's true
+  // Hessian is indefinite the projected Newton matrix is stiffer than it, and Newton converges
+  // linearly (Charpy's crack running under the smooth law: 0.945 an iteration, 170 iterations).
+  base.newtonIterations = 400;
   base.lineSearch = true;
   base.tolerance = 1e-10;
   base.residualTolerance = 0.0;  // Newton runs to its step test, not to the default's residual

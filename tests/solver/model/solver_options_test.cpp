@@ -148,7 +148,7 @@ TEST(SolverOptions, ReferenceTypeGivesTheReferenceSettings) {
   EXPECT_FALSE(s.multigrid());
   EXPECT_TRUE(s.lineSearch);
   EXPECT_EQ(s.residualTolerance, 0.0);
-  EXPECT_EQ(s.newtonIterations, 50);
+  EXPECT_EQ(s.newtonIterations, 400);
   EXPECT_FALSE(s.vertexGuard());
   EXPECT_FALSE(s.reuseStiffness);
   EXPECT_EQ(s.stiffnessTolerance, 0.0);
