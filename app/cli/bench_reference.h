@@ -16,7 +16,8 @@ namespace galsculpt {
 
 // What a scene's reference run depends on: the scene as read and as modified by the options
 // (its solver keys, debris rule), the defaults it leaves that the physics changed (the crack
-// width), the reference's own settings (referenceSettings), the mesh, and the frames measured. FNV-1a, as the mesh cache.
+// width), the reference's own settings (referenceSettings), the mesh, and the frames measured.
+// FNV-1a, as the mesh cache.
 std::uint64_t referenceKey(const SceneDescription& scene, const TetMesh& mesh, int frames,
                            const std::vector<int>& settles, int cuts);
 

@@ -93,12 +93,12 @@ struct FractureDesc {
   double kernelRadius = 0.0;     // m, non-local averaging radius (0 = local)
   double thresholdJitter = 0.0;  // relative spread of random thresholds (0 = uniform)
   unsigned seed = 1;
-  bool compressionResists = true;     // damaged edges still resist compression
-  double crackWidth = 0.01;           // strain the crack faces may press in (0: the hard law)
-  int iterations = 1;                 // solves per step while edges keep breaking
-  double compressiveThreshold = 0.0;  // Pa, edges crushed beyond it break too (0: never)
-  double criticalFraction = 0.0;      // (0, 1]: the most critical breaks first (0: all at once)
-  double energy = 0.0;                // J/m^2, fracture energy G_c (0: none, the paper)
+  bool compressionResists = true;          // damaged edges still resist compression
+  double crackWidth = kDefaultCrackWidth;  // strain the crack faces may press in (0: hard law)
+  int iterations = 1;                      // solves per step while edges keep breaking
+  double compressiveThreshold = 0.0;       // Pa, edges crushed beyond it break too (0: never)
+  double criticalFraction = 0.0;  // (0, 1]: the most critical breaks first (0: all at once)
+  double energy = 0.0;            // J/m^2, fracture energy G_c (0: none, the paper)
   // Parts whose undamaged elements share no face part: the edges still linking them break
   // (solver/fracture/cracked_sections.h; false: stress alone, the paper).
   bool partCrackedSections = true;

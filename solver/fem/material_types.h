@@ -7,6 +7,10 @@ namespace galsculpt {
 // The models (solver/fem/material_table.h lists them; solver/fem/materials/ defines them).
 enum class MaterialModel { Corotational, StVK, StableNeoHookean, FixedCorotated, Hencky };
 
+// The crack faces' closing width a model takes unless told (MaterialParams::crackWidth, the
+// scene's fracture.crack_width): the smooth closing law (crack_law.h); 0 is the hard law.
+constexpr double kDefaultCrackWidth = 0.01;
+
 struct Lame {
   double mu = 0.0;      // shear modulus (Pa)
   double lambda = 0.0;  // first Lame parameter (Pa)

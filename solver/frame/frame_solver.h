@@ -213,7 +213,7 @@ class FrameSolver {
       if (n == NewtonOutcome::Stalled) break;
       if (it + 1 == s.newtonIterations) break;  // endSubstep measures the last one
       if (s.frameBudgetMs > 0.0 && msSince(frameStart_) > s.frameBudgetMs) break;
-      if (s.residualTolerance <= 0.0 && !s.reuseStiffness) continue;  // nothing reads it
+      if (!potential_.residualAtTrials()) continue;  // nothing reads it
       const double residual = residualAt();
       if (residual <= s.residualTolerance && piecesWithinTolerance(residual, accepted_.forces))
         break;
@@ -287,7 +287,6 @@ class FrameSolver {
   // read holds its sums: no read. Otherwise they are formed and read here.
   double residualAt() {
     if (accepted_.fromTrial) {
-      accepted_.fromTrial = false;
       ex_.copy(d_.g.data(), d_.trialG.data(), 3 * d_.n);
       accepted_.forces = d_.trialForces.data();
       return relativeResidual(accepted_.trialRead);
@@ -573,7 +572,7 @@ class FrameSolver {
   bool letGo_ = false;          // SimState::letGo, until a sub-step starts
   bool systemSkipped_ = false;  // the last iteration's null step built no system (takeNullStep)
   // The residual at the accepted positions (residualAt): whether the accepted trial formed it
-  // (IncrementalPotential::residualAtTrials) and its sums, until residualAt() takes them; and
+  // (IncrementalPotential::residualAtTrials) and its sums, until the next iteration starts; and
   // the forces beside g there (trialForces or tmp).
   struct {
     bool fromTrial = false;

@@ -36,9 +36,8 @@ struct MaterialParams {
   // Whether a damaged edge still resists compression (a closed crack bears load): part of the
   // material, fixed for a run (scene: fracture.compression_resists).
   bool compressionResists = true;
-  // The crack faces' closing width (Lame::crackWidth; scene: fracture.crack_width, whose default
-  // this is).
-  double crackWidth = 0.01;
+  // The crack faces' closing width (Lame::crackWidth; scene: fracture.crack_width).
+  double crackWidth = kDefaultCrackWidth;
   // Rayleigh damping D = dampingMass M + dampingStiffness K(x_n).
   double dampingMass = 0.0;       // alpha (1/s)
   double dampingStiffness = 0.0;  // beta (s)
