@@ -90,25 +90,28 @@ def table(doc):
         f"`{p.get('command', 'galsculpt bench')}`, {doc['frames']} frames"
         + (f" after {doc['settle_frames']} settling" if doc.get("settle_frames") else "")
         + ". Error in motion: the largest distance to the reference's positions at the motion "
-        "frame over the reference's largest displacement; at the end: the same after the last frame.",
+        "frame over the reference's largest displacement; at the end: the same after the last frame; "
+        "RMS: the root mean square of the distances over the vertices, over the same displacement.",
         "",
         "| scene | tets | setting | backend | threads | ms/frame | p95 ms | fps | error in motion % "
-        "| error at the end % | Newton / CG a frame | largest residual | unconverged frames "
+        "| error at the end % | RMS error at the end % | Newton / CG a frame | largest residual | unconverged frames "
         "| peak MB | device kernels / waits a frame |",
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
     ]
     for r in doc["results"]:
         if "error" in r:
-            lines.append(f"| {r.get('scene', '?')} | | failed: {r['error']} | | | | | | | | | | | | |")
+            lines.append(f"| {r.get('scene', '?')} | | failed: {r['error']} | | | | | | | | | | | | | |")
             continue
         motion = r.get("rel_position_error_motion")
         end = r.get("rel_position_error")
+        rms = r.get("rel_position_error_rms")  # absent from results written before it was
         cached = " (kept reference)" if r.get("reference_cached") else ""
         lines.append(
             f"| {r['scene']} | {r['tets']:,} | {setting(r)}{cached} | {r['backend']} | {r['threads']} "
             f"| {number(r['ms_per_frame'], 1)} | {number(r['ms_p95'], 1)} | {number(r['fps'], 1)} "
             f"| {number(None if motion is None else 100 * motion, 3)} "
             f"| {number(None if end is None else 100 * end, 3)} "
+            f"| {number(None if rms is None else 100 * rms, 3)} "
             f"| {r['newton_iters_mean']:.2f} / {r['cg_iters_mean']:.1f} | {r['residual_max']:.2g} "
             f"| {r['unconverged_frames']} of {r['frames']} | {r['peak_rss_mb']:.0f} "
             f"| {device(r)} |")

@@ -2,6 +2,7 @@
 // between runs, under a key of everything they depend on.
 #include "app/cli/bench_reference.h"
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -70,25 +71,29 @@ void ReferenceCache::store(const fs::path& refFile, const nlohmann::json& rows) 
   writeFileAtomically(file(".json"), [&](std::ostream& o) { o << rows.dump(2) << '\n'; });
 }
 
-double positionError(const std::vector<Vec3>& x, const TetMesh& mesh, bool reference,
-                     const fs::path& referencePositions) {
+PositionError positionError(const std::vector<Vec3>& x, const TetMesh& mesh, bool reference,
+                            const fs::path& referencePositions) {
   if (reference) {
     writeFileAtomically(referencePositions, [&](std::ostream& out) {
       out.write(reinterpret_cast<const char*>(x.data()),
                 static_cast<std::streamsize>(x.size() * sizeof(Vec3)));
     });
-    return 0.0;
+    return {0.0, 0.0};
   }
   std::vector<Vec3> ref(x.size());
   std::ifstream in(referencePositions, std::ios::binary);
   in.read(reinterpret_cast<char*>(ref.data()),
           static_cast<std::streamsize>(ref.size() * sizeof(Vec3)));
-  double err = 0.0, disp = 0.0;
+  if (!in || x.empty()) return {};
+  double largest = 0.0, squares = 0.0, disp = 0.0;
   for (size_t v = 0; v < x.size(); ++v) {
-    err = std::max(err, (x[v] - ref[v]).norm());
+    const double d = (x[v] - ref[v]).norm();
+    largest = std::max(largest, d);
+    squares += d * d;
     disp = std::max(disp, (ref[v] - mesh.vertices[v]).norm());
   }
-  return in ? err / std::max(disp, 1e-300) : -1.0;
+  const double scale = std::max(disp, 1e-300);
+  return {largest / scale, std::sqrt(squares / static_cast<double>(x.size())) / scale};
 }
 
 }  // namespace galsculpt

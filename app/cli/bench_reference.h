@@ -37,9 +37,17 @@ class ReferenceCache {
   std::filesystem::path base_;
 };
 
-// The reference run writes its positions; the others are compared with them: the largest
-// position difference relative to the reference's largest displacement (-1: no reference).
-double positionError(const std::vector<Vec3>& x, const TetMesh& mesh, bool reference,
-                     const std::filesystem::path& referencePositions);
+// How far a run's positions are from the reference's, both relative to the reference's largest
+// displacement (-1: no reference). The largest is the contract's figure; the root mean square
+// says whether it is the body or a few loose vertices (a flap hanging by one intact edge beside
+// a crack is nearly free, and its position is decided by residuals far below the tolerance).
+struct PositionError {
+  double largest = -1.0;
+  double rms = -1.0;
+};
+
+// The reference run writes its positions (and scores 0); the others are compared with them.
+PositionError positionError(const std::vector<Vec3>& x, const TetMesh& mesh, bool reference,
+                            const std::filesystem::path& referencePositions);
 
 }  // namespace galsculpt

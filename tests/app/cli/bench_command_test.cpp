@@ -14,6 +14,28 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The two error figures on a known case: one loose vertex 0.3 off among four, the reference's
+// largest displacement 2: the largest is 0.15 of it, the root mean square half that.
+TEST(PositionError, LargestAndRootMeanSquareOverTheReferencesLargestDisplacement) {
+  const test::TempDir dir;
+  TetMesh mesh;
+  mesh.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  std::vector<Vec3> reference = mesh.vertices;
+  reference[1] += Vec3(2, 0, 0);
+  const fs::path file = dir / "positions.ref";
+  const PositionError self = positionError(reference, mesh, /*reference=*/true, file);
+  EXPECT_EQ(self.largest, 0.0);
+  EXPECT_EQ(self.rms, 0.0);
+  std::vector<Vec3> run = reference;
+  run[3] += Vec3(0, 0.3, 0);
+  const PositionError e = positionError(run, mesh, false, file);
+  EXPECT_NEAR(e.largest, 0.15, 1e-12);
+  EXPECT_NEAR(e.rms, 0.075, 1e-12);
+  const PositionError missing = positionError(run, mesh, false, dir / "none.ref");
+  EXPECT_EQ(missing.largest, -1.0) << "no reference: no figure";
+  EXPECT_EQ(missing.rms, -1.0);
+}
+
 using test::CliRun;
 using test::run;
 
@@ -193,6 +215,8 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
                           "volume_change_pct",
                           "preset",
                           "rel_position_error_motion",
+                          "rel_position_error_rms",
+                          "rel_position_error_motion_rms",
                           "motion_frame",
                           "ms_p95",
                           "newton_iters_mean",
@@ -220,6 +244,11 @@ TEST(Cli, BenchReportsSpeedBesideErrorAsJson) {
   }
   EXPECT_GT(j["results"][1]["rel_position_error"].get<double>(), 0.0);
   EXPECT_LT(j["results"][1]["rel_position_error"].get<double>(), 1.0);
+  for (int i : {1, 2}) {
+    const double rms = j["results"][i]["rel_position_error_rms"].get<double>();
+    EXPECT_GT(rms, 0.0) << i;
+    EXPECT_LE(rms, j["results"][i]["rel_position_error"].get<double>()) << i;
+  }
   EXPECT_EQ(run({"bench", "--scene", "moon"}).code, kExitUsage);
 }
 
