@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -59,6 +60,23 @@ __global__ void forEachKernel(int n, F f) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < n) f(i);
 }
+
+#if CUDART_VERSION >= 12040
+// A device loop's tests (CudaExecutor::loopOnDevice; static: one copy a source file): the while
+// node's condition from the flag, before the first pass and after each, within the passes
+// allowed. passes[0] counts every pass the loop ever made (counters() reads it), passes[1] where
+// this launch started.
+static __global__ void loopEntryKernel(cudaGraphConditionalHandle handle, const double* running,
+                                long long* passes) {
+  passes[1] = passes[0];
+  cudaGraphSetConditional(handle, *running != 0.0 ? 1u : 0u);
+}
+static __global__ void loopTestKernel(cudaGraphConditionalHandle handle, const double* running,
+                               long long* passes, int mostPasses) {
+  const long long done = ++passes[0] - passes[1];
+  cudaGraphSetConditional(handle, *running != 0.0 && done < mostPasses ? 1u : 0u);
+}
+#endif
 
 // A block's threads combine their values in a fixed tree; thread 0 gets the result.
 template <typename Op>
@@ -221,6 +239,10 @@ class CudaExecutor {
   ~CudaExecutor() {
     for (Graph& g : slots_)
       if (g.exec) cudaGraphExecDestroy(g.exec);
+    for (auto& [flag, l] : loops_) {
+      if (l.exec) cudaGraphExecDestroy(l.exec);
+      if (l.passes) cudaFree(l.passes);
+    }
     if (workspace_) cudaFree(workspace_);
     cudaFree(info_);
     cudaFree(partial_);
@@ -232,6 +254,7 @@ class CudaExecutor {
   // graph are those counted when it was recorded.
   using Counters = DeviceCounters;
   Counters counters() const {
+    countLoopPasses();
     Counters c = counters_;
     c.hostToDeviceBytes = ::galsculpt::detail::transfers.hostToDevice;
     c.deviceToHostBytes = ::galsculpt::detail::transfers.deviceToHost + readBytes_;
@@ -341,7 +364,32 @@ class CudaExecutor {
     ++counters_.graphs;
     GALSCULPT_CUDA_CHECK(cudaGraphLaunch(g.exec, GALSCULPT_CUDA_STREAM));
   }
-  void synchronize() const { GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM)); }
+  // `body` (launches only) while *running is not 0, tested on the device before each pass, at
+  // most `mostPasses` passes: a graph of the test and a while node whose body graph is `body`'s
+  // launches and the test again (CUDA 12.4's conditional nodes), recorded once per flag and key
+  // and replayed. The host waits for nothing. Without graphs (GALSCULPT_CUDA_GRAPHS=0, the
+  // launch profile) the host reads the flag before each pass.
+  template <typename Body>
+  void loopOnDevice(std::uint64_t key, const double* running, int mostPasses, const Body& body) {
+#if CUDART_VERSION >= 12040
+    if (graphs_) {
+      Loop& l = loops_[running];
+      if (!l.exec || l.key != key) recordLoop(l, key, running, mostPasses, body);
+      ++counters_.graphs;
+      GALSCULPT_CUDA_CHECK(cudaGraphLaunch(l.exec, GALSCULPT_CUDA_STREAM));
+      return;
+    }
+#endif
+    for (int pass = 0; pass < mostPasses; ++pass) {
+      double flag = 0.0;
+      read(running, &flag, 1);
+      if (flag == 0.0) break;
+      body();
+    }
+  }
+  void synchronize() const {
+    GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
+  }
 
  private:
   template <typename F, typename Op>
@@ -360,6 +408,95 @@ class CudaExecutor {
     cudaGraphExec_t exec = nullptr;
     long launches = 0, reductions = 0, copies = 0;  // the kernels it holds
   };
+  // A device loop's graph: the kernels of one pass, and its pass counter (device memory: the
+  // passes made, and where the last launch started) with the passes counters() has counted.
+  struct Loop {
+    std::uint64_t key = 0;
+    cudaGraphExec_t exec = nullptr;
+    long launches = 0, reductions = 0, copies = 0;  // a pass's kernels (its test included)
+    long long* passes = nullptr;
+    long long counted = 0;
+  };
+#if CUDART_VERSION >= 12040
+  template <typename Body>
+  void recordLoop(Loop& l, std::uint64_t key, const double* running, int mostPasses,
+                  const Body& body) {
+    if (l.exec) GALSCULPT_CUDA_CHECK(cudaGraphExecDestroy(l.exec));
+    l.exec = nullptr;
+    if (!l.passes) {
+      GALSCULPT_CUDA_CHECK(cudaMalloc(&l.passes, 2 * sizeof(long long)));
+      GALSCULPT_CUDA_CHECK(
+          cudaMemsetAsync(l.passes, 0, 2 * sizeof(long long), GALSCULPT_CUDA_STREAM));
+      l.counted = 0;
+    }
+    cudaGraph_t graph = nullptr;
+    GALSCULPT_CUDA_CHECK(cudaGraphCreate(&graph, 0));
+    try {
+      cudaGraphConditionalHandle handle;
+      GALSCULPT_CUDA_CHECK(cudaGraphConditionalHandleCreate(&handle, graph, 0, 0));
+      long long* passes = l.passes;
+      void* entryArgs[] = {&handle, const_cast<double**>(&running), &passes};
+      cudaKernelNodeParams entry{};
+      entry.func = reinterpret_cast<void*>(loopEntryKernel);
+      entry.gridDim = dim3(1);
+      entry.blockDim = dim3(1);
+      entry.kernelParams = entryArgs;
+      cudaGraphNode_t entryNode = nullptr;
+      GALSCULPT_CUDA_CHECK(cudaGraphAddKernelNode(&entryNode, graph, nullptr, 0, &entry));
+      cudaGraphNodeParams loop{};
+      loop.type = cudaGraphNodeTypeConditional;
+      loop.conditional.handle = handle;
+      loop.conditional.type = cudaGraphCondTypeWhile;
+      loop.conditional.size = 1;
+      cudaGraphNode_t loopNode = nullptr;
+#if CUDART_VERSION >= 13000
+      GALSCULPT_CUDA_CHECK(cudaGraphAddNode(&loopNode, graph, &entryNode, nullptr, 1, &loop));
+#else
+      GALSCULPT_CUDA_CHECK(cudaGraphAddNode(&loopNode, graph, &entryNode, 1, &loop));
+#endif
+      cudaGraph_t bodyGraph = loop.conditional.phGraph_out[0];
+      const Counters before = counters_;
+      GALSCULPT_CUDA_CHECK(cudaStreamBeginCaptureToGraph(
+          GALSCULPT_CUDA_STREAM, bodyGraph, nullptr, nullptr, 0, cudaStreamCaptureModeThreadLocal));
+      try {
+        body();
+        loopTestKernel<<<1, 1, 0, GALSCULPT_CUDA_STREAM>>>(handle, running, passes, mostPasses);
+        GALSCULPT_CUDA_CHECK(cudaGetLastError());
+      } catch (...) {
+        cudaStreamEndCapture(GALSCULPT_CUDA_STREAM, &bodyGraph);
+        throw;
+      }
+      GALSCULPT_CUDA_CHECK(cudaStreamEndCapture(GALSCULPT_CUDA_STREAM, &bodyGraph));
+      // The capture launched nothing: the passes are counted as they are made (counters()).
+      l.launches = counters_.launches - before.launches + 1;  // and the test
+      l.reductions = counters_.reductions - before.reductions;
+      l.copies = counters_.copies - before.copies;
+      counters_ = before;
+      GALSCULPT_CUDA_CHECK(cudaGraphInstantiate(&l.exec, graph, 0));
+    } catch (...) {
+      cudaGraphDestroy(graph);
+      throw;
+    }
+    GALSCULPT_CUDA_CHECK(cudaGraphDestroy(graph));
+    l.key = key;
+  }
+#endif
+  // Adds the kernels of the loops' passes made since the last call (a download per loop: the
+  // counters are read between frames, where the host waits anyway; not counted as a wait).
+  void countLoopPasses() const {
+    for (auto& [flag, l] : loops_) {
+      if (!l.passes) continue;
+      long long passes = 0;
+      GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(&passes, l.passes, sizeof passes, cudaMemcpyDeviceToHost,
+                                           GALSCULPT_CUDA_STREAM));
+      GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
+      const long long made = passes - l.counted;
+      l.counted = passes;
+      counters_.launches += static_cast<long>(made) * l.launches;
+      counters_.reductions += static_cast<long>(made) * l.reductions;
+      counters_.copies += static_cast<long>(made) * l.copies;
+    }
+  }
   double* partial_ = nullptr;
   CusolverLibrary cusolver_;
   std::string cusolverReason_;
@@ -372,6 +509,7 @@ class CudaExecutor {
   mutable Counters counters_;
   mutable double readBytes_ = 0.0;  // host reads and downloads
   std::vector<Graph> slots_;
+  mutable std::map<const double*, Loop> loops_;  // by the flag each tests
 };
 
 }  // namespace galsculpt::gpu

@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -26,6 +27,17 @@ inline void forbidInCapture(const char* what) {
   if (capturing) throw std::logic_error(std::string(what) + " inside a captured section");
 }
 }  // namespace detail
+
+// Marks a captured section (or a device loop's body) for its lifetime; sections do not nest.
+struct CaptureFlag {
+  CaptureFlag() {
+    detail::forbidInCapture("a captured section");
+    detail::capturing = true;
+  }
+  ~CaptureFlag() { detail::capturing = false; }
+  CaptureFlag(const CaptureFlag&) = delete;
+  CaptureFlag& operator=(const CaptureFlag&) = delete;
+};
 
 class CpuExecutor {
  public:
@@ -154,12 +166,21 @@ class CpuExecutor {
   // A section of launches the CUDA executor captures as one graph; here it just runs.
   template <typename Body>
   void captured(int /*slot*/, std::uint64_t /*key*/, const Body& body) {
-    struct Flag {
-      Flag() { detail::capturing = true; }
-      ~Flag() { detail::capturing = false; }
-    } flag;
+    const CaptureFlag flag;
     ++counters_.graphs;
     body();
+  }
+  // A loop whose test the device makes: `body` (launches only) runs while *running is not 0,
+  // tested before each pass, at most `mostPasses` passes. The CUDA executor records it once per
+  // `key` as a graph whose while node reads the flag, so the host waits for nothing; here the
+  // flag is read where it lies (no wait is counted: on a device no one waits for it). The body
+  // must bake nothing a pass changes: every pass replays the same launches.
+  template <typename Body>
+  void loopOnDevice(std::uint64_t /*key*/, const double* running, int mostPasses,
+                    const Body& body) {
+    const CaptureFlag flag;
+    ++counters_.graphs;
+    for (int pass = 0; pass < mostPasses && *running != 0.0; ++pass) body();
   }
   void synchronize() const {}
 

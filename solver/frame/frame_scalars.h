@@ -21,6 +21,8 @@ struct FrameScalars {
   // (IncrementalPotential::residualAtTrials): an accepted trial's are the accepted positions'.
   double trialResidual = 0.0, trialForceScale = 0.0;
   double r0 = 0.0, r1 = 0.0;  // |b|^2 and |b - A delta|^2 around the V-cycles' solve
+  // PCG's |r| / |b| and iterations in the Newton step's solve (LinearSolve::takeSolve).
+  double pcgReduction = 0.0, pcgIterations = 0.0;
   double inverted = 0.0, trialInverted = 0.0;  // intact elements inside out at x, at the trial
   double kept = 0.0;                           // elements whose stiffness the pass kept
   double switched = 0.0;  // damaged elements whose open cracks differ from the stiffness's

@@ -353,6 +353,7 @@ class FrameSolver {
     }
     FrameScalars read;
     ex_.read(d_.sc(), &read, 1);
+    linear_.takeSolve(read);
     if (it == 0 && dropInvertingPrediction(read)) {
       result.msSolve += msSince(t0);
       if constexpr (Exec::kHostMemory) result.msSolve -= result.msElements - elementsBefore;

@@ -86,8 +86,10 @@ class LinearSolve {
   }
 
   // delta = H^-1 (-g) by the multigrid: V-cycles (the residual norms go to r0 and r1; no host
-  // read) or PCG to `target` (absolute; host reads; its reduction in reduction()). In a local
-  // iteration, PCG on the region's rows (region_solve.h; the multigrid is not refreshed).
+  // read) or PCG to `target` (absolute; its reduction and iterations go to the frame's scalars,
+  // and to reduction() and iterations() once the frame read them: takeSolve). In a local
+  // iteration, PCG on the region's rows (region_solve.h, one read; the multigrid is not
+  // refreshed).
   void solve(const StepSettings& s, double target) {
     if (d_.local) {
       startFromZero();
@@ -113,9 +115,15 @@ class LinearSolve {
           3 * d_.n, [=] GALSCULPT_LAMBDA(int i) { return (b[i] - ap[i]) * (b[i] - ap[i]); },
           &sc->r1);
     } else {
-      const auto r = mg_.pcg(a, b, delta, s, s.pcgTolerance, s.pcgMaxIterations, target);
-      reduction_ = r.reduction;
-      iterations_ += r.iterations;
+      // Its figures ride the frame's next read (takeSolve): no read of its own.
+      mg_.pcgLaunch(a, b, delta, s, s.pcgTolerance, s.pcgMaxIterations, target);
+      const typename MultigridCycle<Exec>::PcgScalars* pcg = mg_.pcgScalars();
+      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
+        const typename MultigridPcg<Exec>::Result r = MultigridPcg<Exec>::result(*pcg);
+        sc->pcgReduction = r.reduction;
+        sc->pcgIterations = r.iterations;
+      });
+      solveInScalars_ = true;
     }
     ex_.forEach(3 * d_.n, [=] GALSCULPT_LAMBDA(int i) {
       if (fixed[i / 3]) delta[i] = 0.0;
@@ -154,7 +162,16 @@ class LinearSolve {
   // A local iteration's relative PCG tolerance where the settings have no PCG (V-cycles).
   static constexpr double kRegionTolerance = 1e-2;
 
-  // PCG's |r| / |b| of the last solve (or null step).
+  // The figures of the last solve() from the frame's read after it (PCG's left them in the
+  // frame's scalars); nothing where that solve set them itself (V-cycles, a region, a null step).
+  void takeSolve(const FrameScalars& read) {
+    if (!solveInScalars_) return;
+    solveInScalars_ = false;
+    reduction_ = read.pcgReduction;
+    iterations_ += static_cast<int>(read.pcgIterations);
+  }
+
+  // PCG's |r| / |b| of the last solve (or null step), once taken (takeSolve).
   double reduction() const { return reduction_; }
   // PCG iterations since resetIterations (a sub-step's).
   int iterations() const { return iterations_; }
@@ -174,6 +191,7 @@ class LinearSolve {
   std::uint64_t revision_ = 0;
   double reduction_ = 0.0;
   int iterations_ = 0;
+  bool solveInScalars_ = false;  // the last solve's figures wait in the frame's scalars
 };
 
 }  // namespace galsculpt

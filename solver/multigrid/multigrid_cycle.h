@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -99,6 +100,7 @@ class MultigridCycle {
     factored_ = false;
     kept_.clear();
     coarseFactorsKept_ = 0;
+    ++uploads_;
   }
 
   // The anchored fine vertices (one flag per vertex, executor memory; null: none), which the
@@ -160,10 +162,37 @@ class MultigridCycle {
     for (int c = 0; c < s.cycles; ++c) vcycle(a, 0, b, x, s);
   }
   using PcgResult = typename MultigridPcg<Exec>::Result;
+  using PcgScalars = typename MultigridPcg<Exec>::Scalars;
   // CG on A x = b from x = 0, preconditioned by one V-cycle per iteration (multigrid_pcg.h).
   PcgResult pcg(const double* a, const double* b, double* x, const Settings& s, double tolerance,
                 int maxIterations, double absoluteTarget = 0.0) {
-    return pcg_.solve(*this, rows_, a, b, x, s, tolerance, maxIterations, absoluteTarget);
+    return pcg_.solve(*this, rows_, a, b, x, s, tolerance, maxIterations, absoluteTarget,
+                      bakedKey(s));
+  }
+  // The same without its read: the result stays in pcgScalars() (MultigridPcg::launch).
+  void pcgLaunch(const double* a, const double* b, double* x, const Settings& s, double tolerance,
+                 int maxIterations, double absoluteTarget) {
+    pcg_.launch(*this, rows_, a, b, x, s, tolerance, maxIterations, absoluteTarget, bakedKey(s));
+  }
+  const PcgScalars* pcgScalars() const { return pcg_.scalars(); }
+
+  // What a V-cycle's launches bake in besides their arguments, for a device that replays them
+  // (MultigridPcg's loop): the buffers (new with each upload), the host's choices (the coarsest
+  // solve, the float smoother, fragments, pieces) and the settings the cycle reads. FNV-1a.
+  std::uint64_t bakedKey(const Settings& s) const {
+    std::uint64_t key = 1469598103934665603ull;
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &s.pcgTolerance, sizeof bits);
+    for (const std::uint64_t v :
+         {uploads_, static_cast<std::uint64_t>(factored_),
+          static_cast<std::uint64_t>(smoother_.single()),
+          static_cast<std::uint64_t>(fragments_.fragments()),
+          static_cast<std::uint64_t>(pieces_.active()), reinterpret_cast<std::uintptr_t>(fixed_),
+          reinterpret_cast<std::uintptr_t>(dense_.data()), static_cast<std::uint64_t>(denseSize_),
+          static_cast<std::uint64_t>(s.fineSweeps), static_cast<std::uint64_t>(s.coarseIterations),
+          static_cast<std::uint64_t>(s.smoother), static_cast<std::uint64_t>(s.coarseSolver), bits})
+      key = (key ^ v) * 1099511628211ull;
+    return key;
   }
 
   // The operator of coarse level l (1: the first coarse level) as a dense matrix, read back
@@ -450,6 +479,7 @@ class MultigridCycle {
   KeptCoarseFactor kept_;
   std::vector<double> adopted_;  // a saved kept matrix, factored at the next refresh
   long coarseFactorsKept_ = 0;
+  std::uint64_t uploads_ = 0;  // (bakedKey)
 };
 
 }  // namespace galsculpt

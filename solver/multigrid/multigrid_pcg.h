@@ -4,13 +4,17 @@
 // formed by the launches that use them, and the stopping test by a one-thread launch that
 // freezes the iteration once it holds (x, r and p then stay as they were), so the host reads
 // only the state. In host memory it reads it after every iteration and stops there, as a host
-// loop would; on a device it runs iterations in batches sized by the residual's rate so far and
-// reads once a batch (the iterations a batch runs past the stop change nothing): a host wait per
-// batch, not three per iteration. The arithmetic is the same either way, to the bit.
+// loop would. On a device the iterations are a loop whose test the device makes
+// (Exec::loopOnDevice: a CUDA graph with a while node on `running`): every iteration is the same
+// launches, and the host waits for nothing until it reads the result, or not at all where a
+// caller folds the result into a read of its own (launch()). The arithmetic is the same either
+// way, to the bit.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+
+#include <cstdint>
 
 #include "solver/fem/dense_kernels.h"
 
@@ -27,23 +31,40 @@ class MultigridPcg {
     int iterations = 0;
   };
 
-  // The solve's scalars in executor memory: |b|^2, r.z (the last iteration's and the one before,
-  // by the iteration's parity: no launch copies one to the other), p.Ap, |r|^2 and the next |r|^2
-  // (before the stop decides whether it counts), the stop's target, the iterations done and
-  // whether it still runs (1) or stopped (0).
+  // The solve's scalars in executor memory: |b|^2, r.z (this iteration's, which alpha divides,
+  // and the one before, which beta divides by: the stop's launch moves the one to the other,
+  // after alpha's launch read it), p.Ap, |r|^2 and the next |r|^2 (before the stop decides
+  // whether it counts), the stop's target, the iterations done and whether it still runs (1) or
+  // stopped (0). Every iteration's launches are the same, whatever its number: a device replays
+  // them as one loop.
   struct Scalars {
-    double bb = 0.0, rz[2] = {0.0, 0.0}, pap = 0.0, rr = 0.0, rrNext = 0.0;
+    double bb = 0.0, rz = 0.0, rzLast = 0.0, pap = 0.0, rr = 0.0, rrNext = 0.0;
     double target = 0.0, iterations = 0.0, running = 0.0;
   };
 
   explicit MultigridPcg(Exec& ex) : ex_(ex) {}
 
   // `cycle`: its vcycle(a, 0, r, z, s) is the preconditioner, multiplyFine(a, p, ap) the
-  // operator; `rows`: the fine level's.
+  // operator; `rows`: the fine level's. `bakedKey`: what the cycle's launches bake in besides the
+  // arguments (its buffers and host-side choices: MultigridCycle::bakedKey), so that a device
+  // replays its loop only while none of it changed.
   template <typename Cycle>
   Result solve(Cycle& cycle, int rows, const double* a, const double* b, double* x,
                const typename Cycle::Settings& s, double tolerance, int maxIterations,
-               double absoluteTarget) {
+               double absoluteTarget, std::uint64_t bakedKey = 0) {
+    launch(cycle, rows, a, b, x, s, tolerance, maxIterations, absoluteTarget, bakedKey);
+    Scalars read;
+    ex_.read(scalars_.data(), &read, 1);
+    return result(read);
+  }
+
+  // The solve without its read: x and the scalars (scalars()) as solve() leaves them, for a
+  // caller that reads them later with its own (result() then makes the Result). In host memory
+  // the iterations still read their state (a host loop).
+  template <typename Cycle>
+  void launch(Cycle& cycle, int rows, const double* a, const double* b, double* x,
+              const typename Cycle::Settings& s, double tolerance, int maxIterations,
+              double absoluteTarget, std::uint64_t bakedKey = 0) {
     const int n = 3 * rows;
     if (r_.size() != static_cast<size_t>(n)) {
       for (Buffer<double>* v : {&r_, &z_, &p_, &ap_}) v->resize(n);
@@ -63,7 +84,7 @@ class MultigridPcg {
     cycle.vcycle(a, 0, r, z, s);
     ex_.copy(p, z, n);
     ex_.sum(
-        n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, &sc->rz[0]);
+        n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, &sc->rz);
     ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
       const double bnorm = sqrt(sc->bb);
       sc->target = fmax(tolerance * fmax(bnorm, 1e-300), absoluteTarget);
@@ -71,48 +92,35 @@ class MultigridPcg {
       sc->iterations = 0.0;
       sc->running = maxIterations > 0 && bnorm > sc->target ? 1.0 : 0.0;
     });
-    Scalars read;
-    int launched = 0;  // iterations launched (those past the stop change nothing)
     if constexpr (Exec::kHostMemory) {
+      Scalars read;
       ex_.read(sc, &read, 1);
-      for (; read.running != 0.0 && launched < maxIterations; ++launched) {
-        step(cycle, n, a, x, maxIterations, launched);
+      for (int k = 0; read.running != 0.0 && k < maxIterations; ++k) {
+        step(cycle, n, a, x, maxIterations);
         ex_.read(sc, &read, 1);  // a host loop's test: it stops without the new direction
-        if (read.running != 0.0) direction(cycle, n, a, s, launched);
+        if (read.running != 0.0) direction(cycle, n, a, s);
       }
     } else {
-      // A short first batch (at most 2, and one less than the shorter of the last two solves: a
-      // sub-step's Newton iterations alternate long solves and solves of one or two), then each
-      // batch as long as the rate seen so far says is left.
-      const int shorter = std::min(lastIterations_[0], lastIterations_[1]);
-      int batch = fixedBatch_ > 0 ? fixedBatch_ : std::clamp(shorter - 1, 1, kBatch);
-      for (;;) {
-        const int until = std::min(maxIterations, launched + batch);
-        for (; launched < until; ++launched) {
-          step(cycle, n, a, x, maxIterations, launched);
-          direction(cycle, n, a, s, launched);
-        }
-        ex_.read(sc, &read, 1);
-        if (read.running == 0.0 || launched >= maxIterations) break;
-        batch = fixedBatch_ > 0 ? fixedBatch_ : batchLeft(read);
-      }
+      std::uint64_t key = bakedKey;  // FNV-1a, as GraphKey (solver/frame/graph_key.h)
+      for (const std::uint64_t v :
+           {static_cast<std::uint64_t>(n), static_cast<std::uint64_t>(maxIterations),
+            reinterpret_cast<std::uintptr_t>(a), reinterpret_cast<std::uintptr_t>(x),
+            reinterpret_cast<std::uintptr_t>(r), reinterpret_cast<std::uintptr_t>(sc)})
+        key = (key ^ v) * 1099511628211ull;
+      ex_.loopOnDevice(key, &sc->running, maxIterations, [&] {
+        step(cycle, n, a, x, maxIterations);
+        direction(cycle, n, a, s);
+      });
     }
-    const int iterations = static_cast<int>(read.iterations);
-    lastIterations_[1] = lastIterations_[0];
-    lastIterations_[0] = iterations;
-    const double bnorm = std::sqrt(read.bb);
-    return {bnorm > 0.0 ? std::sqrt(read.rr) / bnorm : 0.0, iterations};
   }
 
-  // The iterations a running solve still needs by the mean rate of its residual so far, within
-  // 1 .. kLongestBatch.
-  static int batchLeft(const Scalars& read) {
-    const double bnorm = std::sqrt(read.bb), rnorm = std::sqrt(read.rr);
-    if (!(read.iterations > 0.0 && rnorm > 0.0 && rnorm < bnorm)) return kBatch;
-    const double rate = std::pow(rnorm / bnorm, 1.0 / read.iterations);
-    if (!(rate < 1.0)) return kBatch;
-    const double left = std::ceil(std::log(read.target / rnorm) / std::log(rate));
-    return static_cast<int>(std::clamp(left, 1.0, double(kLongestBatch)));
+  // The solve's scalars in executor memory (for a caller of launch()).
+  const Scalars* scalars() const { return scalars_.data(); }
+
+  // What the scalars after a solve say (GALSCULPT_HD: a caller may form it in a launch).
+  GALSCULPT_HD static Result result(const Scalars& read) {
+    const double bnorm = sqrt(read.bb);
+    return {bnorm > 0.0 ? sqrt(read.rr) / bnorm : 0.0, static_cast<int>(read.iterations)};
   }
 
   // An iteration's step, steered by the scalars in executor memory: nothing changes once
@@ -120,8 +128,7 @@ class MultigridPcg {
   // not counted), |r| <= target or the last iteration after it. The stop is decided by the
   // launch that clears z for the preconditioner (its first thread), so it costs no launch.
   template <typename Cycle>
-  void step(Cycle& cycle, int n, const double* a, double* x, int maxIterations, int k) {
-    const int was = k & 1;
+  void step(Cycle& cycle, int n, const double* a, double* x, int maxIterations) {
     double* r = r_.data();
     double* z = z_.data();
     double* p = p_.data();
@@ -135,7 +142,7 @@ class MultigridPcg {
       Scalars now;
       ex_.read(sc, &now, 1);
       if (now.running != 0.0 && now.pap > 0.0) {
-        const double alpha = now.rz[was] / now.pap;
+        const double alpha = now.rz / now.pap;
         ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
           x[i] += alpha * p[i];
           r[i] -= alpha * ap[i];
@@ -144,7 +151,7 @@ class MultigridPcg {
     } else {
       ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
         if (sc->running == 0.0 || !(sc->pap > 0.0)) return;
-        const double alpha = sc->rz[was] / sc->pap;
+        const double alpha = sc->rz / sc->pap;
         x[i] += alpha * p[i];
         r[i] -= alpha * ap[i];
       });
@@ -159,47 +166,38 @@ class MultigridPcg {
         return;
       }
       sc->rr = sc->rrNext;
+      sc->rzLast = sc->rz;  // (alpha's launch has read it) beta's divisor; direction() forms rz
       sc->iterations += 1.0;
       if (sqrt(sc->rr) <= sc->target || sc->iterations >= maxIterations) sc->running = 0.0;
     });
   }
 
-  // The iteration's new direction: z = V-cycle(r), p = z + (r.z / last r.z) p (`k`: the
-  // iteration's number, whose parity picks the slots of r.z).
+  // The iteration's new direction: z = V-cycle(r), p = z + (r.z / last r.z) p.
   template <typename Cycle>
-  void direction(Cycle& cycle, int n, const double* a, const typename Cycle::Settings& s, int k) {
-    const int was = k & 1, now = 1 - was;
+  void direction(Cycle& cycle, int n, const double* a, const typename Cycle::Settings& s) {
     double* r = r_.data();
     double* z = z_.data();
     double* p = p_.data();
     Scalars* sc = scalars_.data();
     cycle.vcycle(a, 0, r, z, s);
     ex_.sum(
-        n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, &sc->rz[now]);
+        n, [=] GALSCULPT_LAMBDA(int i) { return r[i] * z[i]; }, &sc->rz);
     if constexpr (Exec::kHostMemory) {  // (only while running: the host stopped before)
       Scalars read;
       ex_.read(sc, &read, 1);
-      const double beta = read.rz[now] / read.rz[was];
+      const double beta = read.rz / read.rzLast;
       ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) { p[i] = z[i] + beta * p[i]; });
     } else {
       ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
-        if (sc->running != 0.0) p[i] = z[i] + sc->rz[now] / sc->rz[was] * p[i];
+        if (sc->running != 0.0) p[i] = z[i] + sc->rz / sc->rzLast * p[i];
       });
     }
   }
-
-  // Every batch `iterations` long instead of by the rate (0: by the rate; tests).
-  void setFixedBatch(int iterations) { fixedBatch_ = iterations; }
-
-  // A device's batches: at most kLongestBatch iterations; kBatch where no rate is known yet.
-  static constexpr int kLongestBatch = 8, kBatch = 2;
 
  private:
   Exec& ex_;
   Buffer<double> r_, z_, p_, ap_;  // allocated on the first solve
   Buffer<Scalars> scalars_;
-  int lastIterations_[2] = {1, 1};  // the last two solves' iterations (a device's first batch)
-  int fixedBatch_ = 0;
 };
 
 }  // namespace galsculpt

@@ -61,11 +61,15 @@ struct System {
     d.delta.download(delta.data(), delta.size());
     return delta;
   }
-  // PCG's step to `tolerance` (relative), its iterations counted from zero.
+  // PCG's step to `tolerance` (relative), its iterations counted from zero; its figures from
+  // the frame's scalars, read as the frame reads them after the step (takeSolve).
   std::vector<double> pcgStep(double tolerance) {
     settings.pcgTolerance = tolerance;
     linear.resetIterations();
     linear.solve(settings, 0.0);
+    FrameScalars read;
+    ex.read(d.sc(), &read, 1);
+    linear.takeSolve(read);
     return step();
   }
 };
@@ -79,6 +83,17 @@ TEST(LinearSolve, PcgWithTheMultigridGivesTheDirectSolvesStep) {
   const std::vector<double> pcg = s.pcgStep(1e-12);
   EXPECT_GT(s.linear.iterations(), 0);
   EXPECT_LT(s.linear.reduction(), 1e-11);
+  // The figures wait in the frame's scalars until the frame's read: no read of their own.
+  const int iterations = s.linear.iterations();
+  s.linear.solve(s.settings, 0.0);
+  EXPECT_EQ(s.linear.iterations(), iterations) << "not yet taken";
+  FrameScalars read;
+  s.ex.read(s.d.sc(), &read, 1);
+  s.linear.takeSolve(read);
+  EXPECT_EQ(s.linear.iterations(), 2 * iterations) << "the same solve again";
+  EXPECT_EQ(read.pcgReduction, s.linear.reduction());
+  s.linear.takeSolve(read);
+  EXPECT_EQ(s.linear.iterations(), 2 * iterations) << "taken once";
   double largest = 0.0, difference = 0.0;
   for (int i = 0; i < 3 * s.n; ++i) {
     largest = std::max(largest, std::abs(direct[i]));

@@ -52,59 +52,82 @@ TEST(Multigrid, VCycleReducesTheResidualAndPcgReachesTheDirectSolution) {
   EXPECT_LT(c.solve(x, cg), 1e-3) << "and the coarse CG as well as the Cholesky";
 }
 
-// On a device PCG reads its state once a batch of iterations; the iterations a batch runs past
-// the stop change nothing, so batches of any length give the bits of stopping at once, with
-// fewer host waits than iterations (host memory reads after each iteration).
-TEST(MultigridPcg, BatchesOfAnyLengthGiveTheBitsOfStoppingAtOnce) {
+// On a device PCG's iterations are a loop whose test the device makes (loopOnDevice): the host
+// waits only for the result, or not at all (launch()), and the loop runs no iteration past the
+// stop. With the V-cycle both executors share (Gauss-Seidel, CG on the coarsest level, doubles)
+// it gives the host loop's bits: the same x, iterations and reduction.
+TEST(MultigridPcg, TheDeviceLoopGivesTheHostLoopsBitsWithoutWaiting) {
   const System s = elasticitySystem();
   const Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {60, 8});
-  DeviceLikeExecutor ex;
-  MultigridCycle<DeviceLikeExecutor> cycle(ex, s.model.pattern);
-  cycle.upload(buildMultigridLayout(mg, s.model.pattern));
   std::vector<double> a;
   for (const Eigen::Matrix3d& blk : s.a.blocks) a.insert(a.end(), blk.data(), blk.data() + 9);
-  cycle.refresh(a.data(), false, true);
-  MultigridCycle<DeviceLikeExecutor>::Settings settings = solverPreset(SolverPreset::Converged);
+  MultigridCycle<CpuExecutor>::Settings settings = solverPreset(SolverPreset::Converged);
+  settings.smoother = Smoother::GaussSeidel;
+  settings.coarseSolver = CoarseSolver::Cg;
   const int rows = s.model.numVertices();
   struct Run {
     std::vector<double> x;
-    MultigridPcg<DeviceLikeExecutor>::Result result;
-    long waits = 0;
+    MultigridPcg<CpuExecutor>::Result result;
+    DeviceCounters cost;  // of the solve
   };
-  auto solve = [&](int batch, double tolerance, int most) {
-    MultigridPcg<DeviceLikeExecutor> pcg(ex);
-    pcg.setFixedBatch(batch);
+  auto solve = [&]<typename Exec>(Exec& ex, const double* b, double tolerance, int most,
+                                  bool read) {
+    MultigridCycle<Exec> cycle(ex, s.model.pattern);
+    cycle.upload(buildMultigridLayout(mg, s.model.pattern));
+    cycle.refresh(a.data(), false, false);
+    MultigridPcg<Exec> pcg(ex);
     Run run;
-    run.x.assign(3 * rows, 0.0);
-    const long before = ex.counters().waits;
-    run.result =
-        pcg.solve(cycle, rows, a.data(), s.b.data(), run.x.data(), settings, tolerance, most, 0.0);
-    run.waits = ex.counters().waits - before;
+    run.x.assign(3 * rows, 1.0);
+    const DeviceCounters before = ex.counters();
+    if (read) {
+      const auto r = pcg.solve(cycle, rows, a.data(), b, run.x.data(), settings, tolerance, most,
+                               0.0, cycle.bakedKey(settings));
+      run.result = {r.reduction, r.iterations};
+    } else {
+      pcg.launch(cycle, rows, a.data(), b, run.x.data(), settings, tolerance, most, 0.0,
+                 cycle.bakedKey(settings));
+    }
+    const DeviceCounters after = ex.counters();
+    run.cost.launches = after.kernels() - before.kernels();
+    run.cost.waits = after.waits - before.waits;
+    run.cost.graphs = after.graphs - before.graphs;
     return run;
   };
-  const Run one = solve(1, 1e-10, 60);
-  ASSERT_GT(one.result.iterations, 4);
-  EXPECT_LT(one.result.reduction, 1e-10);
-  for (int batch : {2, 3, 7, 0}) {
-    const Run run = solve(batch, 1e-10, 60);
-    EXPECT_EQ(run.x, one.x) << "batch " << batch;
-    EXPECT_EQ(run.result.iterations, one.result.iterations) << "batch " << batch;
-    EXPECT_EQ(run.result.reduction, one.result.reduction) << "batch " << batch;
-    EXPECT_LT(run.waits, one.waits) << "batch " << batch;
-  }
-  // Stopped by the iteration cap inside a batch: the bits of the cap.
-  const Run capped = solve(1, 1e-14, 3), cappedInBatch = solve(7, 1e-14, 3);
+  CpuExecutor host;
+  DeviceLikeExecutor device;
+  const Run onHost = solve(host, s.b.data(), 1e-10, 60, true);
+  const Run onDevice = solve(device, s.b.data(), 1e-10, 60, true);
+  ASSERT_GT(onHost.result.iterations, 4);
+  EXPECT_LT(onHost.result.reduction, 1e-10);
+  EXPECT_EQ(onDevice.x, onHost.x);
+  EXPECT_EQ(onDevice.result.iterations, onHost.result.iterations);
+  EXPECT_EQ(onDevice.result.reduction, onHost.result.reduction);
+  EXPECT_EQ(onDevice.cost.waits, 1) << "the result's read, and nothing in the iterations";
+  EXPECT_EQ(onDevice.cost.graphs, 1) << "one loop";
+  const Run unread = solve(device, s.b.data(), 1e-10, 60, false);
+  EXPECT_EQ(unread.x, onHost.x);
+  EXPECT_EQ(unread.cost.waits, 0) << "launch() leaves the read to its caller";
+  // No iteration past the stop: a solve capped at k iterations costs k passes, and the
+  // converged one as many as its iterations.
+  const Run one = solve(device, s.b.data(), 1e-14, 1, false),
+            two = solve(device, s.b.data(), 1e-14, 2, false);
+  const long pass = two.cost.launches - one.cost.launches;
+  ASSERT_GT(pass, 0);
+  EXPECT_EQ(unread.cost.launches, one.cost.launches + (onHost.result.iterations - 1) * pass);
+  // Stopped by the iteration cap: the bits of the host's cap.
+  const Run capped = solve(host, s.b.data(), 1e-14, 3, true),
+            cappedOnDevice = solve(device, s.b.data(), 1e-14, 3, true);
   EXPECT_EQ(capped.result.iterations, 3);
-  EXPECT_EQ(cappedInBatch.x, capped.x);
-  EXPECT_EQ(cappedInBatch.result.reduction, capped.result.reduction);
-  // Nothing to solve: no iteration, x = 0.
-  std::vector<double> zero(3 * rows, 0.0), x(3 * rows, 1.0);
-  MultigridPcg<DeviceLikeExecutor> pcg(ex);
-  const auto none =
-      pcg.solve(cycle, rows, a.data(), zero.data(), x.data(), settings, 1e-10, 60, 0.0);
-  EXPECT_EQ(none.iterations, 0);
-  EXPECT_EQ(none.reduction, 0.0);
-  EXPECT_EQ(x, zero);
+  EXPECT_EQ(cappedOnDevice.result.iterations, 3);
+  EXPECT_EQ(cappedOnDevice.x, capped.x);
+  EXPECT_EQ(cappedOnDevice.result.reduction, capped.result.reduction);
+  // Nothing to solve: no pass, x = 0.
+  const std::vector<double> zero(3 * rows, 0.0);
+  const Run none = solve(device, zero.data(), 1e-10, 60, true);
+  EXPECT_EQ(none.result.iterations, 0);
+  EXPECT_EQ(none.result.reduction, 0.0);
+  EXPECT_EQ(none.x, zero);
+  EXPECT_EQ(none.cost.launches, one.cost.launches - pass) << "the start's launches, no pass";
 }
 
 }  // namespace
