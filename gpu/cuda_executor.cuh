@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -27,6 +28,7 @@
 #include "gpu/cusolver_loader.h"
 #include "gpu/launch_profile.h"
 #include "solver/frame/device_counters.h"
+#include "solver/frame/download_span.h"
 
 namespace galsculpt::gpu {
 
@@ -67,12 +69,12 @@ __global__ void forEachKernel(int n, F f) {
 // allowed. passes[0] counts every pass the loop ever made (counters() reads it), passes[1] where
 // this launch started.
 static __global__ void loopEntryKernel(cudaGraphConditionalHandle handle, const double* running,
-                                long long* passes) {
+                                       long long* passes) {
   passes[1] = passes[0];
   cudaGraphSetConditional(handle, *running != 0.0 ? 1u : 0u);
 }
 static __global__ void loopTestKernel(cudaGraphConditionalHandle handle, const double* running,
-                               long long* passes, int mostPasses) {
+                                      long long* passes, int mostPasses) {
   const long long done = ++passes[0] - passes[1];
   cudaGraphSetConditional(handle, *running != 0.0 && done < mostPasses ? 1u : 0u);
 }
@@ -302,6 +304,29 @@ class CudaExecutor {
     GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
     std::memcpy(static_cast<void*>(host), pinned, n * sizeof(T));
   }
+  // Several arrays device to host: queued into one pinned staging buffer, one wait, then copied
+  // out (a frame's positions and velocities).
+  void downloadAll(std::initializer_list<DownloadSpan> spans) const {
+    size_t total = 0;
+    for (const DownloadSpan& s : spans) total += s.bytes;
+    if (!total) return;
+    ++counters_.waits;
+    readBytes_ += static_cast<double>(total);
+    char* pinned = static_cast<char*>(staging_.get(total));
+    size_t at = 0;
+    for (const DownloadSpan& s : spans) {
+      if (s.bytes)
+        GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(pinned + at, s.device, s.bytes, cudaMemcpyDeviceToHost,
+                                             GALSCULPT_CUDA_STREAM));
+      at += s.bytes;
+    }
+    GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
+    at = 0;
+    for (const DownloadSpan& s : spans) {
+      if (s.bytes) std::memcpy(s.host, pinned + at, s.bytes);
+      at += s.bytes;
+    }
+  }
   // In-place dense Cholesky through cuSOLVER (loaded on first use); false when the matrix is
   // not positive definite or cuSOLVER is not there (cusolverReason() says why).
   bool denseCholesky(int n, double* a) {
@@ -376,6 +401,7 @@ class CudaExecutor {
       Loop& l = loops_[running];
       if (!l.exec || l.key != key) recordLoop(l, key, running, mostPasses, body);
       ++counters_.graphs;
+      ++counters_.launches;  // the entry's test (the passes are counted by countLoopPasses)
       GALSCULPT_CUDA_CHECK(cudaGraphLaunch(l.exec, GALSCULPT_CUDA_STREAM));
       return;
     }

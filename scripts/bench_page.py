@@ -72,7 +72,8 @@ def number(value, digits):
 def setting(r):
     if r["solver"] == "reference":
         return "reference (Newton, direct solve)"
-    return f"{r.get('preset', 'multigrid')} {r['grid']}"
+    cuts = f", {r['cuts']} cuts" if r.get("cuts") is not None else ""
+    return f"{r.get('preset', 'multigrid')} {r['grid']}{cuts}"
 
 
 def device(r):

@@ -9,12 +9,14 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "solver/frame/device_counters.h"
+#include "solver/frame/download_span.h"
 #include "solver/frame/parallel.h"
 
 namespace galsculpt {
@@ -149,6 +151,15 @@ class CpuExecutor {
     readBytes_ += static_cast<double>(n * sizeof(T));
     std::copy(device, device + n, host);
   }
+  // Several arrays device to host behind one wait (a frame's positions and velocities).
+  void downloadAll(std::initializer_list<DownloadSpan> spans) const {
+    detail::forbidInCapture("a download");
+    ++counters_.waits;
+    for (const DownloadSpan& s : spans) {
+      readBytes_ += static_cast<double>(s.bytes);
+      std::memcpy(s.host, s.device, s.bytes);
+    }
+  }
   // In-place dense Cholesky (lower, column-major); false when not positive definite.
   bool denseCholesky(int n, double* a) const {
     detail::forbidInCapture("a dense factorization (it waits for its status)");
@@ -173,14 +184,19 @@ class CpuExecutor {
   // A loop whose test the device makes: `body` (launches only) runs while *running is not 0,
   // tested before each pass, at most `mostPasses` passes. The CUDA executor records it once per
   // `key` as a graph whose while node reads the flag, so the host waits for nothing; here the
-  // flag is read where it lies (no wait is counted: on a device no one waits for it). The body
-  // must bake nothing a pass changes: every pass replays the same launches.
+  // flag is read where it lies (no wait is counted: on a device no one waits for it), and the
+  // test's kernels are counted as the device runs them (one before the first pass, one after
+  // each). The body must bake nothing a pass changes: every pass replays the same launches.
   template <typename Body>
   void loopOnDevice(std::uint64_t /*key*/, const double* running, int mostPasses,
                     const Body& body) {
     const CaptureFlag flag;
     ++counters_.graphs;
-    for (int pass = 0; pass < mostPasses && *running != 0.0; ++pass) body();
+    countLaunch();
+    for (int pass = 0; pass < mostPasses && *running != 0.0; ++pass) {
+      body();
+      countLaunch();
+    }
   }
   void synchronize() const {}
 

@@ -105,11 +105,10 @@ class FrameSolver {
       d_.frozen.resize(d_.stiffness.size());
   }
 
-  // Writes positions, velocities, damage and plastic state back (positions through the
-  // executor's pinned staging buffer).
+  // Writes positions, velocities, damage and plastic state back (positions and velocities
+  // through the executor's pinned staging buffer, behind one wait).
   void syncOut(SimState& state) {
-    downloadThroughShadow(ex_, d_.x, hostX_, state.x);
-    downloadThroughShadow(ex_, d_.v, hostV_, state.v);
+    downloadThroughShadows(ex_, d_.x, hostX_, state.x, d_.v, hostV_, state.v);
     damage_.syncOut(state);
     plastic_.syncOut(state);
     state.time = time_;

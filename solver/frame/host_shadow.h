@@ -23,14 +23,20 @@ bool uploadIfChanged(const std::vector<V>& src, std::vector<double>& shadow, Buf
   return true;
 }
 
-// Downloads `src` into `dst` (sized already) through `shadow`, which then holds it.
-template <typename Exec, typename Buffer, typename V>
-void downloadThroughShadow(const Exec& ex, const Buffer& src, std::vector<double>& shadow,
-                           std::vector<V>& dst) {
-  static_assert(sizeof(V) % sizeof(double) == 0, "an array of doubles");
-  shadow.resize(dst.size() * (sizeof(V) / sizeof(double)));
-  ex.download(src.data(), shadow.data(), shadow.size());
-  std::memcpy(static_cast<void*>(dst.data()), shadow.data(), shadow.size() * sizeof(double));
+// Downloads `srcA` and `srcB` into `dstA` and `dstB` (sized already) through their shadows,
+// which then hold them, behind one wait (Exec::downloadAll).
+template <typename Exec, typename BufferA, typename A, typename BufferB, typename B>
+void downloadThroughShadows(const Exec& ex, const BufferA& srcA, std::vector<double>& shadowA,
+                            std::vector<A>& dstA, const BufferB& srcB, std::vector<double>& shadowB,
+                            std::vector<B>& dstB) {
+  static_assert(sizeof(A) % sizeof(double) == 0 && sizeof(B) % sizeof(double) == 0,
+                "arrays of doubles");
+  shadowA.resize(dstA.size() * (sizeof(A) / sizeof(double)));
+  shadowB.resize(dstB.size() * (sizeof(B) / sizeof(double)));
+  ex.downloadAll({{srcA.data(), shadowA.data(), shadowA.size() * sizeof(double)},
+                  {srcB.data(), shadowB.data(), shadowB.size() * sizeof(double)}});
+  std::memcpy(static_cast<void*>(dstA.data()), shadowA.data(), shadowA.size() * sizeof(double));
+  std::memcpy(static_cast<void*>(dstB.data()), shadowB.data(), shadowB.size() * sizeof(double));
 }
 
 }  // namespace galsculpt

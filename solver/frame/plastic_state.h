@@ -57,8 +57,8 @@ class PlasticState {
   // Writes the plastic state back when an element flowed (otherwise the host's is the device's).
   void syncOut(SimState& state) {
     if (!flowed_) return;
-    downloadThroughShadow(ex_, fp_, hostFp_, state.plasticInverse);
-    downloadThroughShadow(ex_, strain_, hostStrain_, state.plasticStrain);
+    downloadThroughShadows(ex_, fp_, hostFp_, state.plasticInverse, strain_, hostStrain_,
+                           state.plasticStrain);
   }
   void save() {
     if (!active_) return;

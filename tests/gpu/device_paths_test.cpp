@@ -98,15 +98,15 @@ DeviceFrameCost deviceFrameCost(const Simulation& sim, const char* name, int set
 TEST(DeviceCounts, TheHangingSpheresFrameStaysWithinItsLaunchesAndWaits) {
   const DeviceFrameCost c = deviceFrameCost(*hangingSphere(), "hanging sphere (6k, converged)");
   EXPECT_GT(c.kernels, 0.0);
-  EXPECT_LE(c.kernels, 369.0);
-  EXPECT_LE(c.syncs, 9.4);
+  EXPECT_LE(c.kernels, 378.0);
+  EXPECT_LE(c.syncs, 8.3);
   EXPECT_LE(c.hostToDevice, 1024.0) << "a frame uploads only what changed (anchor targets)";
 }
 
 TEST(DeviceCounts, TheCutSpheresFrameStaysWithinItsLaunchesAndWaits) {
   const DeviceFrameCost c = deviceFrameCost(*cutSphere(), "cut sphere (6k, two pieces falling)");
-  EXPECT_LE(c.kernels, 653.0);
-  EXPECT_LE(c.syncs, 15.3);
+  EXPECT_LE(c.kernels, 670.0);
+  EXPECT_LE(c.syncs, 14.2);
 }
 
 // Charpy's bar (8k tets, its converged scene) after the break: frames 41-50, the halves in
@@ -115,8 +115,8 @@ TEST(DeviceCounts, CharpysFramesAfterTheBreakStayWithinTheirLaunchesAndWaits) {
   const SceneDescription scene = sceneNamed("charpy", 8000);
   const Simulation sim(scene, loadSceneMesh(scene));
   const DeviceFrameCost c = deviceFrameCost(sim, "Charpy after the break (8k, converged)", 40);
-  EXPECT_LE(c.kernels, 1806.0);
-  EXPECT_LE(c.syncs, 26.1);
+  EXPECT_LE(c.kernels, 1876.0);
+  EXPECT_LE(c.syncs, 25.0);
 }
 
 // The CPU backend has no device: its rows are zero.

@@ -1,5 +1,5 @@
 // Host shadows (solver/frame/host_shadow.h): an unchanged array is not uploaded again; a
-// changed one is; a download comes back through the shadow.
+// changed one is; downloads come back through the shadows, two arrays behind one wait.
 #include <gtest/gtest.h>
 
 #include "solver/frame/cpu_executor.h"
@@ -22,12 +22,23 @@ TEST(HostShadow, UploadsOnlyWhatChangedAndDownloadsThroughIt) {
   EXPECT_TRUE(uploadIfChanged(x, shadow, buffer));
   EXPECT_EQ(buffer.data()[4], 7.0);
   buffer.data()[0] = -1.0;  // what a frame did on the executor
+  CpuExecutor::Buffer<double> scalars;
+  std::vector<double> scalarShadow;
+  const std::vector<double> values = {8.0, 9.0, 10.0};
+  uploadIfChanged(values, scalarShadow, scalars);
+  scalars.data()[2] = 11.0;
   std::vector<Vec3> back(2);
-  downloadThroughShadow(ex, buffer, shadow, back);
+  std::vector<double> backValues(3);
+  const long waits = ex.counters().waits;
+  downloadThroughShadows(ex, buffer, shadow, back, scalars, scalarShadow, backValues);
+  EXPECT_EQ(ex.counters().waits, waits + 1) << "one wait for both";
   EXPECT_EQ(back[0], Vec3(-1, 2, 3));
   EXPECT_EQ(back[1], Vec3(4, 7, 6));
+  EXPECT_EQ(backValues, (std::vector<double>{8.0, 9.0, 11.0}));
   EXPECT_EQ(shadow[0], -1.0) << "the shadow holds what the executor holds";
+  EXPECT_EQ(scalarShadow[2], 11.0);
   EXPECT_FALSE(uploadIfChanged(back, shadow, buffer));
+  EXPECT_FALSE(uploadIfChanged(backValues, scalarShadow, scalars));
 }
 
 }  // namespace
