@@ -30,8 +30,10 @@ struct FrameScalars {
   // vertices shortened, and per level the rises above it (the last: every rise).
   double guardSlope = 0.0, guardElements = 0.0, guardCount = 0.0;
   double guardLevel[kGuardLevels + 1] = {};
-  // The local iteration's region (local_region.h): its vertices, and the body's free vertices.
+  // The local iteration's region (local_region.h): its vertices, and the body's free vertices;
+  // the seeds' threshold on |g_v|^2, and whether a |g_v|^2 was not finite (a device's choice).
   double regionVertices = 0.0, freeVertices = 0.0;
+  double regionSeed = 0.0, regionBad = 0.0;
 };
 
 }  // namespace galsculpt

@@ -47,15 +47,22 @@ class LocalRegion {
     const double* g = d_.g.data();
     double* r2 = d_.vertexResidual.data();
     const std::uint8_t* fixed = d_.fixed.data();
+    FrameScalars* sc = d_.sc();
     ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) {
       r2[v] = g[3 * v] * g[3 * v] + g[3 * v + 1] * g[3 * v + 1] + g[3 * v + 2] * g[3 * v + 2];
     });
-    ex_.download(r2, host_.data(), static_cast<size_t>(n));
-    const double seedAbove = threshold(kOutsideShare * kOutsideShare * target * target);
-    if (!(seedAbove >= 0.0)) return false;  // a NaN or infinity: the whole body
+    const double outside = kOutsideShare * kOutsideShare * target * target;
+    if constexpr (Exec::kHostMemory) {
+      ex_.download(r2, host_.data(), static_cast<size_t>(n));
+      const double seedAbove = threshold(outside);
+      if (!(seedAbove >= 0.0)) return false;  // a NaN or infinity: the whole body
+      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { sc->regionSeed = seedAbove; });
+    } else {
+      seedOnDevice(n, r2, outside);  // (a NaN or infinity seeds nothing: the whole body)
+    }
     std::uint8_t* in = d_.regionVertex.data();
     std::uint8_t* out = d_.regionScratch.data();
-    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) { in[v] = !fixed[v] && r2[v] >= seedAbove; });
+    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) { in[v] = !fixed[v] && r2[v] >= sc->regionSeed; });
     for (int ring = 0; ring < kRings; ++ring) {
       grow(in, out, fixed);
       std::swap(in, out);
@@ -65,7 +72,6 @@ class LocalRegion {
     grow(region, d_.regionTouched.data(), nullptr);  // its elements' corners, held ones too
     std::uint8_t* regionFixed = d_.regionFixed.data();
     ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) { regionFixed[v] = fixed[v] || !region[v]; });
-    FrameScalars* sc = d_.sc();
     ex_.sum(
         n, [=] GALSCULPT_LAMBDA(int v) { return region[v] ? 1.0 : 0.0; }, &sc->regionVertices);
     ex_.sum(
@@ -99,32 +105,69 @@ class LocalRegion {
   // The last region's vertex count.
   int vertices() const { return vertices_; }
 
+  // The seeds' threshold found where the residuals are (a device): each bin's sum by a thread
+  // of its own, over the vertices in their order (the host's sums, to the bit), then the scan by
+  // one thread into regionSeed (infinity where a |g_v|^2 is not finite: no seeds). No host wait.
+  // Public only because nvcc refuses extended lambdas in private member functions.
+  void seedOnDevice(int n, const double* r2, double outside) {
+    if (bins_.size() != static_cast<size_t>(kBins)) bins_.resize(kBins);
+    double* bins = bins_.data();
+    FrameScalars* sc = d_.sc();
+    ex_.forEach(kBins, [=] GALSCULPT_LAMBDA(int b) {
+      double sum = 0.0;
+      for (int v = 0; v < n; ++v) {
+        const double r = r2[v];
+        if (r > 0.0 && finite(r) && binOf(r) == b) sum += r;
+      }
+      bins[b] = sum;
+    });
+    ex_.maximum(
+        n, [=] GALSCULPT_LAMBDA(int v) { return finite(r2[v]) ? 0.0 : 1.0; }, &sc->regionBad);
+    ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
+      sc->regionSeed = sc->regionBad > 0.0 ? INFINITY : seedFromBins(bins, outside);
+    });
+  }
+
+  // Neither a NaN nor an infinity (in the frame's device lambdas' form).
+  GALSCULPT_HD static bool finite(double r) { return r == r && fabs(r) <= 1.7976931348623157e308; }
+  // frexp's exponents of doubles, and subnormals: |g_v|^2 binned by its binary exponent.
+  static constexpr int kBins = 2200, kOffset = 1100;
+  // The bin of r > 0 (finite): r in [2^(e-1), 2^e).
+  GALSCULPT_HD static int binOf(double r) {
+    int e = 0;
+    frexp(r, &e);
+    const int b = e + kOffset;
+    return b < 0 ? 0 : (b > kBins - 1 ? kBins - 1 : b);
+  }
+  // The smallest power of two at or above which the binned |g_v|^2 must be seeds so that those
+  // below it add up to at most `outside` (infinity when they all do).
+  GALSCULPT_HD static double seedFromBins(const double* bins, double outside) {
+    double below = 0.0;
+    for (int b = 0; b < kBins; ++b) {
+      if (below + bins[b] > outside) return ldexp(1.0, b - kOffset - 1);
+      below += bins[b];
+    }
+    return INFINITY;  // everything is within `outside`
+  }
+
  private:
-  // The smallest power of two at or above which the vertices' |g_v|^2 (host_) must be seeds so
-  // that those below it add up to at most `outside` (infinity when they all do; -1 for a NaN or
-  // an infinity). Binned by exponent: the sum left outside is within a factor of two of the
-  // largest allowed, and the pass is linear in the vertices.
+  // The threshold of seedFromBins over the vertices' |g_v|^2 (host_), -1 for a NaN or an
+  // infinity. Binned by exponent: the sum left outside is within a factor of two of the largest
+  // allowed, and the pass is linear in the vertices.
   double threshold(double outside) const {
-    constexpr int kBins = 2200, kOffset = 1100;  // frexp's exponents of doubles, and subnormals
     std::array<double, kBins> bins{};
     for (double r : host_) {
       if (!std::isfinite(r)) return -1.0;
       if (!(r > 0.0)) continue;
-      int e = 0;
-      std::frexp(r, &e);  // r in [2^(e-1), 2^e)
-      bins[std::clamp(e + kOffset, 0, kBins - 1)] += r;
+      bins[binOf(r)] += r;
     }
-    double below = 0.0;
-    for (int b = 0; b < kBins; ++b) {
-      if (below + bins[b] > outside) return std::ldexp(1.0, b - kOffset - 1);
-      below += bins[b];
-    }
-    return std::numeric_limits<double>::infinity();  // everything is within `outside`
+    return seedFromBins(bins.data(), outside);
   }
 
   Exec& ex_;
   FrameData<Exec>& d_;
   std::vector<double> host_;
+  typename Exec::template Buffer<double> bins_;  // a device's (seedOnDevice)
   int vertices_ = 0;
 };
 

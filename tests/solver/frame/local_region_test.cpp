@@ -11,27 +11,29 @@
 #include <vector>
 
 #include "solver/frame/cpu_executor.h"
+#include "solver/frame/device_like_executor.h"
 #include "tests/test_util.h"
 
 namespace galsculpt {
 namespace {
 
-struct Body {
+template <typename Exec>
+struct BodyOn {
   SimModel model =
       buildSimModel(test::gridBar(16, 4, 4, 0.01),
                     {MaterialModel::StableNeoHookean, lameFromYoungPoisson(1e5, 0.4), 1000.0, {}});
-  CpuExecutor ex;
-  FrameData<CpuExecutor> d{model};
-  LocalRegion<CpuExecutor> region{ex, d};
+  Exec ex;
+  FrameData<Exec> d{model};
+  LocalRegion<Exec> region{ex, d};
   int n = model.numVertices();
   std::vector<std::uint8_t> fixed = std::vector<std::uint8_t>(n, 0);
 
-  Body() {
+  BodyOn() {
     for (int v = 0; v < n; ++v) fixed[v] = model.mesh.vertices[v].x() == 0.0;  // one end held
     d.fixed.upload(fixed);
   }
   template <typename T>
-  std::vector<T> read(const typename CpuExecutor::template Buffer<T>& b, size_t size) const {
+  std::vector<T> read(const typename Exec::template Buffer<T>& b, size_t size) const {
     std::vector<T> out(size);
     b.download(out.data(), size);
     return out;
@@ -48,6 +50,7 @@ struct Body {
     d.g.upload(g);
   }
 };
+using Body = BodyOn<CpuExecutor>;
 
 TEST(LocalRegion, HoldsTheResidualAndReachesTwoRingsPastIt) {
   Body b;
@@ -116,6 +119,39 @@ TEST(LocalRegion, AResidualThatIsNotFiniteIsSolvedWhole) {
   g[3 * (b.n - 1)] = std::numeric_limits<double>::infinity();
   b.d.g.upload(g);
   EXPECT_FALSE(b.region.choose(1.0));
+}
+
+// A device finds the seeds' threshold where the residuals are (LocalRegion::seedOnDevice): the
+// host's region, to the vertex, with one wait where the host downloads every |g_v|^2 and reads.
+TEST(LocalRegion, ADeviceChoosesTheHostsRegionWithOneWait) {
+  struct Case {
+    double hot, cold, target;
+    bool notFinite;
+  };
+  int regions = 0;
+  for (const Case c : {Case{1.0, 1e-4, 0.5, false}, Case{2.0, 1e-5, 0.05, false},
+                       Case{1.0, 1.0, 1.0, false}, Case{1.0, 1e-6, 1.0, true}}) {
+    Body host;
+    BodyOn<DeviceLikeExecutor> device;
+    host.residual(c.hot, c.cold);
+    device.residual(c.hot, c.cold);
+    if (c.notFinite) {
+      std::vector<double> g(3 * host.n);
+      host.d.g.download(g.data(), g.size());
+      g[3 * (host.n - 1)] = std::numeric_limits<double>::quiet_NaN();
+      host.d.g.upload(g);
+      device.d.g.upload(g);
+    }
+    const long waits = device.ex.counters().waits;
+    const bool onHost = host.region.choose(c.target), onDevice = device.region.choose(c.target);
+    EXPECT_EQ(onDevice, onHost) << c.cold << " " << c.target;
+    EXPECT_EQ(device.ex.counters().waits - waits, 1) << "the region's size, nothing else";
+    if (!onHost) continue;
+    ++regions;
+    EXPECT_EQ(device.read(device.d.regionVertex, device.n), host.read(host.d.regionVertex, host.n));
+    EXPECT_EQ(device.region.vertices(), host.region.vertices());
+  }
+  EXPECT_EQ(regions, 2) << "two of the cases have a region, two are solved whole";
 }
 
 }  // namespace
