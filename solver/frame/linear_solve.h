@@ -88,15 +88,14 @@ class LinearSolve {
   // delta = H^-1 (-g) by the multigrid: V-cycles (the residual norms go to r0 and r1; no host
   // read) or PCG to `target` (absolute; its reduction and iterations go to the frame's scalars,
   // and to reduction() and iterations() once the frame read them: takeSolve). In a local
-  // iteration, PCG on the region's rows (region_solve.h, one read; the multigrid is not
-  // refreshed).
+  // iteration, PCG on the region's rows (region_solve.h, its figures the same way; the multigrid
+  // is not refreshed).
   void solve(const StepSettings& s, double target) {
     if (d_.local) {
       startFromZero();
-      const auto r = region_.solve(d_.system.data(), d_.rhs.data(), d_.delta.data(),
-                                   s.pcg() ? s.pcgTolerance : kRegionTolerance, target);
-      reduction_ = r.reduction;
-      iterations_ += r.iterations;
+      region_.launch(d_.system.data(), d_.rhs.data(), d_.delta.data(),
+                     s.pcg() ? s.pcgTolerance : kRegionTolerance, target);
+      figuresToScalars(region_.pcgScalars());
       return;
     }
     double* delta = d_.delta.data();
@@ -115,19 +114,25 @@ class LinearSolve {
           3 * d_.n, [=] GALSCULPT_LAMBDA(int i) { return (b[i] - ap[i]) * (b[i] - ap[i]); },
           &sc->r1);
     } else {
-      // Its figures ride the frame's next read (takeSolve): no read of its own.
       mg_.pcgLaunch(a, b, delta, s, s.pcgTolerance, s.pcgMaxIterations, target);
-      const typename MultigridCycle<Exec>::PcgScalars* pcg = mg_.pcgScalars();
-      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
-        const typename MultigridPcg<Exec>::Result r = MultigridPcg<Exec>::result(*pcg);
-        sc->pcgReduction = r.reduction;
-        sc->pcgIterations = r.iterations;
-      });
-      solveInScalars_ = true;
+      figuresToScalars(mg_.pcgScalars());
     }
     ex_.forEach(3 * d_.n, [=] GALSCULPT_LAMBDA(int i) {
       if (fixed[i / 3]) delta[i] = 0.0;
     });
+  }
+
+  // A PCG solve's reduction and iterations into the frame's scalars, where they ride the frame's
+  // next read (takeSolve): the solve has no read of its own. Public only because nvcc refuses
+  // extended lambdas in private member functions.
+  void figuresToScalars(const typename MultigridPcg<Exec>::Scalars* pcg) {
+    FrameScalars* sc = d_.sc();
+    ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
+      const typename MultigridPcg<Exec>::Result r = MultigridPcg<Exec>::result(*pcg);
+      sc->pcgReduction = r.reduction;
+      sc->pcgIterations = r.iterations;
+    });
+    solveInScalars_ = true;
   }
 
   // The reference's linear solve: CHOLMOD on the system in host memory. A system that is not
@@ -163,7 +168,7 @@ class LinearSolve {
   static constexpr double kRegionTolerance = 1e-2;
 
   // The figures of the last solve() from the frame's read after it (PCG's left them in the
-  // frame's scalars); nothing where that solve set them itself (V-cycles, a region, a null step).
+  // frame's scalars); nothing where none were left there (V-cycles, a null step).
   void takeSolve(const FrameScalars& read) {
     if (!solveInScalars_) return;
     solveInScalars_ = false;

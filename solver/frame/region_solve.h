@@ -30,9 +30,9 @@ class RegionSolve {
     inverse_.resize(9 * static_cast<size_t>(data.n));
   }
 
-  // x = A^-1 b on the region's rows (x = 0 elsewhere), to |r| <= max(tolerance |b|, target).
-  typename MultigridPcg<Exec>::Result solve(const double* a, const double* b, double* x,
-                                            double tolerance, double target) {
+  // x = A^-1 b on the region's rows (x = 0 elsewhere), to |r| <= max(tolerance |b|, target),
+  // without a read: the result stays in pcgScalars() (MultigridPcg::launch).
+  void launch(const double* a, const double* b, double* x, double tolerance, double target) {
     const std::uint8_t* region = d_.regionVertex.data();
     const int* diagonal = d_.diagonal.data();
     double* inverse = inverse_.data();
@@ -43,9 +43,9 @@ class RegionSolve {
       const kernels::M3 inv = kernels::inverse(m);
       for (int k = 0; k < 9; ++k) inverse[9 * static_cast<size_t>(r) + k] = inv.a[k];
     });
-    return pcg_.solve(*this, d_.n, a, b, x, Settings{}, tolerance, kMostIterations, target,
-                      bakedKey());
+    pcg_.launch(*this, d_.n, a, b, x, Settings{}, tolerance, kMostIterations, target, bakedKey());
   }
+  const typename MultigridPcg<Exec>::Scalars* pcgScalars() const { return pcg_.scalars(); }
 
   // What the preconditioner's and the product's launches bake in (MultigridPcg's loop on a
   // device): the region's arrays (the region itself is their contents, not baked). FNV-1a.

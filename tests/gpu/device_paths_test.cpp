@@ -69,7 +69,8 @@ TEST(DevicePaths, TightSolutionsMoveByRoundOffWithTheStart) {
 // iteration fails; lower the bounds as the device path improves (the target: 60 kernels and 4
 // waits on the sphere). The history is in docs/notes (2026-12-07, 2026-12-08): PCG's decisions
 // on the device, the residual test on the trials' read, PCG as a loop the device tests with its
-// figures in the frame's read, the local region's threshold found on the device.
+// figures in the frame's read (the region's solve's too), the local region's threshold found on
+// the device.
 struct DeviceFrameCost {
   double kernels = 0.0, syncs = 0.0, graphs = 0.0, hostToDevice = 0.0, deviceToHost = 0.0;
 };
@@ -99,7 +100,7 @@ TEST(DeviceCounts, TheHangingSpheresFrameStaysWithinItsLaunchesAndWaits) {
   const DeviceFrameCost c = deviceFrameCost(*hangingSphere(), "hanging sphere (6k, converged)");
   EXPECT_GT(c.kernels, 0.0);
   EXPECT_LE(c.kernels, 382.0);
-  EXPECT_LE(c.syncs, 7.4);
+  EXPECT_LE(c.syncs, 7.2);
   EXPECT_LE(c.hostToDevice, 1024.0) << "a frame uploads only what changed (anchor targets)";
 }
 
@@ -116,7 +117,7 @@ TEST(DeviceCounts, CharpysFramesAfterTheBreakStayWithinTheirLaunchesAndWaits) {
   const Simulation sim(scene, loadSceneMesh(scene));
   const DeviceFrameCost c = deviceFrameCost(sim, "Charpy after the break (8k, converged)", 40);
   EXPECT_LE(c.kernels, 1888.0);
-  EXPECT_LE(c.syncs, 22.0);
+  EXPECT_LE(c.syncs, 21.0);
 }
 
 // The CPU backend has no device: its rows are zero.
