@@ -1,11 +1,10 @@
-// The key of a captured section (Exec::captured): a hash of everything the section bakes in,
-// so that a CUDA graph is replayed only while none of it changed (sizes, device pointers,
-// settings). FNV-1a over 64-bit words.
+// The key of a captured section (Exec::captured): LaunchKey (solver/fem/launch_key.h) with the
+// step settings a captured Newton step or sub-step end reads.
 #pragma once
 
 #include <cstdint>
-#include <cstring>
 
+#include "solver/fem/launch_key.h"
 #include "solver/frame/step.h"
 
 namespace galsculpt {
@@ -13,15 +12,17 @@ namespace galsculpt {
 class GraphKey {
  public:
   GraphKey& mix(std::uint64_t v) {
-    key_ = (key_ ^ v) * 1099511628211ull;
+    key_.mix(v);
     return *this;
   }
   GraphKey& mixDouble(double d) {
-    std::uint64_t bits;
-    std::memcpy(&bits, &d, sizeof bits);
-    return mix(bits);
+    key_.mixDouble(d);
+    return *this;
   }
-  GraphKey& mixPointer(const void* p) { return mix(reinterpret_cast<std::uintptr_t>(p)); }
+  GraphKey& mixPointer(const void* p) {
+    key_.mixPointer(p);
+    return *this;
+  }
   // The step settings a captured Newton step or sub-step end reads.
   GraphKey& mixSettings(const StepSettings& s) {
     mix(static_cast<std::uint64_t>(s.newtonIterations));
@@ -33,10 +34,10 @@ class GraphKey {
     mixDouble(s.stiffnessTolerance);
     return mix(s.reuseStiffness);  // the trial counts switched cracks only for chord steps
   }
-  std::uint64_t value() const { return key_; }
+  std::uint64_t value() const { return key_.value(); }
 
  private:
-  std::uint64_t key_ = 1469598103934665603ull;
+  LaunchKey key_;
 };
 
 }  // namespace galsculpt

@@ -11,6 +11,7 @@
 
 #include "solver/fem/dense_kernels.h"
 #include "solver/fem/kernel_math.h"
+#include "solver/fem/launch_key.h"
 #include "solver/frame/frame_data.h"
 #include "solver/multigrid/multigrid_pcg.h"
 
@@ -48,16 +49,15 @@ class RegionSolve {
   const typename MultigridPcg<Exec>::Scalars* pcgScalars() const { return pcg_.scalars(); }
 
   // What the preconditioner's and the product's launches bake in (MultigridPcg's loop on a
-  // device): the region's arrays (the region itself is their contents, not baked). FNV-1a.
+  // device): the region's arrays (the region itself is their contents, not baked).
   std::uint64_t bakedKey() const {
-    std::uint64_t key = 1469598103934665603ull;
-    for (const void* p :
-         {static_cast<const void*>(d_.regionVertex.data()),
-          static_cast<const void*>(d_.diagonal.data()),
-          static_cast<const void*>(d_.rowStart.data()), static_cast<const void*>(d_.columns.data()),
-          static_cast<const void*>(inverse_.data())})
-      key = (key ^ reinterpret_cast<std::uintptr_t>(p)) * 1099511628211ull;
-    return key;
+    return LaunchKey()
+        .mixPointer(d_.regionVertex.data())
+        .mixPointer(d_.diagonal.data())
+        .mixPointer(d_.rowStart.data())
+        .mixPointer(d_.columns.data())
+        .mixPointer(inverse_.data())
+        .value();
   }
 
   // The preconditioner (MultigridPcg's name for it): z = D^-1 r on the region's rows.

@@ -17,12 +17,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <memory>
 #include <vector>
 
 #include "solver/fem/block_sparse.h"
 #include "solver/fem/dense_kernels.h"
+#include "solver/fem/launch_key.h"
 #include "solver/model/solver_options.h"
 #include "solver/multigrid/coarse_cholesky.h"
 #include "solver/multigrid/fine_smoother.h"
@@ -178,21 +178,23 @@ class MultigridCycle {
 
   // What a V-cycle's launches bake in besides their arguments, for a device that replays them
   // (MultigridPcg's loop): the buffers (new with each upload), the host's choices (the coarsest
-  // solve, the float smoother, fragments, pieces) and the settings the cycle reads. FNV-1a.
+  // solve, the float smoother, fragments, pieces) and the settings the cycle reads.
   std::uint64_t bakedKey(const Settings& s) const {
-    std::uint64_t key = 1469598103934665603ull;
-    std::uint64_t bits = 0;
-    std::memcpy(&bits, &s.pcgTolerance, sizeof bits);
-    for (const std::uint64_t v :
-         {uploads_, static_cast<std::uint64_t>(factored_),
-          static_cast<std::uint64_t>(smoother_.single()),
-          static_cast<std::uint64_t>(fragments_.fragments()),
-          static_cast<std::uint64_t>(pieces_.active()), reinterpret_cast<std::uintptr_t>(fixed_),
-          reinterpret_cast<std::uintptr_t>(dense_.data()), static_cast<std::uint64_t>(denseSize_),
-          static_cast<std::uint64_t>(s.fineSweeps), static_cast<std::uint64_t>(s.coarseIterations),
-          static_cast<std::uint64_t>(s.smoother), static_cast<std::uint64_t>(s.coarseSolver), bits})
-      key = (key ^ v) * 1099511628211ull;
-    return key;
+    return LaunchKey()
+        .mix(uploads_)
+        .mix(factored_)
+        .mix(smoother_.single())
+        .mix(static_cast<std::uint64_t>(fragments_.fragments()))
+        .mix(pieces_.active())
+        .mixPointer(fixed_)
+        .mixPointer(dense_.data())
+        .mix(static_cast<std::uint64_t>(denseSize_))
+        .mix(static_cast<std::uint64_t>(s.fineSweeps))
+        .mix(static_cast<std::uint64_t>(s.coarseIterations))
+        .mix(static_cast<std::uint64_t>(s.smoother))
+        .mix(static_cast<std::uint64_t>(s.coarseSolver))
+        .mixDouble(s.pcgTolerance)
+        .value();
   }
 
   // The operator of coarse level l (1: the first coarse level) as a dense matrix, read back

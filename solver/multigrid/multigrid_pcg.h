@@ -13,10 +13,10 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <cstdint>
 
 #include "solver/fem/dense_kernels.h"
+#include "solver/fem/launch_key.h"
 
 namespace galsculpt {
 
@@ -101,12 +101,15 @@ class MultigridPcg {
         if (read.running != 0.0) direction(cycle, n, a, s);
       }
     } else {
-      std::uint64_t key = bakedKey;  // FNV-1a, as GraphKey (solver/frame/graph_key.h)
-      for (const std::uint64_t v :
-           {static_cast<std::uint64_t>(n), static_cast<std::uint64_t>(maxIterations),
-            reinterpret_cast<std::uintptr_t>(a), reinterpret_cast<std::uintptr_t>(x),
-            reinterpret_cast<std::uintptr_t>(r), reinterpret_cast<std::uintptr_t>(sc)})
-        key = (key ^ v) * 1099511628211ull;
+      const std::uint64_t key = LaunchKey()
+                                    .mix(bakedKey)
+                                    .mix(static_cast<std::uint64_t>(n))
+                                    .mix(static_cast<std::uint64_t>(maxIterations))
+                                    .mixPointer(a)
+                                    .mixPointer(x)
+                                    .mixPointer(r)
+                                    .mixPointer(sc)
+                                    .value();
       ex_.loopOnDevice(key, &sc->running, maxIterations, [&] {
         step(cycle, n, a, x, maxIterations);
         direction(cycle, n, a, s);

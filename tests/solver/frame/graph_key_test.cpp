@@ -27,5 +27,14 @@ TEST(GraphKey, EverySettingACapturedStepReadsChangesTheKey) {
   EXPECT_NE(GraphKey().mix(1).mix(2).value(), GraphKey().mix(2).mix(1).value());
 }
 
+// A captured section's key is the launch key (solver/fem/launch_key.h) of what it mixes, the
+// key a device loop uses: one hash for every recording.
+TEST(GraphKey, IsTheLaunchKeyOfWhatItMixes) {
+  const double value = 0.5;
+  EXPECT_EQ(GraphKey().mix(7).mixDouble(value).mixPointer(&value).value(),
+            LaunchKey().mix(7).mixDouble(value).mixPointer(&value).value());
+  EXPECT_NE(LaunchKey().value(), LaunchKey().mix(0).value()) << "a word mixed is a word more";
+}
+
 }  // namespace
 }  // namespace galsculpt

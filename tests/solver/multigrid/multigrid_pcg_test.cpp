@@ -130,5 +130,29 @@ TEST(MultigridPcg, TheDeviceLoopGivesTheHostLoopsBitsWithoutWaiting) {
   EXPECT_EQ(none.cost.launches, one.cost.launches - pass) << "the start's launches, no pass";
 }
 
+// What a device replays of a V-cycle is keyed by everything it bakes in: each setting the cycle
+// reads, a new upload of the hierarchy, and the held vertices' array.
+TEST(MultigridPcg, EverythingAVCycleBakesInChangesItsKey) {
+  const System s = elasticitySystem();
+  const Multigrid mg(s.model.pattern, s.model.mesh.vertices, s.model.edges, {60, 8});
+  Cycle c(s, mg);
+  const MultigridCycle<CpuExecutor>::Settings base = solverPreset(SolverPreset::Converged);
+  const std::uint64_t key = c.cycle.bakedKey(base);
+  EXPECT_EQ(c.cycle.bakedKey(base), key);
+  std::vector<MultigridCycle<CpuExecutor>::Settings> changed(5, base);
+  changed[0].fineSweeps += 1;
+  changed[1].coarseIterations += 1;
+  changed[2].smoother = Smoother::Jacobi;
+  changed[3].coarseSolver = CoarseSolver::Cg;
+  changed[4].pcgTolerance *= 2.0;
+  for (size_t i = 0; i < changed.size(); ++i) EXPECT_NE(c.cycle.bakedKey(changed[i]), key) << i;
+  const std::vector<std::uint8_t> held(s.model.numVertices(), 0);
+  c.cycle.setFixed(held.data());
+  const std::uint64_t withHeld = c.cycle.bakedKey(base);
+  EXPECT_NE(withHeld, key) << "the held vertices' array";
+  c.cycle.upload(buildMultigridLayout(mg, s.model.pattern));
+  EXPECT_NE(c.cycle.bakedKey(base), withHeld) << "a new upload";
+}
+
 }  // namespace
 }  // namespace galsculpt
