@@ -5,6 +5,7 @@
 //   frame_loop.h            sub-steps, retries, plastic flow and fracture re-solves (runFrame)
 //   held_vertices.h         anchors on their paths and removed debris, per sub-step
 //   substep_start.h         a sub-step's start: x_n, v_n, the target, the prediction kept or not
+//   substep_end.h           a sub-step's end: the residual, finiteness, contact forces, velocities
 //   accelerated_start.h     the free pieces' start on their paths with their acceleration
 //   incremental_potential.h the potential, its gradient g and the Newton system H (the element
 //                           pass in element_pass.h, the contact term in contact_term.h)
@@ -378,6 +379,8 @@ class FrameSolver {
       accepted_.fromTrial = true;
       accepted_.trialRead.residual = read.trialResidual;
       accepted_.trialRead.forceScale = read.trialForceScale;
+      accepted_.trialRead.trialInverted = read.trialInverted;
+      accepted_.trialRead.bad = read.trialBad;
     }
     result.elasticEnergy = read.trialElastic;
     // Newton's step test on the full step: a step shortened to nothing says nothing about
@@ -464,36 +467,11 @@ class FrameSolver {
   // gets wrong in the chord's step is local to it.
   static constexpr double kChordSwitchedElements = 64;
 
-  // The sub-step's end, one captured section and one read: the residual at the accepted
-  // positions (relative to the body's 1 g weight), contact forces, finiteness, velocities.
-  void endSubstep(double h, SubstepOutcome& result) {
-    ex_.captured(1, graphKey(h, -1), [&] { finishSubstep(h); });
-    FrameScalars read;
-    ex_.read(d_.sc(), &read, 1);
-    result.residual = relativeResidual(read);
-    const double pieceResidual =
-        pieceResidual_.measure(ex_, damage_.pieces(), d_.g.data(), d_.tmp.data(), d_.fixed.data(),
-                               d_.mass.data(), model_.gravity.norm());
-    result.pieceResidual = pieceResidual < 0.0 ? result.residual : pieceResidual;
-    result.invertedElements = static_cast<int>(read.trialInverted);  // the accepted trial's
-    contact_.readForces(result.contactForces, contactMoments_);
-    // Otherwise the caller restores x and v.
-    if (read.bad > 0.0 || !std::isfinite(result.elasticEnergy)) result.ok = false;
-  }
-
-  void finishSubstep(double h) {
-    FrameScalars* sc = d_.sc();
-    const double* x = d_.x.data();
-    const double* xn = d_.xn.data();
-    double* v = d_.v.data();
-    potential_.acceptedResidual();
-    ex_.sum(
-        3 * d_.n,
-        [=] GALSCULPT_LAMBDA(int i) { return x[i] == x[i] && fabs(x[i]) <= 1.7e308 ? 0.0 : 1.0; },
-        &sc->bad);
-    contact_.sumForces(x, d_.fixed.data(), d_.mass.data(), d_.h);
-    ex_.forEach(3 * d_.n, [=] GALSCULPT_LAMBDA(int i) { v[i] = (x[i] - xn[i]) / h; });
-  }
+  // The sub-step's end (substep_end.h): the residual at the accepted positions (relative to
+  // the body's 1 g weight), contact forces, finiteness, velocities; one captured section and
+  // one read, or none where the accepted trial's read holds it all.
+  void endSubstep(double h, SubstepOutcome& result);
+  void finishSubstep(double h);  // (endSubstep's captured section)
 
   // Everything a captured Newton step bakes in: a replay is valid only for the same key.
   std::uint64_t graphKey(double h, int iteration) const {
@@ -592,4 +570,5 @@ class FrameSolver {
 
 }  // namespace galsculpt
 
+#include "solver/frame/substep_end.h"    // (the sub-step's end: the residual, the velocities)
 #include "solver/frame/substep_start.h"  // (the sub-step's start: x_n, v_n, the prediction)

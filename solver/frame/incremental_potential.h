@@ -220,7 +220,8 @@ class IncrementalPotential {
 
   // The same at the positions in trial; with `only`, just the flagged elements evaluated again
   // (the others unchanged since the last trial: the vertex guard's rounds). beta K0 (y - x_n)
-  // stays in tmp (the vertex guard's shares read it); with residualAtTrials, the residual too.
+  // stays in tmp (the vertex guard's shares read it); with residualAtTrials, the residual too,
+  // and whether the positions are finite (what the sub-step's end tests of the accepted ones).
   void evaluateTrialPositions(const std::uint8_t* only) {
     const double* trial = d_.trial.data();
     const bool residual = residualAtTrials();
@@ -231,6 +232,12 @@ class IncrementalPotential {
     backwardEulerGradient(trial, d_.trialForces.data(), d_.tmp.data(), d_.trialG.data());
     FrameScalars* sc = d_.sc();
     residualSums(d_.trialG.data(), d_.trialForces.data(), &sc->trialResidual, &sc->trialForceScale);
+    ex_.sum(
+        3 * d_.n,
+        [=] GALSCULPT_LAMBDA(int i) {
+          return trial[i] == trial[i] && fabs(trial[i]) <= 1.7e308 ? 0.0 : 1.0;
+        },
+        &sc->trialBad);
   }
 
  private:

@@ -54,6 +54,13 @@ class PieceResidual {
   using Buffer = typename Exec::template Buffer<T>;
   static constexpr int kChunk = 512;
 
+  // Whether measure() reads anything for these pieces (two or more measured): where not, the
+  // body's residual is the answer and g and f are not read.
+  bool measures(const PieceLayout& pieces) {
+    if (!built_ || builtRevision_ != pieces.revision) rebuild(pieces);
+    return pieces_ >= 2;
+  }
+
   // The largest relative residual over the measured pieces, or -1 when the body has fewer than
   // two of them (then the body's residual says it all). `pieces`: the body's pieces
   // (pieceLayout; the device copy is rebuilt when its revision changes); `g`: the backward-Euler

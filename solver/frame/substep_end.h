@@ -1,0 +1,64 @@
+// How FrameSolver's sub-step ends (frame_solver.h): the residual at the accepted positions,
+// the elements inside out, whether the positions are finite, the contact forces and the
+// velocities. Included by frame_solver.h only, after the class.
+#pragma once
+
+#include <cmath>
+
+#include "solver/frame/frame_solver.h"
+
+namespace galsculpt {
+
+// v = (x - x_n) / h at a sub-step's end.
+template <typename Exec>
+void formVelocities(Exec& ex, FrameData<Exec>& d, double h) {
+  const double* x = d.x.data();
+  const double* xn = d.xn.data();
+  double* v = d.v.data();
+  ex.forEach(3 * d.n, [=] GALSCULPT_LAMBDA(int i) { v[i] = (x[i] - xn[i]) / h; });
+}
+
+template <typename Exec>
+void FrameSolver<Exec>::endSubstep(double h, SubstepOutcome& result) {
+  // Where the accepted trial's read already holds all of it (residualAtTrials: the residual,
+  // the elements inside out and whether the positions are finite, the same bits) and nothing
+  // else needs a read (no colliders, one measured piece), only the velocities are formed: no
+  // read of its own.
+  if (accepted_.fromTrial && contact_.colliders() == 0 &&
+      !pieceResidual_.measures(damage_.pieces())) {
+    ex_.captured(2, graphKey(h, -2), [&] { formVelocities(ex_, d_, h); });
+    result.residual = relativeResidual(accepted_.trialRead);
+    result.pieceResidual = result.residual;
+    result.invertedElements = static_cast<int>(accepted_.trialRead.trialInverted);
+    contact_.readForces(result.contactForces, contactMoments_);
+    if (accepted_.trialRead.bad > 0.0 || !std::isfinite(result.elasticEnergy)) result.ok = false;
+    return;
+  }
+  ex_.captured(1, graphKey(h, -1), [&] { finishSubstep(h); });
+  FrameScalars read;
+  ex_.read(d_.sc(), &read, 1);
+  result.residual = relativeResidual(read);
+  const double pieceResidual =
+      pieceResidual_.measure(ex_, damage_.pieces(), d_.g.data(), d_.tmp.data(), d_.fixed.data(),
+                             d_.mass.data(), model_.gravity.norm());
+  result.pieceResidual = pieceResidual < 0.0 ? result.residual : pieceResidual;
+  result.invertedElements = static_cast<int>(read.trialInverted);  // the accepted trial's
+  contact_.readForces(result.contactForces, contactMoments_);
+  // Otherwise the caller restores x and v.
+  if (read.bad > 0.0 || !std::isfinite(result.elasticEnergy)) result.ok = false;
+}
+
+template <typename Exec>
+void FrameSolver<Exec>::finishSubstep(double h) {
+  FrameScalars* sc = d_.sc();
+  const double* x = d_.x.data();
+  potential_.acceptedResidual();
+  ex_.sum(
+      3 * d_.n,
+      [=] GALSCULPT_LAMBDA(int i) { return x[i] == x[i] && fabs(x[i]) <= 1.7e308 ? 0.0 : 1.0; },
+      &sc->bad);
+  contact_.sumForces(x, d_.fixed.data(), d_.mass.data(), d_.h);
+  formVelocities(ex_, d_, h);
+}
+
+}  // namespace galsculpt
