@@ -232,12 +232,16 @@ class IncrementalPotential {
     backwardEulerGradient(trial, d_.trialForces.data(), d_.tmp.data(), d_.trialG.data());
     FrameScalars* sc = d_.sc();
     residualSums(d_.trialG.data(), d_.trialForces.data(), &sc->trialResidual, &sc->trialForceScale);
+    nonFinite(trial, &sc->trialBad);
+  }
+
+  // *out > 0 where positions y (3n) hold a NaN or infinity: the test the sub-step's end makes of
+  // the accepted positions and each trial of its own (the two must agree).
+  void nonFinite(const double* y, double* out) {
     ex_.sum(
         3 * d_.n,
-        [=] GALSCULPT_LAMBDA(int i) {
-          return trial[i] == trial[i] && fabs(trial[i]) <= 1.7e308 ? 0.0 : 1.0;
-        },
-        &sc->trialBad);
+        [=] GALSCULPT_LAMBDA(int i) { return y[i] == y[i] && fabs(y[i]) <= 1.7e308 ? 0.0 : 1.0; },
+        out);
   }
 
  private:

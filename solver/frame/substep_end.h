@@ -53,10 +53,7 @@ void FrameSolver<Exec>::finishSubstep(double h) {
   FrameScalars* sc = d_.sc();
   const double* x = d_.x.data();
   potential_.acceptedResidual();
-  ex_.sum(
-      3 * d_.n,
-      [=] GALSCULPT_LAMBDA(int i) { return x[i] == x[i] && fabs(x[i]) <= 1.7e308 ? 0.0 : 1.0; },
-      &sc->bad);
+  potential_.nonFinite(x, &sc->bad);
   contact_.sumForces(x, d_.fixed.data(), d_.mass.data(), d_.h);
   formVelocities(ex_, d_, h);
 }
