@@ -1,9 +1,12 @@
-// The device solver's executor on a CUDA GPU: buffers in device memory, a launch per forEach
-// (256 threads a block), deterministic two-pass reductions (a fixed grid, then one block), the
-// dense coarse Cholesky through cuSOLVER (loaded on first use), reads through a pinned staging
-// buffer, and captured sections recorded once as CUDA graphs and replayed while their key holds.
-// Everything runs on the per-thread default stream (capturable, and no stream handle to pass to
-// buffers).
+// The device solver's executor on a CUDA GPU: buffers in device memory; the launches between two
+// host synchronizations recorded as a device program and run as one cooperative kernel whose
+// phases meet at grid-wide barriers (device_program.cuh), device loops a jump inside it;
+// deterministic two-pass reductions (a fixed partition of the items, then one block); the dense
+// coarse Cholesky through cuSOLVER (loaded on first use); reads through a pinned staging buffer.
+// Where a GPU cannot launch cooperatively, or GALSCULPT_CUDA_PROGRAMS=0, each launch is a kernel
+// of its own, captured sections are recorded once as CUDA graphs and replayed while their key
+// holds, and device loops are graphs with a while node. Everything runs on the per-thread default
+// stream (capturable, and no stream handle to pass to buffers).
 //
 // Every CUDA call is checked: a failure throws CudaError naming the call, file and line.
 #pragma once
@@ -25,37 +28,14 @@
 #include <memory>
 #include <typeinfo>
 
+#include "gpu/cuda_check.h"
 #include "gpu/cusolver_loader.h"
+#include "gpu/device_program.cuh"
 #include "gpu/launch_profile.h"
 #include "solver/frame/device_counters.h"
 #include "solver/frame/download_span.h"
 
 namespace galsculpt::gpu {
-
-class CudaError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-inline void checkCuda(cudaError_t status, const char* call, const char* file, int line) {
-  if (status == cudaSuccess) return;
-  throw CudaError(std::string(file) + ":" + std::to_string(line) + ": " + call + ": " +
-                  cudaGetErrorString(status));
-}
-inline void checkCusolver(cusolverStatus_t status, const char* call, const char* file, int line) {
-  if (status == CUSOLVER_STATUS_SUCCESS) return;
-  throw CudaError(std::string(file) + ":" + std::to_string(line) + ": " + call +
-                  ": cuSOLVER status " + std::to_string(static_cast<int>(status)));
-}
-#define GALSCULPT_CUDA_CHECK(call) ::galsculpt::gpu::checkCuda((call), #call, __FILE__, __LINE__)
-#define GALSCULPT_CUSOLVER_CHECK(call) \
-  ::galsculpt::gpu::checkCusolver((call), #call, __FILE__, __LINE__)
-
-// The per-thread default stream: capturable, and no handle to pass around (a macro in the CUDA
-// headers, hence one here).
-#define GALSCULPT_CUDA_STREAM cudaStreamPerThread
-inline constexpr int kThreads = 256;
-inline constexpr int kReduceBlocks = 1024;
 
 template <typename F>
 __global__ void forEachKernel(int n, F f) {
@@ -80,27 +60,14 @@ static __global__ void loopTestKernel(cudaGraphConditionalHandle handle, const d
 }
 #endif
 
-// A block's threads combine their values in a fixed tree; thread 0 gets the result.
-template <typename Op>
-__device__ double blockReduce(double acc, Op op) {
-  __shared__ double shared[kThreads];
-  shared[threadIdx.x] = acc;
-  __syncthreads();
-  for (int stride = blockDim.x / 2; stride > 0; stride /= 2) {
-    if (threadIdx.x < stride)
-      shared[threadIdx.x] = op(shared[threadIdx.x], shared[threadIdx.x + stride]);
-    __syncthreads();
-  }
-  return shared[0];
-}
-
 // Pass one: each block reduces a fixed, strided share of the items into partial[block].
 template <typename F, typename Op>
 __global__ void reduceKernel(int n, F f, Op op, double identity, double* partial) {
   double acc = identity;
   for (int i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x)
     acc = op(acc, f(i));
-  const double total = blockReduce(acc, op);
+  __shared__ double shared[kThreads];
+  const double total = blockReduceIn(shared, acc, op);
   if (threadIdx.x == 0) partial[blockIdx.x] = total;
 }
 
@@ -110,16 +77,10 @@ __global__ void finishKernel(int blocks, const double* partial, Op op, double id
                              double* out) {
   double acc = identity;
   for (int i = threadIdx.x; i < blocks; i += blockDim.x) acc = op(acc, partial[i]);
-  const double total = blockReduce(acc, op);
+  __shared__ double shared[kThreads];
+  const double total = blockReduceIn(shared, acc, op);
   if (threadIdx.x == 0) *out = total;
 }
-
-struct AddOp {
-  __host__ __device__ double operator()(double a, double b) const { return a + b; }
-};
-struct MaxOp {
-  __host__ __device__ double operator()(double a, double b) const { return a > b ? a : b; }
-};
 
 // Pinned host memory for device-to-host copies (positions every frame, scalars every Newton
 // iteration): DMA straight into it, then one memcpy. Owned by the executor: the app runs each
@@ -168,7 +129,10 @@ class CudaExecutor {
       return *this;
     }
     ~Buffer() {
-      if (p_) cudaFree(p_);
+      if (p_) {
+        ::galsculpt::detail::closeOpenProgram();  // its launches may still read this memory
+        cudaFree(p_);
+      }
     }
     T* data() { return p_; }
     const T* data() const { return p_; }
@@ -176,11 +140,13 @@ class CudaExecutor {
     // Setup only (never inside a captured section): synchronous, so that a frame launched later
     // from another thread (the app's worker) sees the zeros.
     void resize(size_t n) {
+      ::galsculpt::detail::closeOpenProgram();
       allocate(n);
       if (n) GALSCULPT_CUDA_CHECK(cudaMemsetAsync(p_, 0, n * sizeof(T), GALSCULPT_CUDA_STREAM));
       GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
     }
     void upload(const T* src, size_t n) {
+      ::galsculpt::detail::closeOpenProgram();
       ::galsculpt::detail::transfers.hostToDevice += static_cast<double>(n * sizeof(T));
       allocate(n);
       if (n)
@@ -197,6 +163,7 @@ class CudaExecutor {
     // Setup and rare transfers; per-frame ones go through CudaExecutor::download (pinned).
     void download(T* dst, size_t n) const {
       if (!n) return;
+      ::galsculpt::detail::closeOpenProgram();
       ::galsculpt::detail::transfers.deviceToHost += static_cast<double>(n * sizeof(T));
       GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(static_cast<void*>(dst), p_, n * sizeof(T),
                                            cudaMemcpyDeviceToHost, GALSCULPT_CUDA_STREAM));
@@ -228,17 +195,23 @@ class CudaExecutor {
     Buffer<T> buffer_;
   };
 
-  CudaExecutor() {
+  // `programs`: record device programs where the GPU can run them (and
+  // GALSCULPT_CUDA_PROGRAMS is not 0); false, a kernel per launch (the checks' comparison).
+  explicit CudaExecutor(bool programs = true) {
     GALSCULPT_CUDA_CHECK(cudaMalloc(&partial_, kReduceBlocks * sizeof(double)));
     GALSCULPT_CUDA_CHECK(cudaMalloc(&info_, sizeof(int)));
     const char* graphs = std::getenv("GALSCULPT_CUDA_GRAPHS");
     graphs_ = !(graphs && std::string(graphs) == "0");
+    const char* wanted = std::getenv("GALSCULPT_CUDA_PROGRAMS");
+    programs_ = programs && graphs_ && !(wanted && std::string(wanted) == "0") && runner_.start();
     if (LaunchProfile::requested()) {
       profile_ = std::make_unique<LaunchProfile>();
-      graphs_ = false;  // each launch is waited for
+      graphs_ = programs_ = false;  // each launch is waited for
     }
   }
   ~CudaExecutor() {
+    if (::galsculpt::detail::openProgram.executor == this)
+      ::galsculpt::detail::openProgram = {};  // what was not run is dropped with its buffers
     for (Graph& g : slots_)
       if (g.exec) cudaGraphExecDestroy(g.exec);
     for (auto& [flag, l] : loops_) {
@@ -257,16 +230,28 @@ class CudaExecutor {
   using Counters = DeviceCounters;
   Counters counters() const {
     countLoopPasses();
+    if (programs_) {
+      flush();
+      counters_.barriers += runner_.barriersPassed();
+    }
     Counters c = counters_;
     c.hostToDeviceBytes = ::galsculpt::detail::transfers.hostToDevice;
     c.deviceToHostBytes = ::galsculpt::detail::transfers.deviceToHost + readBytes_;
     return c;
   }
 
+  // Whether launches are recorded into device programs (else each is a kernel).
+  bool runsPrograms() const { return programs_; }
+
   template <typename F>
   void forEach(int n, const F& f, long /*cost: a CPU's threading hint*/ = 1) const {
     if (n <= 0) return;
     ++counters_.launches;
+    if (programs_) {
+      record().forEach(n, f);
+      return;
+    }
+    ++counters_.programs;
     if (profile_) profile_->begin(GALSCULPT_CUDA_STREAM);
     forEachKernel<<<(n + kThreads - 1) / kThreads, kThreads, 0, GALSCULPT_CUDA_STREAM>>>(n, f);
     GALSCULPT_CUDA_CHECK(cudaGetLastError());
@@ -282,10 +267,15 @@ class CudaExecutor {
   }
   template <typename T>
   void copy(T* dst, const T* src, size_t n) const {
-    if (n) ++counters_.copies;
-    if (n)
-      GALSCULPT_CUDA_CHECK(cudaMemcpyAsync(dst, src, n * sizeof(T), cudaMemcpyDeviceToDevice,
-                                           GALSCULPT_CUDA_STREAM));
+    if (!n) return;
+    ++counters_.copies;
+    if (programs_) {
+      record().copy(dst, src, n * sizeof(T));
+      return;
+    }
+    ++counters_.programs;
+    GALSCULPT_CUDA_CHECK(
+        cudaMemcpyAsync(dst, src, n * sizeof(T), cudaMemcpyDeviceToDevice, GALSCULPT_CUDA_STREAM));
   }
   template <typename T>
   void read(const T* deviceValues, T* host, int n) const {
@@ -296,6 +286,7 @@ class CudaExecutor {
   template <typename T>
   void download(const T* device, T* host, size_t n) const {
     if (!n) return;
+    flush();
     ++counters_.waits;
     readBytes_ += static_cast<double>(n * sizeof(T));
     void* pinned = staging_.get(n * sizeof(T));
@@ -310,6 +301,7 @@ class CudaExecutor {
     size_t total = 0;
     for (const DownloadSpan& s : spans) total += s.bytes;
     if (!total) return;
+    flush();
     ++counters_.waits;
     readBytes_ += static_cast<double>(total);
     char* pinned = static_cast<char*>(staging_.get(total));
@@ -330,6 +322,7 @@ class CudaExecutor {
   // In-place dense Cholesky through cuSOLVER (loaded on first use); false when the matrix is
   // not positive definite or cuSOLVER is not there (cusolverReason() says why).
   bool denseCholesky(int n, double* a) {
+    flush();
     if (!cusolver_.load(GALSCULPT_CUDA_STREAM, cusolverReason_)) return false;
     int lwork = 0;
     GALSCULPT_CUSOLVER_CHECK(cusolver_.bufferSize(n, a, &lwork));
@@ -339,6 +332,7 @@ class CudaExecutor {
       workspaceSize_ = lwork;
     }
     GALSCULPT_CUSOLVER_CHECK(cusolver_.potrf(n, a, workspace_, lwork, info_));
+    ++counters_.programs;  // a library's call, counted as one kernel (it launches a few)
     ++counters_.waits;
     int info = 0;
     GALSCULPT_CUDA_CHECK(
@@ -346,15 +340,21 @@ class CudaExecutor {
     GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
     return info == 0;
   }
-  void denseCholeskySolve(int n, const double* l, double* b) {
-    GALSCULPT_CUSOLVER_CHECK(cusolver_.potrs(n, l, b, info_));
+  // inverse = (L Lᵀ)⁻¹ from denseCholesky's factor: cuSOLVER's solve on the identity, queued
+  // after the program open (which it ends), with no wait.
+  void denseCholeskyInverse(int n, const double* l, double* inverse) {
+    flush();
+    forEach(n * n, [=] __device__(int e) { inverse[e] = e % (n + 1) == 0 ? 1.0 : 0.0; });
+    flush();
+    GALSCULPT_CUSOLVER_CHECK(cusolver_.potrs(n, n, l, inverse, info_));
+    ++counters_.programs;
   }
   const std::string& cusolverReason() const { return cusolverReason_; }
   // Runs `body` (launches only, no host reads) as a CUDA graph: recorded on first use or when
   // the key changes, replayed otherwise. GALSCULPT_CUDA_GRAPHS=0 runs it directly.
   template <typename Body>
   void captured(int slot, std::uint64_t key, const Body& body) {
-    if (!graphs_) {
+    if (programs_ || !graphs_) {  // a program records the section with the launches around it
       body();
       return;
     }
@@ -381,10 +381,12 @@ class CudaExecutor {
       g.launches = counters_.launches - before.launches;
       g.reductions = counters_.reductions - before.reductions;
       g.copies = counters_.copies - before.copies;
+      g.programs = counters_.programs - before.programs;
     } else {  // the recorded kernels run again
       counters_.launches += g.launches;
       counters_.reductions += g.reductions;
       counters_.copies += g.copies;
+      counters_.programs += g.programs;
     }
     ++counters_.graphs;
     GALSCULPT_CUDA_CHECK(cudaGraphLaunch(g.exec, GALSCULPT_CUDA_STREAM));
@@ -396,12 +398,18 @@ class CudaExecutor {
   // launch profile) the host reads the flag before each pass.
   template <typename Body>
   void loopOnDevice(std::uint64_t key, const double* running, int mostPasses, const Body& body) {
+    if (programs_) {
+      const int entry = record().loopEntry(running, mostPasses);
+      body();
+      record().loopTest(entry);
+      return;
+    }
 #if CUDART_VERSION >= 12040
     if (graphs_) {
       Loop& l = loops_[running];
       if (!l.exec || l.key != key) recordLoop(l, key, running, mostPasses, body);
       ++counters_.graphs;
-      ++counters_.launches;  // the entry's test (the passes are counted by countLoopPasses)
+      ++counters_.programs;  // the entry's test (the passes are counted by countLoopPasses)
       GALSCULPT_CUDA_CHECK(cudaGraphLaunch(l.exec, GALSCULPT_CUDA_STREAM));
       return;
     }
@@ -414,7 +422,12 @@ class CudaExecutor {
     }
   }
   void synchronize() const {
+    flush();
     GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
+  }
+  // Runs the program open, if any, without waiting for it.
+  void flush() const {
+    if (::galsculpt::detail::openProgram.executor == this) ::galsculpt::detail::closeOpenProgram();
   }
 
  private:
@@ -422,6 +435,11 @@ class CudaExecutor {
   void reduce(int n, const F& f, Op op, double identity, double* out) const {
     const int blocks = n <= 0 ? 1 : std::min(kReduceBlocks, (n + kThreads - 1) / kThreads);
     ++counters_.reductions;
+    if (programs_) {
+      record().template reduce<F, Op>(n, f, identity, partial_, out);
+      return;
+    }
+    counters_.programs += 2;
     if (profile_) profile_->begin(GALSCULPT_CUDA_STREAM);
     reduceKernel<<<blocks, kThreads, 0, GALSCULPT_CUDA_STREAM>>>(n, f, op, identity, partial_);
     GALSCULPT_CUDA_CHECK(cudaGetLastError());
@@ -432,14 +450,14 @@ class CudaExecutor {
   struct Graph {
     std::uint64_t key = 0;
     cudaGraphExec_t exec = nullptr;
-    long launches = 0, reductions = 0, copies = 0;  // the kernels it holds
+    long launches = 0, reductions = 0, copies = 0, programs = 0;  // the kernels it holds
   };
   // A device loop's graph: the kernels of one pass, and its pass counter (device memory: the
   // passes made, and where the last launch started) with the passes counters() has counted.
   struct Loop {
     std::uint64_t key = 0;
     cudaGraphExec_t exec = nullptr;
-    long launches = 0, reductions = 0, copies = 0;  // a pass's kernels (its test included)
+    long launches = 0, reductions = 0, copies = 0, programs = 0;  // a pass's (its test too)
     long long* passes = nullptr;
     long long counted = 0;
   };
@@ -494,9 +512,10 @@ class CudaExecutor {
       }
       GALSCULPT_CUDA_CHECK(cudaStreamEndCapture(GALSCULPT_CUDA_STREAM, &bodyGraph));
       // The capture launched nothing: the passes are counted as they are made (counters()).
-      l.launches = counters_.launches - before.launches + 1;  // and the test
+      l.launches = counters_.launches - before.launches;
       l.reductions = counters_.reductions - before.reductions;
       l.copies = counters_.copies - before.copies;
+      l.programs = counters_.programs - before.programs + 1;  // and the test
       counters_ = before;
       GALSCULPT_CUDA_CHECK(cudaGraphInstantiate(&l.exec, graph, 0));
     } catch (...) {
@@ -519,10 +538,27 @@ class CudaExecutor {
       const long long made = passes - l.counted;
       l.counted = passes;
       counters_.launches += static_cast<long>(made) * l.launches;
+      counters_.programs += static_cast<long>(made) * l.programs;
       counters_.reductions += static_cast<long>(made) * l.reductions;
       counters_.copies += static_cast<long>(made) * l.copies;
     }
   }
+  // The program being recorded: opened by the first launch after a synchronization.
+  ProgramRecorder& record() const {
+    if (::galsculpt::detail::openProgram.executor != this) {
+      ::galsculpt::detail::closeOpenProgram();
+      ::galsculpt::detail::openProgram = {[](void* executor) {
+                                            const auto* ex =
+                                                static_cast<const CudaExecutor*>(executor);
+                                            if (ex->runner_.run()) ++ex->counters_.programs;
+                                          },
+                                          const_cast<CudaExecutor*>(this)};
+    }
+    return runner_.recorder();
+  }
+  bool programs_ = false;
+  mutable ProgramRunner runner_;
+
   double* partial_ = nullptr;
   CusolverLibrary cusolver_;
   std::string cusolverReason_;

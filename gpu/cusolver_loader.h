@@ -52,8 +52,9 @@ class CusolverLibrary {
   cusolverStatus_t potrf(int n, double* a, double* work, int lwork, int* info) const {
     return potrf_(handle_, CUBLAS_FILL_MODE_LOWER, n, a, n, work, lwork, info);
   }
-  cusolverStatus_t potrs(int n, const double* l, double* b, int* info) const {
-    return potrs_(handle_, CUBLAS_FILL_MODE_LOWER, n, 1, l, n, b, n, info);
+  // b (n x columns, column-major) = (L Lᵀ)⁻¹ b.
+  cusolverStatus_t potrs(int n, int columns, const double* l, double* b, int* info) const {
+    return potrs_(handle_, CUBLAS_FILL_MODE_LOWER, n, columns, l, n, b, n, info);
   }
 
  private:

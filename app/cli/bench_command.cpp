@@ -157,7 +157,7 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
   double newton = 0.0, cg = 0.0, residualMax = 0.0, msSum = 0.0;
   PositionError motionError;
   // What the frames cost a device (the device backends; 0 on the CPU): sums, for the means.
-  double launches = 0.0, syncs = 0.0, graphs = 0.0, h2d = 0.0, d2h = 0.0;
+  double launches = 0.0, syncs = 0.0, graphs = 0.0, barriers = 0.0, h2d = 0.0, d2h = 0.0;
   std::vector<double> pieceResidual;
   int unconverged = 0;
   const int atMotion = motionFrame(frames);
@@ -176,6 +176,7 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
     launches += last.launches;
     syncs += last.syncs;
     graphs += last.graphs;
+    barriers += last.barriers;
     h2d += last.hostToDeviceBytes;
     d2h += last.deviceToHostBytes;
     residualMax = std::max(residualMax, last.residual);
@@ -220,6 +221,7 @@ nlohmann::json measureWindow(Simulation& sim, const TetMesh& mesh, const Setting
   r["launches"] = launches / frames;
   r["syncs"] = syncs / frames;
   r["graphs"] = graphs / frames;
+  r["barriers"] = barriers / frames;
   r["h2d_bytes"] = h2d / frames;
   r["d2h_bytes"] = d2h / frames;
   r["cg_iters_mean"] = cg / frames;

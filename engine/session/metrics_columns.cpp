@@ -50,6 +50,7 @@ const std::vector<MetricsColumn>& metricsColumns() {
       {"graphs", &M::graphs},
       {"h2d_bytes", &M::hostToDeviceBytes},
       {"d2h_bytes", &M::deviceToHostBytes},
+      {"barriers", &M::barriers},
   };
   return columns;
 }

@@ -28,6 +28,11 @@ inline thread_local bool capturing = false;
 inline void forbidInCapture(const char* what) {
   if (capturing) throw std::logic_error(std::string(what) + " inside a captured section");
 }
+// A host synchronization or a buffer's change: the device program open ends there.
+inline void endProgram(const char* what) {
+  forbidInCapture(what);
+  closeOpenProgram();
+}
 }  // namespace detail
 
 // Marks a captured section (or a device loop's body) for its lifetime; sections do not nest.
@@ -53,24 +58,24 @@ class CpuExecutor {
     const T* data() const { return v_.data(); }
     size_t size() const { return v_.size(); }
     void resize(size_t n) {  // zeroed
-      detail::forbidInCapture("an allocation");
+      detail::endProgram("an allocation");
       v_.assign(n, T{});
     }
     void upload(const T* src, size_t n) {
-      detail::forbidInCapture("an upload");
+      detail::endProgram("an upload");
       detail::transfers.hostToDevice += static_cast<double>(n * sizeof(T));
       v_.assign(src, src + n);
     }
     void upload(const std::vector<T>& src) { upload(src.data(), src.size()); }
     // Takes the host array over (on this executor, without a copy); `src` is left empty.
     void adopt(std::vector<T>&& src) {
-      detail::forbidInCapture("an upload");
+      detail::endProgram("an upload");
       detail::transfers.hostToDevice += static_cast<double>(src.size() * sizeof(T));
       v_ = std::move(src);
       src = std::vector<T>();
     }
     void download(T* dst, size_t n) const {
-      detail::forbidInCapture("a download");
+      detail::endProgram("a download");
       detail::transfers.deviceToHost += static_cast<double>(n * sizeof(T));
       std::copy(v_.begin(), v_.begin() + n, dst);
     }
@@ -86,7 +91,7 @@ class CpuExecutor {
   class Mirror {
    public:
     void mirror(const T* src, size_t n) {
-      detail::forbidInCapture("an upload");
+      detail::endProgram("an upload");
       detail::transfers.hostToDevice += static_cast<double>(n * sizeof(T));
       p_ = src;
       n_ = n;
@@ -132,12 +137,12 @@ class CpuExecutor {
   }
   template <typename T>
   void copy(T* dst, const T* src, size_t n) const {
-    ++counters_.copies;
+    countPhase(counters_.copies, 1);
     std::memmove(dst, src, n * sizeof(T));
   }
   template <typename T>
   void read(const T* deviceValues, T* host, int n) const {
-    detail::forbidInCapture("a host read");
+    detail::endProgram("a host read");
     ++counters_.reads;
     ++counters_.waits;
     readBytes_ += static_cast<double>(n * sizeof(T));
@@ -146,14 +151,14 @@ class CpuExecutor {
   // Device to host (the CUDA executor's pinned path).
   template <typename T>
   void download(const T* device, T* host, size_t n) const {
-    detail::forbidInCapture("a download");
+    detail::endProgram("a download");
     ++counters_.waits;
     readBytes_ += static_cast<double>(n * sizeof(T));
     std::copy(device, device + n, host);
   }
   // Several arrays device to host behind one wait (a frame's positions and velocities).
   void downloadAll(std::initializer_list<DownloadSpan> spans) const {
-    detail::forbidInCapture("a download");
+    detail::endProgram("a download");
     ++counters_.waits;
     for (const DownloadSpan& s : spans) {
       readBytes_ += static_cast<double>(s.bytes);
@@ -162,46 +167,71 @@ class CpuExecutor {
   }
   // In-place dense Cholesky (lower, column-major); false when not positive definite.
   bool denseCholesky(int n, double* a) const {
-    detail::forbidInCapture("a dense factorization (it waits for its status)");
+    detail::endProgram("a dense factorization (it waits for its status)");
+    ++counters_.programs;  // a library's call: counted as one kernel (cuSOLVER's launch a few)
     ++counters_.waits;
     Eigen::Map<Eigen::MatrixXd> m(a, n, n);
     Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(m);
     return llt.info() == Eigen::Success;
   }
-  void denseCholeskySolve(int n, const double* l, double* b) const {
+  // inverse = (L Lᵀ)⁻¹ from denseCholesky's factor L (column-major, n x n). A library's call on
+  // the device: it ends the program open and counts as one kernel (cuSOLVER's two triangular
+  // solves on the identity launch a few), with no wait.
+  void denseCholeskyInverse(int n, const double* l, double* inverse) const {
+    detail::endProgram("a dense inverse (a library's call)");
+    ++counters_.programs;
     const Eigen::Map<Eigen::MatrixXd> m(const_cast<double*>(l), n, n);  // read only
-    Eigen::Map<Eigen::VectorXd> x(b, n);
+    Eigen::Map<Eigen::MatrixXd> x(inverse, n, n);
+    x.setIdentity();
     m.triangularView<Eigen::Lower>().solveInPlace(x);
     m.triangularView<Eigen::Lower>().transpose().solveInPlace(x);
   }
-  // A section of launches the CUDA executor captures as one graph; here it just runs.
+  // A section of launches only (no reads, no allocations), each a phase of the device program
+  // open; here it just runs, and a read inside it throws (the tests' guard of what a device may
+  // not do there).
   template <typename Body>
   void captured(int /*slot*/, std::uint64_t /*key*/, const Body& body) {
     const CaptureFlag flag;
-    ++counters_.graphs;
     body();
   }
   // A loop whose test the device makes: `body` (launches only) runs while *running is not 0,
-  // tested before each pass, at most `mostPasses` passes. The CUDA executor records it once per
-  // `key` as a graph whose while node reads the flag, so the host waits for nothing; here the
-  // flag is read where it lies (no wait is counted: on a device no one waits for it), and the
-  // test's kernels are counted as the device runs them (one before the first pass, one after
-  // each). The body must bake nothing a pass changes: every pass replays the same launches.
+  // tested before each pass, at most `mostPasses` passes. On a device the test is a phase of the
+  // program open, so the host waits for nothing; here the flag is read where it lies (no wait is
+  // counted: on a device no one waits for it), and each test counts its barrier. The body must
+  // bake nothing a pass changes: every pass replays the same launches.
   template <typename Body>
   void loopOnDevice(std::uint64_t /*key*/, const double* running, int mostPasses,
                     const Body& body) {
     const CaptureFlag flag;
-    ++counters_.graphs;
-    countLaunch();
+    countLoopTest();
     for (int pass = 0; pass < mostPasses && *running != 0.0; ++pass) {
       body();
-      countLaunch();
+      countLoopTest();
     }
   }
-  void synchronize() const {}
+  // Ends the device program open (the end of a frame: it runs while the host goes on).
+  void flush() const { detail::closeOpenProgram(); }
+  void synchronize() const { detail::endProgram("a synchronization"); }
 
  protected:
-  void countLaunch() const { ++counters_.launches; }
+  // A launch: a phase of the device program open, which it opens where none is (the device
+  // runs the launches between two host synchronizations as one kernel: gpu/device_program.cuh).
+  void countLaunch() const { countPhase(counters_.launches, 1); }
+  void countPhase(long& asked, int barriers) const {
+    ++asked;
+    counters_.barriers += barriers;
+    openProgram();
+  }
+  void countLoopTest() const {
+    ++counters_.barriers;
+    openProgram();
+  }
+  void openProgram() const {
+    if (detail::openProgram.executor == this) return;
+    detail::closeOpenProgram();
+    ++counters_.programs;
+    detail::openProgram = {[](void*) {}, const_cast<CpuExecutor*>(this)};
+  }
 
  private:
   mutable Counters counters_;
@@ -209,7 +239,7 @@ class CpuExecutor {
 
   template <typename F, typename Op>
   void reduce(int n, const F& f, double* out, double identity, const Op& op) const {
-    ++counters_.reductions;
+    countPhase(counters_.reductions, 2);
     constexpr int kBlock = 256;
     const int blocks = (n + kBlock - 1) / kBlock;
     std::vector<double> partial(blocks, identity);

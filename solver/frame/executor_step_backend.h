@@ -20,11 +20,13 @@ class ExecutorStepBackend final : public StepBackend {
   StepReport step(SimState& state, const StepSettings& settings) override {
     const typename Exec::Counters before = executor_.counters();
     StepReport report = solver_.step(state, settings);
+    executor_.flush();  // what the frame left open runs now, not at the next frame's first wait
     if constexpr (!Exec::kHostMemory) {  // what the frame cost a device (device_counters.h)
       const typename Exec::Counters after = executor_.counters();
       report.launches = static_cast<int>(after.kernels() - before.kernels());
       report.syncs = static_cast<int>(after.waits - before.waits);
       report.graphs = static_cast<int>(after.graphs - before.graphs);
+      report.barriers = static_cast<int>(after.barriers - before.barriers);
       report.hostToDeviceBytes = after.hostToDeviceBytes - before.hostToDeviceBytes;
       report.deviceToHostBytes = after.deviceToHostBytes - before.deviceToHostBytes;
     }

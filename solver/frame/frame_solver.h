@@ -341,8 +341,9 @@ class FrameSolver {
     accepted_.fromTrial = false;
     // Structural changes first (host): the hierarchy follows the damage.
     linear_.followDamage(s, damage_.host(), damage_.revision());
-    // The Newton step and its full-length trial: launches only, captured as one graph and
-    // replayed, unless a dense Cholesky, PCG or the direct solve needs host reads in between.
+    // The Newton step and its full-length trial: launches only (part of the device program
+    // open; a graph replayed where programs are off), unless a dense Cholesky, PCG or the direct
+    // solve needs host reads in between.
     const bool capturable =
         s.multigrid() && s.coarseSolver != CoarseSolver::Cholesky && !s.pcg() && !d_.local;
     if (capturable) {

@@ -53,10 +53,13 @@ enum class FrameStatisticRule { Sum, Time, Last, All, Frame };
     "intact elements inside out at the frame's end (a warning): the line search refuses steps "    \
     "that invert more of them unless no descending step avoids it")                                \
   X(int, launches, 0, Frame,                                                                       \
-    "kernels a device backend ran for the frame, in graphs or not (device_counters.h; 0 on the "   \
-    "CPU backend)")                                                                                \
+    "kernels a device backend ran for the frame: a device program each (the launches between "     \
+    "two host waits), or a kernel a launch with programs off (device_counters.h; 0 on the CPU "    \
+    "backend)")                                                                                    \
   X(int, syncs, 0, Frame, "times the host waited for the device: scalar reads, downloads")         \
-  X(int, graphs, 0, Frame, "graph launches (captured sections)")                                   \
+  X(int, graphs, 0, Frame, "graph launches (the CUDA backend with device programs off)")           \
+  X(int, barriers, 0, Frame,                                                                       \
+    "grid-wide barriers inside the device programs (a phase each: device_counters.h)")             \
   X(double, hostToDeviceBytes, 0.0, Frame, "bytes copied host to device")                          \
   X(double, deviceToHostBytes, 0.0, Frame, "bytes copied device to host")
 

@@ -187,7 +187,7 @@ class MultigridCycle {
         .mix(static_cast<std::uint64_t>(fragments_.fragments()))
         .mix(pieces_.active())
         .mixPointer(fixed_)
-        .mixPointer(dense_.data())
+        .mixPointer(denseInverse_.data())
         .mix(static_cast<std::uint64_t>(denseSize_))
         .mix(static_cast<std::uint64_t>(s.fineSweeps))
         .mix(static_cast<std::uint64_t>(s.coarseIterations))
@@ -473,7 +473,8 @@ class MultigridCycle {
   PieceCoarseStart<Exec> pieces_;       // the coarsest level's start with two or more pieces
   FragmentCorrection<Exec> fragments_;  // the fine level's
   int denseSize_ = 0;
-  Buffer<double> dense_;  // a device's factorization of the coarsest level
+  Buffer<double> dense_;         // a device's factorization of the coarsest level
+  Buffer<double> denseInverse_;  // and the inverse it gives (solveCoarsest's product)
   // The host's (coarse_cholesky.h).
   std::unique_ptr<CoarseCholesky> sparse_;
   bool factored_ = false;  // the last refresh factored the coarsest level

@@ -117,7 +117,10 @@ void MultigridCycle<Exec>::refresh(const double* fine, bool coarseCholesky, bool
     rememberFactored(c);
     return;
   }
-  dense_.resize(static_cast<size_t>(denseSize_) * denseSize_);
+  // Allocated once a size (each entry is written below): an allocation ends the device program.
+  const size_t entries = static_cast<size_t>(denseSize_) * denseSize_;
+  if (dense_.size() != entries) dense_.resize(entries);
+  if (denseInverse_.size() != entries) denseInverse_.resize(entries);
   double* dense = dense_.data();
   const double* blocks = c.blocks.data();
   const int* rowStart = c.rowStart.data();
@@ -135,6 +138,20 @@ void MultigridCycle<Exec>::refresh(const double* fine, bool coarseCholesky, bool
     }
   });
   factored_ = ex_.denseCholesky(n, dense);
+  if (!factored_) return;
+  // The coarsest solve a V-cycle makes is then one product with the inverse: a phase of the
+  // device program that runs PCG (a triangular solve is n steps of its own, and cuSOLVER's would
+  // end the program). Symmetrized, so that the preconditioner stays symmetric.
+  double* inverse = denseInverse_.data();
+  ex_.denseCholeskyInverse(n, dense, inverse);
+  ex_.forEach(n * n, [=] GALSCULPT_LAMBDA(int e) {
+    const int i = e % n, j = e / n;
+    if (i > j) {
+      const double mean = 0.5 * (inverse[e] + inverse[j + static_cast<size_t>(n) * i]);
+      inverse[e] = mean;
+      inverse[j + static_cast<size_t>(n) * i] = mean;
+    }
+  });
 }
 
 template <typename Exec>

@@ -110,11 +110,17 @@ void MultigridCycle<Exec>::solveCoarsest(const double* b, double* x, const Setti
   const Level& c = levels_.back();
   const int n = 12 * c.handles;
   if (s.coarseSolver == CoarseSolver::Cholesky && factored_) {
-    ex_.copy(x, b, n);
-    if constexpr (Exec::kHostMemory)
+    if constexpr (Exec::kHostMemory) {
+      ex_.copy(x, b, n);
       sparse_->solve(x);
-    else
-      ex_.denseCholeskySolve(n, dense_.data(), x);
+    } else {
+      const double* inverse = denseInverse_.data();
+      ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
+        double acc = 0.0;
+        for (int j = 0; j < n; ++j) acc += inverse[i + static_cast<size_t>(n) * j] * b[j];
+        x[i] = acc;
+      });
+    }
     return;
   }
   // CG for a fixed number of iterations; with pieces, from the exact per-piece affine

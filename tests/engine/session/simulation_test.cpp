@@ -434,7 +434,7 @@ TEST(Simulation, MetricsCsvHasTheContractColumns) {
       "load_n,backtracks,cg_iterations,converged,energy_passes,debris_pieces,"
       "debris_volume_pct,inverted_pieces,striker_displacement_m,absorbed_energy_j,"
       "debris_mass_kg,piece_residual,local_iterations,idle_tools,launches,syncs,graphs,h2d_bytes,"
-      "d2h_bytes");
+      "d2h_bytes,barriers");
   FrameMetrics m;
   m.frame = 3;
   m.timeS = 0.05;
