@@ -319,9 +319,11 @@ class CudaExecutor {
       at += s.bytes;
     }
   }
-  // In-place dense Cholesky through cuSOLVER (loaded on first use); false when the matrix is
-  // not positive definite or cuSOLVER is not there (cusolverReason() says why).
-  bool denseCholesky(int n, double* a) {
+  // In-place dense Cholesky through cuSOLVER (loaded on first use), queued without a wait: its
+  // status goes to *failed (device memory; 1 where the matrix is not positive definite), where
+  // the frame's next read brings it. False when cuSOLVER is not there (cusolverReason() says
+  // why).
+  bool denseCholesky(int n, double* a, double* failed) {
     flush();
     if (!cusolver_.load(GALSCULPT_CUDA_STREAM, cusolverReason_)) return false;
     int lwork = 0;
@@ -333,12 +335,9 @@ class CudaExecutor {
     }
     GALSCULPT_CUSOLVER_CHECK(cusolver_.potrf(n, a, workspace_, lwork, info_));
     ++counters_.programs;  // a library's call, counted as one kernel (it launches a few)
-    ++counters_.waits;
-    int info = 0;
-    GALSCULPT_CUDA_CHECK(
-        cudaMemcpyAsync(&info, info_, sizeof(int), cudaMemcpyDeviceToHost, GALSCULPT_CUDA_STREAM));
-    GALSCULPT_CUDA_CHECK(cudaStreamSynchronize(GALSCULPT_CUDA_STREAM));
-    return info == 0;
+    const int* info = info_;
+    forEach(1, [=] __device__(int) { *failed = *info != 0 ? 1.0 : 0.0; });
+    return true;
   }
   // inverse = (L Lᵀ)⁻¹ from denseCholesky's factor: cuSOLVER's solve on the identity, queued
   // after the program open (which it ends), with no wait.
@@ -397,7 +396,8 @@ class CudaExecutor {
   // and replayed. The host waits for nothing. Without graphs (GALSCULPT_CUDA_GRAPHS=0, the
   // launch profile) the host reads the flag before each pass.
   template <typename Body>
-  void loopOnDevice(std::uint64_t key, const double* running, int mostPasses, const Body& body) {
+  void loopOnDevice(std::uint64_t key, const double* running, int mostPasses,
+                    const Body& body) const {
     if (programs_) {
       const int entry = record().loopEntry(running, mostPasses);
       body();
@@ -464,7 +464,7 @@ class CudaExecutor {
 #if CUDART_VERSION >= 12040
   template <typename Body>
   void recordLoop(Loop& l, std::uint64_t key, const double* running, int mostPasses,
-                  const Body& body) {
+                  const Body& body) const {
     if (l.exec) GALSCULPT_CUDA_CHECK(cudaGraphExecDestroy(l.exec));
     l.exec = nullptr;
     if (!l.passes) {

@@ -35,6 +35,7 @@
 #include "engine/scene/scene_mesh.h"
 #include "engine/session/simulation.h"
 #include "solver/frame/parallel.h"
+#include "solver/frame/wait_sites.h"
 #include "solver/io/atomic_file.h"
 #include "solver/io/input_error.h"
 #include "solver/io/stop_request.h"
@@ -334,6 +335,7 @@ nlohmann::json measureInChild(const SceneDescription& scene, const TetMesh& mesh
           << nlohmann::json::array({nlohmann::json{{"error", e.what()}}}).dump();
       code = 1;
     }
+    detail::WaitSites::instance().report();
     std::fflush(nullptr);
     _exit(code);
   }

@@ -20,6 +20,18 @@ class LaunchKey {
     return mix(bits);
   }
   LaunchKey& mixPointer(const void* p) { return mix(reinterpret_cast<std::uintptr_t>(p)); }
+  // A plain struct's bytes (a launch's argument of pointers and sizes), word by word.
+  template <typename T>
+  LaunchKey& mixBytes(const T& value) {
+    unsigned char bytes[sizeof(T)];
+    std::memcpy(bytes, &value, sizeof(T));
+    for (size_t at = 0; at < sizeof(T); at += sizeof(std::uint64_t)) {
+      std::uint64_t word = 0;
+      std::memcpy(&word, bytes + at, sizeof(T) - at < sizeof word ? sizeof(T) - at : sizeof word);
+      mix(word);
+    }
+    return *this;
+  }
   std::uint64_t value() const { return key_; }
 
  private:

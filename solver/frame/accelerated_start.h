@@ -45,6 +45,7 @@
 #include "solver/fem/collider_kernels.h"
 #include "solver/fem/dense_kernels.h"
 #include "solver/fem/element_kernels.h"
+#include "solver/fem/launch_key.h"
 #include "solver/fracture/debris.h"
 #include "solver/frame/element_pass.h"
 #include "solver/model/sim_model.h"
@@ -322,8 +323,9 @@ class AcceleratedStart {
     spreadHeld(ex, heldPieces, x, in.xhat, x);
   }
 
-  // The large pieces moved by their sums (read once). Public only because nvcc refuses extended
-  // lambdas in private member functions.
+  // The large pieces moved by their sums: each launch over a piece's vertices forms the piece's
+  // acceleration from the sums where they lie (no read). Public only because nvcc refuses
+  // extended lambdas in private member functions.
   void moveLarge(const Exec& ex, const AcceleratedPiece& piece) {
     if (large_.empty()) return;
     const int* vertices = pieceVertices_.data();
@@ -334,22 +336,19 @@ class AcceleratedStart {
       const int p = large_[j].piece;
       ex.forEach(1, [=] GALSCULPT_LAMBDA(int) { out[0] = heldPiece[p]; });
     }
-    std::vector<double> read(5 * large_.size());
-    ex.read(sums, read.data(), static_cast<int>(read.size()));
     for (size_t j = 0; j < large_.size(); ++j) {
-      const double* r = read.data() + 5 * j;
-      double a[3];
-      if (r[0] > 0.0 || !piece.acceleration(r[1], r + 2, a)) continue;
+      const double* r = sums + 5 * j;
       const int begin = large_[j].begin;
-      const double ax = a[0], ay = a[1], az = a[2];
       ex.forEach(large_[j].end - begin, [=] GALSCULPT_LAMBDA(int i) {
-        const double acc[3] = {ax, ay, az};
-        piece.move(vertices[begin + i], acc);
+        double a[3];
+        if (r[0] > 0.0 || !piece.acceleration(r[1], r + 2, a)) return;
+        piece.move(vertices[begin + i], a);
       });
     }
   }
 
-  // Rounds until no piece changes (a read each): a piece with a crack pressed, at positions y,
+  // Rounds until no piece changes (a loop whose test the device makes): a piece with a crack
+  // pressed, at positions y,
   // against a held piece is held. Before the pieces move, y is x_n (HeldPieces::spread). After
   // they have, y is their starts and `straight` is given: a free piece whose start presses on a
   // held piece (its predicted fall drives it into a piece that stays) goes back to the straight
@@ -365,24 +364,37 @@ class AcceleratedStart {
     double* changed = largeSums_.data() + 5 * large_.size();
     const int* pieceStart = pieceStart_.data();
     const int* vertices = pieceVertices_.data();
-    for (int round = 0; round < kSpreadRounds; ++round) {
-      ex.forEach(pieceCount_, [=] GALSCULPT_LAMBDA(int p) {
+    const int pieces = pieceCount_;
+    // A round after the last change changes nothing: each piece's put-back and the copy apply
+    // only where next differs from heldPiece.
+    ex.forEach(1, [=] GALSCULPT_LAMBDA(int) { *changed = 1.0; });
+    const std::uint64_t key = LaunchKey()
+                                  .mixBytes(heldPieces)
+                                  .mix(static_cast<std::uint64_t>(pieces))
+                                  .mixPointer(heldPiece)
+                                  .mixPointer(next)
+                                  .mixPointer(changed)
+                                  .mixPointer(pieceStart)
+                                  .mixPointer(vertices)
+                                  .mixPointer(y)
+                                  .mixPointer(straight)
+                                  .mixPointer(x)
+                                  .value();
+    ex.loopOnDevice(key, changed, kSpreadRounds, [&] {
+      ex.forEach(pieces, [=] GALSCULPT_LAMBDA(int p) {
         next[p] = heldPiece[p] || heldPieces.pressesOnHeld(p, heldPiece, y) ? 1 : 0;
       });
       ex.sum(
-          pieceCount_, [=] GALSCULPT_LAMBDA(int p) { return next[p] != heldPiece[p] ? 1.0 : 0.0; },
+          pieces, [=] GALSCULPT_LAMBDA(int p) { return next[p] != heldPiece[p] ? 1.0 : 0.0; },
           changed);
-      double count = 0.0;
-      ex.read(changed, &count, 1);
-      if (count == 0.0) break;
       if (straight)
-        ex.forEach(pieceCount_, [=] GALSCULPT_LAMBDA(int p) {
+        ex.forEach(pieces, [=] GALSCULPT_LAMBDA(int p) {
           if (next[p] == heldPiece[p]) return;
           for (int i = pieceStart[p]; i < pieceStart[p + 1]; ++i)
             for (int k = 0; k < 3; ++k) x[3 * vertices[i] + k] = straight[3 * vertices[i] + k];
         });
-      ex.copy(heldPiece, next, static_cast<size_t>(pieceCount_));
-    }
+      ex.copy(heldPiece, next, static_cast<size_t>(pieces));
+    });
   }
 
  private:

@@ -13,6 +13,7 @@
 #include "solver/fem/collider_kernels.h"
 #include "solver/fem/colliders.h"
 #include "solver/fem/dense_kernels.h"
+#include "solver/frame/download_span.h"
 #include "solver/frame/frame_data.h"
 #include "solver/frame/pass_terms.h"
 #include "solver/model/sim_model.h"
@@ -173,9 +174,17 @@ class ContactTerm {
   // pendulum's moment, N m (0 for other colliders).
   void readForces(std::vector<Vec3>& forces, std::vector<double>& moments) {
     const size_t colliders = poses_.size();
+    if (colliders > 0) ex_.read(sums_.data(), read_.data(), static_cast<int>(4 * colliders));
+    takeForces(forces, moments);
+  }
+  // The same read, as a span of a batched download (the sub-step's end's), and what it brought.
+  DownloadSpan forcesSpan() {
+    return {sums_.data(), read_.data(), 4 * poses_.size() * sizeof(double)};
+  }
+  void takeForces(std::vector<Vec3>& forces, std::vector<double>& moments) const {
+    const size_t colliders = poses_.size();
     forces.assign(colliders, Vec3::Zero());
     moments.assign(colliders, 0.0);
-    if (colliders > 0) ex_.read(sums_.data(), read_.data(), static_cast<int>(4 * colliders));
     for (size_t c = 0; c < colliders; ++c) {
       const double* f = &read_[3 * c];
       forces[c] = Vec3(f[0], f[1], f[2]);

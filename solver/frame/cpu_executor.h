@@ -11,6 +11,7 @@
 #include <cstring>
 #include <initializer_list>
 #include <limits>
+#include <source_location>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "solver/frame/device_counters.h"
 #include "solver/frame/download_span.h"
 #include "solver/frame/parallel.h"
+#include "solver/frame/wait_sites.h"
 
 namespace galsculpt {
 
@@ -141,8 +143,10 @@ class CpuExecutor {
     std::memmove(dst, src, n * sizeof(T));
   }
   template <typename T>
-  void read(const T* deviceValues, T* host, int n) const {
+  void read(const T* deviceValues, T* host, int n,
+            std::source_location site = std::source_location::current()) const {
     detail::endProgram("a host read");
+    countWait(site);
     ++counters_.reads;
     ++counters_.waits;
     readBytes_ += static_cast<double>(n * sizeof(T));
@@ -150,29 +154,37 @@ class CpuExecutor {
   }
   // Device to host (the CUDA executor's pinned path).
   template <typename T>
-  void download(const T* device, T* host, size_t n) const {
+  void download(const T* device, T* host, size_t n,
+                std::source_location site = std::source_location::current()) const {
     detail::endProgram("a download");
+    countWait(site);
     ++counters_.waits;
     readBytes_ += static_cast<double>(n * sizeof(T));
     std::copy(device, device + n, host);
   }
   // Several arrays device to host behind one wait (a frame's positions and velocities).
-  void downloadAll(std::initializer_list<DownloadSpan> spans) const {
+  void downloadAll(std::initializer_list<DownloadSpan> spans,
+                   std::source_location site = std::source_location::current()) const {
     detail::endProgram("a download");
+    countWait(site);
     ++counters_.waits;
     for (const DownloadSpan& s : spans) {
       readBytes_ += static_cast<double>(s.bytes);
-      std::memcpy(s.host, s.device, s.bytes);
+      if (s.bytes) std::memcpy(s.host, s.device, s.bytes);
     }
   }
-  // In-place dense Cholesky (lower, column-major); false when not positive definite.
-  bool denseCholesky(int n, double* a) const {
-    detail::endProgram("a dense factorization (it waits for its status)");
-    ++counters_.programs;  // a library's call: counted as one kernel (cuSOLVER's launch a few)
-    ++counters_.waits;
+  // In-place dense Cholesky (lower, column-major). Its status goes to *failed (executor memory:
+  // 1 where the matrix is not positive definite), where the frame reads it with its next read:
+  // no wait of its own. False where it cannot run (the CUDA executor without cuSOLVER). A
+  // library's call on the device: it ends the program open and counts as one kernel
+  // (cuSOLVER's launches a few).
+  bool denseCholesky(int n, double* a, double* failed) const {
+    detail::endProgram("a dense factorization (a library's call)");
+    ++counters_.programs;
     Eigen::Map<Eigen::MatrixXd> m(a, n, n);
     Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(m);
-    return llt.info() == Eigen::Success;
+    *failed = llt.info() == Eigen::Success ? 0.0 : 1.0;
+    return true;
   }
   // inverse = (L Lᵀ)⁻¹ from denseCholesky's factor L (column-major, n x n). A library's call on
   // the device: it ends the program open and counts as one kernel (cuSOLVER's two triangular
@@ -201,7 +213,7 @@ class CpuExecutor {
   // bake nothing a pass changes: every pass replays the same launches.
   template <typename Body>
   void loopOnDevice(std::uint64_t /*key*/, const double* running, int mostPasses,
-                    const Body& body) {
+                    const Body& body) const {
     const CaptureFlag flag;
     countLoopTest();
     for (int pass = 0; pass < mostPasses && *running != 0.0; ++pass) {
@@ -222,6 +234,10 @@ class CpuExecutor {
     counters_.barriers += barriers;
     openProgram();
   }
+  // Where a device would wait, by source line, for GALSCULPT_WAIT_SITES (wait_sites.h).
+  void countWait(const std::source_location& site) const {
+    if (waitSites_) detail::WaitSites::instance().add(site);
+  }
   void countLoopTest() const {
     ++counters_.barriers;
     openProgram();
@@ -235,6 +251,7 @@ class CpuExecutor {
 
  private:
   mutable Counters counters_;
+  bool waitSites_ = detail::WaitSites::instance().enabled();
   mutable double readBytes_ = 0.0;  // host reads and downloads
 
   template <typename F, typename Op>

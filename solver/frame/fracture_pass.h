@@ -5,12 +5,14 @@
 // it marks what findBreaks() found (markBroken) and keeps its host copy and revisions.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 
 #include "solver/fem/dense_kernels.h"
 #include "solver/fracture/fracture.h"
+#include "solver/frame/download_span.h"
 #include "solver/frame/element_pass.h"
 #include "solver/model/sim_model.h"
 
@@ -74,18 +76,22 @@ class FracturePass {
   }
 
   // Which undamaged edges break at positions `x` (evaluate, then the most critical first):
-  // how many, and the largest criticality (FractureReport). Nothing is damaged yet.
+  // how many, and the largest criticality (FractureReport). Nothing is damaged yet. Where
+  // launchSearch() ran for these positions and its scalars came down with another read
+  // (heldSearch), those are the answer: no read of its own.
   FractureReport findBreaks(const ElementInputs& in, const double* x, const std::uint8_t* damaged) {
-    FractureReport report;
-    const int edges = edges_;
-    evaluate(in, x, damaged, false);
-    std::uint8_t* breaks = breaks_.data();
-    double* ratio = mean_.data();
-    Scalars* sc = scalars_.data();
-    const double* stretch = stretch_.data();
+    if (searchHeld_) {
+      searchHeld_ = false;
+      return reportOf(held_);
+    }
     const FractureSettings& settings = model_.fracture.settings;
     if (settings.criticalFraction > 0.0) {
+      evaluate(in, x, damaged, false);
       // The most critical breaks first (fracture_field.h).
+      std::uint8_t* breaks = breaks_.data();
+      const double* ratio = mean_.data();
+      Scalars* sc = scalars_.data();
+      const double* stretch = stretch_.data();
       const double* compression = compression_.data();
       const double crush = settings.crushRatio();
       const double* threshold = threshold_.data();
@@ -93,23 +99,51 @@ class FracturePass {
         const double crushed = crush > 0.0 ? -compression[e] / (crush * threshold[e]) : 0.0;
         return breaks[e] ? fmax(fmax(ratio[e], crushed), stretch[e]) : -kInf;
       };
-      ex_.maximum(edges, criticality, &sc->critical);
+      ex_.maximum(edges_, criticality, &sc->critical);
       double most = 0.0;
       ex_.read(&sc->critical, &most, 1);
       const double below = settings.criticalFraction * most;
-      ex_.forEach(edges, [=] GALSCULPT_LAMBDA(int e) {
+      ex_.forEach(edges_, [=] GALSCULPT_LAMBDA(int e) {
         if (breaks[e] && !(criticality(e) >= below)) breaks[e] = 0;
       });
+      sums();
+    } else {
+      launchSearch(in, x, damaged);
     }
-    ex_.maximum(
-        edges, [=] GALSCULPT_LAMBDA(int e) { return fmax(ratio[e], stretch[e]); }, &sc->ratio);
-    ex_.sum(
-        edges, [=] GALSCULPT_LAMBDA(int e) { return breaks[e] ? 1.0 : 0.0; }, &sc->count);
     Scalars read;
-    ex_.read(sc, &read, 1);
+    ex_.read(scalars_.data(), &read, 1);
+    return reportOf(read);
+  }
+
+  // findBreaks()'s launches without its read, where it needs none in between (no critical
+  // fraction): false otherwise. The caller brings the scalars down with its own read
+  // (searchSpan) and hands them over (holdSearch) for the next findBreaks().
+  bool launchSearch(const ElementInputs& in, const double* x, const std::uint8_t* damaged) {
+    if (model_.fracture.settings.criticalFraction > 0.0) return false;
+    evaluate(in, x, damaged, false);
+    sums();
+    return true;
+  }
+  DownloadSpan searchSpan() { return {scalars_.data(), &held_, sizeof(Scalars)}; }
+  void holdSearch(bool held) { searchHeld_ = held; }
+
+  static FractureReport reportOf(const Scalars& read) {
+    FractureReport report;
     report.maxStressRatio = std::max(0.0, read.ratio);
     report.newlyDamaged = static_cast<int>(read.count);
     return report;
+  }
+
+  // The largest ratio and the breaks' count into the scalars.
+  void sums() {
+    const std::uint8_t* breaks = breaks_.data();
+    const double* ratio = mean_.data();
+    const double* stretch = stretch_.data();
+    Scalars* sc = scalars_.data();
+    ex_.maximum(
+        edges_, [=] GALSCULPT_LAMBDA(int e) { return fmax(ratio[e], stretch[e]); }, &sc->ratio);
+    ex_.sum(
+        edges_, [=] GALSCULPT_LAMBDA(int e) { return breaks[e] ? 1.0 : 0.0; }, &sc->count);
   }
 
   // Damages for good the edges findBreaks() found.
@@ -280,6 +314,8 @@ class FracturePass {
   Mirror<int> edgeEnds_;  // (2 nEdges) strain criterion only
   Buffer<double> slotStress_, localStress_, compression_, mean_, stretch_;
   Buffer<Scalars> scalars_;
+  Scalars held_{};           // a search's scalars, read with another read (searchSpan)
+  bool searchHeld_ = false;  // and to be taken by the next findBreaks()
   Buffer<std::uint8_t> breaks_, hot_, cellHot_;
 };
 

@@ -24,6 +24,10 @@ struct FrameScalars {
   double r0 = 0.0, r1 = 0.0;  // |b|^2 and |b - A delta|^2 around the V-cycles' solve
   // PCG's |r| / |b| and iterations in the Newton step's solve (LinearSolve::takeSolve).
   double pcgReduction = 0.0, pcgIterations = 0.0;
+  // A device's dense factorization of the coarsest level failed (not positive definite): its
+  // status, which the host did not wait for, rides the Newton iteration's read
+  // (LinearSolve::coarseFactorFailed).
+  double coarseFailed = 0.0;
   double inverted = 0.0, trialInverted = 0.0;  // intact elements inside out at x, at the trial
   double kept = 0.0;                           // elements whose stiffness the pass kept
   double switched = 0.0;  // damaged elements whose open cracks differ from the stiffness's
@@ -35,6 +39,7 @@ struct FrameScalars {
   // the seeds' threshold on |g_v|^2, and whether a |g_v|^2 was not finite (a device's choice).
   double regionVertices = 0.0, freeVertices = 0.0;
   double regionSeed = 0.0, regionBad = 0.0;
+  double regionOutside = 0.0;  // the |g_v|^2 the seeds may leave outside, summed (a device's)
 };
 
 }  // namespace galsculpt

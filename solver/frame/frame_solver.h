@@ -179,6 +179,11 @@ class FrameSolver {
     const StepSettings& s = *d_.settings;
     SubstepOutcome result;
     beginSubstep(h);
+    // A device forms the next local region at each trial (no read of its own).
+    const bool regionAtTrials =
+        !Exec::kHostMemory && s.localNewton && s.multigrid() && potential_.residualAtTrials();
+    potential_.formRegionAtTrials(regionAtTrials ? &region_ : nullptr, s.residualTolerance,
+                                  weight());
     bool stationary = false;
     bool reuse = false;  // solve with the last iteration's stiffness (a chord step)
     bool chordFailed = false;
@@ -235,7 +240,9 @@ class FrameSolver {
       const bool wasLocal = local;
       local = s.localNewton && s.multigrid() && residual > s.residualTolerance &&
               !(wasLocal && !(residual < 0.5 * lastResidual)) &&
-              region_.choose(s.residualTolerance * std::max(weight(), forceScale_));
+              (accepted_.fromTrial && potential_.formsRegionAtTrials()
+                   ? region_.decide(accepted_.trialRead)
+                   : region_.choose(s.residualTolerance * std::max(weight(), forceScale_)));
       if (local || wasLocal) reuse = false;
       lastResidual = residual;
     }
@@ -355,6 +362,15 @@ class FrameSolver {
     FrameScalars read;
     ex_.read(d_.sc(), &read, 1);
     linear_.takeSolve(read);
+    if (linear_.coarseFactorFailed(read)) {
+      // A device's dense coarsest factorization failed after all (its status rode this read):
+      // the step is solved again, the coarsest level by CG.
+      linear_.solve(s, pcgTarget());
+      potential_.stepMeasures();
+      potential_.evaluateTrial(1.0);
+      ex_.read(d_.sc(), &read, 1);
+      linear_.takeSolve(read);
+    }
     if (it == 0 && dropInvertingPrediction(read)) {
       result.msSolve += msSince(t0);
       if constexpr (Exec::kHostMemory) result.msSolve -= result.msElements - elementsBefore;
@@ -382,6 +398,8 @@ class FrameSolver {
       accepted_.trialRead.forceScale = read.trialForceScale;
       accepted_.trialRead.trialInverted = read.trialInverted;
       accepted_.trialRead.bad = read.trialBad;
+      accepted_.trialRead.regionVertices = read.regionVertices;
+      accepted_.trialRead.freeVertices = read.freeVertices;
     }
     result.elasticEnergy = read.trialElastic;
     // Newton's step test on the full step: a step shortened to nothing says nothing about
@@ -409,7 +427,8 @@ class FrameSolver {
     }
     // Under PCG a fresh iteration may find the gradient already within the solve's target: the
     // step is null, and nothing past the gradient is needed (takeNullStep).
-    const bool mayBeNull = !reuse && !d_.local && s.multigrid() && s.pcg() && s.skipNullSolves;
+    const bool mayBeNull = !reuse && !d_.local && s.multigrid() && s.pcg() && s.skipNullSolves &&
+                           linear_.nullTestPays();
     potential_.dampedProduct(x, d_.dampedK.data());
     potential_.backwardEulerGradient(x, d_.grad.data(), d_.dampedK.data(), d_.g.data());
     double bodyResidual = 0.0;

@@ -19,6 +19,7 @@
 #include "solver/frame/coordinate_terms.h"
 #include "solver/frame/elastic_term.h"
 #include "solver/frame/frame_data.h"
+#include "solver/frame/local_region.h"
 #include "solver/frame/pass_terms.h"
 #include "solver/frame/plastic_state.h"
 #include "solver/model/sim_model.h"
@@ -233,7 +234,29 @@ class IncrementalPotential {
     FrameScalars* sc = d_.sc();
     residualSums(d_.trialG.data(), d_.trialForces.data(), &sc->trialResidual, &sc->trialForceScale);
     nonFinite(trial, &sc->trialBad);
+    if (!trialRegion_) return;
+    // The region the next iteration would solve from these positions, its size in this read
+    // (formRegionAtTrials): the seeds' `outside` from the trial's force scale, as the host forms
+    // it from the read (FrameSolver::relativeResidual).
+    const double tolerance = regionTolerance_, weight = regionWeight_;
+    constexpr double share = LocalRegion<Exec>::kOutsideShare;
+    ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
+      const double target = tolerance * fmax(weight, sqrt(sc->trialForceScale));
+      sc->regionOutside = share * share * target * target;
+    });
+    trialRegion_->launchChoice(d_.trialG.data());
   }
+
+  // Where a device chooses local regions (LocalRegion), each trial that forms the residual also
+  // forms the region its positions would give (launchChoice), so that the next iteration's
+  // choice needs no read of its own: `region` (null: none), the sub-step's relative
+  // `tolerance` and the body's weight (N).
+  void formRegionAtTrials(LocalRegion<Exec>* region, double tolerance, double weight) {
+    trialRegion_ = region;
+    regionTolerance_ = tolerance;
+    regionWeight_ = weight;
+  }
+  bool formsRegionAtTrials() const { return trialRegion_ != nullptr; }
 
   // *out > 0 where positions y (3n) hold a NaN or infinity: the test the sub-step's end makes of
   // the accepted positions and each trial of its own (the two must agree).
@@ -249,6 +272,8 @@ class IncrementalPotential {
   const SimModel& model_;
   FrameData<Exec>& d_;
   PassTerms<Exec> terms_;
+  LocalRegion<Exec>* trialRegion_ = nullptr;  // formRegionAtTrials
+  double regionTolerance_ = 0.0, regionWeight_ = 0.0;
 };
 
 }  // namespace galsculpt

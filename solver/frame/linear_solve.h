@@ -80,10 +80,17 @@ class LinearSolve {
     double r0 = 0.0;
     ex_.read(&sc->r0, &r0, 1);
     bnorm = std::sqrt(r0);
-    if (bnorm > std::max(s.pcgTolerance * std::max(bnorm, 1e-300), target)) return false;
+    lastStepNull_ = !(bnorm > std::max(s.pcgTolerance * std::max(bnorm, 1e-300), target));
+    if (!lastStepNull_) return false;
     reduction_ = bnorm > 0.0 ? 1.0 : 0.0;  // what PCG returns after no iteration
     return true;
   }
+
+  // Whether the null-step test is worth its read. On a device the read is a wait, made only
+  // where the last step was null (a body at rest stays at rest a while); elsewhere PCG finds a
+  // null step itself (no iteration, delta = 0: the same step) at the cost of the system's build
+  // and the refresh, which a step that is not null needs anyway.
+  bool nullTestPays() const { return Exec::kHostMemory || lastStepNull_; }
 
   // delta = H^-1 (-g) by the multigrid: V-cycles (the residual norms go to r0 and r1; no host
   // read) or PCG to `target` (absolute; its reduction and iterations go to the frame's scalars,
@@ -120,6 +127,19 @@ class LinearSolve {
     ex_.forEach(3 * d_.n, [=] GALSCULPT_LAMBDA(int i) {
       if (fixed[i / 3]) delta[i] = 0.0;
     });
+    if (const double* failed = mg_.coarseFailure()) {  // a device's factorization's status
+      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { sc->coarseFailed = *failed; });
+      coarseStatusInScalars_ = true;
+    }
+  }
+
+  // Whether the read says that a device's dense factorization of the coarsest level, made
+  // without a wait, failed: the solve then used no valid coarsest solve, and is to be made
+  // again (the multigrid now solves the coarsest level by CG).
+  bool coarseFactorFailed(const FrameScalars& read) {
+    if (!coarseStatusInScalars_) return false;
+    coarseStatusInScalars_ = false;
+    return mg_.takeCoarseFailure(read.coarseFailed > 0.0);
   }
 
   // A PCG solve's reduction and iterations into the frame's scalars, where they ride the frame's
@@ -174,6 +194,7 @@ class LinearSolve {
     solveInScalars_ = false;
     reduction_ = read.pcgReduction;
     iterations_ += static_cast<int>(read.pcgIterations);
+    lastStepNull_ = read.pcgIterations == 0.0;
   }
 
   // PCG's |r| / |b| of the last solve (or null step), once taken (takeSolve).
@@ -196,7 +217,9 @@ class LinearSolve {
   std::uint64_t revision_ = 0;
   double reduction_ = 0.0;
   int iterations_ = 0;
-  bool solveInScalars_ = false;  // the last solve's figures wait in the frame's scalars
+  bool solveInScalars_ = false;         // the last solve's figures wait in the frame's scalars
+  bool coarseStatusInScalars_ = false;  // and a device factorization's status
+  bool lastStepNull_ = true;            // the last Newton step was null (a body starts at rest)
 };
 
 }  // namespace galsculpt

@@ -41,25 +41,69 @@ class LocalRegion {
   // Chooses the next iteration's region from g at the accepted positions, `target` the
   // residual the sub-step must reach (absolute, N). True when the region is small enough to be
   // solved alone (its masks are then in FrameData: regionVertex, regionElement, regionFixed,
-  // regionTouched).
+  // regionTouched). One host read, the region's size.
   bool choose(double target) {
     const int n = d_.n;
-    const double* g = d_.g.data();
     double* r2 = d_.vertexResidual.data();
-    const std::uint8_t* fixed = d_.fixed.data();
     FrameScalars* sc = d_.sc();
-    ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) {
-      r2[v] = g[3 * v] * g[3 * v] + g[3 * v + 1] * g[3 * v + 1] + g[3 * v + 2] * g[3 * v + 2];
-    });
     const double outside = kOutsideShare * kOutsideShare * target * target;
+    squaredResiduals(d_.g.data());
     if constexpr (Exec::kHostMemory) {
       ex_.download(r2, host_.data(), static_cast<size_t>(n));
       const double seedAbove = threshold(outside);
       if (!(seedAbove >= 0.0)) return false;  // a NaN or infinity: the whole body
       ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { sc->regionSeed = seedAbove; });
     } else {
-      seedOnDevice(n, r2, outside);  // (a NaN or infinity seeds nothing: the whole body)
+      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { sc->regionOutside = outside; });
+      seedOnDevice(n, r2);  // (a NaN or infinity seeds nothing: the whole body)
     }
+    launchMasks();
+    FrameScalars read;
+    ex_.read(sc, &read, 1);
+    return decide(read);
+  }
+
+  // choose()'s launches without its read, on a device, from `g` (3n) and the seeds' `outside`
+  // already in the frame's scalars (regionOutside): a line-search trial forms the region its
+  // positions would give, and its size rides the trial's read (decide). The accepted positions
+  // are the last trial's, and g there its gradient, so the region is choose()'s.
+  void launchChoice(const double* g) {
+    squaredResiduals(g);
+    seedOnDevice(d_.n, d_.vertexResidual.data());
+    launchMasks();
+  }
+
+  // The region's size from a read that holds it (choose()'s, or the accepted trial's after
+  // launchChoice): true, with the elements' mask launched, when it is small enough.
+  bool decide(const FrameScalars& read) {
+    vertices_ = static_cast<int>(read.regionVertices);
+    if (!(read.regionVertices <= kMostShare * read.freeVertices) || vertices_ == 0) return false;
+    const int* tv = d_.tetVertices.data();
+    const std::uint8_t* region = d_.regionVertex.data();
+    std::uint8_t* element = d_.regionElement.data();
+    ex_.forEach(d_.tets, [=] GALSCULPT_LAMBDA(int t) {
+      element[t] =
+          region[tv[4 * t]] | region[tv[4 * t + 1]] | region[tv[4 * t + 2]] | region[tv[4 * t + 3]];
+    });
+    return true;
+  }
+
+  // |g_v|^2 per vertex. Public only because nvcc refuses extended lambdas in private member
+  // functions (so are the two below).
+  void squaredResiduals(const double* g) {
+    double* r2 = d_.vertexResidual.data();
+    ex_.forEach(d_.n, [=] GALSCULPT_LAMBDA(int v) {
+      r2[v] = g[3 * v] * g[3 * v] + g[3 * v + 1] * g[3 * v + 1] + g[3 * v + 2] * g[3 * v + 2];
+    });
+  }
+
+  // The seeds from the threshold in regionSeed, grown by kRings rings, the elements' corners,
+  // the held vertices of the region's solve, and the sizes into the frame's scalars.
+  void launchMasks() {
+    const int n = d_.n;
+    const double* r2 = d_.vertexResidual.data();
+    const std::uint8_t* fixed = d_.fixed.data();
+    FrameScalars* sc = d_.sc();
     std::uint8_t* in = d_.regionVertex.data();
     std::uint8_t* out = d_.regionScratch.data();
     ex_.forEach(n, [=] GALSCULPT_LAMBDA(int v) { in[v] = !fixed[v] && r2[v] >= sc->regionSeed; });
@@ -76,17 +120,6 @@ class LocalRegion {
         n, [=] GALSCULPT_LAMBDA(int v) { return region[v] ? 1.0 : 0.0; }, &sc->regionVertices);
     ex_.sum(
         n, [=] GALSCULPT_LAMBDA(int v) { return fixed[v] ? 0.0 : 1.0; }, &sc->freeVertices);
-    FrameScalars read;
-    ex_.read(sc, &read, 1);
-    vertices_ = static_cast<int>(read.regionVertices);
-    if (!(read.regionVertices <= kMostShare * read.freeVertices) || vertices_ == 0) return false;
-    const int* tv = d_.tetVertices.data();
-    std::uint8_t* element = d_.regionElement.data();
-    ex_.forEach(d_.tets, [=] GALSCULPT_LAMBDA(int t) {
-      element[t] =
-          region[tv[4 * t]] | region[tv[4 * t + 1]] | region[tv[4 * t + 2]] | region[tv[4 * t + 3]];
-    });
-    return true;
   }
 
   // to[v] = whether v or a neighbour of v (a vertex of an element around it) is in `from`, and
@@ -107,9 +140,10 @@ class LocalRegion {
 
   // The seeds' threshold found where the residuals are (a device): each bin's sum by a thread
   // of its own, over the vertices in their order (the host's sums, to the bit), then the scan by
-  // one thread into regionSeed (infinity where a |g_v|^2 is not finite: no seeds). No host wait.
+  // one thread into regionSeed (infinity where a |g_v|^2 is not finite: no seeds), below which
+  // the sum left is at most regionOutside. No host wait.
   // Public only because nvcc refuses extended lambdas in private member functions.
-  void seedOnDevice(int n, const double* r2, double outside) {
+  void seedOnDevice(int n, const double* r2) {
     if (bins_.size() != static_cast<size_t>(kBins)) bins_.resize(kBins);
     double* bins = bins_.data();
     FrameScalars* sc = d_.sc();
@@ -124,7 +158,7 @@ class LocalRegion {
     ex_.maximum(
         n, [=] GALSCULPT_LAMBDA(int v) { return finite(r2[v]) ? 0.0 : 1.0; }, &sc->regionBad);
     ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) {
-      sc->regionSeed = sc->regionBad > 0.0 ? INFINITY : seedFromBins(bins, outside);
+      sc->regionSeed = sc->regionBad > 0.0 ? INFINITY : seedFromBins(bins, sc->regionOutside);
     });
   }
 

@@ -67,8 +67,17 @@ class PieceResidual {
   // gradient, `f`: the elastic and contact forces (3n each); `gravity`: |g| in m/s^2.
   double measure(const Exec& ex, const PieceLayout& pieces, const double* g, const double* f,
                  const std::uint8_t* fixed, const double* mass, double gravity) {
+    if (!launch(ex, pieces, g, f, fixed, mass, gravity)) return -1.0;
+    double worst = 0.0;
+    ex.read(result_.data(), &worst, 1);
+    return worst;
+  }
+  // measure()'s launches without its read: the largest ratio is then at result(), for a read
+  // the caller makes with others (the sub-step's end). False where no piece is measured.
+  bool launch(const Exec& ex, const PieceLayout& pieces, const double* g, const double* f,
+              const std::uint8_t* fixed, const double* mass, double gravity) {
     if (!built_ || builtRevision_ != pieces.revision) rebuild(pieces);
-    if (pieces_ < 2) return -1.0;
+    if (pieces_ < 2) return false;
     const int* vertices = vertices_.data();
     const int* chunkBegin = chunkBegin_.data();
     double* chunkSums = chunkSums_.data();
@@ -102,10 +111,9 @@ class PieceResidual {
     });
     ex.maximum(
         pieces_, [=] GALSCULPT_LAMBDA(int p) { return ratio[p]; }, result_.data());
-    double worst = 0.0;
-    ex.read(result_.data(), &worst, 1);
-    return worst;
+    return true;
   }
+  const double* result() const { return result_.data(); }
 
  private:
   void rebuild(const PieceLayout& pieces) {

@@ -96,7 +96,7 @@ class MultigridCycle {
     cgAp_.resize(12 * c.handles);
     pieces_.upload(m);
     fragments_.upload(m, rows_);
-    denseSize_ = 12 * c.handles;
+    dense_.size = 12 * c.handles;
     factored_ = false;
     kept_.clear();
     coarseFactorsKept_ = 0;
@@ -176,6 +176,19 @@ class MultigridCycle {
   }
   const PcgScalars* pcgScalars() const { return pcg_.scalars(); }
 
+  // Where a device's dense factorization of the coarsest level left its status (> 0: it
+  // failed), while the host has not read it; null otherwise.
+  const double* coarseFailure() const {
+    return dense_.statusPending ? scalars_.data() + kFactorFailed : nullptr;
+  }
+  // The host read that status: where it failed, the coarsest level is solved by CG from now
+  // on (until the next refresh), as where a host factorization fails. True on a failure.
+  bool takeCoarseFailure(bool failed) {
+    dense_.statusPending = false;
+    if (failed) factored_ = false;
+    return failed;
+  }
+
   // What a V-cycle's launches bake in besides their arguments, for a device that replays them
   // (MultigridPcg's loop): the buffers (new with each upload), the host's choices (the coarsest
   // solve, the float smoother, fragments, pieces) and the settings the cycle reads.
@@ -187,8 +200,8 @@ class MultigridCycle {
         .mix(static_cast<std::uint64_t>(fragments_.fragments()))
         .mix(pieces_.active())
         .mixPointer(fixed_)
-        .mixPointer(denseInverse_.data())
-        .mix(static_cast<std::uint64_t>(denseSize_))
+        .mixPointer(dense_.inverse.data())
+        .mix(static_cast<std::uint64_t>(dense_.size))
         .mix(static_cast<std::uint64_t>(s.fineSweeps))
         .mix(static_cast<std::uint64_t>(s.coarseIterations))
         .mix(static_cast<std::uint64_t>(s.smoother))
@@ -277,7 +290,7 @@ class MultigridCycle {
     Buffer<double> blocks, diagonalFactor;
     Buffer<double> b, x, ax;  // the right-hand side, solution and product of this level's rows
   };
-  enum Scalar { kRr, kPap, kRrNew, kStop, kDone, kBB, kBad, kScalars };
+  enum Scalar { kRr, kPap, kRrNew, kStop, kDone, kBB, kBad, kFactorFailed, kScalars };
 
   // Gauss-Seidel order: colour by colour (backwards when reversed, for the symmetric cycle), the
   // rows of one colour at once (no two share a block). `update` gets each row's position in the
@@ -472,9 +485,13 @@ class MultigridCycle {
   Buffer<double> cgR_, cgP_, cgAp_;
   PieceCoarseStart<Exec> pieces_;       // the coarsest level's start with two or more pieces
   FragmentCorrection<Exec> fragments_;  // the fine level's
-  int denseSize_ = 0;
-  Buffer<double> dense_;         // a device's factorization of the coarsest level
-  Buffer<double> denseInverse_;  // and the inverse it gives (solveCoarsest's product)
+  // A device's dense factorization of the coarsest level (size x size), the inverse it gives
+  // (solveCoarsest's product), and whether the host has yet to read its status.
+  struct DenseCoarsest {
+    int size = 0;
+    Buffer<double> factor, inverse;
+    bool statusPending = false;
+  } dense_;
   // The host's (coarse_cholesky.h).
   std::unique_ptr<CoarseCholesky> sparse_;
   bool factored_ = false;  // the last refresh factored the coarsest level

@@ -118,14 +118,14 @@ void MultigridCycle<Exec>::refresh(const double* fine, bool coarseCholesky, bool
     return;
   }
   // Allocated once a size (each entry is written below): an allocation ends the device program.
-  const size_t entries = static_cast<size_t>(denseSize_) * denseSize_;
-  if (dense_.size() != entries) dense_.resize(entries);
-  if (denseInverse_.size() != entries) denseInverse_.resize(entries);
-  double* dense = dense_.data();
+  const size_t entries = static_cast<size_t>(dense_.size) * dense_.size;
+  if (dense_.factor.size() != entries) dense_.factor.resize(entries);
+  if (dense_.inverse.size() != entries) dense_.inverse.resize(entries);
+  double* dense = dense_.factor.data();
   const double* blocks = c.blocks.data();
   const int* rowStart = c.rowStart.data();
   const int* columns = c.columns.data();
-  const int n = denseSize_;
+  const int n = dense_.size;
   ex_.forEach(n * n, [=] GALSCULPT_LAMBDA(int i) { dense[i] = 0.0; });
   // A thread per row of the dense matrix (twelve per handle: a handle's thread wrote 1,500
   // entries serially on a device).
@@ -137,12 +137,15 @@ void MultigridCycle<Exec>::refresh(const double* fine, bool coarseCholesky, bool
         dense[e + static_cast<size_t>(n) * (12 * col + j)] = blocks[144 * k + i + 12 * j];
     }
   });
-  factored_ = ex_.denseCholesky(n, dense);
+  // Its status is not waited for: it goes to the scalars, and the Newton iteration's read
+  // brings it (coarseFailure); a failure there solves the step again with the coarse CG.
+  factored_ = ex_.denseCholesky(n, dense, scalars_.data() + kFactorFailed);
+  dense_.statusPending = factored_;
   if (!factored_) return;
   // The coarsest solve a V-cycle makes is then one product with the inverse: a phase of the
   // device program that runs PCG (a triangular solve is n steps of its own, and cuSOLVER's would
   // end the program). Symmetrized, so that the preconditioner stays symmetric.
-  double* inverse = denseInverse_.data();
+  double* inverse = dense_.inverse.data();
   ex_.denseCholeskyInverse(n, dense, inverse);
   ex_.forEach(n * n, [=] GALSCULPT_LAMBDA(int e) {
     const int i = e % n, j = e / n;

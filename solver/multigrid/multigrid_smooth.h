@@ -114,7 +114,7 @@ void MultigridCycle<Exec>::solveCoarsest(const double* b, double* x, const Setti
       ex_.copy(x, b, n);
       sparse_->solve(x);
     } else {
-      const double* inverse = denseInverse_.data();
+      const double* inverse = dense_.inverse.data();
       ex_.forEach(n, [=] GALSCULPT_LAMBDA(int i) {
         double acc = 0.0;
         for (int j = 0; j < n; ++j) acc += inverse[i + static_cast<size_t>(n) * j] * b[j];

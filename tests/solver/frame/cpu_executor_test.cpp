@@ -60,18 +60,30 @@ TEST(CpuExecutor, SumsAreTheFixedBlockOrderForAnyThreadCount) {
 TEST(CpuExecutor, ACapturedSectionRefusesReadsDownloadsAndWaits) {
   CpuExecutor ex;
   std::vector<double> device = {1.0, 2.0}, host(2, 0.0);
-  double a[1] = {4.0};
+  double a[1] = {4.0}, failed = -1.0;
   ex.captured(0, 1, [&] {
     EXPECT_THROW(ex.read(device.data(), host.data(), 2), std::logic_error);
     EXPECT_THROW(ex.download(device.data(), host.data(), 2), std::logic_error);
-    EXPECT_THROW(ex.denseCholesky(1, a), std::logic_error);
+    EXPECT_THROW(ex.denseCholesky(1, a, &failed), std::logic_error);
     ex.copy(host.data(), device.data(), 2);  // a device copy is recorded, not refused
   });
   EXPECT_EQ(host, device);
   // Outside the section everything is allowed again.
   ex.read(device.data(), host.data(), 2);
-  EXPECT_TRUE(ex.denseCholesky(1, a));
+  EXPECT_TRUE(ex.denseCholesky(1, a, &failed));
   EXPECT_DOUBLE_EQ(a[0], 2.0);
+  EXPECT_EQ(failed, 0.0);
+}
+
+// A dense factorization leaves its status where the frame's next read finds it: no wait of its
+// own, and 1 for a matrix that is not positive definite.
+TEST(CpuExecutor, ADenseFactorizationLeavesItsStatusWithoutAWait) {
+  CpuExecutor ex;
+  double indefinite[4] = {1.0, 2.0, 2.0, 1.0}, failed = 0.0;
+  const long waits = ex.counters().waits;
+  EXPECT_TRUE(ex.denseCholesky(2, indefinite, &failed));
+  EXPECT_EQ(failed, 1.0);
+  EXPECT_EQ(ex.counters().waits, waits);
 }
 
 }  // namespace

@@ -191,7 +191,8 @@ TEST(CpuExecutor, CapturedSectionsMayNotReadAllocateOrWait) {
   EXPECT_THROW(ex.captured(0, 1, [&] { ex.read(b.data(), &value, 1); }), std::logic_error);
   EXPECT_THROW(ex.captured(0, 1, [&] { b.resize(8); }), std::logic_error);
   EXPECT_THROW(ex.captured(0, 1, [&] { b.upload(std::vector<double>{1.0}); }), std::logic_error);
-  EXPECT_THROW(ex.captured(0, 1, [&] { ex.denseCholesky(2, b.data()); }), std::logic_error);
+  EXPECT_THROW(ex.captured(0, 1, [&] { ex.denseCholesky(2, b.data(), b.data() + 3); }),
+               std::logic_error);
   // Launches and device-side reductions are what a section is made of.
   double* p = b.data();
   EXPECT_NO_THROW(ex.captured(0, 1, [&] {

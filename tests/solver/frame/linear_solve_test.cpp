@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "solver/frame/cpu_executor.h"
+#include "solver/frame/device_like_executor.h"
 #include "solver/frame/incremental_potential.h"
 #include "solver/frame/plastic_state.h"
 #include "tests/test_util.h"
@@ -18,20 +19,21 @@
 namespace galsculpt {
 namespace {
 
-struct System {
+template <typename Exec>
+struct SystemOn {
   SimModel model =
       buildSimModel(test::gridBar(8, 2, 2, 0.01),
                     {MaterialModel::StableNeoHookean, lameFromYoungPoisson(1e5, 0.4), 1000.0, {}});
-  CpuExecutor ex;
-  FrameData<CpuExecutor> d{model};
-  PlasticState<CpuExecutor> plastic{ex, model};
-  IncrementalPotential<CpuExecutor> potential{ex, model, d, plastic};
-  LinearSolve<CpuExecutor> linear{ex, model, d};
+  Exec ex;
+  FrameData<Exec> d{model};
+  PlasticState<Exec> plastic{ex, model};
+  IncrementalPotential<Exec> potential{ex, model, d, plastic};
+  LinearSolve<Exec> linear{ex, model, d};
   StepSettings settings;
   std::vector<std::uint8_t> damaged = std::vector<std::uint8_t>(model.numEdges(), 0);
   int n = model.numVertices();
 
-  System() {
+  SystemOn() {
     settings.type = SolverType::Multigrid;
     settings.gridHandles = {8};
     d.settings = &settings;
@@ -73,6 +75,7 @@ struct System {
     return step();
   }
 };
+using System = SystemOn<CpuExecutor>;
 
 TEST(LinearSolve, PcgWithTheMultigridGivesTheDirectSolvesStep) {
   System s;
@@ -170,6 +173,43 @@ TEST(LinearSolve, TheNullStepIsTakenOnlyForANullGradient) {
   EXPECT_TRUE(s.linear.nullStep(s.settings, 0.0, bnorm));
   EXPECT_EQ(bnorm, 0.0);
   EXPECT_EQ(s.linear.reduction(), 0.0);
+}
+
+// A device factors the coarsest level without waiting for the status: it rides the frame's read
+// after the solve, and a failure read there is said once (the step is then solved again, the
+// coarsest level by CG, and that solve's read says nothing more).
+TEST(LinearSolve, ADevicesCoarseFactorizationStatusRidesTheFramesRead) {
+  SystemOn<DeviceLikeExecutor> s;
+  s.settings.coarseSolver = CoarseSolver::Cholesky;
+  s.settings.pcgTolerance = 1e-8;
+  auto solveAndRead = [&] {
+    s.linear.solve(s.settings, 0.0);
+    FrameScalars read;
+    s.ex.read(s.d.sc(), &read, 1);
+    s.linear.takeSolve(read);
+    return read;
+  };
+  long waits = s.ex.counters().waits;
+  s.linear.refresh(s.settings);
+  EXPECT_EQ(s.ex.counters().waits, waits) << "no wait for the factorization's status";
+  FrameScalars read = solveAndRead();
+  EXPECT_FALSE(s.linear.coarseFactorFailed(read));
+  EXPECT_LT(s.linear.reduction(), 1e-8);
+  // A system that is not positive definite: the dense factorization fails.
+  const size_t entries = s.d.system.size();
+  std::vector<double> system(entries);
+  s.d.system.download(system.data(), entries);
+  for (double& v : system) v = -v;
+  s.d.system.upload(system);
+  waits = s.ex.counters().waits;
+  s.linear.refresh(s.settings);
+  EXPECT_EQ(s.ex.counters().waits, waits);
+  read = solveAndRead();
+  EXPECT_EQ(read.coarseFailed, 1.0);
+  EXPECT_TRUE(s.linear.coarseFactorFailed(read));
+  EXPECT_FALSE(s.linear.coarseFactorFailed(read)) << "said once";
+  read = solveAndRead();  // again, the coarsest level by CG
+  EXPECT_FALSE(s.linear.coarseFactorFailed(read));
 }
 
 }  // namespace
