@@ -77,10 +77,10 @@ def setting(r):
 
 
 def device(r):
-    """What a frame cost a device backend (bench's launches and syncs), or a dash."""
+    """What a frame cost a device backend (bench's launches, barriers and syncs), or a dash."""
     if not r.get("launches"):
         return "—"
-    return f"{r['launches']:,.0f} / {r['syncs']:.1f}"
+    return f"{r['launches']:,.0f} / {r.get('barriers', 0):,.0f} / {r['syncs']:.1f}"
 
 
 def table(doc):
@@ -96,7 +96,7 @@ def table(doc):
         "",
         "| scene | tets | setting | backend | threads | ms/frame | p95 ms | fps | error in motion % "
         "| error at the end % | RMS error at the end % | Newton / CG a frame | largest residual | unconverged frames "
-        "| peak MB | device kernels / waits a frame |",
+        "| peak MB | device kernels / grid barriers / waits a frame |",
         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
     ]
     for r in doc["results"]:

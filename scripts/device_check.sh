@@ -4,9 +4,10 @@
 # CUDA toolkit but none of galsculpt's Debian libraries. Make the pack with
 # `scripts/device_pack.sh`; then on the device machine, from the repository root:
 #   scripts/device_check.sh PACK SECONDS STEP...
-# STEP: tests[:FILTER] (gpu_tests), tests0[:FILTER] (without CUDA graphs), sanitize:TOOL:FILTER
-# (under compute-sanitizer), bench:SCENE[:FRAMES[:EXTRA]] (bench --backend cuda), nographs:SCENE
-# (the same without CUDA graphs), profile:SCENE (the same, each launch timed: gpu/launch_profile.h),
+# STEP: tests[:FILTER] (gpu_tests), tests0[:FILTER] (without CUDA graphs), testsk[:FILTER]
+# (without device programs: a kernel a launch, graphs), sanitize:TOOL:FILTER (under
+# compute-sanitizer), bench:SCENE[:FRAMES[:EXTRA]] (bench --backend cuda), nographs:SCENE (the same
+# without CUDA graphs), noprograms:SCENE (the same without device programs), profile:SCENE (the same, each launch timed: gpu/launch_profile.h),
 # play:SCRIPT (a shipped playback script with --backend cuda), run:SCENE[:FRAMES] (run --backend
 # cuda on assets/scenes/SCENE.json, for scenes without a reference here). With no STEP, the whole
 # check: gpu_tests, bench on the sphere, the human figure, Charpy, Charpy after the break and the
@@ -58,12 +59,13 @@ for step in "$@"; do
   log=$work/r/${step//[:*]/-}.log
   t0=$(date +%s)
   case $kind in
-    tests | tests0 | sanitize)
+    tests | tests0 | testsk | sanitize)
       # tests[:FILTER], tests0[:FILTER] (without CUDA graphs), sanitize:TOOL:FILTER[:FRAMES]
       # (compute-sanitizer, GALSCULPT_COMPARE_FRAMES frames, default 10).
       run=(gpu_tests "--gtest_filter=${scene:-*}" --gtest_output="xml:$work/r/${step//[:*]/-}.xml")
       envs=(GALSCULPT_DEBUG_COMPARE=1)
       [ "$kind" = tests0 ] && envs+=(GALSCULPT_CUDA_GRAPHS=0)
+      [ "$kind" = testsk ] && envs+=(GALSCULPT_CUDA_PROGRAMS=0)
       if [ "$kind" = sanitize ]; then
         run=(compute-sanitizer --tool "$scene" --print-limit 20 gpu_tests "--gtest_filter=$frames")
         envs+=("GALSCULPT_COMPARE_FRAMES=${extra:-10}")
@@ -73,9 +75,10 @@ for step in "$@"; do
       grep -E "against cpu|^\[       OK|^\[  FAILED|^\[  SKIPPED|Failure|actual|ERROR SUMMARY|Invalid|Uninitialized|Race" \
         "$log" | head -40 >>"$summary"
       ;;
-    bench | nographs | profile)
+    bench | nographs | noprograms | profile)
       envs=()
       [ "$kind" = nographs ] && envs=(GALSCULPT_CUDA_GRAPHS=0)
+      [ "$kind" = noprograms ] && envs=(GALSCULPT_CUDA_PROGRAMS=0)
       [ "$kind" = profile ] && envs=(GALSCULPT_CUDA_PROFILE=1)
       # shellcheck disable=SC2086
       timeout "$t" env ${envs[@]+"${envs[@]}"} galsculpt bench --backend cuda --scene "$scene" \

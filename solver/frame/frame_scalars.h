@@ -20,8 +20,9 @@ struct FrameScalars {
   // The same two at the last trial, where the frame tests residuals between Newton iterations
   // (IncrementalPotential::residualAtTrials): an accepted trial's are the accepted positions'.
   double trialResidual = 0.0, trialForceScale = 0.0;
-  double trialBad = 0.0;      // there too: > 0 where the trial's positions hold a NaN or infinity
-  double r0 = 0.0, r1 = 0.0;  // |b|^2 and |b - A delta|^2 around the V-cycles' solve
+  double trialBad = 0.0;  // there too: > 0 where the trial's positions hold a NaN or infinity
+  double trialWorstPiece = -1.0;  // and the worst piece's (a device's: formPiecesAtTrials)
+  double r0 = 0.0, r1 = 0.0;      // |b|^2 and |b - A delta|^2 around the V-cycles' solve
   // PCG's |r| / |b| and iterations in the Newton step's solve (LinearSolve::takeSolve).
   double pcgReduction = 0.0, pcgIterations = 0.0;
   // A device's dense factorization of the coarsest level failed (not positive definite): its

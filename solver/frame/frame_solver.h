@@ -179,11 +179,6 @@ class FrameSolver {
     const StepSettings& s = *d_.settings;
     SubstepOutcome result;
     beginSubstep(h);
-    // A device forms the next local region at each trial (no read of its own).
-    const bool regionAtTrials =
-        !Exec::kHostMemory && s.localNewton && s.multigrid() && potential_.residualAtTrials();
-    potential_.formRegionAtTrials(regionAtTrials ? &region_ : nullptr, s.residualTolerance,
-                                  weight());
     bool stationary = false;
     bool reuse = false;  // solve with the last iteration's stiffness (a chord step)
     bool chordFailed = false;
@@ -277,9 +272,11 @@ class FrameSolver {
   bool piecesWithinTolerance(double residual, const double* forces) {
     const StepSettings& s = *d_.settings;
     if (!s.convergePieces) return true;
-    const double worst =
-        pieceResidual_.measure(ex_, damage_.pieces(), d_.g.data(), forces, d_.fixed.data(),
-                               d_.mass.data(), model_.gravity.norm());
+    const double worst =  // the accepted trial's where it formed it
+        accepted_.fromTrial && forces == accepted_.forces && potential_.formsPiecesAtTrials()
+            ? accepted_.trialRead.trialWorstPiece
+            : pieceResidual_.measure(ex_, damage_.pieces(), d_.g.data(), forces, d_.fixed.data(),
+                                     d_.mass.data(), model_.gravity.norm());
     if (worst <= s.residualTolerance) return true;  // (-1: fewer than two measured pieces)
     const double share = 0.5 * s.residualTolerance / worst;
     pieceTargetCap_ =
@@ -400,6 +397,7 @@ class FrameSolver {
       accepted_.trialRead.bad = read.trialBad;
       accepted_.trialRead.regionVertices = read.regionVertices;
       accepted_.trialRead.freeVertices = read.freeVertices;
+      accepted_.trialRead.trialWorstPiece = read.trialWorstPiece;
     }
     result.elasticEnergy = read.trialElastic;
     // Newton's step test on the full step: a step shortened to nothing says nothing about

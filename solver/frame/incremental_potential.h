@@ -21,6 +21,7 @@
 #include "solver/frame/frame_data.h"
 #include "solver/frame/local_region.h"
 #include "solver/frame/pass_terms.h"
+#include "solver/frame/piece_residual.h"
 #include "solver/frame/plastic_state.h"
 #include "solver/model/sim_model.h"
 
@@ -234,6 +235,12 @@ class IncrementalPotential {
     FrameScalars* sc = d_.sc();
     residualSums(d_.trialG.data(), d_.trialForces.data(), &sc->trialResidual, &sc->trialForceScale);
     nonFinite(trial, &sc->trialBad);
+    if (trialPieces_ &&
+        trialPieces_->launch(ex_, *trialLayout_, d_.trialG.data(), d_.trialForces.data(),
+                             d_.fixed.data(), d_.mass.data(), gravity_)) {
+      const double* worst = trialPieces_->result();
+      ex_.forEach(1, [=] GALSCULPT_LAMBDA(int) { sc->trialWorstPiece = *worst; });
+    }
     if (!trialRegion_) return;
     // The region the next iteration would solve from these positions, its size in this read
     // (formRegionAtTrials): the seeds' `outside` from the trial's force scale, as the host forms
@@ -257,6 +264,14 @@ class IncrementalPotential {
     regionWeight_ = weight;
   }
   bool formsRegionAtTrials() const { return trialRegion_ != nullptr; }
+  // The same for the pieces' residuals (PieceResidual, `layout` the body's pieces, built for
+  // it already; null: none): the worst goes to trialWorstPiece.
+  void formPiecesAtTrials(PieceResidual<Exec>* pieces, const PieceLayout* layout, double gravity) {
+    trialPieces_ = pieces;
+    trialLayout_ = layout;
+    gravity_ = gravity;
+  }
+  bool formsPiecesAtTrials() const { return trialPieces_ != nullptr; }
 
   // *out > 0 where positions y (3n) hold a NaN or infinity: the test the sub-step's end makes of
   // the accepted positions and each trial of its own (the two must agree).
@@ -274,6 +289,9 @@ class IncrementalPotential {
   PassTerms<Exec> terms_;
   LocalRegion<Exec>* trialRegion_ = nullptr;  // formRegionAtTrials
   double regionTolerance_ = 0.0, regionWeight_ = 0.0;
+  PieceResidual<Exec>* trialPieces_ = nullptr;  // formPiecesAtTrials
+  const PieceLayout* trialLayout_ = nullptr;
+  double gravity_ = 0.0;
 };
 
 }  // namespace galsculpt

@@ -1,6 +1,7 @@
 // How FrameSolver's sub-step starts (frame_solver.h): x_n, v_n and the inertial target from the
-// state, the held vertices on their paths, the pieces' accelerated start, and the prediction
-// dropped when it turns an element inside out. Included by frame_solver.h only, after the class.
+// state, the held vertices on their paths, the pieces' accelerated start, what a device's trials
+// form besides the residual, and the prediction dropped when it turns an element inside out.
+// Included by frame_solver.h only, after the class.
 #pragma once
 
 #include "solver/frame/frame_solver.h"
@@ -10,6 +11,16 @@ namespace galsculpt {
 template <typename Exec>
 void FrameSolver<Exec>::beginSubstep(double h) {
   d_.h = h;
+  // A device forms the next local region and the pieces' residuals at each trial, so that the
+  // choices after an iteration need no read of their own.
+  const StepSettings& s = *d_.settings;
+  const bool atTrials = !Exec::kHostMemory && potential_.residualAtTrials();
+  const bool regionAtTrials = atTrials && s.localNewton && s.multigrid();
+  potential_.formRegionAtTrials(regionAtTrials ? &region_ : nullptr, s.residualTolerance, weight());
+  const bool piecesAtTrials =
+      atTrials && s.convergePieces && pieceResidual_.measures(damage_.pieces());
+  potential_.formPiecesAtTrials(piecesAtTrials ? &pieceResidual_ : nullptr, &damage_.pieces(),
+                                model_.gravity.norm());
   pieceTargetCap_ = std::numeric_limits<double>::infinity();
   linear_.resetIterations();
   held_.prepare(*anchors_, time_ + h);
