@@ -176,22 +176,23 @@ class CpuExecutor {
   // In-place dense Cholesky (lower, column-major). Its status goes to *failed (executor memory:
   // 1 where the matrix is not positive definite), where the frame reads it with its next read:
   // no wait of its own. False where it cannot run (the CUDA executor without cuSOLVER). A
-  // library's call on the device: it ends the program open and counts as one kernel
-  // (cuSOLVER's launches a few).
+  // library's call on the device: it ends the program open and counts as two kernels, as the
+  // CUDA executor runs it (cuSOLVER's call, counted as one though it launches a few, and the
+  // status's copy).
   bool denseCholesky(int n, double* a, double* failed) const {
     detail::endProgram("a dense factorization (a library's call)");
-    ++counters_.programs;
+    counters_.programs += 2;
     Eigen::Map<Eigen::MatrixXd> m(a, n, n);
     Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(m);
     *failed = llt.info() == Eigen::Success ? 0.0 : 1.0;
     return true;
   }
   // inverse = (L Lᵀ)⁻¹ from denseCholesky's factor L (column-major, n x n). A library's call on
-  // the device: it ends the program open and counts as one kernel (cuSOLVER's two triangular
-  // solves on the identity launch a few), with no wait.
+  // the device: it ends the program open and counts as two kernels, with no wait (the
+  // identity's fill, and cuSOLVER's two triangular solves on it, counted as one).
   void denseCholeskyInverse(int n, const double* l, double* inverse) const {
     detail::endProgram("a dense inverse (a library's call)");
-    ++counters_.programs;
+    counters_.programs += 2;
     const Eigen::Map<Eigen::MatrixXd> m(const_cast<double*>(l), n, n);  // read only
     Eigen::Map<Eigen::MatrixXd> x(inverse, n, n);
     x.setIdentity();

@@ -104,7 +104,7 @@ DeviceFrameCost deviceFrameCost(const Simulation& sim, const char* name, int set
 TEST(DeviceCounts, TheHangingSpheresFrameStaysWithinItsLaunchesAndWaits) {
   const DeviceFrameCost c = deviceFrameCost(*hangingSphere(), "hanging sphere (6k, converged)");
   EXPECT_GT(c.kernels, 0.0);
-  EXPECT_LE(c.kernels, 6.3);
+  EXPECT_LE(c.kernels, 8.4);
   EXPECT_LE(c.barriers, 393.0);
   EXPECT_LE(c.syncs, 3.1) << "the issue's target on the sphere: 4";
   EXPECT_LE(c.hostToDevice, 1024.0) << "a frame uploads only what changed (anchor targets)";
@@ -112,7 +112,7 @@ TEST(DeviceCounts, TheHangingSpheresFrameStaysWithinItsLaunchesAndWaits) {
 
 TEST(DeviceCounts, TheCutSpheresFrameStaysWithinItsLaunchesAndWaits) {
   const DeviceFrameCost c = deviceFrameCost(*cutSphere(), "cut sphere (6k, two pieces falling)");
-  EXPECT_LE(c.kernels, 8.1);
+  EXPECT_LE(c.kernels, 11.0);
   EXPECT_LE(c.barriers, 725.0);
   EXPECT_LE(c.syncs, 4.8);
 }
@@ -123,7 +123,7 @@ TEST(DeviceCounts, CharpysFramesAfterTheBreakStayWithinTheirLaunchesAndWaits) {
   const SceneDescription scene = sceneNamed("charpy", 8000);
   const Simulation sim(scene, loadSceneMesh(scene));
   const DeviceFrameCost c = deviceFrameCost(sim, "Charpy after the break (8k, converged)", 40);
-  EXPECT_LE(c.kernels, 13.8);
+  EXPECT_LE(c.kernels, 18.6);
   EXPECT_LE(c.barriers, 1948.0);
   EXPECT_LE(c.syncs, 6.6) << "the issue's target after the break: 8";
 }
