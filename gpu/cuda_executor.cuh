@@ -129,10 +129,13 @@ class CudaExecutor {
       return *this;
     }
     ~Buffer() {
-      if (p_) {
+      if (!p_) return;
+      try {
         ::galsculpt::detail::closeOpenProgram();  // its launches may still read this memory
-        cudaFree(p_);
+      } catch (const CudaError&) {
+        // A failed launch here has no one to tell: the device's next call reports its state.
       }
+      cudaFree(p_);
     }
     T* data() { return p_; }
     const T* data() const { return p_; }
@@ -547,6 +550,8 @@ class CudaExecutor {
   ProgramRecorder& record() const {
     if (::galsculpt::detail::openProgram.executor != this) {
       ::galsculpt::detail::closeOpenProgram();
+      // Launches left open on another thread (the step backend flushes each frame) run first.
+      if (runner_.run()) ++counters_.programs;
       ::galsculpt::detail::openProgram = {[](void* executor) {
                                             const auto* ex =
                                                 static_cast<const CudaExecutor*>(executor);

@@ -113,6 +113,14 @@ bool ProgramRunner::start() {
     return false;
   }
   if (!cooperative || perProcessor < 1) return false;
+  // The phases are called through pointers, so the kernel's stack is not known when it is
+  // linked, and a thread gets the device's default (1 KB): the limit must cover the largest
+  // phase's frame (the element kernels' reach about 5 KB on sm_90, as a kernel of their own
+  // they get it by themselves).
+  if (cudaDeviceSetLimit(cudaLimitStackSize, kProgramStackBytes) != cudaSuccess) {
+    cudaGetLastError();
+    return false;
+  }
   residentBlocks_ = processors * perProcessor;
   GALSCULPT_CUDA_CHECK(cudaMalloc(&barriers_, sizeof(unsigned long long)));
   GALSCULPT_CUDA_CHECK(cudaMemset(barriers_, 0, sizeof(unsigned long long)));

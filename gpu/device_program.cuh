@@ -23,6 +23,10 @@ namespace galsculpt::gpu {
 
 inline constexpr int kThreads = 256;
 inline constexpr int kReduceBlocks = 1024;
+// A device program's stack a thread (ProgramRunner::start): the largest phase's frame and the
+// kernel's own, with room (the device reserves it for every thread it can hold: 8 KB is about
+// 2 GB on an H100).
+inline constexpr size_t kProgramStackBytes = 8192;
 
 struct AddOp {
   __host__ __device__ double operator()(double a, double b) const { return a + b; }
