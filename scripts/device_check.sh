@@ -1,21 +1,21 @@
 #!/usr/bin/env bash
-# The GPU checks, run on a lent device machine (docs/gpu.md): the binaries are built here (Debian
-# 12, nvcc 13, sm_90) and travel with the libraries they need, since the device machine has the
-# CUDA toolkit but none of galsculpt's Debian libraries. Make the pack with
+# The GPU checks, run on a lent device machine (docs/benchmarks.md, "CUDA backend"): the binaries
+# are built here (Debian 12, nvcc 13, sm_90) and travel with the libraries they need, since the
+# device machine has the CUDA toolkit but none of galsculpt's Debian libraries. Make the pack with
 # `scripts/device_pack.sh`; then on the device machine, from the repository root:
 #   scripts/device_check.sh PACK SECONDS STEP...
 # STEP: tests[:FILTER] (gpu_tests), tests0[:FILTER] (without CUDA graphs), testsk[:FILTER]
 # (without device programs: a kernel a launch, graphs), sanitize:TOOL:FILTER (under
 # compute-sanitizer), bench:SCENE[:FRAMES[:EXTRA]] (bench --backend cuda), nographs:SCENE (the same
-# without CUDA graphs), noprograms:SCENE (the same without device programs), profile:SCENE (the same, each launch timed: gpu/launch_profile.h),
-# play:SCRIPT (a shipped playback script with --backend cuda), run:SCENE[:FRAMES] (run --backend
-# cuda on assets/scenes/SCENE.json, for scenes without a reference here). With no STEP, the whole
-# check: gpu_tests, bench on the sphere, the human figure, Charpy, Charpy after the break and the
-# cut sphere, the armadillo's run and the face demo (about 6 minutes on an H200 with kept
-# references). Each step gets what is left of SECONDS; every log and JSON goes to
-# $OUT/results.tar.gz (rewritten after each step) and a summary ends the output: bench's rows
-# (ms a frame beside error in motion, and the device's kernels and host waits a frame) and, for
-# play and run, frames, ms, unconverged frames, kernels and waits a frame.
+# without CUDA graphs), noprograms:SCENE (the same without device programs), profile:SCENE (the
+# same, each launch timed: gpu/launch_profile.h), play:SCRIPT (a shipped playback script with
+# --backend cuda), run:SCENE[:FRAMES] (run --backend cuda on assets/scenes/SCENE.json, for scenes
+# without a reference here). With no STEP, the whole check: gpu_tests, bench on the sphere, the
+# human figure, Charpy, Charpy after the break and the cut sphere, the armadillo's run and the face
+# demo (about 6 minutes on an H200 with kept references). Each step gets what is left of SECONDS;
+# every log and JSON goes to $OUT/results.tar.gz (rewritten after each step) and a summary ends the
+# output: bench's rows (ms a frame beside error in motion, and the device's kernels and host waits
+# a frame) and, for play and run, frames, ms, unconverged frames, kernels and waits a frame.
 set -u
 pack=$1
 budget=$2
