@@ -86,5 +86,45 @@ TEST(CpuExecutor, ADenseFactorizationLeavesItsStatusWithoutAWait) {
   EXPECT_EQ(ex.counters().waits, waits);
 }
 
+// The launches between two host waits are one device program (one kernel on a GPU), each
+// launch a phase ending at a grid barrier (a reduction two), a device loop's test a barrier of
+// its own; a read, a download, an upload or flush() ends the program.
+TEST(CpuExecutor, LaunchesBetweenTwoWaitsAreOneProgramOfPhases) {
+  CpuExecutor ex;
+  ex.flush();
+  std::vector<double> v(300, 1.0), w(300, 0.0);
+  double* p = v.data();
+  double* q = w.data();
+  double total = 0.0;
+  const DeviceCounters start = ex.counters();
+  ex.forEach(300, [=](int i) { p[i] *= 2.0; });
+  ex.sum(
+      300, [=](int i) { return p[i]; }, &total);
+  ex.copy(q, p, 300);
+  double read = 0.0;
+  ex.read(&total, &read, 1);
+  DeviceCounters now = ex.counters();
+  EXPECT_EQ(now.programs - start.programs, 1);
+  EXPECT_EQ(now.barriers - start.barriers, 1 + 2 + 1);
+  EXPECT_EQ(read, 600.0);
+  // A loop of three passes after the read: a second program, its test a barrier before the
+  // first pass and after each.
+  double running = 1.0, passes = 0.0;
+  double* flag = &running;
+  double* count = &passes;
+  ex.loopOnDevice(1, flag, 10, [&] {
+    ex.forEach(1, [=](int) {
+      *count += 1.0;
+      if (*count >= 3.0) *flag = 0.0;
+    });
+  });
+  ex.flush();
+  const DeviceCounters end = ex.counters();
+  EXPECT_EQ(passes, 3.0);
+  EXPECT_EQ(end.programs - now.programs, 1);
+  EXPECT_EQ(end.barriers - now.barriers, 1 + 3 * (1 + 1));
+  EXPECT_EQ(end.waits - now.waits, 0) << "the loop's test waits for nothing";
+}
+
 }  // namespace
 }  // namespace galsculpt

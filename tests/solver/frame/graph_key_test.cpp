@@ -36,5 +36,25 @@ TEST(GraphKey, IsTheLaunchKeyOfWhatItMixes) {
   EXPECT_NE(LaunchKey().value(), LaunchKey().mix(0).value()) << "a word mixed is a word more";
 }
 
+// A plain struct's bytes, word by word (what a device loop's key mixes of a launch's argument):
+// the same bytes the same key, a field changed another, the tail past the last word too.
+TEST(LaunchKey, MixesAStructsBytesWordByWord) {
+  struct Arguments {
+    const int* pointer;
+    double value;
+    int count;
+    char tail[3];
+  };
+  const int storage[2] = {1, 2};
+  Arguments a{storage, 2.5, 7, {'a', 'b', 'c'}};
+  Arguments b = a;
+  EXPECT_EQ(LaunchKey().mixBytes(a).value(), LaunchKey().mixBytes(b).value());
+  b.pointer = storage + 1;
+  EXPECT_NE(LaunchKey().mixBytes(a).value(), LaunchKey().mixBytes(b).value());
+  b = a;
+  b.tail[2] = 'd';
+  EXPECT_NE(LaunchKey().mixBytes(a).value(), LaunchKey().mixBytes(b).value());
+}
+
 }  // namespace
 }  // namespace galsculpt
