@@ -9,14 +9,31 @@
 
 namespace galsculpt::gpu {
 
-LoopCheck checkDeviceLoop(int stopAt, int mostPasses, bool startRunning, bool programs) {
-  LoopCheck check;
+namespace {
+
+// Runs `body(check)` where a GPU is usable; the check says why it did not run otherwise (no
+// usable GPU, a CUDA error).
+template <typename Check, typename Body>
+Check runOnDevice(const Body& body) {
+  Check check;
   const DeviceInfo info = queryDevice();
   if (!info.available) {
     check.reason = info.reason;
     return check;
   }
   try {
+    body(check);
+    check.ran = true;
+  } catch (const std::exception& e) {
+    check.reason = e.what();
+  }
+  return check;
+}
+
+}  // namespace
+
+LoopCheck checkDeviceLoop(int stopAt, int mostPasses, bool startRunning, bool programs) {
+  return runOnDevice<LoopCheck>([&](LoopCheck& check) {
     CudaExecutor ex(programs);
     check.programs = ex.runsPrograms();
     CudaExecutor::Buffer<double> state;  // the flag, the count
@@ -44,11 +61,7 @@ LoopCheck checkDeviceLoop(int stopAt, int mostPasses, bool startRunning, bool pr
     check.waits = after.waits - before.waits;
     check.graphs = after.graphs - before.graphs;
     check.barriers = after.barriers - before.barriers;
-    check.ran = true;
-  } catch (const std::exception& e) {
-    check.reason = e.what();
-  }
-  return check;
+  });
 }
 
 namespace {
@@ -102,24 +115,14 @@ std::vector<double> runProgramLaunches(CudaExecutor& ex, long& kernels, long& ba
 }  // namespace
 
 ProgramCheck checkDeviceProgram() {
-  ProgramCheck check;
-  const DeviceInfo info = queryDevice();
-  if (!info.available) {
-    check.reason = info.reason;
-    return check;
-  }
-  try {
+  return runOnDevice<ProgramCheck>([](ProgramCheck& check) {
     long barriers = 0;
     CudaExecutor fused(true);
     check.programs = fused.runsPrograms();
     check.fused = runProgramLaunches(fused, check.fusedKernels, check.fusedBarriers);
     CudaExecutor separate(false);
     check.separate = runProgramLaunches(separate, check.separateKernels, barriers);
-    check.ran = true;
-  } catch (const std::exception& e) {
-    check.reason = e.what();
-  }
-  return check;
+  });
 }
 
 }  // namespace galsculpt::gpu
